@@ -1,0 +1,18 @@
+//! # rigid: rigid-body dynamics for Rust
+//!
+//! The crate follows the notation of Lynch & Park, *Modern Robotics*, and Featherstone's spatial
+//! algebra. Twists `V = (ω, v)` and wrenches `F = (m, f)` are **angular first**; `T_ab` is frame
+//! {b} seen from {a}; SI units throughout.
+//!
+//! The modules depend only downward:
+//!
+//! | module | what |
+//! | --- | --- |
+//! | [`spatial`] | SO(3), SE(3), twists, wrenches, `Ad`, `ad`, exp and log |
+//! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G` |
+#![warn(missing_docs)]
+#![allow(non_snake_case)]
+
+pub mod error;
+pub mod mass;
+pub mod spatial;
