@@ -2,8 +2,16 @@
 //! triangle meshes, compounds of parts), principal axes, Steiner, validity, and the 6x6 spatial
 //! inertia `G`.
 
+mod compound;
 mod inertia;
+mod mesh;
+mod shapes;
 mod spatial_inertia;
 
+pub use compound::{
+    Compound, CompoundError, Geometry, MassOrDensity, MassProperties, Part, PartError,
+};
 pub use inertia::{RotationalInertia, DEFAULT_INERTIA_TOLERANCE};
+pub use mesh::{MeshError, MeshMassProperties, TriMesh};
+pub use shapes::{Shape, ShapeError};
 pub use spatial_inertia::SpatialInertia;

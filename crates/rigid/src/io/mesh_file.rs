@@ -1,0 +1,105 @@
+//! Triangle mesh files: binary and ASCII STL (through the `stl_io` crate) and Wavefront OBJ
+//! (through `tobj`), read into a [`TriMesh`] whose duplicate vertices are merged, so that the
+//! facets of an STL file (which repeats every vertex once per facet) share their edges.
+
+use crate::mass::TriMesh;
+use crate::spatial::Vec3;
+use std::fs::File;
+use std::io::BufReader;
+use std::path::Path;
+use thiserror::Error;
+
+/// A mesh file that cannot be read.
+#[derive(Debug, Error)]
+pub enum MeshFileError {
+    /// The file could not be opened or read.
+    #[error("cannot read mesh file: {0}")]
+    Io(#[from] std::io::Error),
+    /// The extension is neither `.stl` nor `.obj`.
+    #[error("unknown mesh file extension {0:?}: expected .stl or .obj")]
+    UnknownFormat(String),
+    /// The STL reader failed.
+    #[error("invalid STL file: {0}")]
+    Stl(std::io::Error),
+    /// The OBJ reader failed.
+    #[error("invalid OBJ file: {0}")]
+    Obj(tobj::LoadError),
+}
+
+/// Reads an STL (binary or ASCII, detected from the content) or OBJ file, chosen by the
+/// extension (case-insensitive), and merges duplicate vertices. The mesh is not checked: call
+/// [`TriMesh::check`] or [`TriMesh::mass_properties`].
+///
+/// # Errors
+/// A [`MeshFileError`] saying what failed.
+pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshFileError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    match ext.as_str() {
+        "stl" => read_stl(path),
+        "obj" => read_obj(path),
+        _ => Err(MeshFileError::UnknownFormat(ext)),
+    }
+}
+
+/// Reads a binary or ASCII STL file and merges duplicate vertices.
+///
+/// # Errors
+/// [`MeshFileError::Io`] if the file cannot be opened, [`MeshFileError::Stl`] if it is not STL.
+pub fn read_stl(path: &Path) -> Result<TriMesh, MeshFileError> {
+    let mut reader = BufReader::new(File::open(path)?);
+    let stl = stl_io::read_stl(&mut reader).map_err(MeshFileError::Stl)?;
+    let vertices = stl
+        .vertices
+        .iter()
+        .map(|v| Vec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2])))
+        .collect();
+    let triangles = stl.faces.iter().map(|f| f.vertices).collect();
+    let mut mesh = TriMesh::new(vertices, triangles);
+    mesh.merge_duplicate_vertices();
+    Ok(mesh)
+}
+
+/// Reads a Wavefront OBJ file (all objects and groups, polygons triangulated as fans; materials,
+/// normals and texture coordinates ignored) and merges duplicate vertices.
+///
+/// # Errors
+/// [`MeshFileError::Io`] if the file cannot be opened, [`MeshFileError::Obj`] if it is not OBJ.
+pub fn read_obj(path: &Path) -> Result<TriMesh, MeshFileError> {
+    let mut reader = BufReader::new(File::open(path)?);
+    let options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .map_err(MeshFileError::Obj)?;
+    let mut mesh = TriMesh::default();
+    for model in &models {
+        let offset = mesh.vertices.len();
+        mesh.vertices.extend(
+            model
+                .mesh
+                .positions
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2])),
+        );
+        mesh.triangles
+            .extend(model.mesh.indices.chunks_exact(3).map(|t| {
+                [
+                    offset + t[0] as usize,
+                    offset + t[1] as usize,
+                    offset + t[2] as usize,
+                ]
+            }));
+    }
+    mesh.merge_duplicate_vertices();
+    Ok(mesh)
+}
