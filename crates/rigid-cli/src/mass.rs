@@ -1,0 +1,151 @@
+//! `rigid mass SPEC.toml [--json]`: mass properties of a compound body (CONVENTIONS.md, "The
+//! command-line contract").
+
+use clap::Args;
+use rigid::io::spec::read_spec;
+use rigid::mass::{CompoundError, MassProperties, DEFAULT_INERTIA_TOLERANCE};
+use rigid::spatial::{Mat3, Vec3};
+use serde::Serialize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Relative tolerance of the validity check (positive semi-definite, triangle inequality).
+const VALIDITY_TOLERANCE: f64 = DEFAULT_INERTIA_TOLERANCE;
+
+/// Arguments of `rigid mass`.
+#[derive(Args)]
+pub struct MassArgs {
+    /// The body spec: `[[part]]` tables with `shape`, dimensions, `mass` or `density`,
+    /// `position`, and optional `rpy` or `quaternion`.
+    spec: PathBuf,
+    /// Print one JSON object instead of the report.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The `--json` output. Keys are a stable contract: add, never rename or remove.
+#[derive(Serialize)]
+struct MassJson {
+    mass: f64,
+    com: [f64; 3],
+    inertia_com: [[f64; 3]; 3],
+    inertia_origin: [[f64; 3]; 3],
+    principal_moments: [f64; 3],
+    principal_axes: [[f64; 3]; 3],
+    spatial_inertia_origin: Vec<[f64; 6]>,
+    /// Whether the body is physical (added key).
+    valid: bool,
+    /// Why not, when `valid` is false (added key).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    validity_error: Option<String>,
+}
+
+fn rows(m: &Mat3) -> [[f64; 3]; 3] {
+    [0, 1, 2].map(|r| [m[(r, 0)], m[(r, 1)], m[(r, 2)]])
+}
+
+fn arr(v: &Vec3) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+/// Runs the command: exit code 0 on success, 2 on a bad spec (message on stderr).
+pub fn run(args: &MassArgs) -> ExitCode {
+    match compute(args) {
+        Ok((props, out)) => {
+            print!("{out}");
+            if let Err(e) = props.validity(VALIDITY_TOLERANCE) {
+                eprintln!("warning: the body is not physical: {e}");
+            }
+            ExitCode::SUCCESS
+        }
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn compute(args: &MassArgs) -> Result<(MassProperties, String), String> {
+    let body = read_spec(&args.spec).map_err(|e| format!("{}: {e}", args.spec.display()))?;
+    let props = body.mass_properties().map_err(|e| match e {
+        CompoundError::Part { index, source } => {
+            let name = body.parts[index]
+                .name
+                .as_deref()
+                .map(|n| format!(" (\"{n}\")"))
+                .unwrap_or_default();
+            format!(
+                "{}: part {}{name}: {source}",
+                args.spec.display(),
+                index + 1
+            )
+        }
+        other => format!("{}: {other}", args.spec.display()),
+    })?;
+    let out = if args.json {
+        json(&props)
+    } else {
+        report(&props)
+    };
+    Ok((props, out))
+}
+
+fn json(p: &MassProperties) -> String {
+    let g = p.spatial_inertia_origin.matrix();
+    let validity = p.validity(VALIDITY_TOLERANCE);
+    let out = MassJson {
+        mass: p.mass,
+        com: arr(&p.com),
+        inertia_com: rows(p.inertia_com.matrix()),
+        inertia_origin: rows(p.inertia_origin.matrix()),
+        principal_moments: arr(&p.principal_moments),
+        principal_axes: rows(&p.principal_axes),
+        spatial_inertia_origin: (0..6)
+            .map(|r| [0, 1, 2, 3, 4, 5].map(|c| g[(r, c)]))
+            .collect(),
+        valid: validity.is_ok(),
+        validity_error: validity.err().map(|e| e.to_string()),
+    };
+    // Serialising plain numbers cannot fail.
+    serde_json::to_string_pretty(&out).unwrap_or_default() + "\n"
+}
+
+fn fmt_vec(v: &[f64]) -> String {
+    let parts: Vec<String> = v.iter().map(|x| format!("{x:>13.6e}")).collect();
+    format!("[{}]", parts.join(" "))
+}
+
+fn fmt_mat(m: &Mat3, indent: &str) -> String {
+    (0..3)
+        .map(|r| format!("{indent}{}\n", fmt_vec(&[m[(r, 0)], m[(r, 1)], m[(r, 2)]])))
+        .collect()
+}
+
+fn report(p: &MassProperties) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let l = &p.principal_moments;
+    let _ = writeln!(s, "mass               {:.6} kg", p.mass);
+    let _ = writeln!(s, "centre of mass     {} m", fmt_vec(p.com.as_slice()));
+    let _ = writeln!(s, "inertia about the CoM, body axes (kg·m²):");
+    s += &fmt_mat(p.inertia_com.matrix(), "    ");
+    let _ = writeln!(s, "inertia about the body origin (kg·m²):");
+    s += &fmt_mat(p.inertia_origin.matrix(), "    ");
+    let _ = writeln!(
+        s,
+        "principal moments  {} kg·m² (ascending)",
+        fmt_vec(l.as_slice())
+    );
+    let _ = writeln!(s, "principal axes (columns):");
+    s += &fmt_mat(&p.principal_axes, "    ");
+    let _ = match p.validity(VALIDITY_TOLERANCE) {
+        Ok(()) => writeln!(
+            s,
+            "validity           ok: positive mass, positive semi-definite, λ1 + λ2 = {:.6e} ≥ λ3 = {:.6e}",
+            l[0] + l[1],
+            l[2]
+        ),
+        Err(e) => writeln!(s, "validity           NOT PHYSICAL: {e}"),
+    };
+    s
+}
