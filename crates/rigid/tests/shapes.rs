@@ -76,7 +76,7 @@ fn check(
     );
     assert!(e_v < 1e-4, "{shape:?}: volume {v} vs {}", shape.volume());
     assert!(
-        e_i < 2e-4,
+        e_i < 1e-4,
         "{shape:?}: inertia\n{i_num}\nvs closed form\n{i}"
     );
     (e_v, e_i)
