@@ -70,6 +70,8 @@ pub fn read_stl(path: &Path) -> Result<TriMesh, MeshFileError> {
 /// [`MeshFileError::Io`] if the file cannot be opened, [`MeshFileError::Obj`] if it is not OBJ.
 pub fn read_obj(path: &Path) -> Result<TriMesh, MeshFileError> {
     let mut reader = BufReader::new(File::open(path)?);
+    // `..Default::default()` covers the fields that tobj's optional features add.
+    #[allow(clippy::needless_update)]
     let options = tobj::LoadOptions {
         single_index: false,
         triangulate: true,
