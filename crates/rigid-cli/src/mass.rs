@@ -40,12 +40,17 @@ struct MassJson {
     validity_error: Option<String>,
 }
 
+/// `x + 0.0` turns `-0.0` into `0.0` and leaves every other number as it is.
+fn clean(x: f64) -> f64 {
+    x + 0.0
+}
+
 fn rows(m: &Mat3) -> [[f64; 3]; 3] {
-    [0, 1, 2].map(|r| [m[(r, 0)], m[(r, 1)], m[(r, 2)]])
+    [0, 1, 2].map(|r| [0, 1, 2].map(|c| clean(m[(r, c)])))
 }
 
 fn arr(v: &Vec3) -> [f64; 3] {
-    [v.x, v.y, v.z]
+    [v.x, v.y, v.z].map(clean)
 }
 
 /// Runs the command: exit code 0 on success, 2 on a bad spec (message on stderr).
@@ -94,14 +99,14 @@ fn json(p: &MassProperties) -> String {
     let g = p.spatial_inertia_origin.matrix();
     let validity = p.validity(VALIDITY_TOLERANCE);
     let out = MassJson {
-        mass: p.mass,
+        mass: clean(p.mass),
         com: arr(&p.com),
         inertia_com: rows(p.inertia_com.matrix()),
         inertia_origin: rows(p.inertia_origin.matrix()),
         principal_moments: arr(&p.principal_moments),
         principal_axes: rows(&p.principal_axes),
         spatial_inertia_origin: (0..6)
-            .map(|r| [0, 1, 2, 3, 4, 5].map(|c| g[(r, c)]))
+            .map(|r| [0, 1, 2, 3, 4, 5].map(|c| clean(g[(r, c)])))
             .collect(),
         valid: validity.is_ok(),
         validity_error: validity.err().map(|e| e.to_string()),
@@ -111,7 +116,7 @@ fn json(p: &MassProperties) -> String {
 }
 
 fn fmt_vec(v: &[f64]) -> String {
-    let parts: Vec<String> = v.iter().map(|x| format!("{x:>13.6e}")).collect();
+    let parts: Vec<String> = v.iter().map(|x| format!("{:>13.6e}", clean(*x))).collect();
     format!("[{}]", parts.join(" "))
 }
 

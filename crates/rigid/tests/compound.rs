@@ -226,11 +226,18 @@ fn spec_errors_name_part_field_and_line() {
         (*number, name.as_deref(), field.as_str()),
         (2, Some("b"), "size[1]")
     );
-    assert_eq!(*line, 8, "{e}"); // the line of its [[part]] header
+    assert_eq!(*line, 11, "{e}"); // the line of `size = ...`
     let msg = e.to_string();
     assert!(
         msg.contains("part 2") && msg.contains("\"b\"") && msg.contains("size[1]"),
         "{msg}"
+    );
+
+    // A missing key is reported at its part's [[part]] header.
+    let e = parse_spec("\n[[part]]\nshape = \"point\"\n", Path::new(".")).unwrap_err();
+    assert!(
+        matches!(&e, SpecError::Part { line: 2, field, .. } if field == "mass"),
+        "{e}"
     );
 
     let e = parse_spec("[[part]]\nshape = \"box\"\nsize = [1, 1\n", Path::new(".")).unwrap_err();

@@ -70,7 +70,8 @@ pub enum SpecError {
         number: usize,
         /// The part's `name`, if it has one.
         name: Option<String>,
-        /// The line of the part's table, from 1.
+        /// The line of the wrong key, from 1; the line of the part's `[[part]]` header when the
+        /// key is missing.
         line: usize,
         /// The key that is wrong.
         field: String,
@@ -91,6 +92,28 @@ fn part_label(number: usize, name: Option<&str>, line: usize) -> String {
 struct SpecFile {
     #[serde(default)]
     part: Vec<Spanned<Table>>,
+}
+
+/// The 1-based line of `key = ...` in the part whose `[[part]]` header is on line `header`
+/// (scanning until the next table header), or `header` when the key is not written there.
+fn key_line(text: &str, header: usize, key: &str) -> usize {
+    let key = key.split('[').next().unwrap_or(key);
+    for (k, l) in text.lines().enumerate().skip(header) {
+        let l = l.trim_start();
+        if l.starts_with('[') {
+            break;
+        }
+        let quoted = format!("\"{key}\"");
+        if let Some(rest) = l
+            .strip_prefix(key)
+            .or_else(|| l.strip_prefix(quoted.as_str()))
+        {
+            if rest.trim_start().starts_with('=') {
+                return k + 1;
+            }
+        }
+    }
+    header
 }
 
 /// The 1-based (line, column) of a byte offset.
@@ -145,7 +168,7 @@ pub fn parse_spec(text: &str, base_dir: &Path) -> Result<Compound, SpecError> {
     }
     let mut parts = Vec::with_capacity(file.part.len());
     for (i, spanned) in file.part.iter().enumerate() {
-        let (line, _) = line_col(text, spanned.span().start);
+        let (header, _) = line_col(text, spanned.span().start);
         let table = spanned.get_ref();
         let name = match table.get("name") {
             Some(Value::String(s)) => Some(s.clone()),
@@ -154,7 +177,7 @@ pub fn parse_spec(text: &str, base_dir: &Path) -> Result<Compound, SpecError> {
         let fail = |field: &str, message: String| SpecError::Part {
             number: i + 1,
             name: name.clone(),
-            line,
+            line: key_line(text, header, field),
             field: field.to_string(),
             message,
         };
