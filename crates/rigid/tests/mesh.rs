@@ -193,10 +193,11 @@ fn temp(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-/// Binary STL: 80-byte header, u32 count, then per facet a normal and 3 vertices (f32 LE) and a
+/// Binary STL with the header `header` (padded to 80 bytes): 80-byte header, u32 count, then per facet a normal and 3 vertices (f32 LE) and a
 /// u16 attribute. Every facet repeats its vertices.
-fn write_binary_stl(mesh: &TriMesh, path: &PathBuf) {
-    let mut out = vec![0u8; 80];
+fn write_binary_stl(mesh: &TriMesh, path: &PathBuf, header: &[u8]) {
+    let mut out = header.to_vec();
+    out.resize(80, b' ');
     out.extend((mesh.triangles.len() as u32).to_le_bytes());
     for t in &mesh.triangles {
         for v in [
@@ -214,8 +215,8 @@ fn write_binary_stl(mesh: &TriMesh, path: &PathBuf) {
     std::fs::write(path, out).unwrap();
 }
 
-fn write_ascii_stl(mesh: &TriMesh, path: &PathBuf) {
-    let mut s = String::from("solid test\n");
+fn write_ascii_stl(mesh: &TriMesh, path: &PathBuf, first_line: &str) {
+    let mut s = format!("{first_line}\n");
     for t in &mesh.triangles {
         s += "  facet normal 0 0 0\n    outer loop\n";
         for &i in t {
@@ -248,14 +249,20 @@ fn stl_and_obj_files_read_back_the_same_solid() {
         *v += Vec3::new(0.5, -0.25, 0.125);
     }
     let want = mesh.mass_properties().unwrap();
+    // Also the awkward variants real exporters write: a binary header that starts with "solid",
+    // an ASCII file that opens with a bare "solid".
     let cases = [
         ("sphere_bin.stl", 1e-6),
+        ("sphere_bin_solid_header.stl", 1e-6),
         ("sphere_ascii.stl", 1e-6),
+        ("sphere_ascii_bare_solid.stl", 1e-6),
         ("sphere.obj", 1e-12),
     ];
-    write_binary_stl(&mesh, &temp(cases[0].0));
-    write_ascii_stl(&mesh, &temp(cases[1].0));
-    write_obj(&mesh, &temp(cases[2].0));
+    write_binary_stl(&mesh, &temp(cases[0].0), b"binary");
+    write_binary_stl(&mesh, &temp(cases[1].0), b"solid exported by CAD");
+    write_ascii_stl(&mesh, &temp(cases[2].0), "solid test");
+    write_ascii_stl(&mesh, &temp(cases[3].0), "solid");
+    write_obj(&mesh, &temp(cases[4].0));
     for (file, tol) in cases {
         let read = read_mesh(&temp(file)).unwrap();
         assert_eq!(

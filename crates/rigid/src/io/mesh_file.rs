@@ -5,7 +5,7 @@
 use crate::mass::TriMesh;
 use crate::spatial::Vec3;
 use std::fs::File;
-use std::io::BufReader;
+use std::io::{BufReader, Cursor};
 use std::path::Path;
 use thiserror::Error;
 
@@ -47,11 +47,25 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshFileError> {
 
 /// Reads a binary or ASCII STL file and merges duplicate vertices.
 ///
+/// The format is decided by the size: a file of exactly `84 + 50 n` bytes, `n` being the
+/// facet count stored at byte 80, is binary, even when its 80-byte header starts with `solid`
+/// (as some CAD exporters write); anything else is ASCII, whose first line may be a bare `solid`.
+///
 /// # Errors
 /// [`MeshFileError::Io`] if the file cannot be opened, [`MeshFileError::Stl`] if it is not STL.
 pub fn read_stl(path: &Path) -> Result<TriMesh, MeshFileError> {
-    let mut reader = BufReader::new(File::open(path)?);
-    let stl = stl_io::read_stl(&mut reader).map_err(MeshFileError::Stl)?;
+    let mut bytes = std::fs::read(path)?;
+    let binary = bytes.len() >= 84 && {
+        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+        n.checked_mul(50).and_then(|b| b.checked_add(84)) == Some(bytes.len())
+    };
+    // stl_io takes a file for ASCII exactly when it starts with "solid ": make it so.
+    if binary && bytes.starts_with(b"solid") {
+        bytes[..5].copy_from_slice(b"     ");
+    } else if !binary && bytes.starts_with(b"solid") && !bytes.starts_with(b"solid ") {
+        bytes.insert(5, b' ');
+    }
+    let stl = stl_io::read_stl(&mut Cursor::new(bytes)).map_err(MeshFileError::Stl)?;
     let vertices = stl
         .vertices
         .iter()
