@@ -8,7 +8,7 @@ mod mass;
 
 /// Rigid-body dynamics from the command line.
 #[derive(Parser)]
-#[command(name = "rigid", version, about)]
+#[command(name = "rigid", version)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

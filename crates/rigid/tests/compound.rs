@@ -249,3 +249,121 @@ fn spec_errors_name_part_field_and_line() {
         "{e}"
     );
 }
+
+#[test]
+fn a_box_cut_in_two_has_the_inertia_of_the_whole_box() {
+    // Two halves 0.2 x 0.3 x 0.1 side by side along x (centres at ±0.1) are one 0.4 x 0.3 x 0.1
+    // box: the compound must equal the closed form of the whole.
+    let half = Shape::Box {
+        size: Vec3::new(0.2, 0.3, 0.1),
+    };
+    let at = |x: f64| {
+        part(
+            half,
+            MassOrDensity::Density(500.0),
+            Transform::from_translation(Vec3::new(x, 0.0, 0.0)),
+        )
+    };
+    let props = Compound::new(vec![at(-0.1), at(0.1)])
+        .mass_properties()
+        .unwrap();
+    let whole = Shape::Box {
+        size: Vec3::new(0.4, 0.3, 0.1),
+    };
+    let m = 500.0 * whole.volume();
+    assert!((props.mass - m).abs() < 1e-12 * m);
+    assert!(props.com.norm() < 1e-15);
+    assert!((props.inertia_com.matrix() - whole.inertia_com(m).matrix()).amax() < 1e-15);
+}
+
+#[test]
+fn a_cylinder_cut_into_slices_has_the_inertia_of_the_whole_cylinder() {
+    // Ten slices of length L/10 stacked along z, each turned about z by a different angle (a
+    // cylinder is symmetric about its axis), make the whole cylinder.
+    let (r, l, n) = (0.05, 0.6, 10);
+    let parts = (0..n)
+        .map(|k| {
+            let z = -l / 2.0 + l * (k as f64 + 0.5) / n as f64;
+            part(
+                Shape::Cylinder {
+                    radius: r,
+                    length: l / n as f64,
+                },
+                MassOrDensity::Mass(0.3),
+                Transform::new(so3::from_rpy(0.0, 0.0, k as f64), Vec3::new(0.0, 0.0, z)),
+            )
+        })
+        .collect();
+    let props = Compound::new(parts).mass_properties().unwrap();
+    let whole = Shape::Cylinder {
+        radius: r,
+        length: l,
+    }
+    .inertia_com(3.0);
+    assert!((props.inertia_com.matrix() - whole.matrix()).amax() < 1e-15);
+}
+
+mod random {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn shape() -> impl Strategy<Value = Shape> {
+        let d = 0.01..1.0f64;
+        prop_oneof![
+            (d.clone(), d.clone(), d.clone()).prop_map(|(a, b, c)| Shape::Box {
+                size: Vec3::new(a, b, c)
+            }),
+            (d.clone(), d.clone()).prop_map(|(radius, length)| Shape::Cylinder { radius, length }),
+            (d.clone(), d.clone()).prop_map(|(radius, length)| Shape::Capsule { radius, length }),
+            (d.clone(), d.clone()).prop_map(|(radius, height)| Shape::Cone { radius, height }),
+            (d.clone(), d.clone(), d.clone()).prop_map(|(a, b, c)| Shape::Ellipsoid {
+                semi_axes: Vec3::new(a, b, c)
+            }),
+            d.clone().prop_map(|length| Shape::ThinRod { length }),
+            Just(Shape::Point),
+        ]
+    }
+
+    fn posed_part() -> impl Strategy<Value = Part> {
+        (
+            shape(),
+            0.1..10.0f64,
+            prop::array::uniform3(-1.0..1.0f64),
+            prop::array::uniform3(-3.2..3.2f64),
+        )
+            .prop_map(|(s, m, p, rpy)| {
+                part(
+                    s,
+                    MassOrDensity::Mass(m),
+                    Transform::new(so3::from_rpy(rpy[0], rpy[1], rpy[2]), Vec3::from(p)),
+                )
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        #[test]
+        fn any_compound_of_real_parts_is_physical_and_its_principal_axes_diagonalise_it(
+            parts in prop::collection::vec(posed_part(), 1..6)
+        ) {
+            let props = Compound::new(parts.clone()).mass_properties().unwrap();
+            prop_assert!(props.validity(1e-9).is_ok());
+            let (l, r) = (props.principal_moments, props.principal_axes);
+            let d = r.transpose() * props.inertia_com.matrix() * r - Mat3::from_diagonal(&l);
+            prop_assert!(d.amax() < 1e-12 * l[2].max(1e-12));
+            prop_assert!(l[0] <= l[1] && l[1] <= l[2]);
+            prop_assert!((r.determinant() - 1.0).abs() < 1e-12);
+            // The CoM is the mass-weighted mean of the parts' centres.
+            let m: f64 = parts.iter().map(|p| p.mass().unwrap()).sum();
+            let c = parts
+                .iter()
+                .fold(Vec3::zeros(), |acc, p| acc + p.pose.translation * p.mass().unwrap())
+                / m;
+            prop_assert!((props.com - c).norm() < 1e-12);
+            // Steiner: I_origin = I_com + m [c]ᵀ[c].
+            let k = skew(&c);
+            prop_assert!((props.inertia_origin.matrix() - (props.inertia_com.matrix() - k * k * m)).amax() < 1e-10);
+        }
+    }
+}
