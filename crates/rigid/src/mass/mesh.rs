@@ -228,34 +228,42 @@ impl TriMesh {
             }
         }
         // Directed edge (i, j) -> how often it is traversed.
-        let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut directed: HashMap<(usize, usize), usize> =
+            HashMap::with_capacity(3 * self.triangles.len());
         for t in &self.triangles {
             for k in 0..3 {
                 *directed.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
             }
         }
-        let mut edges: Vec<_> = directed.iter().map(|(&e, &n)| (e, n)).collect();
-        edges.sort_unstable();
-        for ((a, b), n) in edges {
+        let edge_error = |(a, b): (usize, usize), n: usize| -> Option<MeshError> {
             let back = directed.get(&(b, a)).copied().unwrap_or(0);
             if n + back > 2 {
-                return Err(MeshError::NonManifold {
+                Some(MeshError::NonManifold {
                     a: a.min(b),
                     b: a.max(b),
                     count: n + back,
-                });
-            }
-            if n == 2 {
-                return Err(MeshError::Inconsistent { a, b });
-            }
-            if back == 0 {
+                })
+            } else if n == 2 {
+                Some(MeshError::Inconsistent { a, b })
+            } else if back == 0 {
                 let v = self.vertices[a];
-                return Err(MeshError::Open {
+                Some(MeshError::Open {
                     a,
                     b,
                     at: [v.x, v.y, v.z],
-                });
+                })
+            } else {
+                None
             }
+        };
+        if directed.iter().any(|(&e, &n)| edge_error(e, n).is_some()) {
+            // Report the bad edge with the smallest vertex indices, whatever the hash order.
+            let mut bad: Vec<_> = directed
+                .iter()
+                .filter_map(|(&e, &n)| edge_error(e, n).map(|err| (e, err)))
+                .collect();
+            bad.sort_by_key(|(e, _)| *e);
+            return Err(bad.swap_remove(0).1);
         }
         Ok(())
     }
