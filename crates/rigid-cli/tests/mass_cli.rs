@@ -464,3 +464,14 @@ fn nonphysical_hand_given_inertia_is_reported_invalid() {
     let text = rigid(&["mass", path.to_str().unwrap()]);
     assert!(String::from_utf8_lossy(&text.stdout).contains("NOT PHYSICAL"));
 }
+
+#[test]
+fn a_point_mass_away_from_the_origin_is_valid() {
+    // I_c = I_O - m[c]ᵀ[c] cancels to rounding noise; it must not read as a negative moment.
+    let spec = "[[part]]\nshape = \"point\"\nmass = 8.6\nposition = [0.3, -0.93, 0.1]\n";
+    let (code, err, out) = run_spec("point_offset.toml", spec);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(err.is_empty(), "{err}");
+    let j: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(j["valid"], Value::Bool(true));
+}

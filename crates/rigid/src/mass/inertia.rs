@@ -183,11 +183,22 @@ impl RotationalInertia {
     /// # Errors
     /// The first test that fails.
     pub fn validate(&self, tol: f64) -> Result<(), InertiaError> {
+        self.validate_scaled(tol, 0.0)
+    }
+
+    /// As [`validate`](Self::validate), with the tolerance `tol × max(λ3, scale)`. Use `scale`
+    /// for the size of the numbers this inertia was computed from: an inertia about the CoM
+    /// obtained as `I_O - m[c]ᵀ[c]` carries rounding errors of order `ε |I_O|`, which for a point
+    /// mass (`I_c = 0`) would otherwise read as a negative moment.
+    ///
+    /// # Errors
+    /// The first test that fails.
+    pub fn validate_scaled(&self, tol: f64, scale: f64) -> Result<(), InertiaError> {
         if self.0.iter().any(|x| !x.is_finite()) {
             return Err(InertiaError::NonFinite);
         }
         let l = self.principal_moments();
-        let eps = tol * l[2].abs().max(f64::MIN_POSITIVE);
+        let eps = tol * l[2].abs().max(scale.abs()).max(f64::MIN_POSITIVE);
         if l[0] < -eps {
             return Err(InertiaError::NotPositiveSemiDefinite { moment: l[0] });
         }

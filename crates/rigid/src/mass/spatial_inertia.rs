@@ -190,7 +190,9 @@ impl SpatialInertia {
     }
 
     /// Checks that the body is physical: finite, mass `> 0`, and an inertia about the CoM that is
-    /// positive semi-definite and satisfies the triangle inequality (relative tolerance `tol`).
+    /// positive semi-definite and satisfies the triangle inequality (relative tolerance `tol`,
+    /// scaled by the largest entry of `I_O` as well, since `I_c = I_O - m[c]ᵀ[c]` is computed by
+    /// a subtraction: a point mass away from the origin is valid).
     ///
     /// # Errors
     /// The first test that fails.
@@ -201,7 +203,7 @@ impl SpatialInertia {
         if self.mass <= 0.0 {
             return Err(InertiaError::BadMass { mass: self.mass });
         }
-        self.inertia_com().validate(tol)
+        self.inertia_com().validate_scaled(tol, self.inertia.amax())
     }
 }
 
