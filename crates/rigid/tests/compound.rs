@@ -367,3 +367,36 @@ mod random {
         }
     }
 }
+
+#[test]
+fn angular_momentum_about_any_point_matches_the_sum_over_point_masses() {
+    // L_q = Σ m_i (r_i - q) × ṙ_i with ṙ_i = v + ω × r_i (v: velocity of the frame origin),
+    // summed directly; and about the CoM it is I_c ω.
+    let pts = [
+        (1.0, Vec3::new(0.3, -0.2, 0.5)),
+        (2.5, Vec3::new(-0.4, 0.1, 0.0)),
+        (0.7, Vec3::new(0.0, 0.9, -0.3)),
+    ];
+    let body = Compound::new(
+        pts.iter()
+            .map(|&(m, r)| {
+                part(
+                    Shape::Point,
+                    MassOrDensity::Mass(m),
+                    Transform::from_translation(r),
+                )
+            })
+            .collect(),
+    );
+    let g = body.spatial_inertia().unwrap();
+    let tw = rigid::spatial::Twist::new(Vec3::new(0.2, -1.0, 0.4), Vec3::new(1.5, 0.3, -0.8));
+    for q in [Vec3::zeros(), Vec3::new(1.0, 2.0, -0.5), g.com()] {
+        let want = pts.iter().fold(Vec3::zeros(), |acc, &(m, r)| {
+            acc + (r - q).cross(&(tw.v + tw.w.cross(&r))) * m
+        });
+        let got = g.angular_momentum_about(&tw, &q);
+        assert!((got - want).norm() < 1e-12, "q = {q}: {got} vs {want}");
+    }
+    let l_c = g.angular_momentum_com(&tw);
+    assert!((l_c - g.angular_momentum_about(&tw, &g.com())).norm() < 1e-12);
+}

@@ -159,6 +159,21 @@ impl SpatialInertia {
         )
     }
 
+    /// The angular momentum about the point `q` (coordinates in this frame) of the body moving
+    /// with the twist `V = (ω, v)` expressed in this frame: with `P = G V = (L_O, p)`, moving the
+    /// moment to `q` gives `L_q = L_O - q × p`.
+    #[must_use]
+    pub fn angular_momentum_about(&self, v: &Twist, q: &Vec3) -> Vec3 {
+        let p = self.momentum(v);
+        p.m - q.cross(&p.f)
+    }
+
+    /// The angular momentum about the CoM, `L_c = I_c ω` (it does not depend on `v`).
+    #[must_use]
+    pub fn angular_momentum_com(&self, v: &Twist) -> Vec3 {
+        self.inertia_com().mul_vec(&v.w)
+    }
+
     /// The kinetic energy `½ Vᵀ G V` (J).
     #[must_use]
     #[inline]
