@@ -303,6 +303,25 @@ fn obj_quads_are_triangulated() {
     assert!(ev < 1e-14 && ei < 1e-14);
 }
 
+#[test]
+fn obj_with_several_objects_is_one_solid() {
+    // The cube of the previous test, its faces split between two objects and two groups: the
+    // shared vertices are merged back and the surface is closed.
+    let path = temp("cube_objects.obj");
+    let obj = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n\
+               o bottom\nf 1 4 3 2\nf 5 6 7 8\ng sides\nf 1 2 6 5\no rest\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    std::fs::write(&path, obj).unwrap();
+    let mesh = read_mesh(&path).unwrap();
+    assert_eq!(mesh.vertices.len(), 8);
+    let (ev, ei) = errors(
+        &mesh,
+        Shape::Box {
+            size: Vec3::repeat(2.0),
+        },
+    );
+    assert!(ev < 1e-14 && ei < 1e-14);
+}
+
 fn tetrahedron() -> TriMesh {
     TriMesh::new(
         vec![Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::z()],
