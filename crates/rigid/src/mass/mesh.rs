@@ -227,43 +227,38 @@ impl TriMesh {
                 return Err(MeshError::Degenerate { triangle });
             }
         }
-        // Directed edge (i, j) -> how often it is traversed.
-        let mut directed: HashMap<(usize, usize), usize> =
-            HashMap::with_capacity(3 * self.triangles.len());
-        for t in &self.triangles {
-            for k in 0..3 {
-                *directed.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+        // Every edge as (low, high, runs low -> high), sorted: a closed, consistently oriented
+        // surface has each (low, high) exactly twice, once in each direction. Sorting (rather
+        // than hashing) is fast and reports the bad edge with the smallest indices.
+        let mut edges: Vec<(usize, usize, bool)> = self
+            .triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+            .map(|(a, b)| (a.min(b), a.max(b), a < b))
+            .collect();
+        edges.sort_unstable();
+        for group in edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+            let (lo, hi, up) = group[0];
+            let (a, b) = if up { (lo, hi) } else { (hi, lo) };
+            match group.len() {
+                1 => {
+                    let v = self.vertices[a];
+                    return Err(MeshError::Open {
+                        a,
+                        b,
+                        at: [v.x, v.y, v.z],
+                    });
+                }
+                2 if group[1].2 == up => return Err(MeshError::Inconsistent { a, b }),
+                2 => {}
+                count => {
+                    return Err(MeshError::NonManifold {
+                        a: lo,
+                        b: hi,
+                        count,
+                    })
+                }
             }
-        }
-        let edge_error = |(a, b): (usize, usize), n: usize| -> Option<MeshError> {
-            let back = directed.get(&(b, a)).copied().unwrap_or(0);
-            if n + back > 2 {
-                Some(MeshError::NonManifold {
-                    a: a.min(b),
-                    b: a.max(b),
-                    count: n + back,
-                })
-            } else if n == 2 {
-                Some(MeshError::Inconsistent { a, b })
-            } else if back == 0 {
-                let v = self.vertices[a];
-                Some(MeshError::Open {
-                    a,
-                    b,
-                    at: [v.x, v.y, v.z],
-                })
-            } else {
-                None
-            }
-        };
-        if directed.iter().any(|(&e, &n)| edge_error(e, n).is_some()) {
-            // Report the bad edge with the smallest vertex indices, whatever the hash order.
-            let mut bad: Vec<_> = directed
-                .iter()
-                .filter_map(|(&e, &n)| edge_error(e, n).map(|err| (e, err)))
-                .collect();
-            bad.sort_by_key(|(e, _)| *e);
-            return Err(bad.swap_remove(0).1);
         }
         Ok(())
     }
