@@ -68,6 +68,13 @@ pub enum PartError {
         /// What the geometry is (`point`, `rod`, `inertia`).
         what: &'static str,
     },
+    /// The mass, CoM or inertia comes out infinite or NaN (dimensions or density so large that
+    /// `f64` overflows).
+    #[error("the mass properties overflow (mass {mass}): dimensions or density too large")]
+    Overflow {
+        /// The mass found.
+        mass: f64,
+    },
     /// The mass or density is not a positive finite number.
     #[error("{field} must be positive and finite, got {value}")]
     BadMass {
@@ -109,23 +116,34 @@ impl Part {
     /// The part's spatial inertia `G_p` in its own frame {p}.
     ///
     /// # Errors
-    /// As [`Part::mass`].
+    /// As [`Part::mass`], and [`PartError::Overflow`] when a number is not finite.
     pub fn spatial_inertia_local(&self) -> Result<SpatialInertia, PartError> {
         let m = self.mass()?;
-        Ok(match &self.geometry {
+        let g = match &self.geometry {
             Geometry::Shape(s) => SpatialInertia::from_com(m, Vec3::zeros(), s.inertia_com(m)),
             Geometry::Mesh(p) => SpatialInertia::from_com(m, p.com, p.inertia_com(m)),
             Geometry::Inertia(i) => SpatialInertia::from_com(m, Vec3::zeros(), *i),
-        })
+        };
+        if g.matrix().iter().all(|x| x.is_finite()) {
+            Ok(g)
+        } else {
+            Err(PartError::Overflow { mass: m })
+        }
     }
 
     /// The part's spatial inertia in the body frame {b}:
     /// `G_b = [Ad_{T_pb}]ᵀ G_p [Ad_{T_pb}]` with `T_pb = T_bp⁻¹`.
     ///
     /// # Errors
-    /// As [`Part::mass`].
+    /// As [`Part::spatial_inertia_local`] (a position so far away that `m |p|²` overflows is
+    /// [`PartError::Overflow`] too).
     pub fn spatial_inertia(&self) -> Result<SpatialInertia, PartError> {
-        Ok(self.spatial_inertia_local()?.transformed(&self.pose))
+        let g = self.spatial_inertia_local()?.transformed(&self.pose);
+        if g.matrix().iter().all(|x| x.is_finite()) {
+            Ok(g)
+        } else {
+            Err(PartError::Overflow { mass: g.mass() })
+        }
     }
 }
 
