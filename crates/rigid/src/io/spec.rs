@@ -379,12 +379,17 @@ fn parse_part(t: &Table, name: Option<String>, base_dir: &Path) -> Result<Part, 
         (None, None) if has_volume => {
             return err("mass", "missing: give `mass` (kg) or `density` (kg/m³)")
         }
-        (None, None) => return err("mass", format!("missing (a {shape} needs a `mass` in kg)")),
+        (None, None) => {
+            return err(
+                "mass",
+                format!("missing (shape {shape:?} has no volume: give its `mass` in kg)"),
+            )
+        }
         (Some(m), None) => MassOrDensity::Mass(positive("mass", number("mass", m)?)?),
         (None, Some(_)) if !has_volume => {
             return err(
                 "density",
-                format!("a {shape} has no volume: give its `mass` instead"),
+                format!("shape {shape:?} has no volume: give its `mass` instead"),
             )
         }
         (None, Some(d)) => MassOrDensity::Density(positive("density", number("density", d)?)?),
