@@ -15,8 +15,10 @@ const VALIDITY_TOLERANCE: f64 = DEFAULT_INERTIA_TOLERANCE;
 /// Arguments of `rigid mass`.
 #[derive(Args)]
 pub struct MassArgs {
-    /// The body spec: `[[part]]` tables with `shape`, dimensions, `mass` or `density`,
-    /// `position`, and optional `rpy` or `quaternion`.
+    /// The body spec (TOML): `[[part]]` tables with `shape` (box, cylinder, sphere, ellipsoid,
+    /// capsule, cone, rod, point, mesh, inertia) and its dimensions, `mass` or `density`,
+    /// `position = [x, y, z]`, and optional `rpy = [r, p, y]` or `quaternion = [x, y, z, w]`.
+    /// See examples/compound.toml.
     spec: PathBuf,
     /// Print one JSON object instead of the report.
     #[arg(long)]
