@@ -163,44 +163,75 @@ fn solve_lgvi(
     })
 }
 
-/// One step of the Lie-group variational integrator (see [`Integrator::Variational`]).
+/// The natural variables of the variational integrator, carried from step to step by the
+/// simulator so that no round trip `Π → ω → Π` (or body ↔ world velocity) adds a systematic
+/// round-off drift: `Π = J ω` (body axes, about the reference point `o`), and the world position
+/// and velocity of `o`. The position is summed with Kahan's compensation (`c` holds the
+/// low-order bits lost), so a body drifting far keeps its spatial momentum about the world origin
+/// to round-off.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Momenta {
+    pi: Vec3,
+    p_o: Vec3,
+    c: Vec3,
+    v_o: Vec3,
+}
+
+impl Momenta {
+    /// The momenta of the state `x`.
+    pub(crate) fn of<W: WrenchFn>(body: &RigidBody<W>, x: &State) -> Self {
+        let (o, j, _) = body.rotational();
+        let w = x.twist.w;
+        Self {
+            pi: j.mul_vec(&w),
+            p_o: x.pose.act_point(&o),
+            c: Vec3::zeros(),
+            v_o: x.pose.rotation * (x.twist.v + w.cross(&o)),
+        }
+    }
+}
+
+/// One step of the Lie-group variational integrator (see [`Integrator::Variational`]) from the
+/// state `x` whose momenta are `k`.
 pub(crate) fn variational_step<W: WrenchFn>(
     body: &RigidBody<W>,
     t: f64,
     x: &State,
+    k: &Momenta,
     h: f64,
-) -> Result<State, BodyError> {
+) -> Result<(State, Momenta), BodyError> {
     let (o, j, inv_j) = body.rotational();
     let free = body.support() == Support::Free;
     let m = body.inertia().mass();
     let r = x.pose.rotation;
-    let w = x.twist.w;
-    // The reference point o (CoM or pivot): world position and world velocity.
-    let p_o = x.pose.act_point(&o);
-    let v_o = r * (x.twist.v + w.cross(&o));
+    let Momenta { pi, p_o, c, v_o } = *k;
     // Moment about o (body axes) and force (world axes) at the start.
     let f_k = body.wrench(t, x);
     let m_k = f_k.m - o.cross(&f_k.f);
     let force_k = r * f_k.f;
-    let pi = j.mul_vec(&w);
     // Implicit rotation update.
     let f = solve_lgvi(j, inv_j.matrix(), &((pi + m_k * (0.5 * h)) * h))?;
     let big_f = so3::exp(&f);
     let r1 = r * big_f;
-    // CoM (or pivot) translation by velocity Verlet; a pivot does not move.
-    let (p1, v_pred) = if free {
-        (
-            p_o + v_o * h + force_k * (0.5 * h * h / m),
-            v_o + force_k * (h / m),
-        )
+    // CoM translation by velocity Verlet; a pivot does not move.
+    let (p1, c1, v_pred) = if free {
+        // Kahan: p1 = p_o + dp with the rounding error kept in c1.
+        let y = v_o * h + force_k * (0.5 * h * h / m) - c;
+        let p1 = p_o + y;
+        (p1, (p1 - p_o) - y, v_o + force_k * (h / m))
     } else {
-        (p_o, Vec3::zeros())
+        (p_o, c, Vec3::zeros())
     };
+    let pose = Transform::new(r1, if free { p1 - r1 * o } else { x.pose.translation });
     let to_state = |pi1: &Vec3, v1: &Vec3| {
         let w1 = inv_j.solve(pi1);
-        let pose = Transform::new(r1, p1 - r1 * o);
-        // v_b = R'ᵀ v_o - ω × o
-        State::new(pose, Twist::new(w1, r1.tr_mul(v1) - w1.cross(&o)))
+        // v_b = R'ᵀ v_o - ω × o (zero on a pivot)
+        let v_b = if free {
+            r1.tr_mul(v1) - w1.cross(&o)
+        } else {
+            Vec3::zeros()
+        };
+        State::new(pose, Twist::new(w1, v_b))
     };
     // Predicted end state for the wrench at t + h.
     let pi_pred = big_f.tr_mul(&(pi + m_k * h));
@@ -212,9 +243,13 @@ pub(crate) fn variational_step<W: WrenchFn>(
     } else {
         Vec3::zeros()
     };
-    let mut out = to_state(&pi1, &v1);
-    if !free {
-        out.twist.v = Vec3::zeros();
-    }
-    Ok(out)
+    Ok((
+        to_state(&pi1, &v1),
+        Momenta {
+            pi: pi1,
+            p_o: p1,
+            c: c1,
+            v_o: v1,
+        },
+    ))
 }

@@ -67,7 +67,7 @@ impl InverseRotationalInertia {
             smallest: l[0],
             largest: l[2],
         };
-        if !(l[0] > SINGULAR_RATIO * l[2]) {
+        if l[0].is_nan() || l[0] <= SINGULAR_RATIO * l[2] {
             return Err(singular());
         }
         let chol = Cholesky::new(*inertia.matrix()).ok_or_else(singular)?;

@@ -107,7 +107,7 @@ impl RigidBody {
     /// physical; [`BodyError::SingularInertia`] if the inertia about the pivot is singular.
     pub fn pivot(inertia: SpatialInertia) -> Result<Self, BodyError> {
         let m = inertia.mass();
-        if !(m > 0.0) {
+        if m.is_nan() || m <= 0.0 {
             return Err(BodyError::MasslessPivot { mass: m });
         }
         inertia.validate(DEFAULT_INERTIA_TOLERANCE)?;

@@ -1,6 +1,6 @@
 //! The simulator: a body, a state, a clock and an integrator, stepping without allocation.
 
-use super::integrators::{rkmk4_step, variational_step, Integrator};
+use super::integrators::{rkmk4_step, variational_step, Integrator, Momenta};
 use super::rigid_body::{RigidBody, State, Support, WrenchFn};
 use super::BodyError;
 use crate::spatial::Vec3;
@@ -20,7 +20,7 @@ impl<W: WrenchFn> RigidBody<W> {
     ) -> Result<State, BodyError> {
         let next = match integrator {
             Integrator::Rk4 => rkmk4_step(self, t, x, h),
-            Integrator::Variational => variational_step(self, t, x, h)?,
+            Integrator::Variational => variational_step(self, t, x, &Momenta::of(self, x), h)?.0,
         };
         if next.is_finite() {
             Ok(next)
@@ -106,6 +106,8 @@ pub struct Simulator<W = fn(f64, &State) -> crate::spatial::Wrench> {
     energy0: f64,
     kinetic0: f64,
     momentum0: Vec3,
+    /// The variational integrator's momenta of `state`, carried between steps.
+    momenta: Momenta,
 }
 
 impl<W: WrenchFn> Simulator<W> {
@@ -137,6 +139,7 @@ impl<W: WrenchFn> Simulator<W> {
             energy0: body.energy(&x0),
             kinetic0: body.kinetic_energy(&x0),
             momentum0: body.angular_momentum(&x0),
+            momenta: Momenta::of(&body, &x0),
             body,
             integrator,
             dt,
@@ -175,9 +178,16 @@ impl<W: WrenchFn> Simulator<W> {
     /// # Errors
     /// As [`RigidBody::step`].
     pub fn step(&mut self) -> Result<&State, BodyError> {
-        self.state = self
-            .body
-            .step(self.integrator, self.t, &self.state, self.dt)?;
+        let (t, x, h) = (self.t, &self.state, self.dt);
+        let (next, momenta) = match self.integrator {
+            Integrator::Rk4 => (rkmk4_step(&self.body, t, x, h), self.momenta),
+            Integrator::Variational => variational_step(&self.body, t, x, &self.momenta, h)?,
+        };
+        if !next.is_finite() {
+            return Err(BodyError::NonFinite { what: "state" });
+        }
+        self.state = next;
+        self.momenta = momenta;
         self.steps += 1;
         self.t = self.steps as f64 * self.dt;
         Ok(&self.state)
