@@ -43,10 +43,10 @@ pub struct SimulateArgs {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub pivot: Option<Vec3>,
     /// Simulated time (s).
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub duration: f64,
     /// Time step (s).
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
     pub dt: f64,
     /// `rk4` (explicit Lie-group Runge-Kutta-Munthe-Kaas, 4th order) or `variational` (Lie-group
     /// variational integrator: symplectic, momentum to round-off, bounded energy error).
