@@ -122,18 +122,31 @@ mod temporary_spec {
                 let [x, y, z] = s.map(|v| positive("box size", Some(v)));
                 let (x, y, z) = (x?, y?, z?);
                 let k = 1.0 / 12.0;
-                Ok((x * y * z, RotationalInertia::diagonal(k * (y * y + z * z), k * (x * x + z * z), k * (x * x + y * y))))
+                Ok((
+                    x * y * z,
+                    RotationalInertia::diagonal(
+                        k * (y * y + z * z),
+                        k * (x * x + z * z),
+                        k * (x * x + y * y),
+                    ),
+                ))
             }
             "sphere" => {
                 let r = positive("sphere radius", p.radius)?;
                 let i = 0.4 * r * r;
-                Ok((4.0 / 3.0 * PI * r.powi(3), RotationalInertia::diagonal(i, i, i)))
+                Ok((
+                    4.0 / 3.0 * PI * r.powi(3),
+                    RotationalInertia::diagonal(i, i, i),
+                ))
             }
             "cylinder" => {
                 let r = positive("cylinder radius", p.radius)?;
                 let l = positive("cylinder length", p.length)?;
                 let i = (3.0 * r * r + l * l) / 12.0;
-                Ok((PI * r * r * l, RotationalInertia::diagonal(i, i, 0.5 * r * r)))
+                Ok((
+                    PI * r * r * l,
+                    RotationalInertia::diagonal(i, i, 0.5 * r * r),
+                ))
             }
             s => Err(format!(
                 "shape {s:?} is not supported by the temporary loader (box, sphere, cylinder)"
@@ -157,7 +170,9 @@ mod temporary_spec {
             let m = match (p.mass, p.density) {
                 (Some(m), None) if m.is_finite() && m >= 0.0 => m,
                 (None, Some(d)) if d.is_finite() && d >= 0.0 => d * volume,
-                (Some(_), Some(_)) => return Err(format!("{label}: give mass or density, not both")),
+                (Some(_), Some(_)) => {
+                    return Err(format!("{label}: give mass or density, not both"))
+                }
                 (None, None) => return Err(format!("{label}: missing mass or density")),
                 _ => return Err(format!("{label}: mass and density must be finite and ≥ 0")),
             };
@@ -194,18 +209,26 @@ fn setup(args: &SimulateArgs) -> Result<(RigidBody, State, Vec3), String> {
     let (body, r, v_b) = match args.pivot {
         None => {
             let g = SpatialInertia::from_com(mass, Vec3::zeros(), inertia_com);
-            (RigidBody::free(g).map_err(err)?, Vec3::zeros(), args.velocity)
+            (
+                RigidBody::free(g).map_err(err)?,
+                Vec3::zeros(),
+                args.velocity,
+            )
         }
         Some(p) => {
             if args.velocity != Vec3::zeros() {
-                return Err("--velocity cannot be used with --pivot: the pivot point is fixed".into());
+                return Err(
+                    "--velocity cannot be used with --pivot: the pivot point is fixed".into(),
+                );
             }
             let r = com - p;
             let g = SpatialInertia::from_com(mass, r, inertia_com);
             (RigidBody::pivot(g).map_err(err)?, r, Vec3::zeros())
         }
     };
-    let body = body.with_gravity(args.gravity.unwrap_or_default()).map_err(err)?;
+    let body = body
+        .with_gravity(args.gravity.unwrap_or_default())
+        .map_err(err)?;
     let x0 = State::new(Transform::identity(), Twist::new(args.omega, v_b));
     Ok((body, x0, r))
 }
@@ -230,11 +253,16 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         return Err(format!("--dt must be positive and finite, got {}", args.dt));
     }
     if !(args.duration.is_finite() && args.duration > 0.0) {
-        return Err(format!("--duration must be positive and finite, got {}", args.duration));
+        return Err(format!(
+            "--duration must be positive and finite, got {}",
+            args.duration
+        ));
     }
     let steps = (args.duration / args.dt).round().max(1.0);
     if steps > MAX_STEPS {
-        return Err(format!("{steps:.0} steps is too many (at most {MAX_STEPS:.0}): raise --dt"));
+        return Err(format!(
+            "{steps:.0} steps is too many (at most {MAX_STEPS:.0}): raise --dt"
+        ));
     }
     let steps = steps as u64;
     let (body, x0, r) = setup(args)?;
@@ -242,7 +270,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
 
     let mut csv = match &args.csv {
         Some(path) => {
-            let f = File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            let f =
+                File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
             let mut w = BufWriter::new(f);
             writeln!(w, "{CSV_HEADER}").map_err(|e| e.to_string())?;
             write_row(&mut w, 0.0, &x0, &r).map_err(|e| e.to_string())?;
@@ -272,10 +301,10 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         if let Some(w) = csv.as_mut() {
             write_row(w, sim.time(), sim.state(), &r).map_err(|e| e.to_string())?;
         }
-        if args.plot.is_some() && (k % stride == 0 || k == steps) {
+        if args.plot.is_some() && (k.is_multiple_of(stride) || k == steps) {
             samples.push(sim.time(), sim.state(), &sim.summary());
         }
-        if k % 1024 == 0 {
+        if k.is_multiple_of(1024) {
             if !shown && start.elapsed() > Duration::from_secs(1) {
                 bar.set_draw_target(ProgressDrawTarget::stderr());
                 shown = true;

@@ -16,7 +16,12 @@ const ROD: RodOnPivot = RodOnPivot {
 };
 
 /// The closed form of 002: `(⅓mL² s²θ φ̈ + ⅔mL² sθ cθ θ̇ φ̇, ⅓mL² θ̈ - ⅓mL² sθ cθ φ̇² + mg(L/2) sθ)`.
-fn closed_form(r: &RodOnPivot, q: &Vector2<f64>, qd: &Vector2<f64>, qdd: &Vector2<f64>) -> Vector2<f64> {
+fn closed_form(
+    r: &RodOnPivot,
+    q: &Vector2<f64>,
+    qd: &Vector2<f64>,
+    qdd: &Vector2<f64>,
+) -> Vector2<f64> {
     let (m, l, g) = (r.mass, r.length, r.gravity);
     let (s, c) = q[1].sin_cos();
     let i = m * l * l / 3.0;
@@ -101,7 +106,8 @@ fn rod_lagrangian_and_pivot_simulator_trajectories_agree() {
         .map(|i| Simulator::new(body.clone(), RodOnPivot::state(&q, &qd), i, h).unwrap());
     let mut worst = [0.0f64; 2];
     for k in 1..=n {
-        (q, qd) = lagrange::rk4_step(&ROD, (k - 1) as f64 * h, &q, &qd, h, lagrange::no_force).unwrap();
+        (q, qd) =
+            lagrange::rk4_step(&ROD, (k - 1) as f64 * h, &q, &qd, h, lagrange::no_force).unwrap();
         let tip = ROD.tip(&q);
         for (s, w) in sims.iter_mut().zip(worst.iter_mut()) {
             let x = s.step().unwrap();
@@ -118,6 +124,11 @@ fn rod_lagrangian_and_pivot_simulator_trajectories_agree() {
 
 #[test]
 fn rod_mass_matrix_is_singular_at_the_pole() {
-    let e = lagrange::acceleration(&ROD, &Vector2::new(0.3, 0.0), &Vector2::new(1.0, 1.0), &Vector2::zeros());
+    let e = lagrange::acceleration(
+        &ROD,
+        &Vector2::new(0.3, 0.0),
+        &Vector2::new(1.0, 1.0),
+        &Vector2::zeros(),
+    );
     assert!(e.is_err());
 }

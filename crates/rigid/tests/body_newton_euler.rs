@@ -121,27 +121,66 @@ fn forward_dynamics_rejects_non_physical_bodies() {
     let bad = SpatialInertia::from_com(1.0, Vec3::zeros(), i);
     let e = forward_dynamics(&bad, &Twist::zero(), &Wrench::zero()).unwrap_err();
     assert!(matches!(e, BodyError::Inertia(_)), "{e}");
-    let massless = SpatialInertia::from_com(0.0, Vec3::zeros(), RotationalInertia::diagonal(1.0, 1.0, 1.0));
-    assert!(matches!(InverseInertia::new(&massless), Err(BodyError::Inertia(_))));
-    let rod = SpatialInertia::from_com(1.0, Vec3::zeros(), RotationalInertia::diagonal(1.0, 1.0, 0.0));
-    assert!(matches!(InverseInertia::new(&rod), Err(BodyError::SingularInertia { .. })));
-    let nan = SpatialInertia::from_com(f64::NAN, Vec3::zeros(), RotationalInertia::diagonal(1.0, 1.0, 1.0));
+    let massless = SpatialInertia::from_com(
+        0.0,
+        Vec3::zeros(),
+        RotationalInertia::diagonal(1.0, 1.0, 1.0),
+    );
+    assert!(matches!(
+        InverseInertia::new(&massless),
+        Err(BodyError::Inertia(_))
+    ));
+    let rod = SpatialInertia::from_com(
+        1.0,
+        Vec3::zeros(),
+        RotationalInertia::diagonal(1.0, 1.0, 0.0),
+    );
+    assert!(matches!(
+        InverseInertia::new(&rod),
+        Err(BodyError::SingularInertia { .. })
+    ));
+    let nan = SpatialInertia::from_com(
+        f64::NAN,
+        Vec3::zeros(),
+        RotationalInertia::diagonal(1.0, 1.0, 1.0),
+    );
     assert!(InverseInertia::new(&nan).is_err());
 }
 
 #[test]
 fn pivot_needs_mass_and_accepts_a_thin_rod() {
-    let massless = SpatialInertia::from_com(0.0, Vec3::new(0.0, 0.0, -1.0), RotationalInertia::diagonal(1.0, 1.0, 1.0));
-    assert!(matches!(RigidBody::pivot(massless), Err(BodyError::MasslessPivot { .. })));
+    let massless = SpatialInertia::from_com(
+        0.0,
+        Vec3::new(0.0, 0.0, -1.0),
+        RotationalInertia::diagonal(1.0, 1.0, 1.0),
+    );
+    assert!(matches!(
+        RigidBody::pivot(massless),
+        Err(BodyError::MasslessPivot { .. })
+    ));
     // A thin rod: singular about its CoM axis... but also about the pivot along the rod axis.
-    let rod = SpatialInertia::from_com(1.0, Vec3::new(0.0, 0.0, -0.5), RotationalInertia::diagonal(1.0 / 12.0, 1.0 / 12.0, 0.0));
-    assert!(matches!(RigidBody::pivot(rod), Err(BodyError::SingularInertia { .. })));
-    let rod = SpatialInertia::from_com(1.0, Vec3::new(0.0, 0.0, -0.5), RotationalInertia::diagonal(1.0 / 12.0, 1.0 / 12.0, 1e-6));
+    let rod = SpatialInertia::from_com(
+        1.0,
+        Vec3::new(0.0, 0.0, -0.5),
+        RotationalInertia::diagonal(1.0 / 12.0, 1.0 / 12.0, 0.0),
+    );
+    assert!(matches!(
+        RigidBody::pivot(rod),
+        Err(BodyError::SingularInertia { .. })
+    ));
+    let rod = SpatialInertia::from_com(
+        1.0,
+        Vec3::new(0.0, 0.0, -0.5),
+        RotationalInertia::diagonal(1.0 / 12.0, 1.0 / 12.0, 1e-6),
+    );
     let body = RigidBody::pivot(rod).unwrap();
     // Hanging still: no acceleration; tilted: gravity swings it back.
     let hanging = State::default();
     let body = body.with_gravity(Vec3::new(0.0, 0.0, -9.81)).unwrap();
     assert!(body.acceleration(0.0, &hanging).norm() < 1e-15);
-    let tilted = State::new(Transform::from_rotation(so3::exp(&Vec3::new(0.3, 0.0, 0.0))), Twist::zero());
+    let tilted = State::new(
+        Transform::from_rotation(so3::exp(&Vec3::new(0.3, 0.0, 0.0))),
+        Twist::zero(),
+    );
     assert!(body.acceleration(0.0, &tilted).w.x < 0.0);
 }

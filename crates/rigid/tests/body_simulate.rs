@@ -10,7 +10,8 @@ const G: Vec3 = Vec3::new(0.0, 0.0, -9.81);
 /// An asymmetric body (principal moments 1, 2, 3 in slightly rotated axes), its frame {b} away
 /// from the CoM, so the simulator runs the full twist-wrench form.
 fn asymmetric() -> SpatialInertia {
-    let i = RotationalInertia::diagonal(1.0, 2.0, 3.0).rotated_by(&so3::exp(&Vec3::new(0.1, -0.2, 0.05)));
+    let i = RotationalInertia::diagonal(1.0, 2.0, 3.0)
+        .rotated_by(&so3::exp(&Vec3::new(0.1, -0.2, 0.05)));
     SpatialInertia::from_com(2.0, Vec3::new(0.2, -0.1, 0.3), i)
 }
 
@@ -33,7 +34,10 @@ fn distance(a: &State, b: &State) -> f64 {
 }
 
 fn convergence_ratios(integrator: Integrator) -> (f64, f64) {
-    let body = RigidBody::free(asymmetric()).unwrap().with_gravity(G).unwrap();
+    let body = RigidBody::free(asymmetric())
+        .unwrap()
+        .with_gravity(G)
+        .unwrap();
     let reference = run(&body, Integrator::Rk4, start(), 2.0, 40 * 64);
     let e: Vec<f64> = [40, 80, 160]
         .iter()
@@ -46,14 +50,20 @@ fn convergence_ratios(integrator: Integrator) -> (f64, f64) {
 fn rk4_error_shrinks_sixteen_fold_when_dt_halves() {
     let (r1, r2) = convergence_ratios(Integrator::Rk4);
     println!("RKMK4 error ratios: {r1:.2}, {r2:.2}");
-    assert!((12.0..20.0).contains(&r1) && (12.0..20.0).contains(&r2), "{r1} {r2}");
+    assert!(
+        (12.0..20.0).contains(&r1) && (12.0..20.0).contains(&r2),
+        "{r1} {r2}"
+    );
 }
 
 #[test]
 fn variational_error_shrinks_four_fold_when_dt_halves() {
     let (r1, r2) = convergence_ratios(Integrator::Variational);
     println!("LGVI error ratios: {r1:.2}, {r2:.2}");
-    assert!((3.5..4.5).contains(&r1) && (3.5..4.5).contains(&r2), "{r1} {r2}");
+    assert!(
+        (3.5..4.5).contains(&r1) && (3.5..4.5).contains(&r2),
+        "{r1} {r2}"
+    );
 }
 
 /// 10⁶ steps of a tumbling free body: world angular momentum to round-off, energy error bounded
@@ -77,7 +87,7 @@ fn variational_keeps_momentum_and_energy_of_a_free_body_to_round_off_over_1e6_st
         } else if k > n - n / 10 {
             last = last.max(de);
         }
-        if k % 100 == 0 {
+        if k.is_multiple_of(100) {
             worst_l = worst_l.max((body.angular_momentum(x) - l0).norm() / l0.norm());
         }
     })
@@ -99,7 +109,11 @@ fn variational_keeps_momentum_and_energy_of_a_free_body_to_round_off_over_1e6_st
 /// variational integrator's energy error oscillates at `O(h²)` and does not grow; RK4's drifts.
 #[test]
 fn variational_energy_error_stays_bounded_on_a_pivot_under_gravity() {
-    let g = SpatialInertia::from_com(1.0, Vec3::new(0.1, 0.0, -0.5), RotationalInertia::diagonal(0.02, 0.05, 0.06));
+    let g = SpatialInertia::from_com(
+        1.0,
+        Vec3::new(0.1, 0.0, -0.5),
+        RotationalInertia::diagonal(0.02, 0.05, 0.06),
+    );
     let body = RigidBody::pivot(g).unwrap().with_gravity(G).unwrap();
     let x0 = State::new(
         Transform::from_rotation(so3::exp(&Vec3::new(1.2, 0.3, 0.0))),
@@ -143,7 +157,11 @@ fn rk4_keeps_rotation_orthonormal_without_renormalisation() {
 /// Torque-free body with principal moments 1 < 2 < 3 (in its CoM frame, principal axes), spun
 /// about one axis with a 1e-3 rad/s perturbation on the others.
 fn spin_about(axis: usize, integrator: Integrator) -> (f64, f64) {
-    let g = SpatialInertia::from_com(1.0, Vec3::zeros(), RotationalInertia::diagonal(1.0, 2.0, 3.0));
+    let g = SpatialInertia::from_com(
+        1.0,
+        Vec3::zeros(),
+        RotationalInertia::diagonal(1.0, 2.0, 3.0),
+    );
     let body = RigidBody::free(g).unwrap();
     let mut w = Vec3::repeat(1e-3);
     w[axis] = 1.0;
@@ -181,7 +199,11 @@ fn torque_free_body_does_not_flip_about_its_largest_or_smallest_axis() {
 #[test]
 fn fast_top_precesses_at_the_gyroscopic_rate() {
     let (m, l, i3, spin) = (1.0, 0.1, 0.01, 150.0);
-    let g = SpatialInertia::from_com(m, Vec3::new(0.0, 0.0, l), RotationalInertia::diagonal(0.005, 0.005, i3));
+    let g = SpatialInertia::from_com(
+        m,
+        Vec3::new(0.0, 0.0, l),
+        RotationalInertia::diagonal(0.005, 0.005, i3),
+    );
     let body = RigidBody::pivot(g).unwrap().with_gravity(G).unwrap();
     let omega = m * 9.81 * l / (i3 * spin);
     let r0 = so3::exp(&Vec3::new(0.5, 0.0, 0.0));
@@ -205,7 +227,10 @@ fn fast_top_precesses_at_the_gyroscopic_rate() {
         .unwrap();
         let rate = total / t_end;
         println!("{integrator}: precession {rate:.4} rad/s, m g l / (I₃ ω₃) = {omega:.4}");
-        assert!((rate / omega - 1.0).abs() < 0.03, "{integrator}: {rate} vs {omega}");
+        assert!(
+            (rate / omega - 1.0).abs() < 0.03,
+            "{integrator}: {rate} vs {omega}"
+        );
         // The pivot stays at the origin exactly.
         assert_eq!(sim.state().pose.translation, Vec3::zeros());
     }
@@ -224,8 +249,15 @@ fn bad_inputs_are_clean_errors() {
         Simulator::new(body.clone(), bad, Integrator::Rk4, 1e-3),
         Err(BodyError::NonFinite { .. })
     ));
-    assert!(body.clone().with_gravity(Vec3::new(0.0, f64::NAN, 0.0)).is_err());
-    let g = SpatialInertia::from_com(1.0, Vec3::new(0.0, 0.0, 1.0), RotationalInertia::diagonal(1.0, 1.0, 1.0));
+    assert!(body
+        .clone()
+        .with_gravity(Vec3::new(0.0, f64::NAN, 0.0))
+        .is_err());
+    let g = SpatialInertia::from_com(
+        1.0,
+        Vec3::new(0.0, 0.0, 1.0),
+        RotationalInertia::diagonal(1.0, 1.0, 1.0),
+    );
     let pivot = RigidBody::pivot(g).unwrap();
     let moving = State::new(Transform::identity(), Twist::new(Vec3::zeros(), Vec3::x()));
     assert!(matches!(
@@ -235,11 +267,20 @@ fn bad_inputs_are_clean_errors() {
     // A wrench that blows up stops the run with an error and leaves the last finite state.
     for integrator in [Integrator::Rk4, Integrator::Variational] {
         let wild = body.clone().with_wrench(|t: f64, _: &State| {
-            Wrench::new(Vec3::new(if t > 0.05 { f64::INFINITY } else { 0.0 }, 0.0, 0.0), Vec3::zeros())
+            Wrench::new(
+                Vec3::new(if t > 0.05 { f64::INFINITY } else { 0.0 }, 0.0, 0.0),
+                Vec3::zeros(),
+            )
         });
         let mut sim = Simulator::new(wild, start(), integrator, 1e-2).unwrap();
         let err = sim.run(100, |_, x| assert!(x.is_finite())).unwrap_err();
-        assert!(matches!(err, BodyError::NonFinite { .. } | BodyError::NoConvergence { .. }), "{err}");
+        assert!(
+            matches!(
+                err,
+                BodyError::NonFinite { .. } | BodyError::NoConvergence { .. }
+            ),
+            "{err}"
+        );
         assert!(sim.state().is_finite());
     }
 }

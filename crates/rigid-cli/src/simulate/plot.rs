@@ -38,7 +38,9 @@ fn range<'a>(series: impl IntoIterator<Item = &'a Vec<f64>>) -> (f64, f64) {
     if !(lo.is_finite() && hi.is_finite()) {
         return (-1.0, 1.0);
     }
-    let pad = ((hi - lo) * 0.05).max(hi.abs().max(lo.abs()) * 1e-3).max(1e-300);
+    let pad = ((hi - lo) * 0.05)
+        .max(hi.abs().max(lo.abs()) * 1e-3)
+        .max(1e-300);
     (lo - pad, hi + pad)
 }
 
@@ -66,7 +68,10 @@ fn panel(
     for (name, ys, color) in curves {
         let color = *color;
         chart
-            .draw_series(LineSeries::new(t.iter().copied().zip(ys.iter().copied()), color))?
+            .draw_series(LineSeries::new(
+                t.iter().copied().zip(ys.iter().copied()),
+                color,
+            ))?
             .label(*name)
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
     }
@@ -89,10 +94,24 @@ pub fn draw(path: &Path, s: &Samples) -> Result<(), Box<dyn std::error::Error>> 
         &areas[0],
         "body angular velocity (rad/s)",
         &s.t,
-        &[("ωx", &s.w[0], RED), ("ωy", &s.w[1], GREEN), ("ωz", &s.w[2], BLUE)],
+        &[
+            ("ωx", &s.w[0], RED),
+            ("ωy", &s.w[1], GREEN),
+            ("ωz", &s.w[2], BLUE),
+        ],
     )?;
-    panel(&areas[1], "relative energy error (E - E₀)/E₀", &s.t, &[("", &s.energy, BLACK)])?;
-    panel(&areas[2], "relative angular momentum error |L - L₀|/|L₀|", &s.t, &[("", &s.momentum, BLACK)])?;
+    panel(
+        &areas[1],
+        "relative energy error (E - E₀)/E₀",
+        &s.t,
+        &[("", &s.energy, BLACK)],
+    )?;
+    panel(
+        &areas[2],
+        "relative angular momentum error |L - L₀|/|L₀|",
+        &s.t,
+        &[("", &s.momentum, BLACK)],
+    )?;
     root.present()?;
     Ok(())
 }

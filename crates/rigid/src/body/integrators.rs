@@ -127,11 +127,7 @@ fn lgvi_coefficients(x: f64) -> (f64, f64, f64, f64) {
 /// Solves `Φ(f) = a(|f|) J f + b(|f|) f × J f = rhs` for `f` by Newton's method, starting from
 /// `f₀ = J⁻¹ rhs`. The Jacobian is `∇Φ = (a'/x) J f fᵀ + a J + (b'/x)(f × J f) fᵀ
 /// + b ([f] J - [J f])` (Lee, Leok & McClamroch 2007).
-fn solve_lgvi(
-    j: &RotationalInertia,
-    j_inv: &Mat3,
-    rhs: &Vec3,
-) -> Result<Vec3, BodyError> {
+fn solve_lgvi(j: &RotationalInertia, j_inv: &Mat3, rhs: &Vec3) -> Result<Vec3, BodyError> {
     const MAX_ITER: usize = 30;
     let jm = j.matrix();
     let scale = rhs.norm();
@@ -147,7 +143,9 @@ fn solve_lgvi(
         if residual <= 4.0 * f64::EPSILON * scale || scale == 0.0 {
             return Ok(f);
         }
-        let jac = jf * f.transpose() * da + jm * a + fjf * f.transpose() * db
+        let jac = jf * f.transpose() * da
+            + jm * a
+            + fjf * f.transpose() * db
             + (skew(&f) * jm - skew(&jf)) * b;
         let Some(delta) = jac.lu().solve(&r) else {
             break;
@@ -222,7 +220,14 @@ pub(crate) fn variational_step<W: WrenchFn>(
     } else {
         (p_o, c, Vec3::zeros())
     };
-    let pose = Transform::new(r1, if free { p1 - r1 * o } else { x.pose.translation });
+    let pose = Transform::new(
+        r1,
+        if free {
+            p1 - r1 * o
+        } else {
+            x.pose.translation
+        },
+    );
     let to_state = |pi1: &Vec3, v1: &Vec3| {
         let w1 = inv_j.solve(pi1);
         // v_b = R'ᵀ v_o - ω × o (zero on a pivot)

@@ -71,7 +71,9 @@ pub enum BodyError {
         what: &'static str,
     },
     /// A body on a pivot given a linear velocity of the pivot point.
-    #[error("the pivot point is fixed: the linear part of the body twist must be zero, got {speed} m/s")]
+    #[error(
+        "the pivot point is fixed: the linear part of the body twist must be zero, got {speed} m/s"
+    )]
     PivotMoves {
         /// `|v_b|`.
         speed: f64,

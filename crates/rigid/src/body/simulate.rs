@@ -209,8 +209,8 @@ impl<W: WrenchFn> Simulator<W> {
     #[must_use]
     pub fn summary(&self) -> Summary {
         let g = self.body.gravity();
-        let conserved_axis = (self.body.support() == Support::Pivot && g.norm() > 0.0)
-            .then(|| g.normalize());
+        let conserved_axis =
+            (self.body.support() == Support::Pivot && g.norm() > 0.0).then(|| g.normalize());
         Summary {
             steps: self.steps,
             time: self.t,

@@ -171,6 +171,10 @@ pub fn rk4_step<L: Lagrangian<N>, const N: usize>(
 
 /// The zero generalized force, for [`rk4_step`] without actuation.
 #[must_use]
-pub fn no_force<const N: usize>(_t: f64, _q: &SVector<f64, N>, _qd: &SVector<f64, N>) -> SVector<f64, N> {
+pub fn no_force<const N: usize>(
+    _t: f64,
+    _q: &SVector<f64, N>,
+    _qd: &SVector<f64, N>,
+) -> SVector<f64, N> {
     SVector::zeros()
 }
