@@ -54,7 +54,7 @@ impl FromStr for Integrator {
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
             "rk4" => Ok(Integrator::Rk4),
-            "variational" | "lgvi" => Ok(Integrator::Variational),
+            "variational" => Ok(Integrator::Variational),
             _ => Err(format!(
                 "unknown integrator {s:?}: expected \"rk4\" or \"variational\""
             )),
