@@ -6,7 +6,7 @@ use rigid::io::spec::read_spec;
 use rigid::mass::{CompoundError, MassProperties, DEFAULT_INERTIA_TOLERANCE};
 use rigid::spatial::{Mat3, Vec3};
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// Relative tolerance of the validity check (positive semi-definite, triangle inequality).
@@ -72,23 +72,25 @@ pub fn run(args: &MassArgs) -> ExitCode {
     }
 }
 
-fn compute(args: &MassArgs) -> Result<(MassProperties, String), String> {
-    let body = read_spec(&args.spec).map_err(|e| format!("{}: {e}", args.spec.display()))?;
-    let props = body.mass_properties().map_err(|e| match e {
+/// Reads a body spec and computes its mass properties; the error names the file, the part and
+/// the field. Shared with `rigid simulate`.
+pub fn load_mass_properties(spec: &Path) -> Result<MassProperties, String> {
+    let body = read_spec(spec).map_err(|e| format!("{}: {e}", spec.display()))?;
+    body.mass_properties().map_err(|e| match e {
         CompoundError::Part { index, source } => {
             let name = body.parts[index]
                 .name
                 .as_deref()
                 .map(|n| format!(" (\"{n}\")"))
                 .unwrap_or_default();
-            format!(
-                "{}: part {}{name}: {source}",
-                args.spec.display(),
-                index + 1
-            )
+            format!("{}: part {}{name}: {source}", spec.display(), index + 1)
         }
-        other => format!("{}: {other}", args.spec.display()),
-    })?;
+        other => format!("{}: {other}", spec.display()),
+    })
+}
+
+fn compute(args: &MassArgs) -> Result<(MassProperties, String), String> {
+    let props = load_mass_properties(&args.spec)?;
     let out = if args.json {
         json(&props)
     } else {

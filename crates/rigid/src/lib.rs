@@ -11,9 +11,11 @@
 //! | [`spatial`] | SO(3), SE(3), twists, wrenches, `Ad`, `ad`, exp and log |
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G` |
 //! | [`io`] | reading files: triangle meshes (STL, OBJ), `rigid mass` body specs (TOML) |
+//! | [`body`] | one body in motion: Newton-Euler, Euler, simulator on SE(3), Lagrange by autodiff |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
+pub mod body;
 pub mod error;
 pub mod io;
 pub mod mass;
