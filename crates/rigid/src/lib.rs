@@ -15,4 +15,5 @@
 
 pub mod error;
 pub mod mass;
+pub mod multibody;
 pub mod spatial;
