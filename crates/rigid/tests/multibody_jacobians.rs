@@ -27,8 +27,12 @@ enum Target {
 
 fn jac(model: &Model, data: &mut Data, q: &[f64], t: Target, rf: ReferenceFrame) -> DMatrix<f64> {
     match t {
-        Target::Joint(i) => joint_jacobian(model, data, q, JointId(i), rf).unwrap().clone(),
-        Target::Frame(f) => frame_jacobian(model, data, q, FrameId(f), rf).unwrap().clone(),
+        Target::Joint(i) => joint_jacobian(model, data, q, JointId(i), rf)
+            .unwrap()
+            .clone(),
+        Target::Frame(f) => frame_jacobian(model, data, q, FrameId(f), rf)
+            .unwrap()
+            .clone(),
     }
 }
 
@@ -83,16 +87,26 @@ fn jacobian_time_derivatives_equal_finite_differences_along_v() {
             let (q, v, _) = state(&model, &mut rng);
             let (qp, qm) = (step(&model, &q, &v, eps), step(&model, &q, &v, -eps));
             for t in targets(&model) {
-                for rf in [ReferenceFrame::Body, ReferenceFrame::Spatial, ReferenceFrame::WorldAligned] {
+                for rf in [
+                    ReferenceFrame::Body,
+                    ReferenceFrame::Spatial,
+                    ReferenceFrame::WorldAligned,
+                ] {
                     let dJ = match t {
-                        Target::Joint(i) => joint_jacobian_time_variation(&model, &mut data, &q, &v, JointId(i), rf),
-                        Target::Frame(f) => frame_jacobian_time_variation(&model, &mut data, &q, &v, FrameId(f), rf),
+                        Target::Joint(i) => {
+                            joint_jacobian_time_variation(&model, &mut data, &q, &v, JointId(i), rf)
+                        }
+                        Target::Frame(f) => {
+                            frame_jacobian_time_variation(&model, &mut data, &q, &v, FrameId(f), rf)
+                        }
                     }
                     .unwrap()
                     .clone();
                     let J = data.frame_jacobian.clone();
                     assert!(rel_err_m(&J, &jac(&model, &mut data, &q, t, rf)) < 1e-14);
-                    let fd = (jac(&model, &mut data, &qp, t, rf) - jac(&model, &mut data, &qm, t, rf)) / (2.0 * eps);
+                    let fd = (jac(&model, &mut data, &qp, t, rf)
+                        - jac(&model, &mut data, &qm, t, rf))
+                        / (2.0 * eps);
                     let err = rel_err_m(&dJ, &fd);
                     assert!(err < 1e-6, "{} {t:?} {rf:?}: {err}", model.name());
                 }
@@ -109,20 +123,34 @@ fn frame_acceleration_is_j_a_plus_jdot_v() {
         let mut data = Data::new(&model);
         let (q, v, a) = state(&model, &mut rng);
         for i in 0..model.njoints() {
-            let dJ = joint_jacobian_time_variation(&model, &mut data, &q, &v, JointId(i), ReferenceFrame::Body)
-                .unwrap()
-                .clone();
+            let dJ = joint_jacobian_time_variation(
+                &model,
+                &mut data,
+                &q,
+                &v,
+                JointId(i),
+                ReferenceFrame::Body,
+            )
+            .unwrap()
+            .clone();
             let J = data.frame_jacobian.clone();
             let A = J * DVector::from_column_slice(&a) + dJ * DVector::from_column_slice(&v);
             forward_kinematics(&model, &mut data, &q, &v, &a).unwrap();
             let err = (A - data.accelerations[i].to_vector()).amax();
-            assert!(err < 1e-9 * A_scale(&data), "{} joint {i}: {err}", model.name());
+            assert!(
+                err < 1e-9 * A_scale(&data),
+                "{} joint {i}: {err}",
+                model.name()
+            );
         }
     }
 }
 
 fn A_scale(data: &Data) -> f64 {
-    data.accelerations.iter().map(|a| a.norm()).fold(1.0, f64::max)
+    data.accelerations
+        .iter()
+        .map(|a| a.norm())
+        .fold(1.0, f64::max)
 }
 
 #[test]
@@ -140,16 +168,24 @@ fn rnea_with_external_wrenches_subtracts_body_jacobian_transpose_times_wrench() 
             })
             .collect();
         let tau0 = rnea(&model, &mut data, &q, &v, &a).unwrap().clone();
-        let tau = rnea_with_external(&model, &mut data, &q, &v, &a, &fext).unwrap().clone();
+        let tau = rnea_with_external(&model, &mut data, &q, &v, &a, &fext)
+            .unwrap()
+            .clone();
         let mut expect = tau0;
         for (i, f) in fext.iter().enumerate() {
-            let J = joint_jacobian(&model, &mut data, &q, JointId(i), ReferenceFrame::Body).unwrap();
+            let J =
+                joint_jacobian(&model, &mut data, &q, JointId(i), ReferenceFrame::Body).unwrap();
             expect -= J.transpose() * f.to_vector();
         }
         assert!(rel_err_v(&tau, &expect) < 1e-10, "{}", model.name());
         // and ABA with the same wrenches inverts it
         let ddq = aba_with_external(&model, &mut data, &q, &v, tau.as_slice(), &fext).unwrap();
         let a = DVector::from_column_slice(&a);
-        assert!(rel_err_v(ddq, &a) < 1e-8, "{}: {}", model.name(), rel_err_v(ddq, &a));
+        assert!(
+            rel_err_v(ddq, &a) < 1e-8,
+            "{}: {}",
+            model.name(),
+            rel_err_v(ddq, &a)
+        );
     }
 }

@@ -52,9 +52,23 @@ fn algorithms_allocate_nothing_after_data_new() {
             update_frame_placements(model, &mut data);
             compute_joint_jacobians(model, &mut data, &q).unwrap();
             compute_joint_jacobians_time_variation(model, &mut data, &q, &v).unwrap();
-            joint_jacobian(model, &mut data, &q, JointId(model.njoints() - 1), ReferenceFrame::Body).unwrap();
-            joint_jacobian_time_variation(model, &mut data, &q, &v, JointId(0), ReferenceFrame::WorldAligned)
-                .unwrap();
+            joint_jacobian(
+                model,
+                &mut data,
+                &q,
+                JointId(model.njoints() - 1),
+                ReferenceFrame::Body,
+            )
+            .unwrap();
+            joint_jacobian_time_variation(
+                model,
+                &mut data,
+                &q,
+                &v,
+                JointId(0),
+                ReferenceFrame::WorldAligned,
+            )
+            .unwrap();
             if !model.frames().is_empty() {
                 frame_jacobian(model, &mut data, &q, FrameId(0), ReferenceFrame::Spatial).unwrap();
             }
