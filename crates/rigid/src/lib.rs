@@ -10,6 +10,7 @@
 //! | --- | --- |
 //! | [`spatial`] | SO(3), SE(3), twists, wrenches, `Ad`, `ad`, exp and log |
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G` |
+//! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, Coriolis matrix, energies, DH and Modern Robotics builders, built-in robots |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
