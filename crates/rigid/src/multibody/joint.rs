@@ -215,6 +215,25 @@ impl JointType {
         }
     }
 
+    /// `X_T X_J(q)`: the pose of the child frame in the parent frame, given the joint
+    /// placement `X_T`; skips the products by zero blocks of [`transform`](Self::transform)
+    /// (a revolute joint keeps `X_T`'s translation, a prismatic joint its rotation).
+    #[must_use]
+    #[inline]
+    pub fn placed_transform(&self, placement: &Transform, q: &[f64]) -> Transform {
+        match self {
+            Self::Revolute { .. } | Self::Continuous { .. } | Self::Spherical => Transform::new(
+                placement.rotation * self.transform(q).rotation,
+                placement.translation,
+            ),
+            Self::Prismatic { axis } => Transform::new(
+                placement.rotation,
+                placement.rotation * (axis * q[0]) + placement.translation,
+            ),
+            Self::FreeFlyer | Self::Planar => *placement * self.transform(q),
+        }
+    }
+
     /// Column `k` of the motion subspace `S` (6 x nv), in the child frame: the body twist of the
     /// child relative to the parent is `Σ_k S_k q̇_k`.
     #[must_use]

@@ -73,8 +73,31 @@ fn aba_impl(
     for i in (0..n).rev() {
         let j = &model.joints[i];
         let (iv, nv) = (j.idx_v, j.nv);
-        let IA = data.ia[i];
         let pA = data.pa[i];
+        if nv == 1 {
+            // one degree of freedom: D and u are scalars
+            let IA = &data.ia[i];
+            let S = &model.dof_S[iv];
+            let U = mat6_twist(IA, S);
+            let Dinv = 1.0 / (S.dot(&U) + model.armature[iv]);
+            let u = tau[iv] - S.dot(&pA);
+            data.u_cols[iv] = U;
+            data.d_inv_1[iv] = Dinv;
+            data.u[iv] = u;
+            if let Some(p) = j.parent {
+                // I^a = I^A - U D⁻¹ Uᵀ, p^a = p^A + I^a c + U D⁻¹ u
+                let Uv = U.to_vector();
+                let mut Ia = data.ia[i];
+                Ia.ger(-Dinv, &Uv, &Uv, 1.0);
+                let pa = pA + mat6_twist(&Ia, &data.c_bias[i]) + U * (Dinv * u);
+                let X = &data.parent_placements[i];
+                let Ip = congruence(&Ia, X);
+                data.ia[p.0] += Ip;
+                data.pa[p.0] += X.act_wrench(&pa);
+            }
+            continue;
+        }
+        let IA = data.ia[i];
         for a in 0..nv {
             data.u_cols[iv + a] = mat6_twist(&IA, &model.dof_S[iv + a]);
         }
@@ -86,17 +109,10 @@ fn aba_impl(
             D[(a, a)] += model.armature[iv + a];
             data.u[iv + a] = tau[iv + a] - model.dof_S[iv + a].dot(&pA);
         }
-        let Dinv = if nv == 1 {
-            let mut m = Mat6::identity();
-            m[(0, 0)] = 1.0 / D[(0, 0)];
-            m
-        } else {
-            D.try_inverse().ok_or(MultibodyError::NotPositiveDefinite)?
-        };
+        let Dinv = D.try_inverse().ok_or(MultibodyError::NotPositiveDefinite)?;
         data.d_inv[i] = Dinv;
         if let Some(p) = j.parent {
             let mut Ia = IA;
-            let mut pa = pA + mat6_twist(&IA, &data.c_bias[i]);
             let mut corr = Vec6::zeros();
             for a in 0..nv {
                 let Ua = data.u_cols[iv + a].to_vector();
@@ -109,9 +125,8 @@ fn aba_impl(
                 Ia -= Ua * w.transpose();
                 corr += Ua * s;
             }
-            // pa = pA + Ia c + U D⁻¹ u, with Ia the reduced inertia
-            pa += Wrench::from_vector(&corr);
-            pa -= mat6_twist(&(IA - Ia), &data.c_bias[i]);
+            // p^a = p^A + I^a c + U D⁻¹ u
+            let pa = pA + mat6_twist(&Ia, &data.c_bias[i]) + Wrench::from_vector(&corr);
             data.ia[p.0] += congruence(&Ia, &data.parent_placements[i]);
             data.pa[p.0] += data.parent_placements[i].act_wrench(&pa);
         }
@@ -126,6 +141,13 @@ fn aba_impl(
             None => a_world,
         };
         let mut A = data.parent_placements[i].inv_act_twist(&Ap) + data.c_bias[i];
+        if nv == 1 {
+            let x = data.d_inv_1[iv] * (data.u[iv] - A.dot(&data.u_cols[iv]));
+            data.ddq[iv] = x;
+            A += model.dof_S[iv] * x;
+            data.accelerations_gravity[i] = A;
+            continue;
+        }
         let Dinv = data.d_inv[i];
         let mut rhs = [0.0; 6];
         for (a, r) in rhs.iter_mut().enumerate().take(nv) {

@@ -30,7 +30,7 @@ pub fn coriolis_matrix<'a>(
     let n = model.joints.len();
     for i in 0..n {
         let oMi = data.placements[i];
-        let Gs = model.inertias[i].transformed(&oMi);
+        let Gs = super::inertia_to_parent(&model.inertias[i], &oMi);
         let Vs = data.spatial_velocities[i];
         data.world_inertias[i] = Gs;
         data.world_momenta[i] = Gs.momentum(&Vs);

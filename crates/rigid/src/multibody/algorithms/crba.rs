@@ -48,7 +48,7 @@ pub fn crba<'a>(
             }
         }
         if let Some(p) = ji.parent {
-            let t = Ic.transformed(&data.parent_placements[i]);
+            let t = super::inertia_to_parent(&Ic, &data.parent_placements[i]);
             data.composite_inertias[p.0] += t;
         }
     }

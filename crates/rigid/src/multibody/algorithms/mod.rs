@@ -23,6 +23,7 @@ pub use kinematics::{
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 
 use super::Model;
+use crate::mass::{RotationalInertia, SpatialInertia};
 use crate::spatial::{Transform, Twist};
 
 /// `S_i q̇_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame).
@@ -41,5 +42,26 @@ pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
 #[inline]
 pub(crate) fn parent_placement(model: &Model, i: usize, q: &[f64]) -> Transform {
     let j = &model.joints[i];
-    j.placement * j.kind.transform(&q[j.idx_q..j.idx_q + j.nq])
+    j.kind.placed_transform(&j.placement, &q[j.idx_q..j.idx_q + j.nq])
+}
+
+/// `G_a = [Ad_{T⁻¹}]ᵀ G_b [Ad_{T⁻¹}]` for `T = T_ab = (R, p)` (an inertia of body b expressed in
+/// frame a), as [`SpatialInertia::transformed`] but with the skew products written out:
+/// with `h' = R h`, `I_a = R I Rᵀ + 2(h'·p) 1 - (p h'ᵀ + h' pᵀ) + m (|p|² 1 - p pᵀ)`,
+/// `h_a = h' + m p` (from `[x][y] = y xᵀ - (x·y) 1`).
+#[inline]
+pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialInertia {
+    let R = &T.rotation;
+    let p = &T.translation;
+    let m = G.mass();
+    let h = R * G.first_moment();
+    let I = R * G.inertia_origin().matrix() * R.transpose();
+    let hp = h.dot(p);
+    let pp = p.norm_squared();
+    let mut Ia = I - p * h.transpose() - h * p.transpose() - (p * p.transpose()) * m;
+    let d = 2.0 * hp + m * pp;
+    Ia[(0, 0)] += d;
+    Ia[(1, 1)] += d;
+    Ia[(2, 2)] += d;
+    SpatialInertia::from_parts(m, h + p * m, RotationalInertia::from_matrix_unchecked(&Ia))
 }
