@@ -223,7 +223,10 @@ impl JointType {
     pub fn placed_transform(&self, placement: &Transform, q: &[f64]) -> Transform {
         match self {
             Self::Revolute { .. } | Self::Continuous { .. } | Self::Spherical => Transform::new(
-                placement.rotation * self.transform(q).rotation,
+                crate::multibody::algorithms::mat3_mul(
+                    &placement.rotation,
+                    &self.transform(q).rotation,
+                ),
                 placement.translation,
             ),
             Self::Prismatic { axis } => Transform::new(

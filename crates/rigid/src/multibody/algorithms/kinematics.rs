@@ -1,7 +1,7 @@
 //! Forward kinematics: placements, body velocities and accelerations (Featherstone 2008, §3.5 and
 //! the first pass of Table 5.1; Lynch & Park §8.3.2).
 
-use super::{joint_motion, parent_placement};
+use super::{compose, joint_motion, parent_placement};
 use crate::multibody::{check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::Twist;
 
@@ -25,7 +25,7 @@ pub(crate) fn placements_unchecked(model: &Model, data: &mut Data, q: &[f64]) {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
         data.placements[i] = match model.joints[i].parent {
-            Some(p) => data.placements[p.0] * liMi,
+            Some(p) => compose(&data.placements[p.0], &liMi),
             None => liMi,
         };
     }
@@ -51,7 +51,7 @@ pub fn forward_kinematics_qv(
             Some(p) => (data.placements[p.0], data.velocities[p.0]),
             None => (crate::spatial::Transform::identity(), Twist::zero()),
         };
-        data.placements[i] = oMp * liMi;
+        data.placements[i] = compose(&oMp, &liMi);
         data.velocities[i] = liMi.inv_act_twist(&Vp) + vJ;
     }
     Ok(())
@@ -95,7 +95,7 @@ pub fn forward_kinematics(
                 Twist::zero(),
             ),
         };
-        data.placements[i] = oMp * liMi;
+        data.placements[i] = compose(&oMp, &liMi);
         let V = liMi.inv_act_twist(&Vp) + vJ;
         data.velocities[i] = V;
         data.accelerations[i] = liMi.inv_act_twist(&Ap) + aJ + V.cross(&vJ);
