@@ -152,6 +152,14 @@ pub enum MultibodyError {
     /// The mass matrix is not positive definite (Cholesky failed).
     #[error("mass matrix is not positive definite")]
     NotPositiveDefinite,
+    /// A [`Data`] made for another model (different numbers of joints or degrees of freedom).
+    #[error("data was made for another model ({njoints} joints, nv = {nv})")]
+    DataMismatch {
+        /// Joints the data was made for.
+        njoints: usize,
+        /// Degrees of freedom the data was made for.
+        nv: usize,
+    },
     /// A frame or joint index out of range.
     #[error("{what} index {index} out of range")]
     OutOfRange {
@@ -176,6 +184,20 @@ pub(crate) fn check_q(model: &Model, q: &[f64]) -> Result<(), MultibodyError> {
                 });
             }
         }
+    }
+    Ok(())
+}
+
+/// Check that `data` was made by `Data::new(model)` (or a model of the same shape).
+pub(crate) fn check_data(model: &Model, data: &Data) -> Result<(), MultibodyError> {
+    if data.placements.len() != model.njoints()
+        || data.tau.len() != model.nv
+        || data.frame_placements.len() != model.frames.len()
+    {
+        return Err(MultibodyError::DataMismatch {
+            njoints: data.placements.len(),
+            nv: data.tau.len(),
+        });
     }
     Ok(())
 }

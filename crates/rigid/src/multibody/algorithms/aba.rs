@@ -3,7 +3,7 @@
 
 use super::{joint_motion, parent_placement};
 use crate::error::DimensionError;
-use crate::multibody::{check_q, check_v, Data, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::{skew, Mat3, Mat6, Transform, Twist, Vec3, Vec6, Wrench};
 use nalgebra::DVector;
 
@@ -208,6 +208,7 @@ pub fn aba<'a>(
     tau: &[f64],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "tau", tau)?;
     aba_impl(model, data, q, v, tau, None)?;
@@ -227,6 +228,7 @@ pub fn aba_with_external<'a>(
     fext: &[Wrench],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "tau", tau)?;
     DimensionError::check("fext", model.njoints(), fext.len())?;

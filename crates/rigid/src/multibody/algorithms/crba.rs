@@ -4,7 +4,7 @@
 
 use super::inertia_to_parent;
 use super::kinematics::placements_unchecked;
-use crate::multibody::{check_q, Data, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, Data, Model, MultibodyError};
 use nalgebra::DMatrix;
 
 /// The joint-space inertia matrix `M(q)` (full symmetric), plus the armature on the diagonal:
@@ -28,6 +28,7 @@ pub fn crba<'a>(
     q: &[f64],
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     placements_unchecked(model, data, q);
     let n = model.joints.len();
     for i in 0..n {

@@ -2,7 +2,7 @@
 //! the first pass of Table 5.1; Lynch & Park §8.3.2).
 
 use super::{compose, joint_motion, parent_placement};
-use crate::multibody::{check_q, check_v, Data, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::Twist;
 
 /// Placements only: `liMi = X_T X_J(q_i)`, `oMi = oM_{λ(i)} liMi` (`λ(i)` the parent).
@@ -16,6 +16,7 @@ pub fn forward_kinematics_q(
     q: &[f64],
 ) -> Result<(), MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     placements_unchecked(model, data, q);
     Ok(())
 }
@@ -42,6 +43,7 @@ pub fn forward_kinematics_qv(
     v: &[f64],
 ) -> Result<(), MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     for i in 0..model.joints.len() {
         let liMi = parent_placement(model, i, q);
@@ -76,6 +78,7 @@ pub fn forward_kinematics(
     a: &[f64],
 ) -> Result<(), MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "a", a)?;
     for i in 0..model.joints.len() {
