@@ -107,11 +107,15 @@ pub fn forward_kinematics(
 }
 
 /// World poses of the named frames, `oMf = oMi iMf`, from `data.placements` (run a forward
-/// kinematics first). Frames fixed in the world get their placement as is.
+/// kinematics first). Frames fixed in the world get their placement as is. A `data` made for
+/// another model is left untouched.
 pub fn update_frame_placements(model: &Model, data: &mut Data) {
+    if check_data(model, data).is_err() {
+        return;
+    }
     for (f, frame) in model.frames.iter().enumerate() {
         data.frame_placements[f] = match frame.parent {
-            Some(p) => data.placements[p.0] * frame.placement,
+            Some(p) => compose(&data.placements[p.0], &frame.placement),
             None => frame.placement,
         };
     }
