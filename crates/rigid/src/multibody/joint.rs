@@ -40,6 +40,42 @@ pub enum JointType {
     Planar,
 }
 
+/// `R exp([a] q)`: for a coordinate axis `a = ±e_k` only two columns of `R` mix
+/// (12 multiplications); otherwise Rodrigues' formula and a 3x3 product.
+#[inline]
+fn rotate_about(r: &Mat3, a: &Vec3, q: f64) -> Mat3 {
+    let (s, c) = q.sin_cos();
+    let (j, k, sign) = if a.x == 0.0 && a.y == 0.0 {
+        (0, 1, a.z) // about z: columns 0 and 1 turn
+    } else if a.y == 0.0 && a.z == 0.0 {
+        (1, 2, a.x) // about x: columns 1 and 2 turn
+    } else if a.x == 0.0 && a.z == 0.0 {
+        (2, 0, a.y) // about y: columns 2 and 0 turn
+    } else {
+        let t = 1.0 - c;
+        let (x, y, z) = (a.x, a.y, a.z);
+        let rj = Mat3::new(
+            c + t * x * x,
+            t * x * y - s * z,
+            t * x * z + s * y,
+            t * x * y + s * z,
+            c + t * y * y,
+            t * y * z - s * x,
+            t * x * z - s * y,
+            t * y * z + s * x,
+            c + t * z * z,
+        );
+        return crate::multibody::algorithms::mat3_mul(r, &rj);
+    };
+    let s = s * sign; // a = -e_k turns by -q
+    let u: Vec3 = r.column(j).into();
+    let w: Vec3 = r.column(k).into();
+    let mut out = *r;
+    out.set_column(j, &(u * c + w * s));
+    out.set_column(k, &(w * c - u * s));
+    out
+}
+
 /// Quaternion `(x, y, z, w)` → rotation matrix, normalising first.
 #[inline]
 pub(crate) fn quat_to_rot(x: f64, y: f64, z: f64, w: f64) -> Mat3 {
@@ -211,7 +247,11 @@ impl JointType {
     #[inline]
     pub fn placed_transform(&self, placement: &Transform, q: &[f64]) -> Transform {
         match self {
-            Self::Revolute { .. } | Self::Continuous { .. } | Self::Spherical => Transform::new(
+            Self::Revolute { axis } | Self::Continuous { axis } => Transform::new(
+                rotate_about(&placement.rotation, axis, q[0]),
+                placement.translation,
+            ),
+            Self::Spherical => Transform::new(
                 crate::multibody::algorithms::mat3_mul(
                     &placement.rotation,
                     &self.transform(q).rotation,
