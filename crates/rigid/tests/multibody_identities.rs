@@ -239,3 +239,19 @@ fn neutral_configuration_has_identity_quaternions_and_normalize_restores_unit_no
     normalize(&model, &mut bad).unwrap();
     forward_kinematics_q(&model, &mut data, &bad).unwrap();
 }
+
+#[test]
+fn random_trees_cover_every_joint_type_and_coordinate_axes() {
+    let mut names = std::collections::BTreeSet::new();
+    let mut coordinate_axis = false;
+    for model in models() {
+        for j in model.joints() {
+            names.insert(j.kind.name());
+            if let JointType::Revolute { axis } = j.kind {
+                coordinate_axis |= axis.iter().filter(|x| **x == 0.0).count() == 2;
+            }
+        }
+    }
+    assert_eq!(names.len(), 6, "{names:?}");
+    assert!(coordinate_axis);
+}

@@ -191,15 +191,13 @@ pub enum MultibodyError {
 pub(crate) fn check_q(model: &Model, q: &[f64]) -> Result<(), MultibodyError> {
     DimensionError::check("q", model.nq, q.len())?;
     check_finite("q", q)?;
-    for j in &model.joints {
-        if let Some(o) = j.kind.quaternion_offset() {
-            let n = joint::quat_norm(&q[j.idx_q + o..]);
-            if (n - 1.0).abs() > QUATERNION_TOLERANCE {
-                return Err(MultibodyError::NotUnitQuaternion {
-                    joint: j.name.clone(),
-                    norm: n,
-                });
-            }
+    for &(j, o) in &model.quaternions {
+        let n = joint::quat_norm(&q[o..o + 4]);
+        if (n - 1.0).abs() > QUATERNION_TOLERANCE {
+            return Err(MultibodyError::NotUnitQuaternion {
+                joint: model.joints[j].name.clone(),
+                norm: n,
+            });
         }
     }
     Ok(())

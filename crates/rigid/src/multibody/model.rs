@@ -79,6 +79,8 @@ pub struct Model {
     pub(crate) dof_S: Vec<Twist>,
     /// The joint of each degree of freedom.
     pub(crate) dof_joint: Vec<usize>,
+    /// `(joint, index in q)` of every quaternion (spherical and free-flyer joints).
+    pub(crate) quaternions: Vec<(usize, usize)>,
     pub(crate) nq: usize,
     pub(crate) nv: usize,
 }
@@ -290,6 +292,7 @@ impl ModelBuilder {
                 armature: Vec::new(),
                 dof_S: Vec::new(),
                 dof_joint: Vec::new(),
+                quaternions: Vec::new(),
                 nq: 0,
                 nv: 0,
             },
@@ -375,6 +378,9 @@ impl ModelBuilder {
             subtree_end: id + 1,
         });
         m.inertias.push(inertia);
+        if let Some(o) = kind.quaternion_offset() {
+            m.quaternions.push((id, m.nq + o));
+        }
         for k in 0..nv {
             m.dof_S.push(kind.motion_subspace(k));
             m.dof_joint.push(id);
