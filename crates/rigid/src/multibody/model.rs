@@ -229,6 +229,23 @@ impl Model {
 }
 
 /// Builds a [`Model`] joint by joint, in depth-first order.
+///
+/// ```
+/// use rigid::mass::{RotationalInertia, SpatialInertia};
+/// use rigid::multibody::{JointType, ModelBuilder};
+/// use rigid::spatial::{Transform, Vec3};
+/// // a 2-link planar arm: links of 1 kg, CoM 0.5 m along x, joints about z
+/// let link = SpatialInertia::from_com(1.0, Vec3::new(0.5, 0.0, 0.0), RotationalInertia::diagonal(0.01, 0.08, 0.08));
+/// let mut b = ModelBuilder::new("arm");
+/// let j1 = b.add_joint(None, "shoulder", JointType::Revolute { axis: Vec3::z() }, Transform::identity(), link)?;
+/// let j2 = b.add_joint(Some(j1), "elbow", JointType::Revolute { axis: Vec3::z() },
+///                      Transform::from_translation(Vec3::new(1.0, 0.0, 0.0)), link)?;
+/// b.add_frame(Some(j2), "tool", Transform::from_translation(Vec3::new(1.0, 0.0, 0.0)))?;
+/// b.set_limits(j1, &[-2.0], &[2.0], &[3.0], &[50.0])?;
+/// let model = b.build()?;
+/// assert_eq!((model.nq(), model.nv(), model.total_mass()), (2, 2, 2.0));
+/// # Ok::<(), rigid::multibody::ModelError>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ModelBuilder {
     model: Model,

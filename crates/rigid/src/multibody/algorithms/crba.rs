@@ -22,6 +22,17 @@ use nalgebra::DMatrix;
 ///
 /// # Errors
 /// Wrong length, non-finite entry or non-unit quaternion in `q`.
+///
+/// ```
+/// use rigid::multibody::{crba, double_pendulum, Data};
+/// let model = double_pendulum();
+/// let mut data = Data::new(&model);
+/// let m = crba(&model, &mut data, &[0.3, 0.0])?;
+/// // straight: M22 = 1/3, M12 = 1/3 + 1/2, M11 = 1/3 + 1 + 1/3 + 1
+/// assert!((m[(1, 1)] - 1.0 / 3.0).abs() < 1e-12 && (m[(0, 1)] - 5.0 / 6.0).abs() < 1e-12);
+/// assert!((m[(0, 0)] - 8.0 / 3.0).abs() < 1e-12);
+/// # Ok::<(), rigid::multibody::MultibodyError>(())
+/// ```
 pub fn crba<'a>(
     model: &Model,
     data: &'a mut Data,
