@@ -279,11 +279,12 @@ fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
     if g.mass() < 0.0 {
         return Err(bad(crate::error::InertiaError::BadMass { mass: g.mass() }));
     }
-    // Positive semi-definite rotational inertia about the CoM. The triangle inequality is not
+    // Positive semi-definite rotational inertia about the CoM (to 1e-6 of the largest principal
+    // moment, for the rounding of published values). The triangle inequality is not
     // enforced: published models violate it (the PUMA 560's link 3), so it is reported by
     // `Model::inertia_issues` instead.
     let l = g.inertia_com().principal_moments();
-    if l[0] < -1e-9 * l[2].abs().max(1e-12) {
+    if l[0] < -1e-6 * l[2].abs().max(1e-12) {
         return Err(bad(crate::error::InertiaError::NotPositiveSemiDefinite {
             moment: l[0],
         }));
