@@ -12,6 +12,7 @@
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G` |
 //! | [`io`] | reading files: triangle meshes (STL, OBJ), `rigid mass` body specs (TOML) |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, simulator on SE(3), Lagrange by autodiff |
+//! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, Coriolis matrix, energies, DH and Modern Robotics builders, built-in robots |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
@@ -19,4 +20,5 @@ pub mod body;
 pub mod error;
 pub mod io;
 pub mod mass;
+pub mod multibody;
 pub mod spatial;

@@ -1,0 +1,99 @@
+//! The recursive algorithms, one file each. All take `(model, data, inputs...)`, check the inputs
+//! (lengths, finiteness, unit quaternions) and write into `data`.
+
+mod aba;
+mod coriolis;
+mod crba;
+mod energy;
+mod jacobian;
+mod kinematics;
+mod rnea;
+
+pub use aba::{aba, aba_with_external, forward_dynamics_cholesky};
+pub use coriolis::coriolis_matrix;
+pub use crba::crba;
+pub use energy::{center_of_mass, kinetic_energy, potential_energy};
+pub use jacobian::{
+    compute_joint_jacobians, compute_joint_jacobians_time_variation, frame_jacobian,
+    frame_jacobian_time_variation, joint_jacobian, joint_jacobian_time_variation, ReferenceFrame,
+};
+pub use kinematics::{
+    forward_kinematics, forward_kinematics_q, forward_kinematics_qv, update_frame_placements,
+};
+pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
+
+use super::Model;
+use crate::mass::SpatialInertia;
+use crate::spatial::{Mat3, Transform, Twist};
+
+/// `S_i q̇_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame).
+#[inline]
+pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
+    let j = &model.joints[i];
+    let mut t = Twist::zero();
+    let r = j.idx_v..j.idx_v + j.nv;
+    for (S, xk) in model.dof_S[r.clone()].iter().zip(&x[r]) {
+        t += *S * *xk;
+    }
+    t
+}
+
+/// `liMi = X_T X_J(q_i)`: the pose of body i in its parent (one match on the joint type).
+#[inline]
+pub(crate) fn parent_placement(model: &Model, i: usize, q: &[f64]) -> Transform {
+    let j = &model.joints[i];
+    j.kind
+        .placed_transform(&j.placement, &q[j.idx_q..j.idx_q + j.nq])
+}
+
+/// `R_a R_b` written out (nalgebra's generic 3x3 product is not fully unrolled).
+#[inline(always)]
+pub(crate) fn mat3_mul(a: &Mat3, b: &Mat3) -> Mat3 {
+    let a = a.as_slice();
+    let b = b.as_slice();
+    let mut c = [0.0; 9];
+    // column-major: c[j*3 + i] = Σ_k a[k*3 + i] b[j*3 + k]
+    for j in 0..3 {
+        for i in 0..3 {
+            c[j * 3 + i] = a[i] * b[j * 3] + a[3 + i] * b[j * 3 + 1] + a[6 + i] * b[j * 3 + 2];
+        }
+    }
+    Mat3::from_column_slice(&c)
+}
+
+/// `T_a T_b = (R_a R_b, R_a p_b + p_a)` with [`mat3_mul`].
+#[inline(always)]
+pub(crate) fn compose(a: &Transform, b: &Transform) -> Transform {
+    Transform::new(
+        mat3_mul(&a.rotation, &b.rotation),
+        a.rotation * b.translation + a.translation,
+    )
+}
+
+/// `G_a = [Ad_{T⁻¹}]ᵀ G_b [Ad_{T⁻¹}]` for `T = T_ab = (R, p)` (an inertia of body b expressed in
+/// frame a), as [`SpatialInertia::transformed`] but with the skew products written out:
+/// with `h' = R h`, `I_a = R I Rᵀ + 2(h'·p) 1 - (p h'ᵀ + h' pᵀ) + m (|p|² 1 - p pᵀ)`,
+/// `h_a = h' + m p` (from `[x][y] = y xᵀ - (x·y) 1`).
+#[inline]
+pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialInertia {
+    let R = &T.rotation;
+    let p = &T.translation;
+    let m = G.mass();
+    let h = R * G.first_moment();
+    let RI = mat3_mul(R, G.inertia_origin_matrix());
+    let d = 2.0 * h.dot(p) + m * p.norm_squared();
+    let (r, ri) = (R.as_slice(), RI.as_slice()); // column-major
+    let (p, hh) = ([p.x, p.y, p.z], [h.x, h.y, h.z]);
+    let mut out = [0.0; 9];
+    for i in 0..3 {
+        for j in i..3 {
+            // (R I Rᵀ)_ij = Σ_k (RI)_ik R_jk
+            let rir = ri[i] * r[j] + ri[3 + i] * r[3 + j] + ri[6 + i] * r[6 + j];
+            let x = rir - p[i] * hh[j] - hh[i] * p[j] - m * p[i] * p[j];
+            out[j * 3 + i] = x;
+            out[i * 3 + j] = x;
+        }
+        out[i * 4] += d;
+    }
+    SpatialInertia::from_raw_parts(m, h + T.translation * m, Mat3::from_column_slice(&out))
+}
