@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+mod bench;
 mod mass;
 mod simulate;
 
@@ -17,6 +18,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Time the multibody algorithms on a model (median ns per call over random states).
+    Bench(bench::BenchArgs),
     /// Mass properties of a body made of parts (a TOML spec): mass, CoM, inertia, G.
     Mass(mass::MassArgs),
     /// Simulate one rigid body (free, or on a pivot) and report energy and momentum errors.
@@ -36,6 +39,7 @@ fn report(result: Result<(), String>) -> ExitCode {
 
 fn main() -> ExitCode {
     match Cli::parse().command {
+        Command::Bench(args) => report(bench::run(&args)),
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),
     }

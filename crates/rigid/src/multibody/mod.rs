@@ -38,6 +38,7 @@
 //! ```
 
 pub mod algorithms;
+pub mod batch;
 mod builders;
 mod builtins;
 mod configuration;

@@ -1,0 +1,181 @@
+//! `rigid bench MODEL [--floating] [--json]`: how fast is this robot? Times each multibody
+//! algorithm over pre-drawn random states (so that branch prediction is not flattered), repeated,
+//! and reports the median nanoseconds per call.
+//!
+//! Method: `--states` random states `(q, v, a, τ)` are drawn once (`q` uniform within the joint
+//! limits, unit quaternions uniform on SO(3); `v`, `a`, `τ` uniform in `[-1, 1]`); one pass calls
+//! the algorithm once per state; the time of a pass divided by the number of states is one
+//! sample; the report is the median of `--repetitions` samples, after one warm-up pass. The keys
+//! are those of Pinocchio's timing program in `bench/pinocchio/` so that `bench/compare.py` can
+//! divide one by the other:
+//!
+//! | key | rigid call | Pinocchio call |
+//! | --- | --- | --- |
+//! | `forward_kinematics` | `forward_kinematics_q` (placements) | `forwardKinematics(q)` |
+//! | `forward_kinematics_qva` | `forward_kinematics` (placements, V, A) | `forwardKinematics(q, v, a)` |
+//! | `jacobians` | `compute_joint_jacobians` | `computeJointJacobians(q)` |
+//! | `rnea`, `gravity`, `nonlinear_effects` | `rnea`, `gravity_torques`, `nonlinear_effects` | same |
+//! | `crba` | `crba` (full symmetric `M`) | `crba` (upper triangle only) |
+//! | `aba` | `aba` | `aba` |
+//! | `cholesky_fd` | `forward_dynamics_cholesky` (nle + CRBA + Cholesky solve) | nle + crba + `cholesky::solve` |
+
+use clap::Args;
+use rigid::multibody::{
+    aba, builtin, builtin_names, compute_joint_jacobians, crba, forward_dynamics_cholesky,
+    forward_kinematics, forward_kinematics_q, gravity_torques, nonlinear_effects,
+    random_configuration, rnea, Data, Model, Rng,
+};
+use std::hint::black_box;
+use std::time::Instant;
+
+/// Arguments of `rigid bench`.
+#[derive(Args)]
+pub struct BenchArgs {
+    /// A URDF file or a built-in model name (`puma560`, …).
+    model: String,
+    /// Add a free-flyer root joint (URDF models).
+    #[arg(long)]
+    floating: bool,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// Number of timed passes; the median is reported.
+    #[arg(long, default_value_t = 21)]
+    repetitions: usize,
+    /// Number of pre-drawn random states per pass.
+    #[arg(long, default_value_t = 1000)]
+    states: usize,
+    /// Seed of the random states.
+    #[arg(long, default_value_t = 7)]
+    seed: u64,
+}
+
+/// The algorithms timed, in output order (the JSON keys).
+pub const ALGORITHMS: [&str; 9] = [
+    "forward_kinematics",
+    "forward_kinematics_qva",
+    "jacobians",
+    "rnea",
+    "gravity",
+    "nonlinear_effects",
+    "crba",
+    "aba",
+    "cholesky_fd",
+];
+
+/// Pre-drawn random states, one `Vec` per state.
+pub struct States {
+    q: Vec<Vec<f64>>,
+    v: Vec<Vec<f64>>,
+    a: Vec<Vec<f64>>,
+    tau: Vec<Vec<f64>>,
+}
+
+impl States {
+    /// `n` random states of `model`.
+    pub fn new(model: &Model, n: usize, seed: u64) -> Self {
+        let mut rng = Rng::new(seed);
+        let vec = |rng: &mut Rng| -> Vec<f64> {
+            (0..model.nv()).map(|_| rng.uniform(-1.0, 1.0)).collect()
+        };
+        let (mut q, mut v, mut a, mut tau) = (vec![], vec![], vec![], vec![]);
+        for _ in 0..n {
+            q.push(random_configuration(model, &mut rng));
+            v.push(vec(&mut rng));
+            a.push(vec(&mut rng));
+            tau.push(vec(&mut rng));
+        }
+        Self { q, v, a, tau }
+    }
+}
+
+/// Median ns per call of algorithm `name` over `reps` passes through `states` (one warm-up pass
+/// first).
+///
+/// # Errors
+/// An algorithm error (e.g. a singular mass matrix).
+pub fn time_algorithm(
+    model: &Model,
+    data: &mut Data,
+    s: &States,
+    name: &str,
+    reps: usize,
+) -> Result<f64, String> {
+    let n = s.q.len();
+    let pass = |data: &mut Data| -> Result<f64, String> {
+        let t = Instant::now();
+        for i in 0..n {
+            let (q, v, a, tau) = (&s.q[i], &s.v[i], &s.a[i], &s.tau[i]);
+            let r = match name {
+                "forward_kinematics" => forward_kinematics_q(model, data, q).map(|()| 0.0),
+                "forward_kinematics_qva" => forward_kinematics(model, data, q, v, a).map(|()| 0.0),
+                "jacobians" => compute_joint_jacobians(model, data, q).map(|j| j[0]),
+                "rnea" => rnea(model, data, q, v, a).map(|t| t[0]),
+                "gravity" => gravity_torques(model, data, q).map(|t| t[0]),
+                "nonlinear_effects" => nonlinear_effects(model, data, q, v).map(|t| t[0]),
+                "crba" => crba(model, data, q).map(|m| m[0]),
+                "aba" => aba(model, data, q, v, tau).map(|t| t[0]),
+                "cholesky_fd" => forward_dynamics_cholesky(model, data, q, v, tau).map(|t| t[0]),
+                _ => return Err(format!("unknown algorithm {name}")),
+            };
+            black_box(r.map_err(|e| format!("{name}: {e}"))?);
+        }
+        Ok(t.elapsed().as_nanos() as f64 / n.max(1) as f64)
+    };
+    pass(data)?;
+    let mut samples = (0..reps.max(1))
+        .map(|_| pass(data))
+        .collect::<Result<Vec<_>, _>>()?;
+    samples.sort_by(f64::total_cmp);
+    Ok(samples[samples.len() / 2])
+}
+
+/// The model named on the command line. Built-in models only until the URDF loader lands.
+fn load(spec: &str, floating: bool) -> Result<Model, String> {
+    if floating {
+        return Err("--floating applies to URDF models".into());
+    }
+    builtin(spec).ok_or_else(|| {
+        format!(
+            "unknown model \"{spec}\" (built-in models: {})",
+            builtin_names().join(", ")
+        )
+    })
+}
+
+/// Run `rigid bench`.
+///
+/// # Errors
+/// An unknown model, or an algorithm error.
+pub fn run(args: &BenchArgs) -> Result<(), String> {
+    let model = load(&args.model, args.floating)?;
+    let states = States::new(&model, args.states.max(1), args.seed);
+    let mut data = Data::new(&model);
+    let mut times = serde_json::Map::new();
+    for name in ALGORITHMS {
+        let t = time_algorithm(&model, &mut data, &states, name, args.repetitions)?;
+        times.insert(name.to_string(), serde_json::json!(t));
+    }
+    if args.json {
+        let out = serde_json::json!({
+            "model": model.name(),
+            "nq": model.nq(),
+            "nv": model.nv(),
+            "ns_per_call": times,
+        });
+        println!("{out}");
+        return Ok(());
+    }
+    println!(
+        "{} (nq {}, nv {}): median ns per call over {} passes of {} random states",
+        model.name(),
+        model.nq(),
+        model.nv(),
+        args.repetitions.max(1),
+        args.states.max(1)
+    );
+    for (name, t) in &times {
+        println!("  {name:<24} {:>10.0}", t.as_f64().unwrap_or(f64::NAN));
+    }
+    Ok(())
+}

@@ -1,0 +1,101 @@
+//! Multibody algorithms, ns per call: forward kinematics, joint Jacobians, RNEA, gravity,
+//! nonlinear effects, CRBA, ABA and Cholesky forward dynamics, each cycling through 1000
+//! pre-drawn random states (so that branch prediction is not flattered).
+//!
+//! `cargo bench -p rigid --bench multibody [-- FILTER]`. Models: the built-in `puma560` and the
+//! robots of `example-robot-data` (UR5, Panda; Solo-12, ANYmal and Talos with a free-flyer
+//! root), found under `$EXAMPLE_ROBOT_DATA` (the `robots/` folder) or through `python3`'s
+//! `cmeel.prefix`; a robot whose URDF is not found is skipped with a note on stderr.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use rigid::multibody::*;
+use std::hint::black_box;
+
+const STATES: usize = 1000;
+
+/// Pre-drawn random states `(q, v, a)`.
+fn states(model: &Model) -> Vec<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+    let mut rng = Rng::new(7);
+    (0..STATES)
+        .map(|_| {
+            let q = random_configuration(model, &mut rng);
+            let v = (0..model.nv()).map(|_| rng.uniform(-1.0, 1.0)).collect();
+            let a = (0..model.nv()).map(|_| rng.uniform(-1.0, 1.0)).collect();
+            (q, v, a)
+        })
+        .collect()
+}
+
+/// The benchmark models, by name.
+fn models() -> Vec<(String, Model)> {
+    let mut out = vec![("puma560".to_string(), puma560(Puma560Options::default()))];
+    out.extend(robots::load_all());
+    out
+}
+
+mod robots {
+    //! The example-robot-data URDFs (loaded once the URDF importer is available).
+    use rigid::multibody::Model;
+
+    /// `(name, model)` of every robot found; notes on stderr for the others.
+    pub fn load_all() -> Vec<(String, Model)> {
+        Vec::new()
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    for (name, model) in models() {
+        let s = states(&model);
+        let mut data = Data::new(&model);
+        let mut g = c.benchmark_group(name.as_str());
+        let mut i = 0usize;
+        let mut next = || {
+            i = (i + 1) % STATES;
+            &s[i]
+        };
+        g.bench_function(BenchmarkId::new("forward_kinematics", &name), |b| {
+            b.iter(|| {
+                let (q, _, _) = next();
+                forward_kinematics_q(&model, &mut data, q).unwrap();
+                black_box(&data.placements);
+            })
+        });
+        g.bench_function(BenchmarkId::new("jacobians", &name), |b| {
+            b.iter(|| black_box(compute_joint_jacobians(&model, &mut data, &next().0).unwrap()[0]))
+        });
+        g.bench_function(BenchmarkId::new("rnea", &name), |b| {
+            b.iter(|| {
+                let (q, v, a) = next();
+                black_box(rnea(&model, &mut data, q, v, a).unwrap()[0])
+            })
+        });
+        g.bench_function(BenchmarkId::new("gravity", &name), |b| {
+            b.iter(|| black_box(gravity_torques(&model, &mut data, &next().0).unwrap()[0]))
+        });
+        g.bench_function(BenchmarkId::new("nonlinear_effects", &name), |b| {
+            b.iter(|| {
+                let (q, v, _) = next();
+                black_box(nonlinear_effects(&model, &mut data, q, v).unwrap()[0])
+            })
+        });
+        g.bench_function(BenchmarkId::new("crba", &name), |b| {
+            b.iter(|| black_box(crba(&model, &mut data, &next().0).unwrap()[0]))
+        });
+        g.bench_function(BenchmarkId::new("aba", &name), |b| {
+            b.iter(|| {
+                let (q, v, a) = next();
+                black_box(aba(&model, &mut data, q, v, a).unwrap()[0])
+            })
+        });
+        g.bench_function(BenchmarkId::new("cholesky_fd", &name), |b| {
+            b.iter(|| {
+                let (q, v, a) = next();
+                black_box(forward_dynamics_cholesky(&model, &mut data, q, v, a).unwrap()[0])
+            })
+        });
+        g.finish();
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,145 @@
+//! Batch evaluation of many states at once across the cores (rayon): inverse dynamics, forward
+//! dynamics and mass matrices for `N` states, each written to a caller-owned, row-major output.
+//!
+//! Inputs are row-major: state `k`'s configuration is `qs[k nq..(k + 1) nq]`, its velocity
+//! `vs[k nv..(k + 1) nv]`, and so on. Each rayon worker owns one [`Data`] (made once per worker
+//! by `map_init`, so no allocation per state), and each state's result goes to its own slice of
+//! the output, so the results are those of single calls, bit for bit, in the input order, for any
+//! number of threads. Run inside a `rayon::ThreadPool::install` to choose the number of threads.
+//!
+//! ```
+//! use rigid::multibody::{batch, puma560, Puma560Options};
+//! let model = puma560(Puma560Options::default());
+//! let (nq, nv, n) = (model.nq(), model.nv(), 4);
+//! let qs = vec![0.1; n * nq];
+//! let zeros = vec![0.0; n * nv];
+//! let mut tau = vec![0.0; n * nv];
+//! batch::rnea_batch(&model, &qs, &zeros, &zeros, &mut tau)?;
+//! assert!(tau.chunks(nv).all(|t| t == &tau[..nv]));
+//! # Ok::<(), rigid::multibody::MultibodyError>(())
+//! ```
+
+use super::{aba, crba, rnea, Data, Model, MultibodyError};
+use crate::error::DimensionError;
+use rayon::prelude::*;
+
+/// States per rayon task: large enough to amortise the scheduling, small enough to balance.
+const CHUNK: usize = 16;
+
+/// Number of states in row-major inputs, checking every length.
+fn count(
+    model: &Model,
+    qs: &[f64],
+    vs: &[&[f64]],
+    out: usize,
+    out_per: usize,
+) -> Result<usize, MultibodyError> {
+    let n = if model.nq == 0 {
+        0
+    } else {
+        qs.len() / model.nq
+    };
+    DimensionError::check("qs", n * model.nq, qs.len())?;
+    for v in vs {
+        DimensionError::check("vs", n * model.nv, v.len())?;
+    }
+    DimensionError::check("out", n * out_per, out)?;
+    Ok(n)
+}
+
+/// Evaluate `f(data, k, out_k)` for every state `k`, in parallel chunks, one `Data` per worker.
+fn for_each_state<F>(
+    model: &Model,
+    out: &mut [f64],
+    out_per: usize,
+    f: F,
+) -> Result<(), MultibodyError>
+where
+    F: Fn(&mut Data, usize, &mut [f64]) -> Result<(), MultibodyError> + Sync,
+{
+    if out_per == 0 {
+        return Ok(());
+    }
+    out.par_chunks_mut(CHUNK * out_per)
+        .enumerate()
+        .map_init(
+            || Data::new(model),
+            |data, (c, block)| {
+                for (j, out_k) in block.chunks_mut(out_per).enumerate() {
+                    f(data, c * CHUNK + j, out_k)?;
+                }
+                Ok(())
+            },
+        )
+        .collect::<Result<(), MultibodyError>>()
+}
+
+/// `τ_k = rnea(q_k, v_k, a_k)` for every state k (see [`rnea`]), into `tau` (row-major,
+/// `N × nv`).
+///
+/// # Errors
+/// Lengths that are not `N nq` / `N nv`, or the first failing state's error.
+pub fn rnea_batch(
+    model: &Model,
+    qs: &[f64],
+    vs: &[f64],
+    as_: &[f64],
+    tau: &mut [f64],
+) -> Result<(), MultibodyError> {
+    count(model, qs, &[vs, as_], tau.len(), model.nv)?;
+    let (nq, nv) = (model.nq, model.nv);
+    for_each_state(model, tau, nv, |data, k, out| {
+        let r = rnea(
+            model,
+            data,
+            &qs[k * nq..(k + 1) * nq],
+            &vs[k * nv..(k + 1) * nv],
+            &as_[k * nv..(k + 1) * nv],
+        )?;
+        out.copy_from_slice(r.as_slice());
+        Ok(())
+    })
+}
+
+/// `q̈_k = aba(q_k, v_k, τ_k)` for every state k (see [`aba`]), into `ddq` (row-major,
+/// `N × nv`).
+///
+/// # Errors
+/// Lengths that are not `N nq` / `N nv`, or the first failing state's error.
+pub fn aba_batch(
+    model: &Model,
+    qs: &[f64],
+    vs: &[f64],
+    taus: &[f64],
+    ddq: &mut [f64],
+) -> Result<(), MultibodyError> {
+    count(model, qs, &[vs, taus], ddq.len(), model.nv)?;
+    let (nq, nv) = (model.nq, model.nv);
+    for_each_state(model, ddq, nv, |data, k, out| {
+        let r = aba(
+            model,
+            data,
+            &qs[k * nq..(k + 1) * nq],
+            &vs[k * nv..(k + 1) * nv],
+            &taus[k * nv..(k + 1) * nv],
+        )?;
+        out.copy_from_slice(r.as_slice());
+        Ok(())
+    })
+}
+
+/// `M(q_k)` for every state k (see [`crba`]), into `mass` (`N` matrices of `nv × nv`, each
+/// column-major, which for a symmetric matrix is also row-major).
+///
+/// # Errors
+/// A length that is not `N nq` / `N nv²`, or the first failing state's error.
+pub fn crba_batch(model: &Model, qs: &[f64], mass: &mut [f64]) -> Result<(), MultibodyError> {
+    let nn = model.nv * model.nv;
+    count(model, qs, &[], mass.len(), nn)?;
+    let nq = model.nq;
+    for_each_state(model, mass, nn, |data, k, out| {
+        let m = crba(model, data, &qs[k * nq..(k + 1) * nq])?;
+        out.copy_from_slice(m.as_slice());
+        Ok(())
+    })
+}

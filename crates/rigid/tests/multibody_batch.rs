@@ -1,0 +1,67 @@
+//! Batch evaluation equals single calls bit for bit, in order, on 1 and 2 threads.
+
+mod common;
+use rigid::multibody::*;
+
+fn states(model: &Model, n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let mut rng = Rng::new(11);
+    let (mut qs, mut vs, mut as_) = (vec![], vec![], vec![]);
+    for _ in 0..n {
+        let (q, v, a) = common::state(model, &mut rng);
+        qs.extend(q);
+        vs.extend(v);
+        as_.extend(a);
+    }
+    (qs, vs, as_)
+}
+
+#[test]
+fn batch_results_equal_single_calls_bit_for_bit() {
+    let model = common::random_tree(5, 9, true);
+    let (nq, nv, n) = (model.nq(), model.nv(), 37);
+    let (qs, vs, as_) = states(&model, n);
+    let mut data = Data::new(&model);
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let (mut tau, mut ddq, mut mass) =
+            (vec![0.0; n * nv], vec![0.0; n * nv], vec![0.0; n * nv * nv]);
+        pool.install(|| {
+            batch::rnea_batch(&model, &qs, &vs, &as_, &mut tau).unwrap();
+            batch::aba_batch(&model, &qs, &vs, &as_, &mut ddq).unwrap();
+            batch::crba_batch(&model, &qs, &mut mass).unwrap();
+        });
+        for k in 0..n {
+            let (q, v, a) = (
+                &qs[k * nq..][..nq],
+                &vs[k * nv..][..nv],
+                &as_[k * nv..][..nv],
+            );
+            assert_eq!(
+                rnea(&model, &mut data, q, v, a).unwrap().as_slice(),
+                &tau[k * nv..][..nv]
+            );
+            assert_eq!(
+                aba(&model, &mut data, q, v, a).unwrap().as_slice(),
+                &ddq[k * nv..][..nv]
+            );
+            assert_eq!(
+                crba(&model, &mut data, q).unwrap().as_slice(),
+                &mass[k * nv * nv..][..nv * nv]
+            );
+        }
+    }
+}
+
+#[test]
+fn batch_rejects_ragged_inputs() {
+    let model = puma560(Puma560Options::default());
+    let mut tau = vec![0.0; 12];
+    assert!(batch::rnea_batch(&model, &[0.0; 12], &[0.0; 12], &[0.0; 11], &mut tau).is_err());
+    assert!(batch::rnea_batch(&model, &[0.0; 13], &[0.0; 12], &[0.0; 12], &mut tau).is_err());
+    assert!(batch::rnea_batch(&model, &[0.0; 12], &[0.0; 12], &[0.0; 12], &mut tau[..6]).is_err());
+    let mut m = vec![0.0; 72];
+    assert!(batch::crba_batch(&model, &[0.0; 12], &mut m).is_ok());
+}
