@@ -48,6 +48,16 @@ pub struct BenchArgs {
     /// Seed of the random states.
     #[arg(long, default_value_t = 7)]
     seed: u64,
+    /// Report the throughput (states/s) of the batch entry points (RNEA, ABA, CRBA) instead: a
+    /// loop of single calls, then `rigid::multibody::batch` on each `--threads` count.
+    #[arg(long)]
+    batch: bool,
+    /// Time only these algorithms (comma separated keys, e.g. `rnea,crba`).
+    #[arg(long, value_delimiter = ',')]
+    only: Vec<String>,
+    /// Thread counts for `--batch`, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "1,2")]
+    threads: Vec<usize>,
 }
 
 /// The algorithms timed, in output order (the JSON keys).
@@ -150,9 +160,15 @@ fn load(spec: &str, floating: bool) -> Result<Model, String> {
 pub fn run(args: &BenchArgs) -> Result<(), String> {
     let model = load(&args.model, args.floating)?;
     let states = States::new(&model, args.states.max(1), args.seed);
+    if args.batch {
+        return run_batch(args, &model, &states);
+    }
     let mut data = Data::new(&model);
     let mut times = serde_json::Map::new();
     for name in ALGORITHMS {
+        if !args.only.is_empty() && !args.only.iter().any(|o| o == name) {
+            continue;
+        }
         let t = time_algorithm(&model, &mut data, &states, name, args.repetitions)?;
         times.insert(name.to_string(), serde_json::json!(t));
     }
@@ -176,6 +192,42 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
     );
     for (name, t) in &times {
         println!("  {name:<24} {:>10.0}", t.as_f64().unwrap_or(f64::NAN));
+    }
+    Ok(())
+}
+
+/// `rigid bench --batch`: states per second of a loop of single calls and of the batch entry
+/// points per thread count, and the speed-up over the loop.
+fn run_batch(args: &BenchArgs, model: &Model, s: &States) -> Result<(), String> {
+    let rows = crate::bench_batch::Rows::new(&s.q, &s.v, &s.a);
+    let t = crate::bench_batch::throughput(model, &rows, &args.threads, args.repetitions)?;
+    if args.json {
+        let out = serde_json::json!({
+            "model": model.name(),
+            "nq": model.nq(),
+            "nv": model.nv(),
+            "states": s.q.len(),
+            "states_per_second": t,
+        });
+        println!("{out}");
+        return Ok(());
+    }
+    println!(
+        "{} (nq {}, nv {}): states per second over {} states, median of {} passes",
+        model.name(),
+        model.nq(),
+        model.nv(),
+        s.q.len(),
+        args.repetitions.max(1)
+    );
+    for (name, row) in t.as_object().into_iter().flatten() {
+        let base = row["loop"].as_f64().unwrap_or(f64::NAN);
+        print!("  {name:<6} loop {base:>12.0}");
+        for k in &args.threads {
+            let x = row[format!("threads_{k}")].as_f64().unwrap_or(f64::NAN);
+            print!("   {k} thread(s) {x:>12.0} ({:.2}x)", x / base);
+        }
+        println!();
     }
     Ok(())
 }

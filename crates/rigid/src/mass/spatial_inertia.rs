@@ -171,7 +171,7 @@ impl SpatialInertia {
     #[inline]
     pub fn momentum(&self, v: &Twist) -> Wrench {
         Wrench::new(
-            self.inertia * v.w + self.h.cross(&v.v),
+            crate::spatial::mat3_vec(&self.inertia, &v.w) + self.h.cross(&v.v),
             v.v * self.mass - self.h.cross(&v.w),
         )
     }

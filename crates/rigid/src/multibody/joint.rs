@@ -63,7 +63,7 @@ fn rodrigues(a: &Vec3, s: f64, c: f64) -> Mat3 {
 /// (12 multiplications); otherwise Rodrigues' formula and a 3x3 product.
 #[inline]
 fn rotate_about(r: &Mat3, a: &Vec3, q: f64) -> Mat3 {
-    let (s, c) = q.sin_cos();
+    let (s, c) = super::sincos::sin_cos(q);
     let (j, k, sign) = if a.x == 0.0 && a.y == 0.0 {
         (0, 1, a.z) // about z: columns 0 and 1 turn
     } else if a.y == 0.0 && a.z == 0.0 {
@@ -214,7 +214,7 @@ impl JointType {
     pub fn transform(&self, q: &[f64]) -> Transform {
         match self {
             Self::Revolute { axis } | Self::Continuous { axis } => {
-                let (s, c) = q[0].sin_cos();
+                let (s, c) = super::sincos::sin_cos(q[0]);
                 let r = rodrigues(axis, s, c);
                 Transform::from_rotation(r)
             }
@@ -225,7 +225,7 @@ impl JointType {
                 Vec3::new(q[0], q[1], q[2]),
             ),
             Self::Planar => {
-                let (s, c) = q[2].sin_cos();
+                let (s, c) = super::sincos::sin_cos(q[2]);
                 Transform::new(
                     Mat3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0),
                     Vec3::new(q[0], q[1], 0.0),

@@ -45,6 +45,7 @@ mod configuration;
 mod data;
 mod joint;
 mod model;
+mod sincos;
 
 pub use algorithms::*;
 pub use builders::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};

@@ -59,3 +59,26 @@ pub fn unskew(m: &Mat3) -> Vec3 {
         0.5 * (m[(1, 0)] - m[(0, 1)]),
     )
 }
+
+/// `R x` written out on the column-major storage (nalgebra's generic product is not always
+/// unrolled on the hot paths of the multibody algorithms).
+#[inline(always)]
+pub(crate) fn mat3_vec(r: &Mat3, x: &Vec3) -> Vec3 {
+    let a = r.as_slice();
+    Vec3::new(
+        a[0] * x.x + a[3] * x.y + a[6] * x.z,
+        a[1] * x.x + a[4] * x.y + a[7] * x.z,
+        a[2] * x.x + a[5] * x.y + a[8] * x.z,
+    )
+}
+
+/// `Rᵀ x` written out on the column-major storage.
+#[inline(always)]
+pub(crate) fn mat3_tr_vec(r: &Mat3, x: &Vec3) -> Vec3 {
+    let a = r.as_slice();
+    Vec3::new(
+        a[0] * x.x + a[1] * x.y + a[2] * x.z,
+        a[3] * x.x + a[4] * x.y + a[5] * x.z,
+        a[6] * x.x + a[7] * x.y + a[8] * x.z,
+    )
+}

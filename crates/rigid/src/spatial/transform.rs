@@ -1,6 +1,6 @@
 //! Rigid-body configurations `T = (R, p) ∈ SE(3)` and their action on points, twists and wrenches.
 
-use super::{skew, so3, Mat3, Mat6, Twist, Vec3, Wrench};
+use super::{mat3_tr_vec, mat3_vec, skew, so3, Mat3, Mat6, Twist, Vec3, Wrench};
 use std::ops::Mul;
 
 /// A rigid transformation `T_ab = (R, p)`: the pose of frame {b} seen from frame {a}.
@@ -94,14 +94,14 @@ impl Transform {
     #[must_use]
     #[inline]
     pub fn act_point(&self, x_b: &Vec3) -> Vec3 {
-        self.rotation * x_b + self.translation
+        mat3_vec(&self.rotation, &x_b) + self.translation
     }
 
     /// The point `x_b = Rᵀ (x_a - p)`.
     #[must_use]
     #[inline]
     pub fn inv_act_point(&self, x_a: &Vec3) -> Vec3 {
-        self.rotation.tr_mul(&(x_a - self.translation))
+        mat3_tr_vec(&self.rotation, &(x_a - self.translation))
     }
 
     /// `[Ad_T] = [[R, 0], [[p]R, R]]` (Lynch & Park, Def. 3.20), the 6x6 matrix with
@@ -121,8 +121,11 @@ impl Transform {
     #[must_use]
     #[inline]
     pub fn act_twist(&self, v_b: &Twist) -> Twist {
-        let w = self.rotation * v_b.w;
-        Twist::new(w, self.rotation * v_b.v + self.translation.cross(&w))
+        let w = mat3_vec(&self.rotation, &v_b.w);
+        Twist::new(
+            w,
+            mat3_vec(&self.rotation, &v_b.v) + self.translation.cross(&w),
+        )
     }
 
     /// `V_b = [Ad_{T_ab}]⁻¹ V_a = [Ad_{T_ba}] V_a`: `ω_b = Rᵀ ω_a`, `v_b = Rᵀ (v_a - p × ω_a)`.
@@ -131,8 +134,8 @@ impl Transform {
     pub fn inv_act_twist(&self, v_a: &Twist) -> Twist {
         let r = &self.rotation;
         Twist::new(
-            r.tr_mul(&v_a.w),
-            r.tr_mul(&(v_a.v - self.translation.cross(&v_a.w))),
+            mat3_tr_vec(r, &v_a.w),
+            mat3_tr_vec(r, &(v_a.v - self.translation.cross(&v_a.w))),
         )
     }
 
@@ -141,8 +144,11 @@ impl Transform {
     #[must_use]
     #[inline]
     pub fn act_wrench(&self, f_b: &Wrench) -> Wrench {
-        let f = self.rotation * f_b.f;
-        Wrench::new(self.rotation * f_b.m + self.translation.cross(&f), f)
+        let f = mat3_vec(&self.rotation, &f_b.f);
+        Wrench::new(
+            mat3_vec(&self.rotation, &f_b.m) + self.translation.cross(&f),
+            f,
+        )
     }
 
     /// `F_b = [Ad_{T_ab}]ᵀ F_a`: `f_b = Rᵀ f_a`, `m_b = Rᵀ (m_a - p × f_a)`.
@@ -151,8 +157,8 @@ impl Transform {
     pub fn inv_act_wrench(&self, f_a: &Wrench) -> Wrench {
         let r = &self.rotation;
         Wrench::new(
-            r.tr_mul(&(f_a.m - self.translation.cross(&f_a.f))),
-            r.tr_mul(&f_a.f),
+            mat3_tr_vec(r, &(f_a.m - self.translation.cross(&f_a.f))),
+            mat3_tr_vec(r, &f_a.f),
         )
     }
 

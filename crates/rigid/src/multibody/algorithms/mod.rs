@@ -39,7 +39,8 @@ pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
 }
 
 /// `liMi = X_T X_J(q_i)`: the pose of body i in its parent (one match on the joint type).
-#[inline]
+/// Always inlined: out of line, the 96-byte `Transform` goes back through memory.
+#[inline(always)]
 pub(crate) fn parent_placement(model: &Model, i: usize, q: &[f64]) -> Transform {
     let j = &model.joints[i];
     j.kind
@@ -66,7 +67,7 @@ pub(crate) fn mat3_mul(a: &Mat3, b: &Mat3) -> Mat3 {
 pub(crate) fn compose(a: &Transform, b: &Transform) -> Transform {
     Transform::new(
         mat3_mul(&a.rotation, &b.rotation),
-        a.rotation * b.translation + a.translation,
+        crate::spatial::mat3_vec(&a.rotation, &b.translation) + a.translation,
     )
 }
 
@@ -79,7 +80,7 @@ pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialIne
     let R = &T.rotation;
     let p = &T.translation;
     let m = G.mass();
-    let h = R * G.first_moment();
+    let h = crate::spatial::mat3_vec(R, &G.first_moment());
     let RI = mat3_mul(R, G.inertia_origin_matrix());
     let d = 2.0 * h.dot(p) + m * p.norm_squared();
     let (r, ri) = (R.as_slice(), RI.as_slice()); // column-major
