@@ -238,7 +238,7 @@ impl JointType {
     /// placement `X_T`; skips the products by zero blocks of [`transform`](Self::transform)
     /// (a revolute joint keeps `X_T`'s translation, a prismatic joint its rotation).
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn placed_transform(&self, placement: &Transform, q: &[f64]) -> Transform {
         match self {
             Self::Revolute { axis } | Self::Continuous { axis } => Transform::new(

@@ -34,7 +34,9 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
     if !(q.abs() <= 1e5) {
         return q.sin_cos();
     }
-    let n = (q * std::f64::consts::FRAC_2_PI).round();
+    // round to nearest by the 1.5·2⁵² trick (`f64::round` is a libm call without SSE4.1)
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let n = (q * std::f64::consts::FRAC_2_PI + ROUND) - ROUND;
     let r = ((q - n * PIO2_1) - n * PIO2_2) - n * PIO2_2T;
     let z = r * r;
     let s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));

@@ -69,18 +69,16 @@ pub fn crba<'a>(
             for (m, F) in column.iter_mut().zip(&data.crba_forces[k..end_v]) {
                 *m = Jk.dot(F);
             }
+            // the upper triangle of row k from column k, inside the subtree only (entries of
+            // joints in different branches are never written: they stay 0 from Data::new)
+            for l in k + 1..end_v {
+                M[l * nv + k] = M[k * nv + l];
+            }
+            M[k * nv + k] += model.armature[k];
         }
         if let Some(p) = ji.parent {
             data.composite_inertias[p.0] += Ic;
         }
-    }
-    // Entries of joints in different branches are never written: they stay 0 from Data::new.
-    // upper triangle from the lower one; armature on the diagonal
-    for k in 0..nv {
-        for l in k + 1..nv {
-            M[l * nv + k] = M[k * nv + l];
-        }
-        M[k * nv + k] += model.armature[k];
     }
     Ok(&data.mass_matrix)
 }
