@@ -25,7 +25,10 @@ impl Rows {
     }
 }
 
+/// A batch entry point on row-major states.
 type Kernel = fn(&Model, &Rows, &mut [f64]) -> Result<(), MultibodyError>;
+/// A loop of single calls with one workspace.
+type Single = fn(&Model, &Rows, &mut [f64], &mut Data) -> Result<(), MultibodyError>;
 
 fn loop_rnea(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), MultibodyError> {
     let (nq, nv) = (m.nq(), m.nv());
@@ -93,12 +96,7 @@ pub fn throughput(
     reps: usize,
 ) -> Result<serde_json::Value, String> {
     let nv = model.nv();
-    let kernels: [(
-        &str,
-        usize,
-        Kernel,
-        fn(&Model, &Rows, &mut [f64], &mut Data) -> Result<(), MultibodyError>,
-    ); 3] = [
+    let kernels: [(&str, usize, Kernel, Single); 3] = [
         (
             "rnea",
             nv,

@@ -34,11 +34,7 @@ fn count(
     out: usize,
     out_per: usize,
 ) -> Result<usize, MultibodyError> {
-    let n = if model.nq == 0 {
-        0
-    } else {
-        qs.len() / model.nq
-    };
+    let n = qs.len().checked_div(model.nq).unwrap_or(0);
     DimensionError::check("qs", n * model.nq, qs.len())?;
     for v in vs {
         DimensionError::check("vs", n * model.nv, v.len())?;

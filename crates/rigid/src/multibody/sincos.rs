@@ -5,33 +5,33 @@
 //! `n = round(2q/π)`, `r = q - n π/2` by a three-part Cody-Waite split of `π/2` (each
 //! `n · pio2_k` exact for `|n| < 2²⁰`), then the minimax polynomials of `sin r` and `cos r` on
 //! `|r| ≤ π/4`, and the quadrant `n mod 4` picks and signs them. Angles beyond `|q| ≤ 10⁵`
-//! (and NaN) go to the standard library.
+//! (and NaN) go to the standard library. The constants are fdlibm's, bit for bit.
 
 /// Leading 33 bits of `π/2`.
-const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;
+const PIO2_1: f64 = f64::from_bits(0x3FF9_21FB_5440_0000); // 1.57079632673412561417e+00
 /// Next 33 bits of `π/2`.
-const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
+const PIO2_2: f64 = f64::from_bits(0x3DD0_B461_1A60_0000); // 6.07710050630396597660e-11
 /// `π/2 - PIO2_1 - PIO2_2`.
-const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
-const S1: f64 = -1.666_666_666_666_663_243_48e-01;
-const S2: f64 = 8.333_333_333_322_489_461_24e-03;
-const S3: f64 = -1.984_126_982_985_794_931_34e-04;
-const S4: f64 = 2.755_731_370_707_006_767_89e-06;
-const S5: f64 = -2.505_076_025_340_686_341_95e-08;
-const S6: f64 = 1.589_690_995_211_550_102_21e-10;
-const C1: f64 = 4.166_666_666_666_660_190_37e-02;
-const C2: f64 = -1.388_888_888_887_410_957_49e-03;
-const C3: f64 = 2.480_158_728_947_672_941_78e-05;
-const C4: f64 = -2.755_731_435_139_066_330_35e-07;
-const C5: f64 = 2.087_572_321_298_174_827_90e-09;
-const C6: f64 = -1.135_964_755_778_819_482_65e-11;
+const PIO2_2T: f64 = f64::from_bits(0x3BA3_198A_2E03_7073); // 2.02226624879595063154e-21
+const S1: f64 = f64::from_bits(0xBFC5_5555_5555_5549); // -1.66666666666666324348e-01
+const S2: f64 = f64::from_bits(0x3F81_1111_1110_F8A6); // 8.33333333332248946124e-03
+const S3: f64 = f64::from_bits(0xBF2A_01A0_19C1_61D5); // -1.98412698298579493134e-04
+const S4: f64 = f64::from_bits(0x3EC7_1DE3_57B1_FE7D); // 2.75573137070700676789e-06
+const S5: f64 = f64::from_bits(0xBE5A_E5E6_8A2B_9CEB); // -2.50507602534068634195e-08
+const S6: f64 = f64::from_bits(0x3DE5_D93A_5ACF_D57C); // 1.58969099521155010221e-10
+const C1: f64 = f64::from_bits(0x3FA5_5555_5555_554C); // 4.16666666666666019037e-02
+const C2: f64 = f64::from_bits(0xBF56_C16C_16C1_5177); // -1.38888888888741095749e-03
+const C3: f64 = f64::from_bits(0x3EFA_01A0_19CB_1590); // 2.48015872894767294178e-05
+const C4: f64 = f64::from_bits(0xBE92_7E4F_809C_52AD); // -2.75573143513906633035e-07
+const C5: f64 = f64::from_bits(0x3E21_EE9E_BDB4_B1C4); // 2.08757232129817482790e-09
+const C6: f64 = f64::from_bits(0xBDA8_FAE9_BE88_38D4); // -1.13596475577881948265e-11
 
 /// `(sin q, cos q)`.
 #[inline]
 #[must_use]
 pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
-    // also false for NaN
-    if !(q.abs() <= 1e5) {
+    // NaN, infinities and |q| ≥ 10⁵ go to the C library
+    if q.abs().partial_cmp(&1e5) != Some(std::cmp::Ordering::Less) {
         return q.sin_cos();
     }
     // round to nearest by the 1.5·2⁵² trick (`f64::round` is a libm call without SSE4.1)

@@ -94,7 +94,7 @@ impl Transform {
     #[must_use]
     #[inline]
     pub fn act_point(&self, x_b: &Vec3) -> Vec3 {
-        mat3_vec(&self.rotation, &x_b) + self.translation
+        mat3_vec(&self.rotation, x_b) + self.translation
     }
 
     /// The point `x_b = Rᵀ (x_a - p)`.
