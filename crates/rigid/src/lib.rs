@@ -10,9 +10,11 @@
 //! | --- | --- |
 //! | [`spatial`] | SO(3), SE(3), twists, wrenches, `Ad`, `ad`, exp and log |
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G` |
+//! | [`io`] | URDF import |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
 pub mod error;
+pub mod io;
 pub mod mass;
 pub mod spatial;

@@ -1,0 +1,3 @@
+//! Reading models and descriptions from files: URDF robots.
+
+pub mod urdf;
