@@ -39,10 +39,10 @@
 //! A moving joint that carries no mass at all (a zero-mass leaf) is not an error, as in Pinocchio,
 //! but its mass matrix is singular and ABA is undefined: [`UrdfRobot::inertia_report`] lists it.
 
-//mod build;
+mod build;
 mod parse;
 
-//pub use build::{build_model, load_urdf, load_urdf_str, ROOT_JOINT_NAME};
+pub use build::{build_model, load_urdf, load_urdf_str, ROOT_JOINT_NAME};
 pub use parse::{parse_urdf_file, parse_urdf_str};
 
 use crate::error::InertiaError;
@@ -292,9 +292,10 @@ impl UrdfRobot {
     /// The total mass of a link and of everything below it.
     #[must_use]
     pub fn subtree_mass(&self, link: usize) -> f64 {
-        let mut m = self.link_mass(link);
-        for &j in &self.children[link] {
-            m += self.subtree_mass(self.joints[j].child);
+        let (mut m, mut stack) = (0.0, vec![link]);
+        while let Some(l) = stack.pop() {
+            m += self.link_mass(l);
+            stack.extend(self.children[l].iter().map(|&j| self.joints[j].child));
         }
         m
     }

@@ -1,0 +1,195 @@
+//! Bad URDF input gives an error that names the link or joint and the line, never a panic.
+
+use rigid::io::urdf::{load_urdf_str, parse_urdf_str, InertiaIssueKind, UrdfError};
+
+/// A valid two-link arm; the tests break one thing at a time.
+const GOOD: &str = r#"<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base"/>
+  <link name="upper">
+    <inertial>
+      <origin xyz="0 0 0.5" rpy="0 0 0"/>
+      <mass value="2"/>
+      <inertia ixx="0.1" iyy="0.1" izz="0.01" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+  </link>
+  <link name="lower">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0.05" iyy="0.05" izz="0.01" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/>
+    <child link="upper"/>
+    <axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="2"/>
+  </joint>
+  <joint name="elbow" type="continuous">
+    <origin xyz="0 0 1"/>
+    <parent link="upper"/>
+    <child link="lower"/>
+    <axis xyz="0 2 0"/>
+  </joint>
+</robot>
+"#;
+
+/// Parses `text` expecting an error; checks that its message contains every `needle` and that it
+/// points at `line`.
+fn expect_error(text: &str, line: u32, needles: &[&str]) -> UrdfError {
+    let err = match parse_urdf_str(text) {
+        Ok(_) => panic!("accepted bad URDF:\n{text}"),
+        Err(e) => e,
+    };
+    let msg = err.to_string();
+    for n in needles {
+        assert!(msg.contains(n), "error {msg:?} does not mention {n:?}");
+    }
+    assert_eq!(err.line(), Some(line), "error {msg:?} points at the wrong line");
+    assert!(msg.contains(&format!("line {line}")), "{msg:?} has no line number");
+    err
+}
+
+#[test]
+fn good_urdf_parses_with_file_order_and_normalised_axes() {
+    let r = parse_urdf_str(GOOD).unwrap();
+    assert_eq!(r.name, "arm");
+    assert_eq!(r.links[r.root].name, "base");
+    assert_eq!(r.joints[1].axis, rigid::spatial::Vec3::y());
+    assert_eq!(r.joints[0].line, 17);
+    assert!(r.inertia_report().is_empty());
+}
+
+#[test]
+fn malformed_xml_is_reported_with_its_line() {
+    let text = GOOD.replace("<link name=\"lower\">", "<link name=\"lower\"");
+    let err = parse_urdf_str(&text).unwrap_err();
+    assert!(matches!(err, UrdfError::Xml { .. }), "{err}");
+    assert!(err.line().is_some());
+    assert!(err.to_string().contains("malformed XML"));
+}
+
+#[test]
+fn missing_parent_link_names_the_joint() {
+    let text = GOOD.replace("<parent link=\"upper\"/>", "<parent link=\"uper\"/>");
+    expect_error(&text, 25, &["joint \"elbow\"", "\"uper\"", "not defined"]);
+}
+
+#[test]
+fn missing_attribute_names_the_element() {
+    let text = GOOD.replace("<joint name=\"elbow\" type=\"continuous\">", "<joint name=\"elbow\">");
+    expect_error(&text, 23, &["joint \"elbow\"", "\"type\""]);
+    let text = GOOD.replace("<child link=\"lower\"/>", "");
+    expect_error(&text, 23, &["joint \"elbow\"", "<child>"]);
+}
+
+#[test]
+fn a_cycle_is_found() {
+    // elbow: upper -> lower; add lower -> upper by making "upper"'s parent "lower": upper then
+    // has two parents, which is the first thing found.
+    let two_parents = GOOD.replace(
+        "</robot>",
+        r#"<joint name="back" type="fixed"><parent link="lower"/><child link="upper"/></joint>
+</robot>"#,
+    );
+    expect_error(&two_parents, 29, &["joint \"back\"", "two parents", "\"shoulder\""]);
+    // A loop detached from the root: base alone, then upper <-> lower.
+    let cycle = GOOD.replace("<parent link=\"base\"/>", "<parent link=\"lower\"/>");
+    let cycle = cycle.replace(
+        "</robot>",
+        r#"<link name="tip"/><joint name="tipj" type="fixed"><parent link="base"/><child link="tip"/></joint>
+</robot>"#,
+    );
+    expect_error(&cycle, 17, &["cycle", "joint \"shoulder\""]);
+    // A self loop.
+    let self_loop = GOOD.replace("<child link=\"lower\"/>", "<child link=\"upper\"/>");
+    let self_loop = self_loop.replace("<link name=\"lower\">", "<link name=\"lower2\">");
+    expect_error(&self_loop, 23, &["cycle", "joint \"elbow\""]);
+}
+
+#[test]
+fn several_roots_are_refused() {
+    let text = GOOD.replace("</robot>", "<link name=\"stray\"/>\n</robot>");
+    expect_error(&text, 29, &["no unique root", "\"stray\"", "\"base\""]);
+}
+
+#[test]
+fn unknown_joint_type_names_the_joint() {
+    let text = GOOD.replace("type=\"continuous\"", "type=\"ball\"");
+    expect_error(&text, 23, &["joint \"elbow\"", "unknown joint type \"ball\""]);
+}
+
+#[test]
+fn negative_mass_names_the_link() {
+    let text = GOOD.replace("<mass value=\"1\"/>", "<mass value=\"-1\"/>");
+    expect_error(&text, 13, &["link \"lower\"", "negative mass"]);
+}
+
+#[test]
+fn non_finite_values_are_refused() {
+    let text = GOOD.replace("<origin xyz=\"0 0 1\"/>", "<origin xyz=\"0 nan 1\"/>");
+    expect_error(&text, 24, &["joint \"elbow\"", "non-finite"]);
+    let text = GOOD.replace("izz=\"0.01\" ixy", "izz=\"inf\" ixy");
+    expect_error(&text, 8, &["link \"upper\"", "non-finite"]);
+    let text = GOOD.replace("<mass value=\"2\"/>", "<mass value=\"two\"/>");
+    expect_error(&text, 7, &["link \"upper\"", "not a number"]);
+}
+
+#[test]
+fn zero_axis_is_refused() {
+    let text = GOOD.replace("<axis xyz=\"0 2 0\"/>", "<axis xyz=\"0 0 0\"/>");
+    expect_error(&text, 27, &["joint \"elbow\"", "zero joint axis"]);
+}
+
+#[test]
+fn duplicate_names_are_refused() {
+    let text = GOOD.replace("<link name=\"lower\">", "<link name=\"upper\">");
+    expect_error(&text, 11, &["link \"upper\"", "duplicate", "line 4"]);
+}
+
+#[test]
+fn unphysical_inertias_are_reported_and_refused() {
+    // Not positive semi-definite.
+    let text = GOOD.replace("ixx=\"0.05\" iyy=\"0.05\"", "ixx=\"-0.05\" iyy=\"0.05\"");
+    let r = parse_urdf_str(&text).unwrap();
+    let report = r.inertia_report();
+    assert_eq!(report.len(), 1);
+    assert!(matches!(report[0].kind, InertiaIssueKind::Invalid(_)));
+    let err = load_urdf_str(&text, false).unwrap_err().to_string();
+    assert!(err.contains("link \"lower\""), "{err}");
+    assert!(err.contains("line 12"), "{err}");
+    assert!(err.contains("positive semi-definite"), "{err}");
+    // Triangle inequality: 0.01 + 0.01 < 0.05.
+    let text = GOOD.replace("ixx=\"0.05\" iyy=\"0.05\"", "ixx=\"0.01\" iyy=\"0.05\"");
+    let err = load_urdf_str(&text, false).unwrap_err().to_string();
+    assert!(err.contains("link \"lower\"") && err.contains("triangle"), "{err}");
+}
+
+#[test]
+fn zero_mass_moving_leaf_is_a_warning() {
+    let text = GOOD.replace("<mass value=\"1\"/>", "<mass value=\"0\"/>");
+    let text = text.replace("ixx=\"0.05\" iyy=\"0.05\" izz=\"0.01\"", "ixx=\"0\" iyy=\"0\" izz=\"0\"");
+    let r = parse_urdf_str(&text).unwrap();
+    let report = r.inertia_report();
+    assert_eq!(report.len(), 1, "{report:?}");
+    assert!(!report[0].is_error());
+    let msg = report[0].to_string();
+    assert!(msg.contains("\"lower\"") && msg.contains("\"elbow\"") && msg.contains("zero mass"));
+    // Loaded all the same, as Pinocchio does.
+    assert!(load_urdf_str(&text, false).is_ok());
+}
+
+#[test]
+fn not_a_robot_and_empty_robot_are_refused() {
+    expect_error("<model name=\"x\"/>", 1, &["expected <robot>"]);
+    expect_error("<robot name=\"x\">\n</robot>", 1, &["no <link>"]);
+    let err = parse_urdf_str("").unwrap_err();
+    assert!(matches!(err, UrdfError::Xml { .. }));
+}
+
+#[test]
+fn unreadable_file_is_an_io_error() {
+    let err = rigid::io::urdf::load_urdf("/nonexistent/robot.urdf", false).unwrap_err();
+    assert!(matches!(err, UrdfError::Io { .. }));
+    assert!(err.to_string().contains("/nonexistent/robot.urdf"));
+}
