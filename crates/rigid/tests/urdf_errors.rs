@@ -161,8 +161,23 @@ fn unphysical_inertias_are_reported_and_refused() {
     assert!(err.contains("positive semi-definite"), "{err}");
     // Triangle inequality: 0.01 + 0.01 < 0.05.
     let text = GOOD.replace("ixx=\"0.05\" iyy=\"0.05\"", "ixx=\"0.01\" iyy=\"0.05\"");
+    let report = parse_urdf_str(&text).unwrap().inertia_report();
+    assert!(report.len() == 1 && !report[0].is_error(), "a warning for the link alone");
     let err = load_urdf_str(&text, false).unwrap_err().to_string();
+    assert!(err.contains("joint \"elbow\"") && err.contains("line 23"), "{err}");
     assert!(err.contains("link \"lower\"") && err.contains("triangle"), "{err}");
+    // A dummy inertia on one link is fine when the body it is welded into is physical (ANYmal).
+    let dummy = GOOD.replace(
+        "</robot>",
+        r#"<link name="dummy"><inertial><mass value="1e-6"/>
+  <inertia ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="1e-6"/></inertial></link>
+<joint name="weld" type="fixed"><parent link="lower"/><child link="dummy"/></joint>
+</robot>"#,
+    );
+    let report = parse_urdf_str(&dummy).unwrap().inertia_report();
+    assert!(report.len() == 1 && !report[0].is_error(), "{report:?}");
+    let model = load_urdf_str(&dummy, false).unwrap();
+    assert!((model.total_mass() - 3.000001).abs() < 1e-12);
 }
 
 #[test]

@@ -53,7 +53,9 @@ pub fn load_urdf_str(text: &str, floating: bool) -> Result<Model, UrdfError> {
 /// link's name (at its child link's frame, where it coincides).
 ///
 /// # Errors
-/// An inertia that is not physical (the first error of [`UrdfRobot::inertia_report`]); a link
+/// A link inertia that is not positive semi-definite (the first error of
+/// [`UrdfRobot::inertia_report`]); a moving body (a link with the links welded to it) whose
+/// composite inertia is not physical; a link
 /// named like a joint (joints and frames share one namespace in a [`Model`]); limits with
 /// `lower > upper`; or anything else the [`ModelBuilder`] refuses, with the joint or link and line.
 pub fn build_model(robot: &UrdfRobot, floating: bool) -> Result<Model, UrdfError> {
@@ -92,102 +94,151 @@ pub fn build_model(robot: &UrdfRobot, floating: bool) -> Result<Model, UrdfError
     let mut b = ModelBuilder::new(&robot.name);
     let root = &robot.links[robot.root];
     let root_inertia = link_inertia(robot, robot.root);
-    let at = |line: u32, element: String| {
-        move |e: ModelError| UrdfError::Invalid {
-            line,
-            element,
-            message: e.to_string(),
-        }
-    };
     let root_joint = if floating {
-        let id = b
-            .add_joint(
-                None,
-                ROOT_JOINT_NAME,
-                JointType::FreeFlyer,
-                Transform::identity(),
-                root_inertia,
-            )
-            .map_err(at(root.line, format!("link \"{}\"", root.name)))?;
-        b.add_frame(Some(id), &root.name, Transform::identity())
-            .map_err(at(root.line, format!("link \"{}\"", root.name)))?;
-        Some(id)
+        // Added with its composite inertia by `add_joints`.
+        Some(JointId(0))
     } else {
-        b.add_fixed_body(None, &root.name, Transform::identity(), root_inertia)
-            .map_err(at(root.line, format!("link \"{}\"", root.name)))?;
+        // Welded to the world: its inertia takes no part in the dynamics.
+        b.add_fixed_body(None, &root.name, Transform::identity(), SpatialInertia::zero())
+            .map_err(|e| UrdfError::Invalid {
+                line: root.line,
+                element: format!("link \"{}\"", root.name),
+                message: e.to_string(),
+            })?;
         None
     };
 
-    add_joints(robot, &mut b, root_joint, &link_names)?;
+    add_joints(robot, &mut b, root_joint, root_inertia, &link_names)?;
     b.build().map_err(|e| UrdfError::Model(e.to_string()))
+}
+
+/// One step of the depth-first walk: a joint of the URDF, the body (moving joint) its parent
+/// link belongs to, and its own frame in that body's joint frame.
+struct Step {
+    joint: usize,
+    body: Option<usize>,
+    placement: Transform,
+    /// The body this joint's child link belongs to (itself if it moves).
+    child_body: Option<usize>,
 }
 
 /// Adds every joint below the root, with its body and frames, depth-first with children in file
 /// order (an explicit stack, so that a deep chain cannot overflow the call stack).
+///
+/// Each moving body gets the composite inertia of its link and of every link welded to it,
+/// computed first: the [`ModelBuilder`] checks that composite (a dummy inertia on one welded
+/// link, as in ANYmal's URDF, is fine when the body as a whole is physical).
 fn add_joints(
     robot: &UrdfRobot,
     b: &mut ModelBuilder,
     root_joint: Option<JointId>,
+    root_inertia: SpatialInertia,
     link_names: &HashSet<&str>,
 ) -> Result<(), UrdfError> {
-    // Each entry: a joint, the moving joint whose body its parent link belongs to, and the
-    // parent link's frame in that body's joint frame. Children are pushed in reverse so that
-    // they pop in file order.
-    let mut stack: Vec<(usize, Option<JointId>, Transform)> = robot.children[robot.root]
+    // Pass 1: the walk, and the composite inertia of each moving body (index = JointId).
+    let mut steps = Vec::with_capacity(robot.joints.len());
+    let mut bodies: Vec<SpatialInertia> = root_joint.iter().map(|_| root_inertia).collect();
+    let root_body = root_joint.map(|j| j.0);
+    let mut stack: Vec<(usize, Option<usize>, Transform)> = robot.children[robot.root]
         .iter()
         .rev()
-        .map(|&j| (j, root_joint, Transform::identity()))
+        .map(|&j| (j, root_body, Transform::identity()))
         .collect();
     while let Some((j, body, t_body_link)) = stack.pop() {
         let joint = &robot.joints[j];
-        let child = &robot.links[joint.child];
         let placement = t_body_link * joint.origin;
         let inertia = link_inertia(robot, joint.child);
-        let at_joint = |e: ModelError| UrdfError::Invalid {
-            line: joint.line,
-            element: format!("joint \"{}\"", joint.name),
-            message: e.to_string(),
-        };
-        let kind = match joint.kind {
-            UrdfJointKind::Fixed => None,
-            UrdfJointKind::Revolute => Some(JointType::Revolute { axis: joint.axis }),
-            UrdfJointKind::Continuous => Some(JointType::Continuous { axis: joint.axis }),
-            UrdfJointKind::Prismatic => Some(JointType::Prismatic { axis: joint.axis }),
-            UrdfJointKind::Floating => Some(JointType::FreeFlyer),
-            UrdfJointKind::Planar => Some(JointType::Planar),
-        };
-        let (child_body, t_child) = match kind {
-            None => {
-                b.add_fixed_body(body, &child.name, placement, inertia)
-                    .map_err(at_joint)?;
-                if !link_names.contains(joint.name.as_str()) {
-                    b.add_frame(body, &joint.name, placement).map_err(at_joint)?;
-                }
-                (body, placement)
+        let (child_body, t_child) = if joint.kind == UrdfJointKind::Fixed {
+            if let Some(k) = body {
+                bodies[k] += inertia.transformed(&placement);
             }
-            Some(kind) => {
-                let id = b
-                    .add_joint(body, &joint.name, kind, placement, inertia)
-                    .map_err(at_joint)?;
-                if let (Some(l), 1) = (joint.limit, kind.nq()) {
-                    let (lower, upper) = match joint.kind {
-                        UrdfJointKind::Revolute | UrdfJointKind::Prismatic => (l.lower, l.upper),
-                        _ => (f64::NEG_INFINITY, f64::INFINITY),
-                    };
-                    b.set_limits(id, &[lower], &[upper], &[l.velocity], &[l.effort])
-                        .map_err(at_joint)?;
-                }
-                b.add_frame(Some(id), &child.name, Transform::identity())
-                    .map_err(at_joint)?;
-                (Some(id), Transform::identity())
-            }
+            (body, placement)
+        } else {
+            bodies.push(inertia);
+            (Some(bodies.len() - 1), Transform::identity())
         };
+        steps.push(Step {
+            joint: j,
+            body,
+            placement,
+            child_body,
+        });
         stack.extend(
             robot.children[joint.child]
                 .iter()
                 .rev()
                 .map(|&c| (c, child_body, t_child)),
         );
+    }
+
+    // Pass 2: the builder calls, in the same order.
+    if root_joint.is_some() {
+        let root = &robot.links[robot.root];
+        let at_root = |e: ModelError| UrdfError::Invalid {
+            line: root.line,
+            element: format!("link \"{}\"", root.name),
+            message: format!("as the body of the free-flyer root: {e}"),
+        };
+        let id = b
+            .add_joint(
+                None,
+                ROOT_JOINT_NAME,
+                JointType::FreeFlyer,
+                Transform::identity(),
+                bodies[0],
+            )
+            .map_err(at_root)?;
+        b.add_frame(Some(id), &root.name, Transform::identity())
+            .map_err(at_root)?;
+    }
+    for step in steps {
+        let joint = &robot.joints[step.joint];
+        let child = &robot.links[joint.child];
+        let body = step.body.map(JointId);
+        let at_joint = |e: ModelError| UrdfError::Invalid {
+            line: joint.line,
+            element: format!("joint \"{}\"", joint.name),
+            message: e.to_string(),
+        };
+        let kind = match joint.kind {
+            UrdfJointKind::Fixed => {
+                // The inertia is already in the composite body (or welded to the world).
+                b.add_fixed_body(body, &child.name, step.placement, SpatialInertia::zero())
+                    .map_err(at_joint)?;
+                if !link_names.contains(joint.name.as_str()) {
+                    b.add_frame(body, &joint.name, step.placement)
+                        .map_err(at_joint)?;
+                }
+                continue;
+            }
+            UrdfJointKind::Revolute => JointType::Revolute { axis: joint.axis },
+            UrdfJointKind::Continuous => JointType::Continuous { axis: joint.axis },
+            UrdfJointKind::Prismatic => JointType::Prismatic { axis: joint.axis },
+            UrdfJointKind::Floating => JointType::FreeFlyer,
+            UrdfJointKind::Planar => JointType::Planar,
+        };
+        let k = step.child_body.unwrap_or_default();
+        let id = b
+            .add_joint(body, &joint.name, kind, step.placement, bodies[k])
+            .map_err(|e| UrdfError::Invalid {
+                line: joint.line,
+                element: format!("joint \"{}\"", joint.name),
+                message: format!(
+                    "its body, link \"{}\" with the links welded to it: {e}",
+                    child.name
+                ),
+            })?;
+        debug_assert_eq!(id.0, k);
+        if let (Some(l), 1) = (joint.limit, kind.nq()) {
+            let (lower, upper) = match joint.kind {
+                UrdfJointKind::Revolute | UrdfJointKind::Prismatic => (l.lower, l.upper),
+                _ => (f64::NEG_INFINITY, f64::INFINITY),
+            };
+            b.set_limits(id, &[lower], &[upper], &[l.velocity], &[l.effort])
+                .map_err(at_joint)?;
+        }
+        b.add_frame(Some(id), &child.name, Transform::identity())
+            .map_err(at_joint)?;
     }
     Ok(())
 }
