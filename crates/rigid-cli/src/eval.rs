@@ -196,19 +196,24 @@ fn vector(value: Option<&Value>, len: usize, required: bool) -> Result<Vec<f64>,
 }
 
 fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, String> {
-    let e = |e: rigid::multibody::MultibodyError| e.to_string();
-    let rnea = rnea(model, data, &c.q, &c.v, &c.a).map_err(e)?.as_slice().to_vec();
-    let m = crba(model, data, &c.q).map_err(e)?;
+    use rigid::multibody::MultibodyError;
+    let e = |what: &'static str| move |e: MultibodyError| format!("{what}: {e}");
+    let rnea = rnea(model, data, &c.q, &c.v, &c.a).map_err(e("rnea"))?;
+    let rnea = rnea.as_slice().to_vec();
+    let m = crba(model, data, &c.q).map_err(e("mass_matrix"))?;
     let mass_matrix = (0..m.nrows())
         .map(|r| (0..m.ncols()).map(|k| m[(r, k)]).collect())
         .collect();
-    let nle = nonlinear_effects(model, data, &c.q, &c.v).map_err(e)?.as_slice().to_vec();
-    let g = gravity_torques(model, data, &c.q).map_err(e)?.as_slice().to_vec();
-    let ddq = aba(model, data, &c.q, &c.v, &c.tau).map_err(e)?.as_slice().to_vec();
-    let kinetic_energy = kinetic_energy(model, data, &c.q, &c.v).map_err(e)?;
-    let potential_energy = potential_energy(model, data, &c.q).map_err(e)?;
-    let com = center_of_mass(model, data, &c.q).map_err(e)?;
-    forward_kinematics_q(model, data, &c.q).map_err(e)?;
+    let nle = nonlinear_effects(model, data, &c.q, &c.v).map_err(e("nonlinear_effects"))?;
+    let nle = nle.as_slice().to_vec();
+    let g = gravity_torques(model, data, &c.q).map_err(e("gravity_torques"))?;
+    let g = g.as_slice().to_vec();
+    let ddq = aba(model, data, &c.q, &c.v, &c.tau).map_err(e("aba"))?;
+    let ddq = ddq.as_slice().to_vec();
+    let kinetic_energy = kinetic_energy(model, data, &c.q, &c.v).map_err(e("kinetic_energy"))?;
+    let potential_energy = potential_energy(model, data, &c.q).map_err(e("potential_energy"))?;
+    let com = center_of_mass(model, data, &c.q).map_err(e("com"))?;
+    forward_kinematics_q(model, data, &c.q).map_err(e("placements"))?;
     let placements = model
         .joints()
         .iter()

@@ -116,15 +116,27 @@ fn eval_floating_adds_a_free_flyer_root() {
         "floating.json",
         r#"{"cases": [{"q": [0, 0, 0, 0, 0, 0, 1, 0.3]}]}"#,
     );
-    let out = eval_json(&fixture("pendulum.urdf"), &cases, &["--floating"]);
+    // A 1 kg base, so that the free-flying system has a regular mass matrix.
+    let urdf = std::fs::read_to_string(fixture("pendulum.urdf")).unwrap().replace(
+        r#"<link name="base"/>"#,
+        r#"<link name="base"><inertial><mass value="1"/>
+             <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#,
+    );
+    let out = eval_json(&temp_file("floating.urdf", &urdf), &cases, &["--floating"]);
     assert_eq!((out["model"]["nq"].as_u64(), out["model"]["nv"].as_u64()), (Some(8), Some(7)));
     let j = &out["model"]["joints"][0];
     assert_eq!((j["name"].as_str(), j["type"].as_str()), (Some("root_joint"), Some("free_flyer")));
-    // A free body in free fall: a = (0, 0, 0, 0, 0, -9.81) for the base, all forces zero.
     let aba = out["results"][0]["aba"].as_array().unwrap();
     assert_eq!(aba.len(), 7);
     let g = out["results"][0]["gravity_torques"].as_array().unwrap();
-    assert!((g[5].as_f64().unwrap() - 2.0 * 9.81).abs() < 1e-12, "{g:?}");
+    // The base's generalized gravity force holds up both bodies: f_z = (1 + 2) g.
+    assert!((g[5].as_f64().unwrap() - 3.0 * 9.81).abs() < 1e-12, "{g:?}");
+    // Free fall: the base accelerates at g, the pendulum does not swing.
+    let aba: Vec<f64> = aba.iter().map(|x| x.as_f64().unwrap()).collect();
+    let expected = [0.0, 0.0, 0.0, 0.0, 0.0, -9.81, 0.0];
+    for (x, e) in aba.iter().zip(expected) {
+        assert!((x - e).abs() < 1e-12, "{aba:?}");
+    }
 }
 
 #[test]
@@ -190,7 +202,7 @@ fn model_summary_and_inertia_report() {
     assert!(text.contains("hinge") && text.contains("total mass 2.000000 kg"), "{text}");
     assert!(text.contains("nq = 1, nv = 1") && text.contains("all 2 checked are physical"), "{text}");
 
-    let out = rigid(&["model", "puma560"]);
+    let out = rigid(&["model", "double_pendulum"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 
     let urdf = std::fs::read_to_string(fixture("pendulum.urdf")).unwrap();
