@@ -248,7 +248,13 @@ fn fmt_vec(x: &[f64]) -> String {
 
 fn print_summary(out: &Output) {
     let m = &out.model;
-    println!("model {}: nq = {}, nv = {}, {} joints", m.name, m.nq, m.nv, m.joints.len());
+    println!(
+        "model {}: nq = {}, nv = {}, {} joints",
+        m.name,
+        m.nq,
+        m.nv,
+        m.joints.len()
+    );
     println!("gravity {}", fmt_vec(&m.gravity));
     for (i, r) in out.results.iter().enumerate() {
         println!("case {i}:");
@@ -258,7 +264,11 @@ fn print_summary(out: &Output) {
         println!("  gravity torques   {}", fmt_vec(&r.gravity_torques));
         println!("  kinetic energy    {:.6} J", r.kinetic_energy);
         println!("  potential energy  {:.6} J", r.potential_energy);
-        println!("  com               {} m (total mass {:.6} kg)", fmt_vec(&r.com), r.total_mass);
+        println!(
+            "  com               {} m (total mass {:.6} kg)",
+            fmt_vec(&r.com),
+            r.total_mass
+        );
         println!("  mass matrix");
         for row in &r.mass_matrix {
             println!("    {}", fmt_vec(row));

@@ -109,10 +109,10 @@ fn print_model(model: &Model) {
         for f in frames {
             let on = f.parent.map_or("(world)", |p| joints[p.0].name.as_str());
             let kind = match f.kind {
-                FrameKind::FixedBody => "body",
+                FrameKind::FixedBody => "fixed body",
                 FrameKind::Operational => "frame",
             };
-            println!("  {:<5} {:<40} on {}", kind, f.name, on);
+            println!("  {:<10} {:<40} on {}", kind, f.name, on);
         }
     }
 }
@@ -141,7 +141,10 @@ fn builtin_report(model: &Model) -> Vec<String> {
         }
     }
     for (i, j) in joints.iter().enumerate() {
-        let m: f64 = model.inertias()[i..j.subtree_end].iter().map(|g| g.mass()).sum();
+        let m: f64 = model.inertias()[i..j.subtree_end]
+            .iter()
+            .map(|g| g.mass())
+            .sum();
         if m == 0.0 {
             out.push(format!(
                 "warning: joint \"{}\" moves bodies of zero total mass (singular mass matrix)",

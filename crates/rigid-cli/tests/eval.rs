@@ -7,7 +7,9 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 fn fixture(name: &str) -> String {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(name);
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name);
     p.to_str().unwrap().to_string()
 }
 
@@ -61,17 +63,28 @@ fn eval_json_has_the_contract_keys_and_the_pendulum_values() {
     let q: f64 = 0.7;
     let cases = temp_file(
         "pendulum.json",
-        &format!(r#"{{"cases": [{{"q": [{q}]}}, {{"q": [0.2], "v": [1.5], "a": [0.3], "tau": [1.0]}}]}}"#),
+        &format!(
+            r#"{{"cases": [{{"q": [{q}]}}, {{"q": [0.2], "v": [1.5], "a": [0.3], "tau": [1.0]}}]}}"#
+        ),
     );
     let out = eval_json(&fixture("pendulum.urdf"), &cases, &[]);
     assert_eq!(keys(&out), set(&["model", "results"]));
     let model = &out["model"];
     assert_eq!(keys(model), set(&["name", "nq", "nv", "joints", "gravity"]));
     assert_eq!(model["name"], "pendulum");
-    assert_eq!((model["nq"].as_u64(), model["nv"].as_u64()), (Some(1), Some(1)));
+    assert_eq!(
+        (model["nq"].as_u64(), model["nv"].as_u64()),
+        (Some(1), Some(1))
+    );
     let j = &model["joints"][0];
-    assert_eq!(keys(j), set(&["name", "type", "idx_q", "nq", "idx_v", "nv"]));
-    assert_eq!((j["name"].as_str(), j["type"].as_str()), (Some("hinge"), Some("revolute")));
+    assert_eq!(
+        keys(j),
+        set(&["name", "type", "idx_q", "nq", "idx_v", "nv"])
+    );
+    assert_eq!(
+        (j["name"].as_str(), j["type"].as_str()),
+        (Some("hinge"), Some("revolute"))
+    );
     assert_eq!(model["gravity"], serde_json::json!([0.0, 0.0, -9.81]));
 
     let results = out["results"].as_array().unwrap();
@@ -80,8 +93,16 @@ fn eval_json_has_the_contract_keys_and_the_pendulum_values() {
     assert_eq!(
         keys(r),
         set(&[
-            "rnea", "mass_matrix", "nonlinear_effects", "gravity_torques", "aba",
-            "kinetic_energy", "potential_energy", "com", "total_mass", "placements"
+            "rnea",
+            "mass_matrix",
+            "nonlinear_effects",
+            "gravity_torques",
+            "aba",
+            "kinetic_energy",
+            "potential_energy",
+            "com",
+            "total_mass",
+            "placements"
         ])
     );
     let (m, g, l, i) = (2.0, 9.81, 0.5, 0.01);
@@ -117,15 +138,23 @@ fn eval_floating_adds_a_free_flyer_root() {
         r#"{"cases": [{"q": [0, 0, 0, 0, 0, 0, 1, 0.3]}]}"#,
     );
     // A 1 kg base, so that the free-flying system has a regular mass matrix.
-    let urdf = std::fs::read_to_string(fixture("pendulum.urdf")).unwrap().replace(
-        r#"<link name="base"/>"#,
-        r#"<link name="base"><inertial><mass value="1"/>
+    let urdf = std::fs::read_to_string(fixture("pendulum.urdf"))
+        .unwrap()
+        .replace(
+            r#"<link name="base"/>"#,
+            r#"<link name="base"><inertial><mass value="1"/>
              <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#,
-    );
+        );
     let out = eval_json(&temp_file("floating.urdf", &urdf), &cases, &["--floating"]);
-    assert_eq!((out["model"]["nq"].as_u64(), out["model"]["nv"].as_u64()), (Some(8), Some(7)));
+    assert_eq!(
+        (out["model"]["nq"].as_u64(), out["model"]["nv"].as_u64()),
+        (Some(8), Some(7))
+    );
     let j = &out["model"]["joints"][0];
-    assert_eq!((j["name"].as_str(), j["type"].as_str()), (Some("root_joint"), Some("free_flyer")));
+    assert_eq!(
+        (j["name"].as_str(), j["type"].as_str()),
+        (Some("root_joint"), Some("free_flyer"))
+    );
     let aba = out["results"][0]["aba"].as_array().unwrap();
     assert_eq!(aba.len(), 7);
     let g = out["results"][0]["gravity_torques"].as_array().unwrap();
@@ -161,9 +190,15 @@ fn eval_summary_is_readable() {
 #[test]
 fn eval_bad_input_is_named_and_exits_non_zero() {
     let urdf = fixture("pendulum.urdf");
-    let bad_len = temp_file("bad_len.json", r#"{"cases": [{"q": [0.1]}, {"q": [0.1], "v": [1, 2]}]}"#);
+    let bad_len = temp_file(
+        "bad_len.json",
+        r#"{"cases": [{"q": [0.1]}, {"q": [0.1], "v": [1, 2]}]}"#,
+    );
     let err = fails(&["eval", &urdf, "--cases", &bad_len]);
-    assert!(err.contains("case 1") && err.contains("\"v\"") && err.contains("nv = 1"), "{err}");
+    assert!(
+        err.contains("case 1") && err.contains("\"v\"") && err.contains("nv = 1"),
+        "{err}"
+    );
 
     let no_q = temp_file("no_q.json", r#"{"cases": [{"v": [1]}]}"#);
     let err = fails(&["eval", &urdf, "--cases", &no_q]);
@@ -171,11 +206,20 @@ fn eval_bad_input_is_named_and_exits_non_zero() {
 
     let not_num = temp_file("not_num.json", r#"{"cases": [{"q": ["x"]}]}"#);
     let err = fails(&["eval", &urdf, "--cases", &not_num]);
-    assert!(err.contains("case 0") && err.contains("not a number"), "{err}");
+    assert!(
+        err.contains("case 0") && err.contains("not a number"),
+        "{err}"
+    );
 
-    let quat = temp_file("quat.json", r#"{"cases": [{"q": [0, 0, 0, 0, 0, 0, 0.5, 0.3]}]}"#);
+    let quat = temp_file(
+        "quat.json",
+        r#"{"cases": [{"q": [0, 0, 0, 0, 0, 0, 0.5, 0.3]}]}"#,
+    );
     let err = fails(&["eval", &urdf, "--cases", &quat, "--floating"]);
-    assert!(err.contains("case 0") && err.contains("root_joint") && err.contains("quaternion"), "{err}");
+    assert!(
+        err.contains("case 0") && err.contains("root_joint") && err.contains("quaternion"),
+        "{err}"
+    );
 
     let malformed = temp_file("malformed.json", r#"{"cases": [{"q": [0.1]}"#);
     let err = fails(&["eval", &urdf, "--cases", &malformed]);
@@ -186,12 +230,23 @@ fn eval_bad_input_is_named_and_exits_non_zero() {
 
     let good = temp_file("good.json", r#"{"cases": [{"q": [0.1]}]}"#);
     let err = fails(&["eval", "no_such_robot", "--cases", &good]);
-    assert!(err.contains("unknown model") && err.contains("no_such_robot"), "{err}");
+    assert!(
+        err.contains("unknown model") && err.contains("no_such_robot"),
+        "{err}"
+    );
 
     let text = std::fs::read_to_string(&urdf).unwrap();
-    let bad_urdf = temp_file("bad.urdf", &text.replace("type=\"revolute\"", "type=\"hinge\""));
+    let bad_urdf = temp_file(
+        "bad.urdf",
+        &text.replace("type=\"revolute\"", "type=\"hinge\""),
+    );
     let err = fails(&["eval", &bad_urdf, "--cases", &good]);
-    assert!(err.contains("joint \"hinge\"") && err.contains("line 13") && err.contains("unknown joint type"), "{err}");
+    assert!(
+        err.contains("joint \"hinge\"")
+            && err.contains("line 13")
+            && err.contains("unknown joint type"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -199,23 +254,44 @@ fn model_summary_and_inertia_report() {
     let out = rigid(&["model", &fixture("pendulum.urdf")]);
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("hinge") && text.contains("total mass 2.000000 kg"), "{text}");
-    assert!(text.contains("nq = 1, nv = 1") && text.contains("all 2 checked are physical"), "{text}");
+    assert!(
+        text.contains("hinge") && text.contains("total mass 2.000000 kg"),
+        "{text}"
+    );
+    assert!(
+        text.contains("nq = 1, nv = 1") && text.contains("all 2 checked are physical"),
+        "{text}"
+    );
 
     let out = rigid(&["model", "double_pendulum"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 
     let urdf = std::fs::read_to_string(fixture("pendulum.urdf")).unwrap();
-    let bad = temp_file("bad_inertia.urdf", &urdf.replace("ixx=\"0.01\"", "ixx=\"-0.01\""));
+    let bad = temp_file(
+        "bad_inertia.urdf",
+        &urdf.replace("ixx=\"0.01\"", "ixx=\"-0.01\""),
+    );
     let out = rigid(&["model", &bad]);
     assert!(!out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("link \"bob\"") && text.contains("positive semi-definite"), "{text}");
+    assert!(
+        text.contains("link \"bob\"") && text.contains("positive semi-definite"),
+        "{text}"
+    );
 
-    let massless = urdf.replace("<mass value=\"2\"/>", "<mass value=\"0\"/>").replace("0.01", "0");
+    let massless = urdf
+        .replace("<mass value=\"2\"/>", "<mass value=\"0\"/>")
+        .replace("0.01", "0");
     let massless = temp_file("massless.urdf", &massless);
     let out = rigid(&["model", &massless]);
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("warning") && text.contains("zero mass") && text.contains("\"hinge\""), "{text}");
+    assert!(
+        text.contains("warning") && text.contains("zero mass") && text.contains("\"hinge\""),
+        "{text}"
+    );
 }

@@ -84,7 +84,11 @@ fn mat_of(v: &Value) -> Vec<Vec<f64>> {
 /// `‖a - b‖∞ / max(‖b‖∞, FLOOR)`.
 fn rel(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len());
-    let diff = a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    let diff = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
     let scale = b.iter().map(|y| y.abs()).fold(FLOOR, f64::max);
     diff / scale
 }
@@ -105,7 +109,11 @@ impl Errors {
 
 /// Index maps from the reference's layout (Pinocchio's joint order) into rigid's: `(q, v)`.
 fn index_maps(model: &Model, joints: &[Value]) -> (Vec<usize>, Vec<usize>) {
-    assert_eq!(model.joints().len(), joints.len(), "number of moving joints");
+    assert_eq!(
+        model.joints().len(),
+        joints.len(),
+        "number of moving joints"
+    );
     let (mut pq, mut pv) = (vec![0; model.nq()], vec![0; model.nv()]);
     for rj in joints {
         let name = rj["name"].as_str().unwrap();
@@ -178,7 +186,10 @@ fn compare(robot: &str) {
         let x = back(gravity_torques(&model, &mut data, &q).unwrap());
         err.record("gravity_torques", rel(&x, &vec_of(&s["gravity_torques"])));
         let ke = kinetic_energy(&model, &mut data, &q, &v).unwrap();
-        err.record("kinetic_energy", rel(&[ke], &[s["kinetic_energy"].as_f64().unwrap()]));
+        err.record(
+            "kinetic_energy",
+            rel(&[ke], &[s["kinetic_energy"].as_f64().unwrap()]),
+        );
         let pe = potential_energy(&model, &mut data, &q).unwrap();
         let pe_ref = s["potential_energy"].as_f64().unwrap();
         err.record("potential_energy", rel(&[pe], &[pe_ref]));
@@ -192,7 +203,11 @@ fn compare(robot: &str) {
             let id = model.joint_id(name).unwrap();
             let t = &data.placements[id.0];
             let mut ours: Vec<f64> = t.translation.iter().copied().collect();
-            ours.extend((0..3).flat_map(|i| (0..3).map(move |k| (i, k))).map(|ik| t.rotation[ik]));
+            ours.extend(
+                (0..3)
+                    .flat_map(|i| (0..3).map(move |k| (i, k)))
+                    .map(|ik| t.rotation[ik]),
+            );
             let mut theirs = vec_of(&p["translation"]);
             theirs.extend(mat_of(&p["rotation"]).concat());
             err.record("placements", rel(&ours, &theirs));

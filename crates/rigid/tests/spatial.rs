@@ -30,12 +30,18 @@ fn transform() -> impl Strategy<Value = Transform> {
 /// A physical spatial inertia: random mass, CoM and principal moments `(B+C, A+C, A+B)` from
 /// second moments `A = ∫x² dm` etc., so the triangle inequality holds, in rotated axes.
 fn spatial_inertia() -> impl Strategy<Value = SpatialInertia> {
-    (0.1..10.0f64, vec3(1.0), rotation(), 0.01..2.0f64, 0.01..2.0f64, 0.01..2.0f64).prop_map(
-        |(m, c, r, a, b, cc)| {
+    (
+        0.1..10.0f64,
+        vec3(1.0),
+        rotation(),
+        0.01..2.0f64,
+        0.01..2.0f64,
+        0.01..2.0f64,
+    )
+        .prop_map(|(m, c, r, a, b, cc)| {
             let i = RotationalInertia::diagonal(b + cc, a + cc, a + b).rotated_by(&r);
             SpatialInertia::from_com(m, c, i)
-        },
-    )
+        })
 }
 
 proptest! {
@@ -161,7 +167,11 @@ fn so3_log_near_pi_keeps_the_axis() {
         let w = axis * (std::f64::consts::PI - eps);
         let back = so3::log(&so3::exp(&w));
         // At exactly π, ±axis are both valid logarithms.
-        let err = (back - w).norm().min(if eps == 0.0 { (back + w).norm() } else { f64::MAX });
+        let err = (back - w).norm().min(if eps == 0.0 {
+            (back + w).norm()
+        } else {
+            f64::MAX
+        });
         assert!(err < 1e-7, "eps {eps}: {back} vs {w}");
     }
 }
@@ -170,15 +180,29 @@ fn so3_log_near_pi_keeps_the_axis() {
 fn inertia_validation_names_the_failure() {
     use rigid::error::InertiaError;
     let not_psd = RotationalInertia::diagonal(1.0, 1.0, -0.5);
-    assert!(matches!(not_psd.validate(1e-9), Err(InertiaError::NotPositiveSemiDefinite { .. })));
+    assert!(matches!(
+        not_psd.validate(1e-9),
+        Err(InertiaError::NotPositiveSemiDefinite { .. })
+    ));
     let triangle = RotationalInertia::diagonal(1.0, 1.0, 3.0);
-    assert!(matches!(triangle.validate(1e-9), Err(InertiaError::TriangleInequality { .. })));
+    assert!(matches!(
+        triangle.validate(1e-9),
+        Err(InertiaError::TriangleInequality { .. })
+    ));
     let rod = RotationalInertia::diagonal(0.0, 1.0, 1.0); // a thin rod is the limiting case
     assert!(rod.validate(1e-9).is_ok());
     let asym = Mat3::new(1.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0);
-    assert!(matches!(RotationalInertia::from_matrix(&asym), Err(InertiaError::NotSymmetric { .. })));
     assert!(matches!(
-        SpatialInertia::from_com(-1.0, Vec3::zeros(), RotationalInertia::diagonal(1.0, 1.0, 1.0)).validate(1e-9),
+        RotationalInertia::from_matrix(&asym),
+        Err(InertiaError::NotSymmetric { .. })
+    ));
+    assert!(matches!(
+        SpatialInertia::from_com(
+            -1.0,
+            Vec3::zeros(),
+            RotationalInertia::diagonal(1.0, 1.0, 1.0)
+        )
+        .validate(1e-9),
         Err(InertiaError::BadMass { .. })
     ));
 }

@@ -45,8 +45,15 @@ fn expect_error(text: &str, line: u32, needles: &[&str]) -> UrdfError {
     for n in needles {
         assert!(msg.contains(n), "error {msg:?} does not mention {n:?}");
     }
-    assert_eq!(err.line(), Some(line), "error {msg:?} points at the wrong line");
-    assert!(msg.contains(&format!("line {line}")), "{msg:?} has no line number");
+    assert_eq!(
+        err.line(),
+        Some(line),
+        "error {msg:?} points at the wrong line"
+    );
+    assert!(
+        msg.contains(&format!("line {line}")),
+        "{msg:?} has no line number"
+    );
     err
 }
 
@@ -77,7 +84,10 @@ fn missing_parent_link_names_the_joint() {
 
 #[test]
 fn missing_attribute_names_the_element() {
-    let text = GOOD.replace("<joint name=\"elbow\" type=\"continuous\">", "<joint name=\"elbow\">");
+    let text = GOOD.replace(
+        "<joint name=\"elbow\" type=\"continuous\">",
+        "<joint name=\"elbow\">",
+    );
     expect_error(&text, 23, &["joint \"elbow\"", "\"type\""]);
     let text = GOOD.replace("<child link=\"lower\"/>", "");
     expect_error(&text, 23, &["joint \"elbow\"", "<child>"]);
@@ -92,7 +102,11 @@ fn a_cycle_is_found() {
         r#"<joint name="back" type="fixed"><parent link="lower"/><child link="upper"/></joint>
 </robot>"#,
     );
-    expect_error(&two_parents, 29, &["joint \"back\"", "two parents", "\"shoulder\""]);
+    expect_error(
+        &two_parents,
+        29,
+        &["joint \"back\"", "two parents", "\"shoulder\""],
+    );
     // A loop detached from the root: base alone, then upper <-> lower.
     let cycle = GOOD.replace("<parent link=\"base\"/>", "<parent link=\"lower\"/>");
     let cycle = cycle.replace(
@@ -116,7 +130,11 @@ fn several_roots_are_refused() {
 #[test]
 fn unknown_joint_type_names_the_joint() {
     let text = GOOD.replace("type=\"continuous\"", "type=\"ball\"");
-    expect_error(&text, 23, &["joint \"elbow\"", "unknown joint type \"ball\""]);
+    expect_error(
+        &text,
+        23,
+        &["joint \"elbow\"", "unknown joint type \"ball\""],
+    );
 }
 
 #[test]
@@ -162,10 +180,19 @@ fn unphysical_inertias_are_reported_and_refused() {
     // Triangle inequality: 0.01 + 0.01 < 0.05.
     let text = GOOD.replace("ixx=\"0.05\" iyy=\"0.05\"", "ixx=\"0.01\" iyy=\"0.05\"");
     let report = parse_urdf_str(&text).unwrap().inertia_report();
-    assert!(report.len() == 1 && !report[0].is_error(), "a warning for the link alone");
+    assert!(
+        report.len() == 1 && !report[0].is_error(),
+        "a warning for the link alone"
+    );
     let err = load_urdf_str(&text, false).unwrap_err().to_string();
-    assert!(err.contains("joint \"elbow\"") && err.contains("line 23"), "{err}");
-    assert!(err.contains("link \"lower\"") && err.contains("triangle"), "{err}");
+    assert!(
+        err.contains("joint \"elbow\"") && err.contains("line 23"),
+        "{err}"
+    );
+    assert!(
+        err.contains("link \"lower\"") && err.contains("triangle"),
+        "{err}"
+    );
     // A dummy inertia on one link is fine when the body it is welded into is physical (ANYmal).
     let dummy = GOOD.replace(
         "</robot>",
@@ -183,7 +210,10 @@ fn unphysical_inertias_are_reported_and_refused() {
 #[test]
 fn zero_mass_moving_leaf_is_a_warning() {
     let text = GOOD.replace("<mass value=\"1\"/>", "<mass value=\"0\"/>");
-    let text = text.replace("ixx=\"0.05\" iyy=\"0.05\" izz=\"0.01\"", "ixx=\"0\" iyy=\"0\" izz=\"0\"");
+    let text = text.replace(
+        "ixx=\"0.05\" iyy=\"0.05\" izz=\"0.01\"",
+        "ixx=\"0\" iyy=\"0\" izz=\"0\"",
+    );
     let r = parse_urdf_str(&text).unwrap();
     let report = r.inertia_report();
     assert_eq!(report.len(), 1, "{report:?}");

@@ -99,12 +99,17 @@ pub fn build_model(robot: &UrdfRobot, floating: bool) -> Result<Model, UrdfError
         Some(JointId(0))
     } else {
         // Welded to the world: its inertia takes no part in the dynamics.
-        b.add_fixed_body(None, &root.name, Transform::identity(), SpatialInertia::zero())
-            .map_err(|e| UrdfError::Invalid {
-                line: root.line,
-                element: format!("link \"{}\"", root.name),
-                message: e.to_string(),
-            })?;
+        b.add_fixed_body(
+            None,
+            &root.name,
+            Transform::identity(),
+            SpatialInertia::zero(),
+        )
+        .map_err(|e| UrdfError::Invalid {
+            line: root.line,
+            element: format!("link \"{}\"", root.name),
+            message: e.to_string(),
+        })?;
         None
     };
 

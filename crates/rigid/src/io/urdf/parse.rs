@@ -89,7 +89,10 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
         let joint = p.joint(node, &link_index)?;
         let what = || format!("joint \"{}\"", joint.name);
         if let Some(first) = joints.iter().find(|j| j.name == joint.name) {
-            let msg = format!("duplicate joint name (first defined at line {})", first.line);
+            let msg = format!(
+                "duplicate joint name (first defined at line {})",
+                first.line
+            );
             return Err(p.invalid(node, what(), msg));
         }
         if joint.parent == joint.child {
@@ -223,10 +226,7 @@ impl Parser<'_, '_> {
     /// A required attribute.
     fn attr<'n>(&self, node: Node<'n, '_>, what: String, name: &str) -> Result<&'n str, UrdfError> {
         node.attribute(name).ok_or_else(|| {
-            let msg = format!(
-                "<{}> has no \"{name}\" attribute",
-                node.tag_name().name()
-            );
+            let msg = format!("<{}> has no \"{name}\" attribute", node.tag_name().name());
             self.invalid(node, what, msg)
         })
     }
@@ -257,7 +257,13 @@ impl Parser<'_, '_> {
     }
 
     /// An optional triple of finite numbers, `default` if absent.
-    fn triple(&self, node: Node, what: &str, name: &str, default: [f64; 3]) -> Result<[f64; 3], UrdfError> {
+    fn triple(
+        &self,
+        node: Node,
+        what: &str,
+        name: &str,
+        default: [f64; 3],
+    ) -> Result<[f64; 3], UrdfError> {
         let Some(text) = node.attribute(name) else {
             return Ok(default);
         };
@@ -269,7 +275,9 @@ impl Parser<'_, '_> {
         let mut out = [0.0; 3];
         let mut count = 0;
         for word in text.split_whitespace() {
-            let x: f64 = word.parse().map_err(|_| bad("not a list of three numbers"))?;
+            let x: f64 = word
+                .parse()
+                .map_err(|_| bad("not a list of three numbers"))?;
             if !x.is_finite() {
                 return Err(bad("non-finite value"));
             }
@@ -320,7 +328,10 @@ impl Parser<'_, '_> {
                     self.invalid(inode, what.clone(), "<inertial> has no <inertia>".into())
                 })?;
                 let mut e = [0.0; 6];
-                for (k, key) in ["ixx", "iyy", "izz", "ixy", "ixz", "iyz"].iter().enumerate() {
+                for (k, key) in ["ixx", "iyy", "izz", "ixy", "ixz", "iyz"]
+                    .iter()
+                    .enumerate()
+                {
                     e[k] = self.required(inode_i, &what, key)?;
                 }
                 Some(UrdfInertial {
@@ -338,7 +349,11 @@ impl Parser<'_, '_> {
         })
     }
 
-    fn joint(&self, node: Node, link_index: &HashMap<String, usize>) -> Result<UrdfJoint, UrdfError> {
+    fn joint(
+        &self,
+        node: Node,
+        link_index: &HashMap<String, usize>,
+    ) -> Result<UrdfJoint, UrdfError> {
         let name = self.attr(node, "joint".into(), "name")?.to_string();
         let what = format!("joint \"{name}\"");
         let type_str = self.attr(node, what.clone(), "type")?;
@@ -358,9 +373,8 @@ impl Parser<'_, '_> {
             }
         };
         let link_of = |tag: &str| -> Result<usize, UrdfError> {
-            let n = Self::child(node, tag).ok_or_else(|| {
-                self.invalid(node, what.clone(), format!("no <{tag}> element"))
-            })?;
+            let n = Self::child(node, tag)
+                .ok_or_else(|| self.invalid(node, what.clone(), format!("no <{tag}> element")))?;
             let link = self.attr(n, what.clone(), "link")?;
             link_index.get(link).copied().ok_or_else(|| {
                 let msg = format!("{tag} link \"{link}\" is not defined");
