@@ -10,11 +10,13 @@
 //! | --- | --- |
 //! | [`spatial`] | SO(3), SE(3), twists, wrenches, `Ad`, `ad`, exp and log |
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G` |
-//! | [`io`] | URDF import |
+//! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, Coriolis matrix, energies, DH and Modern Robotics builders, built-in robots |
+//! | [`io`] | URDF import into a multibody `Model` |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
 pub mod error;
 pub mod io;
 pub mod mass;
+pub mod multibody;
 pub mod spatial;

@@ -1,0 +1,271 @@
+//! The articulated-body algorithm for forward dynamics (Featherstone 2008, Table 7.1), in body
+//! coordinates, and forward dynamics by Cholesky factorisation of `M` as a cross-check.
+
+use super::{joint_motion, parent_placement};
+use crate::error::DimensionError;
+use crate::multibody::{check_q, check_v, Data, Model, MultibodyError};
+use crate::spatial::{skew, Mat3, Mat6, Transform, Twist, Vec3, Vec6, Wrench};
+use nalgebra::DVector;
+
+/// `I V` for a 6x6 (articulated) inertia acting on a twist, giving a wrench.
+#[inline]
+fn mat6_twist(m: &Mat6, t: &Twist) -> Wrench {
+    let x = m * Vec6::new(t.w.x, t.w.y, t.w.z, t.v.x, t.v.y, t.v.z);
+    Wrench::new(Vec3::new(x[0], x[1], x[2]), Vec3::new(x[3], x[4], x[5]))
+}
+
+/// `Xᵀ I X` with `X = [Ad_{T⁻¹}]`, `T = liMi = (R, p)`: an inertia of the child expressed in the
+/// parent frame, by 3x3 blocks `I = [[A, B], [Bᵀ, C]]`: first rotate
+/// (`A' = R A Rᵀ`, `B' = R B Rᵀ`, `C' = R C Rᵀ`), then shift the origin by `p`:
+/// `A'' = A' - B'[p] + [p]B'ᵀ - [p]C'[p]`, `B'' = B' + [p]C'`, `C'' = C'`.
+#[inline]
+pub(crate) fn congruence(I: &Mat6, T: &Transform) -> Mat6 {
+    let R = &T.rotation;
+    let A: Mat3 = I.fixed_view::<3, 3>(0, 0).into();
+    let B: Mat3 = I.fixed_view::<3, 3>(0, 3).into();
+    let C: Mat3 = I.fixed_view::<3, 3>(3, 3).into();
+    let A1 = R * A * R.transpose();
+    let B1 = R * B * R.transpose();
+    let C1 = R * C * R.transpose();
+    let P = skew(&T.translation);
+    let B1P = B1 * P;
+    let PC = P * C1;
+    let A2 = A1 - B1P - B1P.transpose() - PC * P;
+    let B2 = B1 + PC;
+    let mut out = Mat6::zeros();
+    out.fixed_view_mut::<3, 3>(0, 0).copy_from(&A2);
+    out.fixed_view_mut::<3, 3>(0, 3).copy_from(&B2);
+    out.fixed_view_mut::<3, 3>(3, 0).copy_from(&B2.transpose());
+    out.fixed_view_mut::<3, 3>(3, 3).copy_from(&C1);
+    out
+}
+
+fn aba_impl(
+    model: &Model,
+    data: &mut Data,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+    fext: Option<&[Wrench]>,
+) -> Result<(), MultibodyError> {
+    let n = model.joints.len();
+    // pass 1: kinematics, bias forces
+    for i in 0..n {
+        let liMi = parent_placement(model, i, q);
+        data.parent_placements[i] = liMi;
+        let Vp = match model.joints[i].parent {
+            Some(p) => data.velocities[p.0],
+            None => Twist::zero(),
+        };
+        let vJ = joint_motion(model, i, v);
+        let V = liMi.inv_act_twist(&Vp) + vJ;
+        data.velocities[i] = V;
+        data.c_bias[i] = V.cross(&vJ);
+        let G = &model.inertias[i];
+        data.ia[i] = G.matrix();
+        let mut pA = -V.ad_transpose(&G.momentum(&V));
+        if let Some(f) = fext {
+            pA -= f[i];
+        }
+        data.pa[i] = pA;
+    }
+    // pass 2: articulated inertias
+    for i in (0..n).rev() {
+        let j = &model.joints[i];
+        let (iv, nv) = (j.idx_v, j.nv);
+        let pA = data.pa[i];
+        if nv == 1 {
+            // one degree of freedom: D and u are scalars
+            let IA = &data.ia[i];
+            let S = &model.dof_S[iv];
+            let U = mat6_twist(IA, S);
+            let Dinv = 1.0 / (S.dot(&U) + model.armature[iv]);
+            let u = tau[iv] - S.dot(&pA);
+            data.u_cols[iv] = U;
+            data.d_inv_1[iv] = Dinv;
+            data.u[iv] = u;
+            if let Some(p) = j.parent {
+                // I^a = I^A - U D⁻¹ Uᵀ, p^a = p^A + I^a c + U D⁻¹ u
+                let Uv = U.to_vector();
+                let mut Ia = data.ia[i];
+                Ia.ger(-Dinv, &Uv, &Uv, 1.0);
+                let pa = pA + mat6_twist(&Ia, &data.c_bias[i]) + U * (Dinv * u);
+                let X = &data.parent_placements[i];
+                let Ip = congruence(&Ia, X);
+                data.ia[p.0] += Ip;
+                data.pa[p.0] += X.act_wrench(&pa);
+            }
+            continue;
+        }
+        let IA = data.ia[i];
+        for a in 0..nv {
+            data.u_cols[iv + a] = mat6_twist(&IA, &model.dof_S[iv + a]);
+        }
+        let mut D = Mat6::identity();
+        for a in 0..nv {
+            for b in 0..nv {
+                D[(a, b)] = model.dof_S[iv + a].dot(&data.u_cols[iv + b]);
+            }
+            D[(a, a)] += model.armature[iv + a];
+            data.u[iv + a] = tau[iv + a] - model.dof_S[iv + a].dot(&pA);
+        }
+        let Dinv = D.try_inverse().ok_or(MultibodyError::NotPositiveDefinite)?;
+        data.d_inv[i] = Dinv;
+        if let Some(p) = j.parent {
+            let mut Ia = IA;
+            let mut corr = Vec6::zeros();
+            for a in 0..nv {
+                let Ua = data.u_cols[iv + a].to_vector();
+                let mut w = Vec6::zeros(); // Σ_b Dinv_ab U_b
+                let mut s = 0.0; // Σ_b Dinv_ab u_b
+                for b in 0..nv {
+                    w += data.u_cols[iv + b].to_vector() * Dinv[(a, b)];
+                    s += Dinv[(a, b)] * data.u[iv + b];
+                }
+                Ia -= Ua * w.transpose();
+                corr += Ua * s;
+            }
+            // p^a = p^A + I^a c + U D⁻¹ u
+            let pa = pA + mat6_twist(&Ia, &data.c_bias[i]) + Wrench::from_vector(&corr);
+            data.ia[p.0] += congruence(&Ia, &data.parent_placements[i]);
+            data.pa[p.0] += data.parent_placements[i].act_wrench(&pa);
+        }
+    }
+    // pass 3: accelerations
+    let a_world = Twist::new(Vec3::zeros(), -model.gravity);
+    for i in 0..n {
+        let j = &model.joints[i];
+        let (iv, nv) = (j.idx_v, j.nv);
+        let Ap = match j.parent {
+            Some(p) => data.accelerations_gravity[p.0],
+            None => a_world,
+        };
+        let mut A = data.parent_placements[i].inv_act_twist(&Ap) + data.c_bias[i];
+        if nv == 1 {
+            let x = data.d_inv_1[iv] * (data.u[iv] - A.dot(&data.u_cols[iv]));
+            data.ddq[iv] = x;
+            A += model.dof_S[iv] * x;
+            data.accelerations_gravity[i] = A;
+            continue;
+        }
+        let Dinv = data.d_inv[i];
+        let mut rhs = [0.0; 6];
+        for (a, r) in rhs.iter_mut().enumerate().take(nv) {
+            *r = data.u[iv + a] - A.dot(&data.u_cols[iv + a]);
+        }
+        for a in 0..nv {
+            let mut x = 0.0;
+            for b in 0..nv {
+                x += Dinv[(a, b)] * rhs[b];
+            }
+            data.ddq[iv + a] = x;
+            A += model.dof_S[iv + a] * x;
+        }
+        data.accelerations_gravity[i] = A;
+    }
+    Ok(())
+}
+
+/// Forward dynamics `q̈ = M(q)⁻¹ (τ - c(q, v) - g(q))` by the articulated-body algorithm
+/// (Featherstone 2008, Table 7.1), body coordinates, gravity as base acceleration `A_0 = -g`:
+///
+/// - pass 1 (i = 1..n): `V_i = [Ad_{liMi⁻¹}] V_{λ(i)} + S_i q̇_i`, `c_i = [ad_{V_i}] S_i q̇_i`,
+///   `I^A_i = G_i`, `p^A_i = -[ad_{V_i}]ᵀ G_i V_i - F_i^ext`
+/// - pass 2 (i = n..1): `U_i = I^A_i S_i`, `D_i = S_iᵀ U_i + armature_i`,
+///   `u_i = τ_i - S_iᵀ p^A_i`; `I^a = I^A_i - U_i D_i⁻¹ U_iᵀ`, `p^a = p^A_i + I^a c_i + U_i D_i⁻¹ u_i`;
+///   `I^A_{λ(i)} += Xᵀ I^a X`, `p^A_{λ(i)} += Xᵀ p^a` with `X = [Ad_{liMi⁻¹}]`
+/// - pass 3 (i = 1..n): `A' = X A_{λ(i)} + c_i`, `q̈_i = D_i⁻¹ (u_i - U_iᵀ A')`, `A_i = A' + S_i q̈_i`
+///
+/// Returns `data.ddq`. O(n).
+///
+/// # Errors
+/// Wrong lengths, non-finite entries, a non-unit quaternion, or a singular joint inertia `D_i`.
+pub fn aba<'a>(
+    model: &Model,
+    data: &'a mut Data,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+) -> Result<&'a DVector<f64>, MultibodyError> {
+    check_q(model, q)?;
+    check_v(model, "v", v)?;
+    check_v(model, "tau", tau)?;
+    aba_impl(model, data, q, v, tau, None)?;
+    Ok(&data.ddq)
+}
+
+/// [`aba`] with an external wrench `fext[i]` on each body, in body i's frame.
+///
+/// # Errors
+/// As [`aba`], and `fext.len() != njoints`.
+pub fn aba_with_external<'a>(
+    model: &Model,
+    data: &'a mut Data,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+    fext: &[Wrench],
+) -> Result<&'a DVector<f64>, MultibodyError> {
+    check_q(model, q)?;
+    check_v(model, "v", v)?;
+    check_v(model, "tau", tau)?;
+    DimensionError::check("fext", model.njoints(), fext.len())?;
+    aba_impl(model, data, q, v, tau, Some(fext))?;
+    Ok(&data.ddq)
+}
+
+/// Forward dynamics by `M(q) q̈ = τ - nle(q, v)`: CRBA, RNEA for `nle`, then an in-place
+/// Cholesky factorisation `M = L Lᵀ` and two triangular solves (no allocation). A cross-check of
+/// [`aba`]. Returns `data.ddq`.
+///
+/// # Errors
+/// As [`aba`], or [`MultibodyError::NotPositiveDefinite`].
+pub fn forward_dynamics_cholesky<'a>(
+    model: &Model,
+    data: &'a mut Data,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+) -> Result<&'a DVector<f64>, MultibodyError> {
+    check_v(model, "tau", tau)?;
+    super::nonlinear_effects(model, data, q, v)?;
+    super::crba(model, data, q)?;
+    let n = model.nv;
+    let L = &mut data.chol;
+    L.copy_from(&data.mass_matrix);
+    // in-place Cholesky, lower triangle
+    for j in 0..n {
+        let mut d = L[(j, j)];
+        for k in 0..j {
+            d -= L[(j, k)] * L[(j, k)];
+        }
+        if d <= 0.0 || !d.is_finite() {
+            return Err(MultibodyError::NotPositiveDefinite);
+        }
+        let d = d.sqrt();
+        L[(j, j)] = d;
+        for i in j + 1..n {
+            let mut s = L[(i, j)];
+            for k in 0..j {
+                s -= L[(i, k)] * L[(j, k)];
+            }
+            L[(i, j)] = s / d;
+        }
+    }
+    let x = &mut data.ddq;
+    for i in 0..n {
+        let mut s = tau[i] - data.nle[i];
+        for k in 0..i {
+            s -= L[(i, k)] * x[k];
+        }
+        x[i] = s / L[(i, i)];
+    }
+    for i in (0..n).rev() {
+        let mut s = x[i];
+        for k in i + 1..n {
+            s -= L[(k, i)] * x[k];
+        }
+        x[i] = s / L[(i, i)];
+    }
+    Ok(&data.ddq)
+}

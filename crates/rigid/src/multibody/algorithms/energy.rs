@@ -1,0 +1,61 @@
+//! Kinetic and potential energy and the centre of mass.
+
+use super::kinematics::{forward_kinematics_qv, placements_unchecked};
+use crate::multibody::{check_q, Data, Model, MultibodyError};
+use crate::spatial::Vec3;
+
+/// Kinetic energy `K = Σ_i ½ V_iᵀ G_i V_i = ½ vᵀ M(q) v` (Lynch & Park §8.1.2), body twists from
+/// forward kinematics. The armature is not included (it is a rotor's energy, not a link's).
+///
+/// # Errors
+/// Wrong lengths, non-finite entries, or a non-unit quaternion.
+pub fn kinetic_energy(
+    model: &Model,
+    data: &mut Data,
+    q: &[f64],
+    v: &[f64],
+) -> Result<f64, MultibodyError> {
+    forward_kinematics_qv(model, data, q, v)?;
+    Ok(model
+        .inertias
+        .iter()
+        .zip(&data.velocities)
+        .map(|(G, V)| G.kinetic_energy(V))
+        .sum())
+}
+
+/// Potential energy in the uniform gravity field, `U = -Σ_i m_i gᵀ c_i` with `c_i` the world CoM of
+/// moving body i (zero at the world origin; welded-to-world links excluded).
+///
+/// # Errors
+/// Wrong length, non-finite entry or non-unit quaternion in `q`.
+pub fn potential_energy(model: &Model, data: &mut Data, q: &[f64]) -> Result<f64, MultibodyError> {
+    check_q(model, q)?;
+    placements_unchecked(model, data, q);
+    let g = model.gravity;
+    Ok(model
+        .inertias
+        .iter()
+        .zip(&data.placements)
+        .map(|(G, oMi)| -g.dot(&(oMi.rotation * G.first_moment() + oMi.translation * G.mass())))
+        .sum())
+}
+
+/// Centre of mass of the moving bodies in the world, `c = Σ m_i c_i / Σ m_i` (zero if massless).
+/// Also sets `data.com` and `data.mass`.
+///
+/// # Errors
+/// Wrong length, non-finite entry or non-unit quaternion in `q`.
+pub fn center_of_mass(model: &Model, data: &mut Data, q: &[f64]) -> Result<Vec3, MultibodyError> {
+    check_q(model, q)?;
+    placements_unchecked(model, data, q);
+    let mut h = Vec3::zeros();
+    let mut m = 0.0;
+    for (G, oMi) in model.inertias.iter().zip(&data.placements) {
+        h += oMi.rotation * G.first_moment() + oMi.translation * G.mass();
+        m += G.mass();
+    }
+    data.mass = m;
+    data.com = if m > 0.0 { h / m } else { Vec3::zeros() };
+    Ok(data.com)
+}

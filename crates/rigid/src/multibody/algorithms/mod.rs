@@ -1,0 +1,67 @@
+//! The recursive algorithms, one file each. All take `(model, data, inputs...)`, check the inputs
+//! (lengths, finiteness, unit quaternions) and write into `data`.
+
+mod aba;
+mod coriolis;
+mod crba;
+mod energy;
+mod jacobian;
+mod kinematics;
+mod rnea;
+
+pub use aba::{aba, aba_with_external, forward_dynamics_cholesky};
+pub use coriolis::coriolis_matrix;
+pub use crba::crba;
+pub use energy::{center_of_mass, kinetic_energy, potential_energy};
+pub use jacobian::{
+    compute_joint_jacobians, compute_joint_jacobians_time_variation, frame_jacobian,
+    frame_jacobian_time_variation, joint_jacobian, joint_jacobian_time_variation, ReferenceFrame,
+};
+pub use kinematics::{
+    forward_kinematics, forward_kinematics_q, forward_kinematics_qv, update_frame_placements,
+};
+pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
+
+use super::Model;
+use crate::mass::{RotationalInertia, SpatialInertia};
+use crate::spatial::{Transform, Twist};
+
+/// `S_i q̇_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame).
+#[inline]
+pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
+    let j = &model.joints[i];
+    let mut t = Twist::zero();
+    let r = j.idx_v..j.idx_v + j.nv;
+    for (S, xk) in model.dof_S[r.clone()].iter().zip(&x[r]) {
+        t += *S * *xk;
+    }
+    t
+}
+
+/// `liMi = X_T X_J(q_i)`: the pose of body i in its parent (one match on the joint type).
+#[inline]
+pub(crate) fn parent_placement(model: &Model, i: usize, q: &[f64]) -> Transform {
+    let j = &model.joints[i];
+    j.kind.placed_transform(&j.placement, &q[j.idx_q..j.idx_q + j.nq])
+}
+
+/// `G_a = [Ad_{T⁻¹}]ᵀ G_b [Ad_{T⁻¹}]` for `T = T_ab = (R, p)` (an inertia of body b expressed in
+/// frame a), as [`SpatialInertia::transformed`] but with the skew products written out:
+/// with `h' = R h`, `I_a = R I Rᵀ + 2(h'·p) 1 - (p h'ᵀ + h' pᵀ) + m (|p|² 1 - p pᵀ)`,
+/// `h_a = h' + m p` (from `[x][y] = y xᵀ - (x·y) 1`).
+#[inline]
+pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialInertia {
+    let R = &T.rotation;
+    let p = &T.translation;
+    let m = G.mass();
+    let h = R * G.first_moment();
+    let I = R * G.inertia_origin().matrix() * R.transpose();
+    let hp = h.dot(p);
+    let pp = p.norm_squared();
+    let mut Ia = I - p * h.transpose() - h * p.transpose() - (p * p.transpose()) * m;
+    let d = 2.0 * hp + m * pp;
+    Ia[(0, 0)] += d;
+    Ia[(1, 1)] += d;
+    Ia[(2, 2)] += d;
+    SpatialInertia::from_parts(m, h + p * m, RotationalInertia::from_matrix_unchecked(&Ia))
+}

@@ -1,0 +1,114 @@
+//! The workspace of the algorithms: every buffer, allocated once by [`Data::new`].
+
+use super::Model;
+use crate::mass::SpatialInertia;
+use crate::spatial::{Mat6, Transform, Twist, Vec3, Wrench};
+use nalgebra::{DMatrix, DVector};
+
+/// Buffers and results of the multibody algorithms for one [`Model`] (Pinocchio's `Data`).
+/// Per-body quantities are indexed by joint and expressed in the body's own (moved joint) frame
+/// unless said otherwise. Which algorithm fills which field is stated on the field.
+#[derive(Clone, Debug)]
+pub struct Data {
+    /// `liMi`: pose of body i's frame in its parent's frame (world for a root), `X_T X_J(q)`.
+    /// Filled by every algorithm that takes `q`.
+    pub parent_placements: Vec<Transform>,
+    /// `oMi`: world pose of each joint frame as moved by the joint. Forward kinematics,
+    /// Jacobians, CRBA, energies, CoM.
+    pub placements: Vec<Transform>,
+    /// `oMf`: world pose of each named frame ([`update_frame_placements`](super::update_frame_placements)).
+    pub frame_placements: Vec<Transform>,
+    /// Body twist `V_i` of each body in its own frame. Forward kinematics, RNEA, ABA.
+    pub velocities: Vec<Twist>,
+    /// Body acceleration `A_i` (spatial acceleration `V̇_i`, no gravity) in its own frame.
+    /// Forward kinematics (second order).
+    pub accelerations: Vec<Twist>,
+    /// `A_i - a_g`: acceleration with gravity as a fictitious base acceleration (RNEA, ABA).
+    pub accelerations_gravity: Vec<Twist>,
+    /// Wrench `F_i` transmitted from the parent to body i through joint i, in body i's frame
+    /// (RNEA).
+    pub forces: Vec<Wrench>,
+    /// Composite rigid-body inertia of each subtree in its root's frame (CRBA).
+    pub composite_inertias: Vec<SpatialInertia>,
+    /// Generalised forces `τ` (RNEA).
+    pub tau: DVector<f64>,
+    /// Nonlinear effects `c(q, v) + g(q) = rnea(q, v, 0)`.
+    pub nle: DVector<f64>,
+    /// Generalised gravity `g(q) = rnea(q, 0, 0)`.
+    pub g: DVector<f64>,
+    /// Joint accelerations `q̈` (ABA, Cholesky forward dynamics).
+    pub ddq: DVector<f64>,
+    /// Joint-space mass matrix `M(q)`, full symmetric, armature on the diagonal (CRBA).
+    pub mass_matrix: DMatrix<f64>,
+    /// Coriolis matrix `C(q, v)`, `c = C v`, `Ṁ - 2C` skew ([`coriolis_matrix`](super::coriolis_matrix)).
+    pub coriolis: DMatrix<f64>,
+    /// Spatial (world-frame) Jacobian of all joints, column k = `[Ad_{oMi}] S_k` (6 x nv).
+    pub jacobian: DMatrix<f64>,
+    /// Its time derivative, column k = `V^s_i × J_k` (6 x nv).
+    pub jacobian_dot: DMatrix<f64>,
+    /// Output buffer of the frame and joint Jacobians (6 x nv).
+    pub frame_jacobian: DMatrix<f64>,
+    /// Output buffer of the frame and joint Jacobian derivatives (6 x nv).
+    pub frame_jacobian_dot: DMatrix<f64>,
+    /// Centre of mass of the moving bodies in the world (CoM).
+    pub com: Vec3,
+    /// Mass of the moving bodies.
+    pub mass: f64,
+    // --- internal workspaces ---
+    pub(crate) ia: Vec<Mat6>,
+    pub(crate) pa: Vec<Wrench>,
+    pub(crate) c_bias: Vec<Twist>,
+    pub(crate) u_cols: Vec<Wrench>,
+    pub(crate) d_inv: Vec<Mat6>,
+    pub(crate) d_inv_1: Vec<f64>,
+    pub(crate) u: DVector<f64>,
+    pub(crate) spatial_velocities: Vec<Twist>,
+    pub(crate) world_inertias: Vec<SpatialInertia>,
+    pub(crate) world_momenta: Vec<Wrench>,
+    pub(crate) world_b: Vec<Mat6>,
+    pub(crate) chol: DMatrix<f64>,
+}
+
+impl Data {
+    /// All buffers for `model`.
+    #[must_use]
+    pub fn new(model: &Model) -> Self {
+        let n = model.njoints();
+        let nv = model.nv();
+        let nf = model.frames().len();
+        Self {
+            parent_placements: vec![Transform::identity(); n],
+            placements: vec![Transform::identity(); n],
+            frame_placements: vec![Transform::identity(); nf],
+            velocities: vec![Twist::zero(); n],
+            accelerations: vec![Twist::zero(); n],
+            accelerations_gravity: vec![Twist::zero(); n],
+            forces: vec![Wrench::zero(); n],
+            composite_inertias: vec![SpatialInertia::zero(); n],
+            tau: DVector::zeros(nv),
+            nle: DVector::zeros(nv),
+            g: DVector::zeros(nv),
+            ddq: DVector::zeros(nv),
+            mass_matrix: DMatrix::zeros(nv, nv),
+            coriolis: DMatrix::zeros(nv, nv),
+            jacobian: DMatrix::zeros(6, nv),
+            jacobian_dot: DMatrix::zeros(6, nv),
+            frame_jacobian: DMatrix::zeros(6, nv),
+            frame_jacobian_dot: DMatrix::zeros(6, nv),
+            com: Vec3::zeros(),
+            mass: model.total_mass(),
+            ia: vec![Mat6::zeros(); n],
+            pa: vec![Wrench::zero(); n],
+            c_bias: vec![Twist::zero(); n],
+            u_cols: vec![Wrench::zero(); nv],
+            d_inv: vec![Mat6::zeros(); n],
+            d_inv_1: vec![0.0; nv],
+            u: DVector::zeros(nv),
+            spatial_velocities: vec![Twist::zero(); n],
+            world_inertias: vec![SpatialInertia::zero(); n],
+            world_momenta: vec![Wrench::zero(); n],
+            world_b: vec![Mat6::zeros(); n],
+            chol: DMatrix::zeros(nv, nv),
+        }
+    }
+}

@@ -1,0 +1,194 @@
+//! Multibody dynamics of kinematic trees: a constant [`Model`], a reusable [`Data`] workspace and
+//! the classic recursive algorithms (forward kinematics, Jacobians, RNEA, CRBA, ABA, energies,
+//! Coriolis matrix).
+//!
+//! Conventions (see `CONVENTIONS.md`): joints are numbered depth-first from the root; twists and
+//! wrenches are angular first; every body's quantities are expressed in its own joint frame
+//! (the joint frame moved by the joint, "local" coordinates, Featherstone's body coordinates);
+//! [`Data::placements`] holds the world pose `oMi` of each moved joint frame. Free-flyer
+//! `q = (x, y, z, qx, qy, qz, qw)` with velocity the body twist `(ω_b, v_b)`; spherical `q` a
+//! quaternion `(qx, qy, qz, qw)` with velocity `ω_b`.
+//!
+//! No algorithm allocates after [`Data::new`] (tested with a counting allocator).
+//!
+//! ```
+//! use rigid::multibody::{builtin, rnea, crba, Data};
+//! let model = builtin("double_pendulum").unwrap();
+//! let mut data = Data::new(&model);
+//! let tau = rnea(&model, &mut data, &[0.1, 0.2], &[0.0, 0.0], &[0.0, 0.0]).unwrap().clone();
+//! let m = crba(&model, &mut data, &[0.1, 0.2]).unwrap();
+//! assert!(m[(0, 0)] > 0.0 && tau.norm() > 0.0);
+//! ```
+
+pub mod algorithms;
+mod builders;
+mod builtins;
+mod configuration;
+mod data;
+mod joint;
+mod model;
+
+pub use algorithms::*;
+pub use builders::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
+pub use builtins::{builtin, builtin_names, double_pendulum, pendulum, puma560, Puma560Options};
+pub use configuration::{difference, integrate, neutral, normalize, random_configuration, Rng};
+pub use data::Data;
+pub use joint::JointType;
+pub use model::{Frame, FrameId, FrameKind, Joint, JointId, Model, ModelBuilder};
+
+use crate::error::{DimensionError, InertiaError};
+use thiserror::Error;
+
+/// Tolerance on a quaternion's norm: `|‖q‖ - 1| > 1e-6` is an error naming the joint.
+pub const QUATERNION_TOLERANCE: f64 = 1e-6;
+
+/// An invalid model description.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ModelError {
+    /// Two joints or frames with the same name.
+    #[error("duplicate joint or frame name '{name}'")]
+    DuplicateName {
+        /// The name.
+        name: String,
+    },
+    /// A parent index that does not exist (yet).
+    #[error("'{name}': parent joint index {parent} does not exist")]
+    UnknownParent {
+        /// The joint or frame being added.
+        name: String,
+        /// The parent index given.
+        parent: usize,
+    },
+    /// Joints must be added in depth-first order.
+    #[error("joint '{name}': parent '{parent}' is not on the current depth-first branch (add joints depth-first)")]
+    NotDepthFirst {
+        /// The joint being added.
+        name: String,
+        /// Its parent.
+        parent: String,
+    },
+    /// A joint index that does not exist.
+    #[error("joint index {index} does not exist")]
+    UnknownJoint {
+        /// The index.
+        index: usize,
+    },
+    /// A zero or non-finite joint axis.
+    #[error("joint '{name}': axis is zero or not finite")]
+    BadAxis {
+        /// The joint.
+        name: String,
+    },
+    /// A placement that is not a rigid transform.
+    #[error("'{name}': placement is not a finite rigid transform")]
+    BadPlacement {
+        /// The joint or frame.
+        name: String,
+    },
+    /// A non-physical body inertia.
+    #[error("body '{name}': {source}")]
+    BadInertia {
+        /// The joint (body) or welded body.
+        name: String,
+        /// What is wrong.
+        source: InertiaError,
+    },
+    /// A per-joint vector of the wrong length.
+    #[error("joint '{joint}': {source}")]
+    Dimension {
+        /// The joint.
+        joint: String,
+        /// The lengths.
+        source: DimensionError,
+    },
+    /// Limits with NaN, `lower > upper`, or a negative velocity/effort limit.
+    #[error("joint '{joint}': invalid limits")]
+    BadLimits {
+        /// The joint.
+        joint: String,
+    },
+    /// Negative or non-finite armature.
+    #[error("joint '{joint}': armature must be finite and non-negative")]
+    BadArmature {
+        /// The joint.
+        joint: String,
+    },
+    /// Non-finite gravity.
+    #[error("gravity must be finite")]
+    BadGravity,
+    /// A builder input that does not describe a supported joint (e.g. a helical screw axis).
+    #[error("joint {index}: {reason}")]
+    Unsupported {
+        /// Index of the joint in the builder's input.
+        index: usize,
+        /// What is not supported.
+        reason: &'static str,
+    },
+}
+
+/// An invalid input to an algorithm.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum MultibodyError {
+    /// An input vector of the wrong length.
+    #[error(transparent)]
+    Dimension(#[from] DimensionError),
+    /// A NaN or infinite entry.
+    #[error("{what}[{index}] is not finite")]
+    NonFinite {
+        /// Which input (`q`, `v`, `a`, `tau`).
+        what: &'static str,
+        /// The index of the bad entry.
+        index: usize,
+    },
+    /// A spherical or free-flyer joint whose quaternion is not of unit norm
+    /// (tolerance [`QUATERNION_TOLERANCE`]).
+    #[error("joint '{joint}': quaternion norm {norm} is not 1 (tolerance 1e-6)")]
+    NotUnitQuaternion {
+        /// The joint.
+        joint: String,
+        /// The norm found.
+        norm: f64,
+    },
+    /// The mass matrix is not positive definite (Cholesky failed).
+    #[error("mass matrix is not positive definite")]
+    NotPositiveDefinite,
+    /// A frame or joint index out of range.
+    #[error("{what} index {index} out of range")]
+    OutOfRange {
+        /// "joint" or "frame".
+        what: &'static str,
+        /// The index.
+        index: usize,
+    },
+}
+
+/// Check `q`: length `nq`, finite, unit quaternions.
+pub(crate) fn check_q(model: &Model, q: &[f64]) -> Result<(), MultibodyError> {
+    DimensionError::check("q", model.nq, q.len())?;
+    check_finite("q", q)?;
+    for j in &model.joints {
+        if let Some(o) = j.kind.quaternion_offset() {
+            let n = joint::quat_norm(&q[j.idx_q + o..]);
+            if (n - 1.0).abs() > QUATERNION_TOLERANCE {
+                return Err(MultibodyError::NotUnitQuaternion {
+                    joint: j.name.clone(),
+                    norm: n,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Check a velocity-like vector: length `nv`, finite.
+pub(crate) fn check_v(model: &Model, what: &'static str, v: &[f64]) -> Result<(), MultibodyError> {
+    DimensionError::check(what, model.nv, v.len())?;
+    check_finite(what, v)
+}
+
+fn check_finite(what: &'static str, x: &[f64]) -> Result<(), MultibodyError> {
+    match x.iter().position(|x| !x.is_finite()) {
+        Some(index) => Err(MultibodyError::NonFinite { what, index }),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,532 @@
+//! The constant description of a kinematic tree: joints in depth-first order, their placements,
+//! the bodies' spatial inertias, limits, armature, named frames and gravity.
+
+use super::{JointType, ModelError};
+use crate::error::DimensionError;
+use crate::mass::SpatialInertia;
+use crate::spatial::{Transform, Twist, Vec3};
+
+/// The depth-first index of a moving joint (0-based); it also names the body the joint moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct JointId(pub usize);
+
+/// The index of a named frame in [`Model::frames`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct FrameId(pub usize);
+
+/// One moving joint and the body it carries.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    /// The joint's name.
+    pub name: String,
+    /// Its type.
+    pub kind: JointType,
+    /// The parent joint (`None`: the world).
+    pub parent: Option<JointId>,
+    /// Pose of the joint frame in the parent joint's (moved) frame, or in the world, at
+    /// `q = neutral`: Featherstone's `X_T`, Pinocchio's `jointPlacements`.
+    pub placement: Transform,
+    /// First index of the joint's coordinates in `q`.
+    pub idx_q: usize,
+    /// Number of configuration coordinates.
+    pub nq: usize,
+    /// First index of the joint's coordinates in `v`, `a`, `τ`.
+    pub idx_v: usize,
+    /// Number of degrees of freedom.
+    pub nv: usize,
+    /// One past the last joint of this joint's subtree: the subtree is `self..subtree_end`
+    /// (depth-first order makes it contiguous).
+    pub subtree_end: usize,
+}
+
+/// What a named frame stands for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameKind {
+    /// A body welded to its parent by a fixed joint (its inertia was merged into the parent).
+    FixedBody,
+    /// An operational frame (a tool point, a sensor).
+    Operational,
+}
+
+/// A named frame fixed in a moving body (or in the world).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// The frame's name.
+    pub name: String,
+    /// The body it is fixed in (`None`: the world).
+    pub parent: Option<JointId>,
+    /// Its pose in the parent joint's frame (or in the world).
+    pub placement: Transform,
+    /// What it stands for.
+    pub kind: FrameKind,
+}
+
+/// A kinematic tree, constant once built (Featherstone's `model`, Pinocchio's `Model`).
+/// Build one with [`ModelBuilder`]; evaluate it with a [`Data`](super::Data) workspace.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub(crate) name: String,
+    pub(crate) gravity: Vec3,
+    pub(crate) joints: Vec<Joint>,
+    pub(crate) inertias: Vec<SpatialInertia>,
+    pub(crate) frames: Vec<Frame>,
+    pub(crate) lower: Vec<f64>,
+    pub(crate) upper: Vec<f64>,
+    pub(crate) velocity_limit: Vec<f64>,
+    pub(crate) effort_limit: Vec<f64>,
+    pub(crate) armature: Vec<f64>,
+    /// Motion subspace column per degree of freedom, in the child frame (constant).
+    pub(crate) dof_S: Vec<Twist>,
+    /// The joint of each degree of freedom.
+    pub(crate) dof_joint: Vec<usize>,
+    pub(crate) nq: usize,
+    pub(crate) nv: usize,
+}
+
+impl Model {
+    /// The model's name.
+    #[must_use]
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    /// Number of configuration coordinates.
+    #[must_use]
+    pub fn nq(&self) -> usize {
+        self.nq
+    }
+    /// Number of degrees of freedom.
+    #[must_use]
+    pub fn nv(&self) -> usize {
+        self.nv
+    }
+    /// Number of moving joints (= moving bodies).
+    #[must_use]
+    pub fn njoints(&self) -> usize {
+        self.joints.len()
+    }
+    /// The joints in depth-first order.
+    #[must_use]
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+    /// One joint (panics if `id` is out of range).
+    #[must_use]
+    pub fn joint(&self, id: JointId) -> &Joint {
+        &self.joints[id.0]
+    }
+    /// The joint called `name`.
+    #[must_use]
+    pub fn joint_id(&self, name: &str) -> Option<JointId> {
+        self.joints.iter().position(|j| j.name == name).map(JointId)
+    }
+    /// The spatial inertia of the body moved by `id`, in its joint frame, including the bodies
+    /// welded to it.
+    #[must_use]
+    pub fn inertia(&self, id: JointId) -> &SpatialInertia {
+        &self.inertias[id.0]
+    }
+    /// All body inertias, indexed like the joints.
+    #[must_use]
+    pub fn inertias(&self) -> &[SpatialInertia] {
+        &self.inertias
+    }
+    /// Gravity in the world frame (m/s²).
+    #[must_use]
+    pub fn gravity(&self) -> Vec3 {
+        self.gravity
+    }
+    /// Named frames (welded bodies and operational frames).
+    #[must_use]
+    pub fn frames(&self) -> &[Frame] {
+        &self.frames
+    }
+    /// The frame called `name`.
+    #[must_use]
+    pub fn frame_id(&self, name: &str) -> Option<FrameId> {
+        self.frames.iter().position(|f| f.name == name).map(FrameId)
+    }
+    /// The total mass of the moving bodies (welded-to-world links excluded).
+    #[must_use]
+    pub fn total_mass(&self) -> f64 {
+        self.inertias.iter().map(SpatialInertia::mass).sum()
+    }
+    /// Lower position limits, per configuration coordinate (`-∞` when none).
+    #[must_use]
+    pub fn lower_limits(&self) -> &[f64] {
+        &self.lower
+    }
+    /// Upper position limits, per configuration coordinate (`+∞` when none).
+    #[must_use]
+    pub fn upper_limits(&self) -> &[f64] {
+        &self.upper
+    }
+    /// Velocity limits per degree of freedom (`+∞` when none).
+    #[must_use]
+    pub fn velocity_limits(&self) -> &[f64] {
+        &self.velocity_limit
+    }
+    /// Effort limits per degree of freedom (`+∞` when none).
+    #[must_use]
+    pub fn effort_limits(&self) -> &[f64] {
+        &self.effort_limit
+    }
+    /// Joint armature per degree of freedom (kg·m² or kg): added to the diagonal of `M` and to
+    /// ABA's joint inertia `D = Sᵀ I^A S + armature` (e.g. a reflected rotor inertia `Jm G²`).
+    #[must_use]
+    pub fn armature(&self) -> &[f64] {
+        &self.armature
+    }
+    /// The motion-subspace column of degree of freedom `k`, in its body's frame.
+    #[must_use]
+    pub fn motion_subspace(&self, k: usize) -> Twist {
+        self.dof_S[k]
+    }
+    /// The joint owning degree of freedom `k`.
+    #[must_use]
+    pub fn dof_joint(&self, k: usize) -> JointId {
+        JointId(self.dof_joint[k])
+    }
+    /// The moving bodies whose inertia is not physical, with the reason: zero mass, or a
+    /// rotational inertia about the CoM violating the triangle inequality `λ1 + λ2 ≥ λ3`
+    /// (relative tolerance 1e-6). The builder rejects negative masses and inertias that are not
+    /// positive semi-definite; these milder defects occur in published models (PUMA 560).
+    #[must_use]
+    pub fn inertia_issues(&self) -> Vec<(JointId, crate::error::InertiaError)> {
+        self.inertias
+            .iter()
+            .enumerate()
+            .filter_map(|(i, g)| g.validate(1e-6).err().map(|e| (JointId(i), e)))
+            .collect()
+    }
+
+    /// A copy of this model with gravity `g`.
+    #[must_use]
+    pub fn with_gravity(mut self, g: Vec3) -> Self {
+        self.gravity = g;
+        self
+    }
+    /// Replace the armature vector (length `nv`, entries finite and `≥ 0`).
+    ///
+    /// # Errors
+    /// Wrong length or a negative or non-finite entry.
+    pub fn set_armature(&mut self, armature: &[f64]) -> Result<(), ModelError> {
+        DimensionError::check("armature", self.nv, armature.len()).map_err(|e| {
+            ModelError::Dimension {
+                joint: "<model>".into(),
+                source: e,
+            }
+        })?;
+        if armature.iter().any(|a| !a.is_finite() || *a < 0.0) {
+            return Err(ModelError::BadArmature {
+                joint: "<model>".into(),
+            });
+        }
+        self.armature.copy_from_slice(armature);
+        Ok(())
+    }
+}
+
+/// Builds a [`Model`] joint by joint, in depth-first order.
+#[derive(Clone, Debug)]
+pub struct ModelBuilder {
+    model: Model,
+    /// The chain of joints from the root to the last joint added (for the depth-first check).
+    stack: Vec<usize>,
+}
+
+fn check_placement(name: &str, t: &Transform) -> Result<(), ModelError> {
+    let finite = t
+        .rotation
+        .iter()
+        .chain(t.translation.iter())
+        .all(|x| x.is_finite());
+    if !finite || crate::spatial::so3::check(&t.rotation, 1e-6).is_err() {
+        return Err(ModelError::BadPlacement { name: name.into() });
+    }
+    Ok(())
+}
+
+fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
+    let bad = |source| ModelError::BadInertia {
+        name: name.into(),
+        source,
+    };
+    let finite = g.mass().is_finite()
+        && g.first_moment().iter().all(|x| x.is_finite())
+        && g.inertia_origin().matrix().iter().all(|x| x.is_finite());
+    if !finite {
+        return Err(bad(crate::error::InertiaError::NonFinite));
+    }
+    if g.mass() < 0.0 {
+        return Err(bad(crate::error::InertiaError::BadMass { mass: g.mass() }));
+    }
+    // Positive semi-definite rotational inertia about the CoM. The triangle inequality is not
+    // enforced: published models violate it (the PUMA 560's link 3), so it is reported by
+    // `Model::inertia_issues` instead.
+    let l = g.inertia_com().principal_moments();
+    if l[0] < -1e-9 * l[2].abs().max(1e-12) {
+        return Err(bad(crate::error::InertiaError::NotPositiveSemiDefinite {
+            moment: l[0],
+        }));
+    }
+    Ok(())
+}
+
+impl ModelBuilder {
+    /// An empty model called `name`, with gravity `[0, 0, -9.81]` m/s².
+    #[must_use]
+    pub fn new(name: &str) -> Self {
+        Self {
+            model: Model {
+                name: name.into(),
+                gravity: Vec3::new(0.0, 0.0, -9.81),
+                joints: Vec::new(),
+                inertias: Vec::new(),
+                frames: Vec::new(),
+                lower: Vec::new(),
+                upper: Vec::new(),
+                velocity_limit: Vec::new(),
+                effort_limit: Vec::new(),
+                armature: Vec::new(),
+                dof_S: Vec::new(),
+                dof_joint: Vec::new(),
+                nq: 0,
+                nv: 0,
+            },
+            stack: Vec::new(),
+        }
+    }
+
+    /// Set gravity in the world frame (m/s²).
+    pub fn set_gravity(&mut self, g: Vec3) {
+        self.model.gravity = g;
+    }
+
+    fn check_name(&self, name: &str) -> Result<(), ModelError> {
+        let taken = self.model.joints.iter().any(|j| j.name == name)
+            || self.model.frames.iter().any(|f| f.name == name);
+        if taken {
+            Err(ModelError::DuplicateName { name: name.into() })
+        } else {
+            Ok(())
+        }
+    }
+
+    fn check_parent(&self, name: &str, parent: Option<JointId>) -> Result<(), ModelError> {
+        match parent {
+            Some(p) if p.0 >= self.model.joints.len() => Err(ModelError::UnknownParent {
+                name: name.into(),
+                parent: p.0,
+            }),
+            _ => Ok(()),
+        }
+    }
+
+    /// Add a moving joint and the body it carries; returns its [`JointId`].
+    ///
+    /// `placement` is the pose of the joint frame in the parent joint frame (the world if
+    /// `parent` is `None`) at `q = neutral`; `inertia` is the child body's spatial inertia in
+    /// the joint frame. Joints must come in depth-first order: `parent` is the last joint added
+    /// or one of its ancestors (or `None`).
+    ///
+    /// # Errors
+    /// Unknown or out-of-order parent, duplicate name, zero or non-finite axis, a placement that
+    /// is not a rigid transform, a negative mass or a non-physical inertia.
+    pub fn add_joint(
+        &mut self,
+        parent: Option<JointId>,
+        name: &str,
+        joint: JointType,
+        placement: Transform,
+        inertia: SpatialInertia,
+    ) -> Result<JointId, ModelError> {
+        self.check_name(name)?;
+        self.check_parent(name, parent)?;
+        let kind = joint
+            .normalized_axis()
+            .ok_or_else(|| ModelError::BadAxis { name: name.into() })?;
+        check_placement(name, &placement)?;
+        check_inertia(name, &inertia)?;
+        // depth-first: pop the stack down to the parent
+        match parent {
+            None => self.stack.clear(),
+            Some(p) => {
+                let pos = self.stack.iter().rposition(|&s| s == p.0).ok_or_else(|| {
+                    ModelError::NotDepthFirst {
+                        name: name.into(),
+                        parent: self.model.joints[p.0].name.clone(),
+                    }
+                })?;
+                self.stack.truncate(pos + 1);
+            }
+        }
+        let m = &mut self.model;
+        let id = m.joints.len();
+        let (nq, nv) = (kind.nq(), kind.nv());
+        m.joints.push(Joint {
+            name: name.into(),
+            kind,
+            parent,
+            placement,
+            idx_q: m.nq,
+            nq,
+            idx_v: m.nv,
+            nv,
+            subtree_end: id + 1,
+        });
+        m.inertias.push(inertia);
+        for k in 0..nv {
+            m.dof_S.push(kind.motion_subspace(k));
+            m.dof_joint.push(id);
+        }
+        m.lower.resize(m.nq + nq, f64::NEG_INFINITY);
+        m.upper.resize(m.nq + nq, f64::INFINITY);
+        m.velocity_limit.resize(m.nv + nv, f64::INFINITY);
+        m.effort_limit.resize(m.nv + nv, f64::INFINITY);
+        m.armature.resize(m.nv + nv, 0.0);
+        m.nq += nq;
+        m.nv += nv;
+        self.stack.push(id);
+        Ok(JointId(id))
+    }
+
+    /// A body welded (fixed joint) to `parent` at `placement` (its pose in the parent joint
+    /// frame): its inertia `G` is merged into the parent body as `[Ad_{T⁻¹}]ᵀ G [Ad_{T⁻¹}]` (or
+    /// dropped if `parent` is `None`, the world), and a named frame is kept.
+    ///
+    /// # Errors
+    /// As [`add_joint`](Self::add_joint).
+    pub fn add_fixed_body(
+        &mut self,
+        parent: Option<JointId>,
+        name: &str,
+        placement: Transform,
+        inertia: SpatialInertia,
+    ) -> Result<FrameId, ModelError> {
+        self.check_name(name)?;
+        self.check_parent(name, parent)?;
+        check_placement(name, &placement)?;
+        check_inertia(name, &inertia)?;
+        if let Some(p) = parent {
+            self.model.inertias[p.0] += inertia.transformed(&placement);
+        }
+        self.model.frames.push(Frame {
+            name: name.into(),
+            parent,
+            placement,
+            kind: FrameKind::FixedBody,
+        });
+        Ok(FrameId(self.model.frames.len() - 1))
+    }
+
+    /// A named operational frame fixed in `parent` (or the world) at `placement`.
+    ///
+    /// # Errors
+    /// Unknown parent, duplicate name, or a placement that is not a rigid transform.
+    pub fn add_frame(
+        &mut self,
+        parent: Option<JointId>,
+        name: &str,
+        placement: Transform,
+    ) -> Result<FrameId, ModelError> {
+        self.check_name(name)?;
+        self.check_parent(name, parent)?;
+        check_placement(name, &placement)?;
+        self.model.frames.push(Frame {
+            name: name.into(),
+            parent,
+            placement,
+            kind: FrameKind::Operational,
+        });
+        Ok(FrameId(self.model.frames.len() - 1))
+    }
+
+    fn joint_checked(&self, joint: JointId) -> Result<&Joint, ModelError> {
+        self.model
+            .joints
+            .get(joint.0)
+            .ok_or(ModelError::UnknownJoint { index: joint.0 })
+    }
+
+    /// Position limits (`nq` each), velocity and effort limits (`nv` each) of one joint. Use
+    /// infinities for "none".
+    ///
+    /// # Errors
+    /// Unknown joint, wrong lengths, NaN, `lower > upper`, negative velocity or effort limit.
+    pub fn set_limits(
+        &mut self,
+        joint: JointId,
+        lower: &[f64],
+        upper: &[f64],
+        velocity: &[f64],
+        effort: &[f64],
+    ) -> Result<(), ModelError> {
+        let j = self.joint_checked(joint)?.clone();
+        let dim = |what, n, got| {
+            DimensionError::check(what, n, got).map_err(|source| ModelError::Dimension {
+                joint: j.name.clone(),
+                source,
+            })
+        };
+        dim("lower limits", j.nq, lower.len())?;
+        dim("upper limits", j.nq, upper.len())?;
+        dim("velocity limits", j.nv, velocity.len())?;
+        dim("effort limits", j.nv, effort.len())?;
+        let bad = lower
+            .iter()
+            .zip(upper)
+            .any(|(l, u)| l.is_nan() || u.is_nan() || l > u)
+            || velocity
+                .iter()
+                .chain(effort)
+                .any(|x| x.is_nan() || *x < 0.0);
+        if bad {
+            return Err(ModelError::BadLimits { joint: j.name });
+        }
+        let m = &mut self.model;
+        m.lower[j.idx_q..j.idx_q + j.nq].copy_from_slice(lower);
+        m.upper[j.idx_q..j.idx_q + j.nq].copy_from_slice(upper);
+        m.velocity_limit[j.idx_v..j.idx_v + j.nv].copy_from_slice(velocity);
+        m.effort_limit[j.idx_v..j.idx_v + j.nv].copy_from_slice(effort);
+        Ok(())
+    }
+
+    /// The armature of one joint (`nv` entries, `≥ 0`), added to the diagonal of `M` and to
+    /// ABA's `D`.
+    ///
+    /// # Errors
+    /// Unknown joint, wrong length, negative or non-finite entry.
+    pub fn set_armature(&mut self, joint: JointId, armature: &[f64]) -> Result<(), ModelError> {
+        let j = self.joint_checked(joint)?.clone();
+        DimensionError::check("armature", j.nv, armature.len()).map_err(|source| {
+            ModelError::Dimension {
+                joint: j.name.clone(),
+                source,
+            }
+        })?;
+        if armature.iter().any(|a| !a.is_finite() || *a < 0.0) {
+            return Err(ModelError::BadArmature { joint: j.name });
+        }
+        self.model.armature[j.idx_v..j.idx_v + j.nv].copy_from_slice(armature);
+        Ok(())
+    }
+
+    /// Freeze the model (computes each joint's subtree range).
+    ///
+    /// # Errors
+    /// Non-finite gravity.
+    pub fn build(mut self) -> Result<Model, ModelError> {
+        if self.model.gravity.iter().any(|g| !g.is_finite()) {
+            return Err(ModelError::BadGravity);
+        }
+        let n = self.model.joints.len();
+        for i in (0..n).rev() {
+            if let Some(p) = self.model.joints[i].parent {
+                let e = self.model.joints[i].subtree_end;
+                let pe = &mut self.model.joints[p.0].subtree_end;
+                *pe = (*pe).max(e);
+            }
+        }
+        Ok(self.model)
+    }
+}

@@ -1,0 +1,147 @@
+//! Shared helpers for the multibody tests: a random kinematic tree and random states.
+#![allow(dead_code, non_snake_case)]
+
+use nalgebra::{DMatrix, DVector};
+use rigid::mass::{RotationalInertia, SpatialInertia};
+use rigid::multibody::*;
+use rigid::spatial::{so3, Transform, Vec3};
+
+/// A random unit vector.
+pub fn unit(rng: &mut Rng) -> Vec3 {
+    loop {
+        let v = Vec3::new(rng.normal(), rng.normal(), rng.normal());
+        if v.norm() > 1e-3 {
+            return v.normalize();
+        }
+    }
+}
+
+/// A random rigid transform (rotation uniform-ish, translation in [-0.5, 0.5]³).
+pub fn transform(rng: &mut Rng) -> Transform {
+    let r = so3::exp(&(unit(rng) * rng.uniform(-3.0, 3.0)));
+    Transform::new(
+        r,
+        Vec3::new(
+            rng.uniform(-0.5, 0.5),
+            rng.uniform(-0.5, 0.5),
+            rng.uniform(-0.5, 0.5),
+        ),
+    )
+}
+
+/// A random physical inertia: mass in [0.5, 2], CoM in [-0.3, 0.3]³, principal moments
+/// satisfying the triangle inequality, rotated.
+pub fn inertia(rng: &mut Rng) -> SpatialInertia {
+    let m = rng.uniform(0.5, 2.0);
+    let a = rng.uniform(0.01, 0.1);
+    let b = rng.uniform(0.01, 0.1);
+    let c = rng.uniform((a - b).abs() + 0.001, a + b);
+    let r = so3::exp(&(unit(rng) * rng.uniform(-3.0, 3.0)));
+    let i = RotationalInertia::diagonal(a, b, c).in_rotated_frame(&r.transpose());
+    let com = Vec3::new(
+        rng.uniform(-0.3, 0.3),
+        rng.uniform(-0.3, 0.3),
+        rng.uniform(-0.3, 0.3),
+    );
+    SpatialInertia::from_com(m, com, i)
+}
+
+/// A random tree: a free-flyer root, then `n` joints of random types (revolute, continuous,
+/// prismatic with random axes, spherical, planar) with random depth-first parents, random
+/// placements and inertias, a welded body and an operational frame; random armature if asked.
+pub fn random_tree(seed: u64, n: usize, armature: bool) -> Model {
+    let mut rng = Rng::new(seed);
+    let mut b = ModelBuilder::new(&format!("random_tree_{seed}"));
+    b.set_gravity(Vec3::new(0.3, -0.2, -9.81));
+    let root = b
+        .add_joint(
+            None,
+            "root",
+            JointType::FreeFlyer,
+            transform(&mut rng),
+            inertia(&mut rng),
+        )
+        .unwrap();
+    let mut stack = vec![root];
+    for k in 0..n {
+        let cut = 1 + (rng.next_u64() as usize) % stack.len();
+        stack.truncate(cut.max(1));
+        let parent = *stack.last().unwrap();
+        let kind = match rng.next_u64() % 5 {
+            0 => JointType::Revolute {
+                axis: unit(&mut rng),
+            },
+            1 => JointType::Continuous {
+                axis: unit(&mut rng),
+            },
+            2 => JointType::Prismatic {
+                axis: unit(&mut rng),
+            },
+            3 => JointType::Spherical,
+            _ => JointType::Planar,
+        };
+        let id = b
+            .add_joint(
+                Some(parent),
+                &format!("j{k}"),
+                kind,
+                transform(&mut rng),
+                inertia(&mut rng),
+            )
+            .unwrap();
+        if armature {
+            let arm: Vec<f64> = (0..kind.nv()).map(|_| rng.uniform(0.0, 0.5)).collect();
+            b.set_armature(id, &arm).unwrap();
+        }
+        if k == n / 2 {
+            b.add_fixed_body(
+                Some(id),
+                &format!("welded{k}"),
+                transform(&mut rng),
+                inertia(&mut rng),
+            )
+            .unwrap();
+            b.add_frame(Some(id), &format!("tool{k}"), transform(&mut rng))
+                .unwrap();
+        }
+        stack.push(id);
+    }
+    b.build().unwrap()
+}
+
+/// Every built-in model and a few random trees.
+pub fn models() -> Vec<Model> {
+    let mut v: Vec<Model> = builtin_names()
+        .iter()
+        .map(|n| builtin(n).unwrap())
+        .collect();
+    v.push(random_tree(1, 8, false));
+    v.push(random_tree(2, 10, true));
+    v.push(random_tree(3, 6, true));
+    v
+}
+
+/// A random state (q, v, a) of the model.
+pub fn state(model: &Model, rng: &mut Rng) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let q = random_configuration(model, rng);
+    let v = (0..model.nv()).map(|_| rng.uniform(-2.0, 2.0)).collect();
+    let a = (0..model.nv()).map(|_| rng.uniform(-2.0, 2.0)).collect();
+    (q, v, a)
+}
+
+/// `|x - y|_∞ / max(1, |y|_∞)`.
+pub fn rel_err_v(x: &DVector<f64>, y: &DVector<f64>) -> f64 {
+    (x - y).amax() / y.amax().max(1.0)
+}
+
+/// `|x - y|_∞ / max(1, |y|_∞)`.
+pub fn rel_err_m(x: &DMatrix<f64>, y: &DMatrix<f64>) -> f64 {
+    (x - y).amax() / y.amax().max(1.0)
+}
+
+/// `q ⊕ v dt` allocating (for tests).
+pub fn step(model: &Model, q: &[f64], v: &[f64], dt: f64) -> Vec<f64> {
+    let mut out = vec![0.0; model.nq()];
+    integrate(model, q, v, dt, &mut out).unwrap();
+    out
+}

@@ -1,0 +1,241 @@
+//! Dynamics identities over random states of every built-in model and random trees (free-flyer
+//! root, spherical, planar, prismatic, revolute joints with random axes).
+#![allow(non_snake_case)]
+
+mod common;
+use common::*;
+use nalgebra::{DMatrix, DVector};
+use rigid::multibody::*;
+
+const STATES: usize = 8;
+
+#[test]
+fn rnea_equals_mass_matrix_times_a_plus_nonlinear_effects() {
+    let mut rng = Rng::new(10);
+    for model in models() {
+        let mut data = Data::new(&model);
+        for _ in 0..STATES {
+            let (q, v, a) = state(&model, &mut rng);
+            let tau = rnea(&model, &mut data, &q, &v, &a).unwrap().clone();
+            let nle = nonlinear_effects(&model, &mut data, &q, &v)
+                .unwrap()
+                .clone();
+            let M = crba(&model, &mut data, &q).unwrap().clone();
+            let rhs = &M * DVector::from_column_slice(&a) + nle;
+            assert!(
+                rel_err_v(&tau, &rhs) < 1e-10,
+                "{}: {}",
+                model.name(),
+                rel_err_v(&tau, &rhs)
+            );
+        }
+    }
+}
+
+#[test]
+fn aba_inverts_rnea_m_times_ddq_plus_nle_equals_tau() {
+    let mut rng = Rng::new(11);
+    for model in models() {
+        let mut data = Data::new(&model);
+        for _ in 0..STATES {
+            let (q, v, tau) = state(&model, &mut rng);
+            let ddq = aba(&model, &mut data, &q, &v, &tau).unwrap().clone();
+            let nle = nonlinear_effects(&model, &mut data, &q, &v)
+                .unwrap()
+                .clone();
+            let M = crba(&model, &mut data, &q).unwrap().clone();
+            let lhs = &M * &ddq + nle;
+            let tau = DVector::from_column_slice(&tau);
+            assert!(
+                rel_err_v(&lhs, &tau) < 1e-9,
+                "{}: {}",
+                model.name(),
+                rel_err_v(&lhs, &tau)
+            );
+        }
+    }
+}
+
+#[test]
+fn cholesky_forward_dynamics_equals_aba() {
+    let mut rng = Rng::new(12);
+    for model in models() {
+        let mut data = Data::new(&model);
+        for _ in 0..STATES {
+            let (q, v, tau) = state(&model, &mut rng);
+            let x = aba(&model, &mut data, &q, &v, &tau).unwrap().clone();
+            let y = forward_dynamics_cholesky(&model, &mut data, &q, &v, &tau)
+                .unwrap()
+                .clone();
+            assert!(
+                rel_err_v(&x, &y) < 1e-9,
+                "{}: {}",
+                model.name(),
+                rel_err_v(&x, &y)
+            );
+        }
+    }
+}
+
+#[test]
+fn rnea_at_rest_equals_gravity_torques() {
+    let mut rng = Rng::new(13);
+    for model in models() {
+        let mut data = Data::new(&model);
+        let z = vec![0.0; model.nv()];
+        for _ in 0..STATES {
+            let (q, _, _) = state(&model, &mut rng);
+            let tau = rnea(&model, &mut data, &q, &z, &z).unwrap().clone();
+            let g = gravity_torques(&model, &mut data, &q).unwrap().clone();
+            assert!(rel_err_v(&tau, &g) < 1e-12, "{}", model.name());
+        }
+    }
+}
+
+#[test]
+fn mass_matrix_is_symmetric_positive_definite() {
+    let mut rng = Rng::new(14);
+    for model in models() {
+        let mut data = Data::new(&model);
+        for _ in 0..STATES {
+            let (q, _, _) = state(&model, &mut rng);
+            let M = crba(&model, &mut data, &q).unwrap().clone();
+            assert!(rel_err_m(&M, &M.transpose()) < 1e-14, "{}", model.name());
+            let e = M.symmetric_eigenvalues();
+            assert!(
+                e.min() > 0.0,
+                "{}: min eigenvalue {}",
+                model.name(),
+                e.min()
+            );
+        }
+    }
+}
+
+#[test]
+fn half_vt_m_v_equals_kinetic_energy_sum_of_body_energies() {
+    let mut rng = Rng::new(15);
+    for model in models() {
+        let mut data = Data::new(&model);
+        for _ in 0..STATES {
+            let (q, v, _) = state(&model, &mut rng);
+            let mut M = crba(&model, &mut data, &q).unwrap().clone();
+            for (k, a) in model.armature().iter().enumerate() {
+                M[(k, k)] -= a; // the armature is a rotor's energy, not a link's
+            }
+            let vv = DVector::from_column_slice(&v);
+            let k1 = 0.5 * vv.dot(&(&M * &vv));
+            let k2 = kinetic_energy(&model, &mut data, &q, &v).unwrap();
+            let k3: f64 = model
+                .inertias()
+                .iter()
+                .zip(&data.velocities)
+                .map(|(G, V)| 0.5 * V.to_vector().dot(&(G.matrix() * V.to_vector())))
+                .sum();
+            assert!(
+                (k1 - k2).abs() < 1e-10 * k1.max(1.0),
+                "{}: {k1} {k2}",
+                model.name()
+            );
+            assert!((k3 - k2).abs() < 1e-10 * k1.max(1.0), "{}", model.name());
+        }
+    }
+}
+
+fn mass_matrix_at(model: &Model, data: &mut Data, q: &[f64]) -> DMatrix<f64> {
+    crba(model, data, q).unwrap().clone()
+}
+
+#[test]
+fn mdot_minus_2c_is_skew_and_c_v_equals_nle_minus_g() {
+    let mut rng = Rng::new(16);
+    let eps = 1e-6;
+    for model in models() {
+        let mut data = Data::new(&model);
+        for _ in 0..STATES {
+            let (q, v, _) = state(&model, &mut rng);
+            let C = coriolis_matrix(&model, &mut data, &q, &v).unwrap().clone();
+            let Mp = mass_matrix_at(&model, &mut data, &step(&model, &q, &v, eps));
+            let Mm = mass_matrix_at(&model, &mut data, &step(&model, &q, &v, -eps));
+            let Mdot = (Mp - Mm) / (2.0 * eps);
+            let S = &Mdot - &C * 2.0;
+            let skew = (&S + S.transpose()).amax() / Mdot.amax().max(1.0);
+            assert!(skew < 1e-6, "{}: {skew}", model.name());
+            let nle = nonlinear_effects(&model, &mut data, &q, &v)
+                .unwrap()
+                .clone();
+            let g = gravity_torques(&model, &mut data, &q).unwrap().clone();
+            let cv = &C * DVector::from_column_slice(&v);
+            assert!(rel_err_v(&cv, &(nle - g)) < 1e-10, "{}", model.name());
+        }
+    }
+}
+
+#[test]
+fn total_energy_rate_equals_power_of_joint_forces() {
+    let mut rng = Rng::new(17);
+    let eps = 1e-3;
+    for model in models() {
+        let mut data = Data::new(&model);
+        if model.armature().iter().any(|a| *a > 0.0) {
+            continue; // the energy of the rotors is not K
+        }
+        for _ in 0..STATES {
+            let (q, v, tau) = state(&model, &mut rng);
+            let a = aba(&model, &mut data, &q, &v, &tau).unwrap().clone();
+            let mut energy = |t: f64| {
+                let w: Vec<f64> = (0..model.nv())
+                    .map(|k| t * v[k] + 0.5 * t * t * a[k])
+                    .collect();
+                let qt = step(&model, &q, &w, 1.0);
+                let vt: Vec<f64> = (0..model.nv()).map(|k| v[k] + t * a[k]).collect();
+                kinetic_energy(&model, &mut data, &qt, &vt).unwrap()
+                    + potential_energy(&model, &mut data, &qt).unwrap()
+            };
+            // central differences with Richardson extrapolation: O(eps⁴)
+            let d1 = (energy(eps) - energy(-eps)) / (2.0 * eps);
+            let d2 = (energy(eps / 2.0) - energy(-eps / 2.0)) / eps;
+            let rate = (4.0 * d2 - d1) / 3.0;
+            let power: f64 = tau.iter().zip(&v).map(|(t, v)| t * v).sum();
+            assert!(
+                (rate - power).abs() < 1e-6 * power.abs().max(1.0),
+                "{}: {rate} {power}",
+                model.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn difference_inverts_integrate() {
+    let mut rng = Rng::new(18);
+    for model in models() {
+        for _ in 0..STATES {
+            let (q, v, _) = state(&model, &mut rng);
+            let q1 = step(&model, &q, &v, 0.3);
+            let mut d = vec![0.0; model.nv()];
+            difference(&model, &q, &q1, &mut d).unwrap();
+            for k in 0..model.nv() {
+                assert!((d[k] - 0.3 * v[k]).abs() < 1e-9, "{}", model.name());
+            }
+        }
+    }
+}
+
+#[test]
+fn neutral_configuration_has_identity_quaternions_and_normalize_restores_unit_norm() {
+    let model = random_tree(5, 8, false);
+    let q = neutral(&model);
+    let mut data = Data::new(&model);
+    forward_kinematics_q(&model, &mut data, &q).unwrap();
+    let mut bad = q.clone();
+    for x in bad.iter_mut() {
+        *x *= 1.5;
+    }
+    assert!(matches!(
+        forward_kinematics_q(&model, &mut data, &bad),
+        Err(MultibodyError::NotUnitQuaternion { .. })
+    ));
+    normalize(&model, &mut bad).unwrap();
+    forward_kinematics_q(&model, &mut data, &bad).unwrap();
+}

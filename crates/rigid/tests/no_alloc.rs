@@ -1,0 +1,89 @@
+//! After `Data::new`, forward kinematics, Jacobians, RNEA (and gravity, nle, external wrenches),
+//! CRBA, ABA, Cholesky forward dynamics, the Coriolis matrix and the energies allocate nothing:
+//! a counting global allocator proves it.
+
+mod common;
+use rigid::multibody::*;
+use rigid::spatial::Wrench;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations(f: impl FnOnce()) -> usize {
+    let before = ALLOCS.load(Ordering::SeqCst);
+    f();
+    ALLOCS.load(Ordering::SeqCst) - before
+}
+
+#[test]
+fn algorithms_allocate_nothing_after_data_new() {
+    // the counter sees allocations
+    assert!(allocations(|| drop(std::hint::black_box(vec![1.0f64; 10]))) > 0);
+    // one test only: the counter is global, and tests in one binary run in parallel threads
+    let mut models = vec![common::random_tree(7, 12, true)];
+    models.push(puma560(Puma560Options { armature: true }));
+    for model in &models {
+        let mut rng = Rng::new(3);
+        let (q, v, a) = common::state(model, &mut rng);
+        let fext = vec![Wrench::zero(); model.njoints()];
+        let mut data = Data::new(model);
+        let n = allocations(|| {
+            forward_kinematics_q(model, &mut data, &q).unwrap();
+            forward_kinematics(model, &mut data, &q, &v, &a).unwrap();
+            update_frame_placements(model, &mut data);
+            compute_joint_jacobians(model, &mut data, &q).unwrap();
+            compute_joint_jacobians_time_variation(model, &mut data, &q, &v).unwrap();
+            joint_jacobian(
+                model,
+                &mut data,
+                &q,
+                JointId(model.njoints() - 1),
+                ReferenceFrame::Body,
+            )
+            .unwrap();
+            joint_jacobian_time_variation(
+                model,
+                &mut data,
+                &q,
+                &v,
+                JointId(0),
+                ReferenceFrame::WorldAligned,
+            )
+            .unwrap();
+            if !model.frames().is_empty() {
+                frame_jacobian(model, &mut data, &q, FrameId(0), ReferenceFrame::Spatial).unwrap();
+            }
+            rnea(model, &mut data, &q, &v, &a).unwrap();
+            rnea_with_external(model, &mut data, &q, &v, &a, &fext).unwrap();
+            gravity_torques(model, &mut data, &q).unwrap();
+            nonlinear_effects(model, &mut data, &q, &v).unwrap();
+            crba(model, &mut data, &q).unwrap();
+            aba(model, &mut data, &q, &v, &a).unwrap();
+            forward_dynamics_cholesky(model, &mut data, &q, &v, &a).unwrap();
+            coriolis_matrix(model, &mut data, &q, &v).unwrap();
+            kinetic_energy(model, &mut data, &q, &v).unwrap();
+            potential_energy(model, &mut data, &q).unwrap();
+            center_of_mass(model, &mut data, &q).unwrap();
+        });
+        assert_eq!(n, 0, "{}: {n} allocations", model.name());
+    }
+}
