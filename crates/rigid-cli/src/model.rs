@@ -4,7 +4,6 @@
 use crate::load::{is_file, load_model};
 use clap::Args;
 use rigid::io::urdf::{self, build_model, InertiaIssue};
-use rigid::mass::DEFAULT_INERTIA_TOLERANCE;
 use rigid::multibody::{FrameKind, Model};
 
 /// Arguments of `rigid model`.
@@ -26,8 +25,9 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
     if !is_file(&args.model) {
         let model = load_model(&args.model, args.floating)?;
         print_model(&model);
-        let issues = builtin_report(&model);
-        print_report(&issues, model.joints().len());
+        let mut issues = body_report(&model);
+        issues.extend(massless_subtrees(&model));
+        print_report(&issues, model.joints().len(), "bodies");
         return Ok(());
     }
     let spec = &args.model;
@@ -53,7 +53,8 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
                     .count()
             );
             print_model(&model);
-            print_report(&issues, robot.links.len());
+            print_report(&issues, robot.links.len(), "links");
+            print_report(&body_report(&model), model.joints().len(), "moving bodies");
             Ok(())
         }
         Err(e) => {
@@ -63,7 +64,7 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
                 robot.links.len(),
                 robot.joints.len()
             );
-            print_report(&issues, robot.links.len());
+            print_report(&issues, robot.links.len(), "links");
             Err(format!("{spec}: {e}"))
         }
     }
@@ -117,29 +118,36 @@ fn print_model(model: &Model) {
     }
 }
 
-fn print_report(issues: &[String], checked: usize) {
+fn print_report(issues: &[String], checked: usize, what: &str) {
     if issues.is_empty() {
-        println!("inertias: all {checked} checked are physical; no massless moving body");
+        println!("inertias of the {checked} {what}: all physical, none massless where it moves");
     } else {
-        println!("inertias: {} finding(s):", issues.len());
+        println!(
+            "inertias of the {checked} {what}: {} finding(s):",
+            issues.len()
+        );
         for i in issues {
             println!("  {i}");
         }
     }
 }
 
-/// The findings for a model built in code: each body's inertia about its CoM, and moving joints
-/// whose whole subtree is massless.
-fn builtin_report(model: &Model) -> Vec<String> {
-    let mut out = Vec::new();
+/// Each moving body's inertia (a link with everything welded to it) that is not physical: zero
+/// mass, or principal moments violating the triangle inequality (warnings: the model is built;
+/// the builder refuses the rest).
+fn body_report(model: &Model) -> Vec<String> {
     let joints = model.joints();
-    for (j, g) in joints.iter().zip(model.inertias()) {
-        if g.mass() > 0.0 {
-            if let Err(e) = g.inertia_com().validate(DEFAULT_INERTIA_TOLERANCE) {
-                out.push(format!("error: body of joint \"{}\": {e}", j.name));
-            }
-        }
-    }
+    model
+        .inertia_issues()
+        .into_iter()
+        .map(|(j, e)| format!("warning: body of joint \"{}\": {e}", joints[j.0].name))
+        .collect()
+}
+
+/// Moving joints whose whole subtree is massless: the mass matrix is singular.
+fn massless_subtrees(model: &Model) -> Vec<String> {
+    let joints = model.joints();
+    let mut out = Vec::new();
     for (i, j) in joints.iter().enumerate() {
         let m: f64 = model.inertias()[i..j.subtree_end]
             .iter()
@@ -147,7 +155,8 @@ fn builtin_report(model: &Model) -> Vec<String> {
             .sum();
         if m == 0.0 {
             out.push(format!(
-                "warning: joint \"{}\" moves bodies of zero total mass (singular mass matrix)",
+                "warning: joint \"{}\" moves bodies of zero total mass (singular mass matrix, ABA \
+                 undefined)",
                 j.name
             ));
         }

@@ -259,7 +259,7 @@ fn model_summary_and_inertia_report() {
         "{text}"
     );
     assert!(
-        text.contains("nq = 1, nv = 1") && text.contains("all 2 checked are physical"),
+        text.contains("nq = 1, nv = 1") && text.contains("inertias of the 2 links: all physical"),
         "{text}"
     );
 

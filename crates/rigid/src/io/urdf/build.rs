@@ -54,8 +54,7 @@ pub fn load_urdf_str(text: &str, floating: bool) -> Result<Model, UrdfError> {
 ///
 /// # Errors
 /// A link inertia that is not positive semi-definite (the first error of
-/// [`UrdfRobot::inertia_report`]); a moving body (a link with the links welded to it) whose
-/// composite inertia is not physical; a link
+/// [`UrdfRobot::inertia_report`]); a link
 /// named like a joint (joints and frames share one namespace in a [`Model`]); limits with
 /// `lower > upper`; or anything else the [`ModelBuilder`] refuses, with the joint or link and line.
 pub fn build_model(robot: &UrdfRobot, floating: bool) -> Result<Model, UrdfError> {
@@ -131,8 +130,7 @@ struct Step {
 /// order (an explicit stack, so that a deep chain cannot overflow the call stack).
 ///
 /// Each moving body gets the composite inertia of its link and of every link welded to it,
-/// computed first: the [`ModelBuilder`] checks that composite (a dummy inertia on one welded
-/// link, as in ANYmal's URDF, is fine when the body as a whole is physical).
+/// computed first and checked by the [`ModelBuilder`] as a whole.
 fn add_joints(
     robot: &UrdfRobot,
     b: &mut ModelBuilder,

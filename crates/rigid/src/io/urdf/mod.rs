@@ -35,10 +35,10 @@
 //! Every error names the link or joint and the line of the file: malformed XML, a missing
 //! attribute, an unknown joint type, a parent or child link that does not exist, a link with two
 //! parents, a cycle, no unique root, duplicate names, a negative mass, a non-finite number, a zero
-//! joint axis, a link inertia that is not positive semi-definite, a moving body (a link and the
-//! links welded to it) whose composite inertia is not positive semi-definite or violates the
-//! triangle inequality. One link alone violating the triangle inequality is only a warning
-//! (Pinocchio accepts it; ANYmal's URDF has a dummy base inertia `1e-6` in every entry).
+//! joint axis, an inertia that is not positive semi-definite. An inertia whose principal moments
+//! violate the triangle inequality `λ1 + λ2 ≥ λ3` is only a warning, as in Pinocchio and in the
+//! multibody builder: published models carry such inertias (ANYmal's URDF has a dummy base
+//! inertia with `1e-6` in every entry; the PUMA 560's link 3).
 //! A moving joint that carries no mass at all (a zero-mass leaf) is not an error, as in Pinocchio,
 //! but its mass matrix is singular and ABA is undefined: [`UrdfRobot::inertia_report`] lists it.
 
@@ -240,8 +240,7 @@ pub enum InertiaIssueKind {
     /// The rotational inertia is not physical. Not positive semi-definite (or not finite): an
     /// error, the model is refused. The triangle inequality of the principal moments fails: a
     /// warning, as Pinocchio accepts it and real files carry such dummy inertias (ANYmal's base
-    /// link); the moving body as a whole (the link and every link welded to it) must still pass
-    /// both tests when the model is built.
+    /// link).
     Invalid(InertiaError),
     /// The moving joint `joint` carries no mass at all (its child link and everything below it
     /// are massless): the mass matrix is singular and ABA is undefined (Pinocchio returns NaN).
