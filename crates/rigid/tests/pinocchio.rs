@@ -1,6 +1,7 @@
 //! Agreement with Pinocchio on the robots of example-robot-data.
 //!
-//! For each robot, `tests/pinocchio/reference.py` (Pinocchio 4.1 and example-robot-data 6.0 from
+//! For each robot (and for `tests/pinocchio/all_joints.urdf`, every URDF joint type rigid
+//! imports), `tests/pinocchio/reference.py` (Pinocchio 4.1 and example-robot-data 6.0 from
 //! PyPI, `scripts/requirements-test.txt`) loads the URDF with `pin.buildModelFromUrdf`, draws
 //! random states with a fixed seed and prints Pinocchio's results already translated into rigid's
 //! conventions (angular-first free-flyer velocities, one angle per continuous joint, symmetric
@@ -259,4 +260,14 @@ fn talos_free_flyer_agrees_with_pinocchio() {
 #[test]
 fn double_pendulum_agrees_with_pinocchio() {
     compare("double_pendulum");
+}
+
+#[test]
+fn every_urdf_joint_type_agrees_with_pinocchio() {
+    compare("all_joints");
+}
+
+#[test]
+fn every_urdf_joint_type_on_a_free_flyer_agrees_with_pinocchio() {
+    compare("all_joints_floating");
 }

@@ -12,7 +12,8 @@ Everything printed is already in rigid's conventions (shared/CONVENTIONS.md):
 - free-flyer velocity, acceleration and force: Pinocchio stores (v, w) / (f, m), linear first;
   rigid stores (w, v) / (m, f), angular first: the two halves are swapped, in vectors and in the
   rows and columns of M;
-- continuous joints: Pinocchio's q is (cos t, sin t), rigid's is the angle t;
+- continuous joints: Pinocchio's q is (cos t, sin t), rigid's is the angle t; planar joints:
+  Pinocchio's q is (x, y, cos t, sin t), rigid's (x, y, t);
 - crba fills only the upper triangle: M is symmetrised.
 The joints stay in Pinocchio's order (urdfdom sorts siblings by joint name; rigid keeps file
 order): each joint is listed with its name and its slices in the vectors printed here, and the
@@ -38,6 +39,9 @@ ROBOTS = {
     "anymal": ("anymal_b_simple_description/robots/anymal.urdf", True),
     "talos": ("talos_data/robots/talos_full_v2.urdf", True),
     "double_pendulum": ("double_pendulum_description/urdf/double_pendulum.urdf", False),
+    # Fixtures beside this script (every joint type rigid imports).
+    "all_joints": ("local:all_joints.urdf", False),
+    "all_joints_floating": ("local:all_joints.urdf", True),
 }
 
 
@@ -78,6 +82,8 @@ def joint_layout(model):
             kind, nq, nv = "free_flyer", 7, 6
         elif "RevoluteUnbounded" in short:
             kind, nq, nv = "continuous", 1, 1
+        elif short == "JointModelPlanar":
+            kind, nq, nv = "planar", 3, 3
         elif j.nq == 1 and j.nv == 1:
             kind, nq, nv = "revolute_or_prismatic", 1, 1
         else:
@@ -97,6 +103,9 @@ def q_to_rigid(joints, q, nq):
         s = q[j["pin_idx_q"]:]
         if j["type"] == "continuous":
             out[j["idx_q"]] = np.arctan2(s[1], s[0])
+        elif j["type"] == "planar":
+            # Pinocchio (x, y, cos t, sin t); rigid (x, y, t). Velocities agree: (vx, vy, w).
+            out[j["idx_q"]:j["idx_q"] + 3] = [s[0], s[1], np.arctan2(s[3], s[2])]
         else:
             out[j["idx_q"]:j["idx_q"] + j["nq"]] = s[:j["nq"]]
     return out
@@ -127,13 +136,18 @@ def main():
     if name not in ROBOTS:
         sys.exit(f"unknown robot {name!r}; known: {', '.join(sorted(ROBOTS))}")
     rel, floating = ROBOTS[name]
-    path = os.path.join(robots_dir(), rel)
+    if rel.startswith("local:"):
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), rel[len("local:"):])
+    else:
+        path = os.path.join(robots_dir(), rel)
     if floating:
         model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
-        model.lowerPositionLimit[:3] = -1.0
-        model.upperPositionLimit[:3] = 1.0
     else:
         model = pin.buildModelFromUrdf(path)
+    # Unbounded coordinates (free-flyer and planar translations) are drawn in [-1, 1].
+    lo, up = model.lowerPositionLimit, model.upperPositionLimit
+    model.lowerPositionLimit = np.where(np.abs(lo) < 1e10, lo, -1.0)
+    model.upperPositionLimit = np.where(np.abs(up) < 1e10, up, 1.0)
     data = model.createData()
     joints, nq, nv = joint_layout(model)
     p = v_perm(joints, nv)
