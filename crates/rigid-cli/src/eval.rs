@@ -227,16 +227,17 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
             (j.name.clone(), p)
         })
         .collect();
+    // `+ 0.0` turns an empty sum's `-0.0` into `0.0`.
     Ok(CaseResult {
         rnea,
         mass_matrix,
         nonlinear_effects: nle,
         gravity_torques: g,
         aba: ddq,
-        kinetic_energy,
-        potential_energy,
-        com: [com.x, com.y, com.z],
-        total_mass: model.total_mass(),
+        kinetic_energy: kinetic_energy + 0.0,
+        potential_energy: potential_energy + 0.0,
+        com: [com.x + 0.0, com.y + 0.0, com.z + 0.0],
+        total_mass: model.total_mass() + 0.0,
         placements: Placements(placements),
     })
 }

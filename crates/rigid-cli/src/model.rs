@@ -78,7 +78,7 @@ fn print_model(model: &Model) {
         model.nq(),
         model.nv(),
         model.joints().len(),
-        model.total_mass(),
+        model.total_mass() + 0.0,
         g.x,
         g.y,
         g.z
