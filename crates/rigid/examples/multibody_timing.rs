@@ -28,14 +28,26 @@ fn ur5() -> Model {
             inertia: RotationalInertia::diagonal(0.01 * m[i], 0.012 * m[i], 0.008 * m[i]),
         })
         .collect();
-    from_dh("ur5", DhConvention::Standard, &links, Vec3::new(0.0, 0.0, -9.81)).unwrap()
+    from_dh(
+        "ur5",
+        DhConvention::Standard,
+        &links,
+        Vec3::new(0.0, 0.0, -9.81),
+    )
+    .unwrap()
 }
 
 fn tree(n: usize) -> Model {
     let mut rng = Rng::new(1);
     let mut b = ModelBuilder::new("tree");
-    let g = SpatialInertia::from_com(1.0, Vec3::new(0.1, 0.0, 0.0), RotationalInertia::diagonal(0.01, 0.02, 0.025));
-    let root = b.add_joint(None, "root", JointType::FreeFlyer, Transform::identity(), g).unwrap();
+    let g = SpatialInertia::from_com(
+        1.0,
+        Vec3::new(0.1, 0.0, 0.0),
+        RotationalInertia::diagonal(0.01, 0.02, 0.025),
+    );
+    let root = b
+        .add_joint(None, "root", JointType::FreeFlyer, Transform::identity(), g)
+        .unwrap();
     // four limbs
     let per = n / 4;
     for l in 0..4 {
@@ -43,7 +55,13 @@ fn tree(n: usize) -> Model {
         for k in 0..per {
             let axis = Vec3::new(rng.normal(), rng.normal(), rng.normal());
             p = b
-                .add_joint(Some(p), &format!("l{l}j{k}"), JointType::Revolute { axis }, Transform::from_translation(Vec3::new(0.0, 0.1, 0.2)), g)
+                .add_joint(
+                    Some(p),
+                    &format!("l{l}j{k}"),
+                    JointType::Revolute { axis },
+                    Transform::from_translation(Vec3::new(0.0, 0.1, 0.2)),
+                    g,
+                )
                 .unwrap();
         }
     }

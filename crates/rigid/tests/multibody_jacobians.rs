@@ -189,3 +189,41 @@ fn rnea_with_external_wrenches_subtracts_body_jacobian_transpose_times_wrench() 
         );
     }
 }
+
+#[test]
+fn free_flyer_velocity_is_the_body_twist_and_spherical_velocity_the_body_angular_velocity() {
+    let mut b = ModelBuilder::new("ff");
+    let g = common::inertia(&mut Rng::new(1));
+    let root = b
+        .add_joint(None, "base", JointType::FreeFlyer, Transform::identity(), g)
+        .unwrap();
+    b.add_joint(
+        Some(root),
+        "ball",
+        JointType::Spherical,
+        common::transform(&mut Rng::new(2)),
+        g,
+    )
+    .unwrap();
+    let model = b.build().unwrap();
+    let mut data = Data::new(&model);
+    let mut rng = Rng::new(3);
+    let (q, v, _) = state(&model, &mut rng);
+    // body Jacobian of the base = [1₆ | 0]; of the ball, its last three columns = [1₃; 0]
+    let J0 = joint_jacobian(&model, &mut data, &q, JointId(0), ReferenceFrame::Body)
+        .unwrap()
+        .clone();
+    assert!((J0.columns(0, 6) - DMatrix::<f64>::identity(6, 6)).amax() < 1e-14);
+    let J1 = joint_jacobian(&model, &mut data, &q, JointId(1), ReferenceFrame::Body)
+        .unwrap()
+        .clone();
+    let mut e = DMatrix::<f64>::zeros(6, 3);
+    e.view_mut((0, 0), (3, 3)).fill_with_identity();
+    assert!((J1.columns(6, 3) - e).amax() < 1e-14);
+    // and the base twist from forward kinematics is v[0..6]
+    forward_kinematics_qv(&model, &mut data, &q, &v).unwrap();
+    let vb = data.velocities[0].to_vector();
+    for k in 0..6 {
+        assert!((vb[k] - v[k]).abs() < 1e-14);
+    }
+}

@@ -109,6 +109,9 @@ pub(crate) const PUMA560_G: [f64; 6] = [-62.6111, 107.815, -53.7063, 76.0364, 71
 /// inertia are zero. Friction (`B`, `Tc`) is not modelled. Link 1 has zero mass and a non-zero
 /// inertia, which the builder accepts (a massless body is not validated).
 ///
+/// Joint limits (`qlim`, degrees): ±160, [-45, 225], [-225, 45], [-110, 170], ±100, ±266
+/// (the toolbox cites Wang & Chen, IEEE T-RA 7(4) 1991).
+///
 /// `armature: true` adds `Jm G²` = (0.7840, 2.3248, 0.5769, 0.1908, 0.1707, 0.1941) kg·m² to the
 /// diagonal of `M` (the toolbox's `inertia` includes it).
 #[must_use]
@@ -186,6 +189,19 @@ pub fn puma560(options: Puma560Options) -> Model {
         Vec3::new(0.0, 0.0, -9.81),
     )
     .expect("valid built-in");
+    // joint limits of the toolbox (`qlim`, from Wang & Chen 1991), in degrees
+    let qlim = [
+        (-160.0, 160.0),
+        (-45.0, 225.0),
+        (-225.0, 45.0),
+        (-110.0, 170.0),
+        (-100.0, 100.0),
+        (-266.0, 266.0),
+    ];
+    for (k, (lo, hi)) in qlim.iter().enumerate() {
+        model.lower[k] = f64::to_radians(*lo);
+        model.upper[k] = f64::to_radians(*hi);
+    }
     if options.armature {
         let arm: Vec<f64> = (0..6)
             .map(|i| PUMA560_JM[i] * PUMA560_G[i] * PUMA560_G[i])

@@ -107,7 +107,7 @@ pub fn random_configuration(model: &Model, rng: &mut Rng) -> Vec<f64> {
     q
 }
 
-/// Normalise the quaternions in `q` (and wrap continuous joints' angles to `(-π, π]`).
+/// Normalise the quaternions in `q` (with `w ≥ 0`); other coordinates are left alone.
 ///
 /// # Errors
 /// Wrong length.

@@ -28,7 +28,7 @@ pub struct Data {
     /// Wrench `F_i` transmitted from the parent to body i through joint i, in body i's frame
     /// (RNEA).
     pub forces: Vec<Wrench>,
-    /// Composite rigid-body inertia of each subtree in its root's frame (CRBA).
+    /// Composite rigid-body inertia of each subtree, in world coordinates (CRBA).
     pub composite_inertias: Vec<SpatialInertia>,
     /// Generalised forces `τ` (RNEA).
     pub tau: DVector<f64>,
@@ -61,6 +61,8 @@ pub struct Data {
     pub(crate) u_cols: Vec<Wrench>,
     pub(crate) d_inv: Vec<Mat6>,
     pub(crate) d_inv_1: Vec<f64>,
+    pub(crate) crba_forces: Vec<Wrench>,
+    pub(crate) dof_J: Vec<Twist>,
     pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,
     pub(crate) world_inertias: Vec<SpatialInertia>,
@@ -103,6 +105,8 @@ impl Data {
             u_cols: vec![Wrench::zero(); nv],
             d_inv: vec![Mat6::zeros(); n],
             d_inv_1: vec![0.0; nv],
+            crba_forces: vec![Wrench::zero(); nv],
+            dof_J: vec![Twist::zero(); nv],
             u: DVector::zeros(nv),
             spatial_velocities: vec![Twist::zero(); n],
             world_inertias: vec![SpatialInertia::zero(); n],

@@ -115,17 +115,6 @@ fn se2_exp(vx: f64, vy: f64, w: f64) -> (f64, f64) {
     (a * vx - b * vy, b * vx + a * vy)
 }
 
-/// Wrap an angle to `(-π, π]`.
-#[inline]
-fn wrap_angle(a: f64) -> f64 {
-    let t = a.rem_euclid(std::f64::consts::TAU);
-    if t > std::f64::consts::PI {
-        t - std::f64::consts::TAU
-    } else {
-        t
-    }
-}
-
 impl JointType {
     /// Number of configuration coordinates `nq`.
     #[must_use]
@@ -223,7 +212,10 @@ impl JointType {
     pub fn placed_transform(&self, placement: &Transform, q: &[f64]) -> Transform {
         match self {
             Self::Revolute { .. } | Self::Continuous { .. } | Self::Spherical => Transform::new(
-                placement.rotation * self.transform(q).rotation,
+                crate::multibody::algorithms::mat3_mul(
+                    &placement.rotation,
+                    &self.transform(q).rotation,
+                ),
                 placement.translation,
             ),
             Self::Prismatic { axis } => Transform::new(
@@ -380,16 +372,11 @@ impl JointType {
         }
     }
 
-    /// Normalise the quaternion of a spherical or free-flyer joint (sign `w ≥ 0`); wrap a
-    /// continuous joint's angle to `(-π, π]`. Other joints are left alone.
+    /// Normalise the quaternion of a spherical or free-flyer joint (sign `w ≥ 0`); other joints'
+    /// coordinates are valid for any real value and are left alone.
     pub fn normalize(&self, q: &mut [f64]) {
-        match self {
-            Self::Continuous { .. } => q[0] = wrap_angle(q[0]),
-            _ => {
-                if let Some(o) = self.quaternion_offset() {
-                    quat_normalize(&mut q[o..o + 4]);
-                }
-            }
+        if let Some(o) = self.quaternion_offset() {
+            quat_normalize(&mut q[o..o + 4]);
         }
     }
 

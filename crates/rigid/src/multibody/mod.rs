@@ -7,9 +7,26 @@
 //! (the joint frame moved by the joint, "local" coordinates, Featherstone's body coordinates);
 //! [`Data::placements`] holds the world pose `oMi` of each moved joint frame. Free-flyer
 //! `q = (x, y, z, qx, qy, qz, qw)` with velocity the body twist `(ω_b, v_b)`; spherical `q` a
-//! quaternion `(qx, qy, qz, qw)` with velocity `ω_b`.
+//! quaternion `(qx, qy, qz, qw)` with velocity `ω_b`; planar `q = (x, y, θ)` with velocity the
+//! body-frame `(v_x, v_y, ω_z)`. Quaternions must have `|‖q‖ - 1| ≤ 1e-6`
+//! ([`QUATERNION_TOLERANCE`]), otherwise the error names the joint.
 //!
-//! No algorithm allocates after [`Data::new`] (tested with a counting allocator).
+//! | notes | code | source |
+//! | --- | --- | --- |
+//! | `T_i(q)`, `V_i`, `V̇_i` | [`forward_kinematics`] | Featherstone 2008 Table 5.1 (first loop) |
+//! | `J_s`, `J_b`, `(ω, ṗ)` and `J̇` | [`joint_jacobian`], [`frame_jacobian`], `*_time_variation` | Lynch & Park §5.1 |
+//! | `τ = M q̈ + c + g` | [`rnea`], [`rnea_with_external`] | Featherstone 2008 Table 5.1; Lynch & Park §8.3.2 |
+//! | `c + g`, `g` | [`nonlinear_effects`], [`gravity_torques`] | RNEA with `q̈ = 0` (and `q̇ = 0`) |
+//! | `M(q)` | [`crba`] | Featherstone 2008 Table 6.2 |
+//! | `q̈ = M⁻¹(τ - c - g)` | [`aba`], [`forward_dynamics_cholesky`] | Featherstone 2008 Table 7.1 |
+//! | `C(q, q̇)`, `Ṁ - 2C` skew | [`coriolis_matrix`] | body-wise factorisation, see its doc |
+//! | `K = ½ q̇ᵀ M q̇`, `U = -Σ mᵢ gᵀ cᵢ` | [`kinetic_energy`], [`potential_energy`] | Lynch & Park §8.1 |
+//! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |
+//! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
+//!
+//! No algorithm allocates after [`Data::new`] (tested with a counting allocator), and each
+//! dispatches once on the joint type per joint ([`JointType::placed_transform`]); the motion
+//! subspace columns are constant in body coordinates and stored in the model.
 //!
 //! ```
 //! use rigid::multibody::{builtin, rnea, crba, Data};
@@ -152,6 +169,14 @@ pub enum MultibodyError {
     /// The mass matrix is not positive definite (Cholesky failed).
     #[error("mass matrix is not positive definite")]
     NotPositiveDefinite,
+    /// A [`Data`] made for another model (different numbers of joints or degrees of freedom).
+    #[error("data was made for another model ({njoints} joints, nv = {nv})")]
+    DataMismatch {
+        /// Joints the data was made for.
+        njoints: usize,
+        /// Degrees of freedom the data was made for.
+        nv: usize,
+    },
     /// A frame or joint index out of range.
     #[error("{what} index {index} out of range")]
     OutOfRange {
@@ -176,6 +201,20 @@ pub(crate) fn check_q(model: &Model, q: &[f64]) -> Result<(), MultibodyError> {
                 });
             }
         }
+    }
+    Ok(())
+}
+
+/// Check that `data` was made by `Data::new(model)` (or a model of the same shape).
+pub(crate) fn check_data(model: &Model, data: &Data) -> Result<(), MultibodyError> {
+    if data.placements.len() != model.njoints()
+        || data.tau.len() != model.nv
+        || data.frame_placements.len() != model.frames.len()
+    {
+        return Err(MultibodyError::DataMismatch {
+            njoints: data.placements.len(),
+            nv: data.tau.len(),
+        });
     }
     Ok(())
 }

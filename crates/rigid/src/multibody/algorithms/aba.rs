@@ -3,15 +3,36 @@
 
 use super::{joint_motion, parent_placement};
 use crate::error::DimensionError;
-use crate::multibody::{check_q, check_v, Data, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::{skew, Mat3, Mat6, Transform, Twist, Vec3, Vec6, Wrench};
 use nalgebra::DVector;
 
-/// `I V` for a 6x6 (articulated) inertia acting on a twist, giving a wrench.
+/// `I V` for a 6x6 (articulated) inertia acting on a twist, giving a wrench (column-major loop
+/// over a fixed-size array: unrolled, no bounds checks).
 #[inline]
 fn mat6_twist(m: &Mat6, t: &Twist) -> Wrench {
-    let x = m * Vec6::new(t.w.x, t.w.y, t.w.z, t.v.x, t.v.y, t.v.z);
-    Wrench::new(Vec3::new(x[0], x[1], x[2]), Vec3::new(x[3], x[4], x[5]))
+    let x = [t.w.x, t.w.y, t.w.z, t.v.x, t.v.y, t.v.z];
+    let a: &[f64; 36] = m.as_slice().try_into().expect("6x6");
+    let mut y = [0.0; 6];
+    for c in 0..6 {
+        for r in 0..6 {
+            y[r] += a[c * 6 + r] * x[c];
+        }
+    }
+    Wrench::new(Vec3::new(y[0], y[1], y[2]), Vec3::new(y[3], y[4], y[5]))
+}
+
+/// `I -= s u uᵀ` (symmetric rank-one update), in place.
+#[inline]
+fn sub_outer(m: &mut Mat6, u: &Wrench, s: f64) {
+    let u = [u.m.x, u.m.y, u.m.z, u.f.x, u.f.y, u.f.z];
+    let a: &mut [f64; 36] = m.as_mut_slice().try_into().expect("6x6");
+    for c in 0..6 {
+        let uc = u[c] * s;
+        for r in 0..6 {
+            a[c * 6 + r] -= u[r] * uc;
+        }
+    }
 }
 
 /// `Xᵀ I X` with `X = [Ad_{T⁻¹}]`, `T = liMi = (R, p)`: an inertia of the child expressed in the
@@ -85,14 +106,13 @@ fn aba_impl(
             data.d_inv_1[iv] = Dinv;
             data.u[iv] = u;
             if let Some(p) = j.parent {
-                // I^a = I^A - U D⁻¹ Uᵀ, p^a = p^A + I^a c + U D⁻¹ u
-                let Uv = U.to_vector();
-                let mut Ia = data.ia[i];
-                Ia.ger(-Dinv, &Uv, &Uv, 1.0);
-                let pa = pA + mat6_twist(&Ia, &data.c_bias[i]) + U * (Dinv * u);
+                // I^a = I^A - U D⁻¹ Uᵀ, p^a = p^A + I^a c + U D⁻¹ u (I^a in place of I^A)
+                let (head, tail) = data.ia.split_at_mut(i);
+                let Ia = &mut tail[0];
+                sub_outer(Ia, &U, Dinv);
+                let pa = pA + mat6_twist(Ia, &data.c_bias[i]) + U * (Dinv * u);
                 let X = &data.parent_placements[i];
-                let Ip = congruence(&Ia, X);
-                data.ia[p.0] += Ip;
+                head[p.0] += congruence(Ia, X);
                 data.pa[p.0] += X.act_wrench(&pa);
             }
             continue;
@@ -188,6 +208,7 @@ pub fn aba<'a>(
     tau: &[f64],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "tau", tau)?;
     aba_impl(model, data, q, v, tau, None)?;
@@ -207,6 +228,7 @@ pub fn aba_with_external<'a>(
     fext: &[Wrench],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "tau", tau)?;
     DimensionError::check("fext", model.njoints(), fext.len())?;

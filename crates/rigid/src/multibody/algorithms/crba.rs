@@ -1,19 +1,24 @@
 //! The composite-rigid-body algorithm for the joint-space mass matrix (Featherstone 2008,
-//! Table 6.2), in body coordinates.
+//! Table 6.2), with the composite inertias accumulated in world coordinates (as Pinocchio's
+//! `crba`), so that no force is carried up the chain.
 
+use super::inertia_to_parent;
 use super::kinematics::placements_unchecked;
-use crate::multibody::{check_q, Data, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, Data, Model, MultibodyError};
 use nalgebra::DMatrix;
 
 /// The joint-space inertia matrix `M(q)` (full symmetric), plus the armature on the diagonal:
 ///
-/// - `Ic_i = G_i`; for i = n..1: `Ic_{λ(i)} += [Ad_{liMi⁻¹}]ᵀ Ic_i [Ad_{liMi⁻¹}]`
-/// - `F = Ic_i S_i`, `M_ii = S_iᵀ F`; then up the chain `j = i`, while `λ(j) ≠ 0`:
-///   `F = [Ad_{ljMj⁻¹}]ᵀ F`, `j = λ(j)`, `M_ji = M_ijᵀ = S_jᵀ F`
+/// - world quantities: `oG_i = [Ad_{oMi⁻¹}]ᵀ G_i [Ad_{oMi⁻¹}]`, `J_k = [Ad_{oMi}] S_k`
+/// - composite inertias, i = n..1: `Ic_i = oG_i + Σ_{children c} Ic_c`
+/// - for each dof k of joint i: `F_k = Ic_i J_k`; for every dof l in i's subtree (l ≥ k):
+///   `M_kl = M_lk = J_kᵀ F_l`, where `F_l = Ic_{j(l)} J_l` uses the composite inertia of l's own
+///   joint (the deeper one)
 /// - `M_kk += armature_k`
 ///
-/// (Featherstone 2008, Table 6.2; `M = Σ_i J_iᵀ G_i J_i`, Lynch & Park §8.3.3). Returns
-/// `data.mass_matrix`; also fills `placements` and `composite_inertias`. O(n d), d the depth.
+/// This is Featherstone 2008, Table 6.2 (`M_ij = S_iᵀ Ic_i S_j` for j ⪯ i), with every quantity
+/// in world coordinates; `M = Σ_i J_iᵀ G_i J_i` (Lynch & Park §8.3.3). Returns
+/// `data.mass_matrix`; also fills `placements`, `parent_placements` and `composite_inertias` (in world coordinates). O(n d) dot products, d the depth.
 ///
 /// # Errors
 /// Wrong length, non-finite entry or non-unit quaternion in `q`.
@@ -23,38 +28,44 @@ pub fn crba<'a>(
     q: &[f64],
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     placements_unchecked(model, data, q);
     let n = model.joints.len();
-    data.composite_inertias.copy_from_slice(&model.inertias);
-    let M = &mut data.mass_matrix;
+    for i in 0..n {
+        let oMi = data.placements[i];
+        data.composite_inertias[i] = inertia_to_parent(&model.inertias[i], &oMi);
+        let j = &model.joints[i];
+        for k in j.idx_v..j.idx_v + j.nv {
+            data.dof_J[k] = oMi.act_twist(&model.dof_S[k]);
+        }
+    }
+    let nv = model.nv;
+    let M = data.mass_matrix.as_mut_slice(); // column-major, M[(k, l)] = M[l * nv + k]
     for i in (0..n).rev() {
         let ji = &model.joints[i];
         let Ic = data.composite_inertias[i];
+        let end_v = {
+            let last = &model.joints[ji.subtree_end - 1];
+            last.idx_v + last.nv
+        };
         for k in ji.idx_v..ji.idx_v + ji.nv {
-            let mut F = Ic.momentum(&model.dof_S[k]);
-            for l in ji.idx_v..ji.idx_v + ji.nv {
-                M[(l, k)] = model.dof_S[l].dot(&F);
-            }
-            let mut j = i;
-            while let Some(p) = model.joints[j].parent {
-                F = data.parent_placements[j].act_wrench(&F);
-                j = p.0;
-                let jj = &model.joints[j];
-                for l in jj.idx_v..jj.idx_v + jj.nv {
-                    let m = model.dof_S[l].dot(&F);
-                    M[(l, k)] = m;
-                    M[(k, l)] = m;
-                }
+            data.crba_forces[k] = Ic.momentum(&data.dof_J[k]);
+        }
+        for k in ji.idx_v..ji.idx_v + ji.nv {
+            let Jk = data.dof_J[k];
+            for (l, F) in data.crba_forces[..end_v].iter().enumerate().skip(k) {
+                let m = Jk.dot(F);
+                M[l * nv + k] = m;
+                M[k * nv + l] = m;
             }
         }
         if let Some(p) = ji.parent {
-            let t = super::inertia_to_parent(&Ic, &data.parent_placements[i]);
-            data.composite_inertias[p.0] += t;
+            data.composite_inertias[p.0] += Ic;
         }
     }
     // Entries of joints in different branches are never written: they stay 0 from Data::new.
-    for k in 0..model.nv {
-        M[(k, k)] += model.armature[k];
+    for (k, a) in model.armature.iter().enumerate() {
+        M[k * nv + k] += a;
     }
     Ok(&data.mass_matrix)
 }

@@ -1,7 +1,7 @@
 //! Kinetic and potential energy and the centre of mass.
 
 use super::kinematics::{forward_kinematics_qv, placements_unchecked};
-use crate::multibody::{check_q, Data, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, Data, Model, MultibodyError};
 use crate::spatial::Vec3;
 
 /// Kinetic energy `K = Σ_i ½ V_iᵀ G_i V_i = ½ vᵀ M(q) v` (Lynch & Park §8.1.2), body twists from
@@ -31,6 +31,7 @@ pub fn kinetic_energy(
 /// Wrong length, non-finite entry or non-unit quaternion in `q`.
 pub fn potential_energy(model: &Model, data: &mut Data, q: &[f64]) -> Result<f64, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     placements_unchecked(model, data, q);
     let g = model.gravity;
     Ok(model
@@ -48,6 +49,7 @@ pub fn potential_energy(model: &Model, data: &mut Data, q: &[f64]) -> Result<f64
 /// Wrong length, non-finite entry or non-unit quaternion in `q`.
 pub fn center_of_mass(model: &Model, data: &mut Data, q: &[f64]) -> Result<Vec3, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     placements_unchecked(model, data, q);
     let mut h = Vec3::zeros();
     let mut m = 0.0;

@@ -2,7 +2,7 @@
 //! §4.4 `J_i = Σ_{j ⪯ i} X_j S_j`), from the spatial (world-frame) Jacobian of all joints.
 
 use super::kinematics::{forward_kinematics_qv, placements_unchecked};
-use crate::multibody::{check_q, Data, FrameId, JointId, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, Data, FrameId, JointId, Model, MultibodyError};
 use crate::spatial::{Transform, Twist};
 use nalgebra::DMatrix;
 
@@ -29,6 +29,7 @@ pub fn compute_joint_jacobians<'a>(
     q: &[f64],
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     placements_unchecked(model, data, q);
     fill_jacobian(model, data);
     Ok(&data.jacobian)

@@ -1,8 +1,8 @@
 //! Forward kinematics: placements, body velocities and accelerations (Featherstone 2008, §3.5 and
 //! the first pass of Table 5.1; Lynch & Park §8.3.2).
 
-use super::{joint_motion, parent_placement};
-use crate::multibody::{check_q, check_v, Data, Model, MultibodyError};
+use super::{compose, joint_motion, parent_placement};
+use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::Twist;
 
 /// Placements only: `liMi = X_T X_J(q_i)`, `oMi = oM_{λ(i)} liMi` (`λ(i)` the parent).
@@ -16,6 +16,7 @@ pub fn forward_kinematics_q(
     q: &[f64],
 ) -> Result<(), MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     placements_unchecked(model, data, q);
     Ok(())
 }
@@ -25,7 +26,7 @@ pub(crate) fn placements_unchecked(model: &Model, data: &mut Data, q: &[f64]) {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
         data.placements[i] = match model.joints[i].parent {
-            Some(p) => data.placements[p.0] * liMi,
+            Some(p) => compose(&data.placements[p.0], &liMi),
             None => liMi,
         };
     }
@@ -42,6 +43,7 @@ pub fn forward_kinematics_qv(
     v: &[f64],
 ) -> Result<(), MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     for i in 0..model.joints.len() {
         let liMi = parent_placement(model, i, q);
@@ -51,7 +53,7 @@ pub fn forward_kinematics_qv(
             Some(p) => (data.placements[p.0], data.velocities[p.0]),
             None => (crate::spatial::Transform::identity(), Twist::zero()),
         };
-        data.placements[i] = oMp * liMi;
+        data.placements[i] = compose(&oMp, &liMi);
         data.velocities[i] = liMi.inv_act_twist(&Vp) + vJ;
     }
     Ok(())
@@ -76,6 +78,7 @@ pub fn forward_kinematics(
     a: &[f64],
 ) -> Result<(), MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "a", a)?;
     for i in 0..model.joints.len() {
@@ -95,7 +98,7 @@ pub fn forward_kinematics(
                 Twist::zero(),
             ),
         };
-        data.placements[i] = oMp * liMi;
+        data.placements[i] = compose(&oMp, &liMi);
         let V = liMi.inv_act_twist(&Vp) + vJ;
         data.velocities[i] = V;
         data.accelerations[i] = liMi.inv_act_twist(&Ap) + aJ + V.cross(&vJ);
@@ -104,11 +107,15 @@ pub fn forward_kinematics(
 }
 
 /// World poses of the named frames, `oMf = oMi iMf`, from `data.placements` (run a forward
-/// kinematics first). Frames fixed in the world get their placement as is.
+/// kinematics first). Frames fixed in the world get their placement as is. A `data` made for
+/// another model is left untouched.
 pub fn update_frame_placements(model: &Model, data: &mut Data) {
+    if check_data(model, data).is_err() {
+        return;
+    }
     for (f, frame) in model.frames.iter().enumerate() {
         data.frame_placements[f] = match frame.parent {
-            Some(p) => data.placements[p.0] * frame.placement,
+            Some(p) => compose(&data.placements[p.0], &frame.placement),
             None => frame.placement,
         };
     }

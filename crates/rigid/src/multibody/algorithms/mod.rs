@@ -24,7 +24,7 @@ pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 
 use super::Model;
 use crate::mass::{RotationalInertia, SpatialInertia};
-use crate::spatial::{Transform, Twist};
+use crate::spatial::{Mat3, Transform, Twist};
 
 /// `S_i q̇_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame).
 #[inline]
@@ -42,7 +42,32 @@ pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
 #[inline]
 pub(crate) fn parent_placement(model: &Model, i: usize, q: &[f64]) -> Transform {
     let j = &model.joints[i];
-    j.kind.placed_transform(&j.placement, &q[j.idx_q..j.idx_q + j.nq])
+    j.kind
+        .placed_transform(&j.placement, &q[j.idx_q..j.idx_q + j.nq])
+}
+
+/// `R_a R_b` written out (nalgebra's generic 3x3 product is not fully unrolled).
+#[inline(always)]
+pub(crate) fn mat3_mul(a: &Mat3, b: &Mat3) -> Mat3 {
+    let a = a.as_slice();
+    let b = b.as_slice();
+    let mut c = [0.0; 9];
+    // column-major: c[j*3 + i] = Σ_k a[k*3 + i] b[j*3 + k]
+    for j in 0..3 {
+        for i in 0..3 {
+            c[j * 3 + i] = a[i] * b[j * 3] + a[3 + i] * b[j * 3 + 1] + a[6 + i] * b[j * 3 + 2];
+        }
+    }
+    Mat3::from_column_slice(&c)
+}
+
+/// `T_a T_b = (R_a R_b, R_a p_b + p_a)` with [`mat3_mul`].
+#[inline(always)]
+pub(crate) fn compose(a: &Transform, b: &Transform) -> Transform {
+    Transform::new(
+        mat3_mul(&a.rotation, &b.rotation),
+        a.rotation * b.translation + a.translation,
+    )
 }
 
 /// `G_a = [Ad_{T⁻¹}]ᵀ G_b [Ad_{T⁻¹}]` for `T = T_ab = (R, p)` (an inertia of body b expressed in
@@ -55,13 +80,18 @@ pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialIne
     let p = &T.translation;
     let m = G.mass();
     let h = R * G.first_moment();
-    let I = R * G.inertia_origin().matrix() * R.transpose();
-    let hp = h.dot(p);
-    let pp = p.norm_squared();
-    let mut Ia = I - p * h.transpose() - h * p.transpose() - (p * p.transpose()) * m;
-    let d = 2.0 * hp + m * pp;
-    Ia[(0, 0)] += d;
-    Ia[(1, 1)] += d;
-    Ia[(2, 2)] += d;
+    let RI = mat3_mul(R, G.inertia_origin().matrix());
+    let d = 2.0 * h.dot(p) + m * p.norm_squared();
+    let mut Ia = Mat3::zeros();
+    for i in 0..3 {
+        for j in i..3 {
+            // (R I Rᵀ)_ij = Σ_k (RI)_ik R_jk
+            let rir = RI[(i, 0)] * R[(j, 0)] + RI[(i, 1)] * R[(j, 1)] + RI[(i, 2)] * R[(j, 2)];
+            let x = rir - p[i] * h[j] - h[i] * p[j] - m * p[i] * p[j];
+            Ia[(i, j)] = x;
+            Ia[(j, i)] = x;
+        }
+        Ia[(i, i)] += d;
+    }
     SpatialInertia::from_parts(m, h + p * m, RotationalInertia::from_matrix_unchecked(&Ia))
 }

@@ -3,7 +3,7 @@
 
 use super::{joint_motion, parent_placement};
 use crate::error::DimensionError;
-use crate::multibody::{check_q, check_v, Data, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::{Twist, Wrench};
 use nalgebra::DVector;
 
@@ -99,6 +99,7 @@ pub fn rnea<'a>(
     a: &[f64],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "a", a)?;
     rnea_impl(model, data, q, Some(v), Some(a), None, Out::Tau);
@@ -119,6 +120,7 @@ pub fn rnea_with_external<'a>(
     fext: &[Wrench],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "a", a)?;
     DimensionError::check("fext", model.njoints(), fext.len())?;
@@ -147,6 +149,7 @@ pub fn nonlinear_effects<'a>(
     v: &[f64],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     check_v(model, "v", v)?;
     rnea_impl(model, data, q, Some(v), None, None, Out::Nle);
     Ok(&data.nle)
@@ -162,6 +165,7 @@ pub fn gravity_torques<'a>(
     q: &[f64],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_q(model, q)?;
+    check_data(model, data)?;
     rnea_impl(model, data, q, None, None, None, Out::G);
     Ok(&data.g)
 }
