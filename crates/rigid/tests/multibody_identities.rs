@@ -113,16 +113,13 @@ fn mass_matrix_is_symmetric_positive_definite() {
 }
 
 #[test]
-fn half_vt_m_v_equals_kinetic_energy_sum_of_body_energies() {
+fn half_vt_m_v_equals_kinetic_energy_sum_of_body_and_rotor_energies() {
     let mut rng = Rng::new(15);
     for model in models() {
         let mut data = Data::new(&model);
         for _ in 0..STATES {
             let (q, v, _) = state(&model, &mut rng);
-            let mut M = crba(&model, &mut data, &q).unwrap().clone();
-            for (k, a) in model.armature().iter().enumerate() {
-                M[(k, k)] -= a; // the armature is a rotor's energy, not a link's
-            }
+            let M = crba(&model, &mut data, &q).unwrap().clone();
             let vv = DVector::from_column_slice(&v);
             let k1 = 0.5 * vv.dot(&(&M * &vv));
             let k2 = kinetic_energy(&model, &mut data, &q, &v).unwrap();
@@ -131,7 +128,13 @@ fn half_vt_m_v_equals_kinetic_energy_sum_of_body_energies() {
                 .iter()
                 .zip(&data.velocities)
                 .map(|(G, V)| 0.5 * V.to_vector().dot(&(G.matrix() * V.to_vector())))
-                .sum();
+                .sum::<f64>()
+                + model
+                    .armature()
+                    .iter()
+                    .zip(&v)
+                    .map(|(a, v)| 0.5 * a * v * v)
+                    .sum::<f64>();
             assert!(
                 (k1 - k2).abs() < 1e-10 * k1.max(1.0),
                 "{}: {k1} {k2}",
@@ -177,9 +180,6 @@ fn total_energy_rate_equals_power_of_joint_forces() {
     let eps = 1e-3;
     for model in models() {
         let mut data = Data::new(&model);
-        if model.armature().iter().any(|a| *a > 0.0) {
-            continue; // the energy of the rotors is not K
-        }
         for _ in 0..STATES {
             let (q, v, tau) = state(&model, &mut rng);
             let a = aba(&model, &mut data, &q, &v, &tau).unwrap().clone();

@@ -4,8 +4,10 @@ use super::kinematics::{forward_kinematics_qv, placements_unchecked};
 use crate::multibody::{check_data, check_q, Data, Model, MultibodyError};
 use crate::spatial::Vec3;
 
-/// Kinetic energy `K = Σ_i ½ V_iᵀ G_i V_i = ½ vᵀ M(q) v` (Lynch & Park §8.1.2), body twists from
-/// forward kinematics. The armature is not included (it is a rotor's energy, not a link's).
+/// Kinetic energy `K = ½ vᵀ M(q) v = Σ_i ½ V_iᵀ G_i V_i + Σ_k ½ armature_k v_k²` (Lynch & Park
+/// §8.1.2; the armature term is the energy of the reflected rotor inertias, so that `K` matches
+/// the mass matrix of [`crba`](super::crba), as in Pinocchio), with the body twists `V_i` from
+/// forward kinematics.
 ///
 /// # Errors
 /// Wrong lengths, non-finite entries, or a non-unit quaternion.
@@ -16,12 +18,19 @@ pub fn kinetic_energy(
     v: &[f64],
 ) -> Result<f64, MultibodyError> {
     forward_kinematics_qv(model, data, q, v)?;
-    Ok(model
+    let bodies: f64 = model
         .inertias
         .iter()
         .zip(&data.velocities)
         .map(|(G, V)| G.kinetic_energy(V))
-        .sum())
+        .sum();
+    let rotors: f64 = model
+        .armature
+        .iter()
+        .zip(v)
+        .map(|(a, v)| 0.5 * a * v * v)
+        .sum();
+    Ok(bodies + rotors)
 }
 
 /// Potential energy in the uniform gravity field, `U = -Σ_i m_i gᵀ c_i` with `c_i` the world CoM of
