@@ -54,9 +54,9 @@ pub fn load_urdf_str(text: &str, floating: bool) -> Result<Model, UrdfError> {
 ///
 /// # Errors
 /// A link inertia that is not positive semi-definite (the first error of
-/// [`UrdfRobot::inertia_report`]); a link
-/// named like a joint (joints and frames share one namespace in a [`Model`]); limits with
-/// `lower > upper`; or anything else the [`ModelBuilder`] refuses, with the joint or link and line.
+/// [`UrdfRobot::inertia_report`]); a link named like a moving joint (joints and frames share one
+/// namespace in a [`Model`]); limits with `lower > upper`; or anything else the [`ModelBuilder`]
+/// refuses, with the joint or link and the line.
 pub fn build_model(robot: &UrdfRobot, floating: bool) -> Result<Model, UrdfError> {
     if let Some(issue) = robot.inertia_report().into_iter().find(|i| i.is_error()) {
         return Err(UrdfError::Invalid {
