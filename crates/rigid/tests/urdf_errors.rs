@@ -234,3 +234,50 @@ fn unreadable_file_is_an_io_error() {
     assert!(matches!(err, UrdfError::Io { .. }));
     assert!(err.to_string().contains("/nonexistent/robot.urdf"));
 }
+
+#[test]
+fn model_level_errors_name_the_joint_or_link() {
+    // lower > upper.
+    let text = GOOD.replace("lower=\"-1\" upper=\"1\"", "lower=\"1\" upper=\"-1\"");
+    let err = load_urdf_str(&text, false).unwrap_err().to_string();
+    assert!(
+        err.contains("joint \"shoulder\"") && err.contains("line 17"),
+        "{err}"
+    );
+    assert!(err.contains("limits"), "{err}");
+    // A link named like a moving joint.
+    let text = GOOD.replace("\"lower\"", "\"elbow\"");
+    let err = load_urdf_str(&text, false).unwrap_err().to_string();
+    assert!(
+        err.contains("link \"elbow\"") && err.contains("line 11"),
+        "{err}"
+    );
+    // The free-flyer's name is taken.
+    let text = GOOD.replace("\"shoulder\"", "\"root_joint\"");
+    assert!(load_urdf_str(&text, false).is_ok());
+    let err = load_urdf_str(&text, true).unwrap_err().to_string();
+    assert!(err.contains("root_joint"), "{err}");
+}
+
+#[test]
+fn planar_axis_and_mimic_target_are_checked() {
+    let text = GOOD.replace("type=\"continuous\"", "type=\"planar\"");
+    expect_error(&text, 23, &["joint \"elbow\"", "planar", "0 0 1"]);
+    let text = text.replace("<axis xyz=\"0 2 0\"/>", "<axis xyz=\"0 0 3\"/>");
+    let model = load_urdf_str(&text, false).unwrap();
+    assert_eq!(model.joints()[1].kind, rigid::multibody::JointType::Planar);
+    let text = GOOD.replace(
+        "<axis xyz=\"0 2 0\"/>",
+        "<axis xyz=\"0 2 0\"/><mimic joint=\"knee\" multiplier=\"2\"/>",
+    );
+    expect_error(&text, 23, &["joint \"elbow\"", "mimics joint \"knee\""]);
+    let text = text.replace("joint=\"knee\"", "joint=\"shoulder\"");
+    let robot = parse_urdf_str(&text).unwrap();
+    let mimic = robot.joint("elbow").unwrap().mimic.clone().unwrap();
+    assert_eq!(
+        (mimic.joint.as_str(), mimic.multiplier, mimic.offset),
+        ("shoulder", 2.0, 0.0)
+    );
+    // Imported as an independent joint, as Pinocchio's default.
+    assert_eq!(load_urdf_str(&text, false).unwrap().nv(), 2);
+}
