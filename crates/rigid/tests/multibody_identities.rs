@@ -239,3 +239,59 @@ fn neutral_configuration_has_identity_quaternions_and_normalize_restores_unit_no
     normalize(&model, &mut bad).unwrap();
     forward_kinematics_q(&model, &mut data, &bad).unwrap();
 }
+
+#[test]
+fn random_trees_cover_every_joint_type_and_coordinate_axes() {
+    let mut names = std::collections::BTreeSet::new();
+    let mut coordinate_axis = false;
+    for model in models() {
+        for j in model.joints() {
+            names.insert(j.kind.name());
+            if let JointType::Revolute { axis } = j.kind {
+                coordinate_axis |= axis.iter().filter(|x| **x == 0.0).count() == 2;
+            }
+        }
+    }
+    assert_eq!(names.len(), 6, "{names:?}");
+    assert!(coordinate_axis);
+}
+
+#[test]
+fn coriolis_matrix_is_the_christoffel_symbol_matrix_for_vector_space_joints() {
+    // C_ij = Σ_k ½ (∂M_ij/∂q_k + ∂M_ik/∂q_j - ∂M_jk/∂q_i) v_k, derivatives by central differences
+    let mut rng = Rng::new(19);
+    let eps = 1e-6;
+    for model in [
+        puma560(Puma560Options { armature: true }),
+        double_pendulum(),
+        pendulum(),
+    ] {
+        let mut data = Data::new(&model);
+        let n = model.nv();
+        for _ in 0..3 {
+            let (q, v, _) = state(&model, &mut rng);
+            let dM: Vec<DMatrix<f64>> = (0..n)
+                .map(|k| {
+                    let (mut qp, mut qm) = (q.clone(), q.clone());
+                    qp[k] += eps;
+                    qm[k] -= eps;
+                    (mass_matrix_at(&model, &mut data, &qp)
+                        - mass_matrix_at(&model, &mut data, &qm))
+                        / (2.0 * eps)
+                })
+                .collect();
+            let C = coriolis_matrix(&model, &mut data, &q, &v).unwrap().clone();
+            let Cc = DMatrix::from_fn(n, n, |i, j| {
+                (0..n)
+                    .map(|k| 0.5 * (dM[k][(i, j)] + dM[j][(i, k)] - dM[i][(j, k)]) * v[k])
+                    .sum::<f64>()
+            });
+            assert!(
+                rel_err_m(&C, &Cc) < 1e-6,
+                "{}: {}",
+                model.name(),
+                rel_err_m(&C, &Cc)
+            );
+        }
+    }
+}

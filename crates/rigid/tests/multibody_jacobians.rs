@@ -227,3 +227,20 @@ fn free_flyer_velocity_is_the_body_twist_and_spherical_velocity_the_body_angular
         assert!((vb[k] - v[k]).abs() < 1e-14);
     }
 }
+
+#[test]
+fn joint_transform_fast_path_for_coordinate_axes_equals_rodrigues() {
+    let mut rng = Rng::new(30);
+    let placement = common::transform(&mut rng);
+    for k in 0..3 {
+        for sign in [1.0, -1.0] {
+            let axis = Vec3::ith(k, sign);
+            let q = [rng.uniform(-3.0, 3.0)];
+            let fast = JointType::Revolute { axis }.placed_transform(&placement, &q);
+            // the same axis, perturbed off the coordinate axis by nothing but its representation
+            let r = rigid::spatial::so3::exp(&(axis * q[0]));
+            let slow = placement * Transform::from_rotation(r);
+            assert!((fast.inverse() * slow).is_identity(1e-14), "axis {axis:?}");
+        }
+    }
+}

@@ -134,6 +134,11 @@ fn random_tree_agrees_with_pinocchio_to_1e9() {
             "jacobian"
         );
         let C = coriolis_matrix(&model, &mut d, &q, &v).unwrap().clone();
+        let Cp = mat_of(&c["coriolis"]);
+        assert!(
+            (&C - &Cp).amax() < tol * Cp.amax().max(1.0),
+            "coriolis matrix"
+        );
         let cv = C * DVector::from_column_slice(&v);
         assert!(rel(&cv, &vec_of(&c["coriolis_times_v"])) < tol, "coriolis");
     }

@@ -96,6 +96,23 @@ impl SpatialInertia {
         ))
     }
 
+    /// From the parts `(m, h, I_O)` without symmetrising `I_O` (for the multibody algorithms,
+    /// whose products keep it symmetric).
+    #[inline]
+    pub(crate) fn from_raw_parts(mass: f64, h: Vec3, inertia_origin: Mat3) -> Self {
+        Self {
+            mass,
+            h,
+            inertia: inertia_origin,
+        }
+    }
+
+    /// The rotational inertia about the frame origin as a matrix, without a copy.
+    #[inline]
+    pub(crate) fn inertia_origin_matrix(&self) -> &Mat3 {
+        &self.inertia
+    }
+
     /// The mass `m` (kg).
     #[must_use]
     #[inline]

@@ -73,6 +73,18 @@ fn tx(a: f64) -> Transform {
 ///
 /// # Errors
 /// Non-finite parameters or non-physical inertias (naming the joint).
+///
+/// ```
+/// use rigid::mass::RotationalInertia;
+/// use rigid::multibody::{from_dh, DhConvention, DhJoint, DhLink};
+/// use rigid::spatial::Vec3;
+/// // a planar 2R arm: a = 1 m each, point masses of 1 kg at the link tips (CoM at the frame origin)
+/// let link = DhLink { a: 1.0, alpha: 0.0, d: 0.0, theta_offset: 0.0, joint: DhJoint::Revolute,
+///                     mass: 1.0, com: Vec3::zeros(), inertia: RotationalInertia::zero() };
+/// let model = from_dh("2r", DhConvention::Standard, &[link, link], Vec3::new(0.0, -9.81, 0.0))?;
+/// assert_eq!(model.nv(), 2);
+/// # Ok::<(), rigid::multibody::ModelError>(())
+/// ```
 pub fn from_dh(
     name: &str,
     convention: DhConvention,

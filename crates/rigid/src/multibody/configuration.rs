@@ -43,6 +43,22 @@ impl Rng {
 ///
 /// # Errors
 /// Wrong lengths, non-finite input or a non-unit quaternion in `q`.
+///
+/// ```
+/// use rigid::mass::SpatialInertia;
+/// use rigid::multibody::{integrate, neutral, JointType, ModelBuilder};
+/// use rigid::spatial::{Transform, Vec3};
+/// let mut b = ModelBuilder::new("floating");
+/// b.add_joint(None, "base", JointType::FreeFlyer, Transform::identity(), SpatialInertia::zero())?;
+/// let model = b.build()?;
+/// let q = neutral(&model);
+/// let mut q1 = vec![0.0; 7];
+/// // body twist: ω = π/2 about z, v = 1 m/s along body x, for 1 s: a quarter circle
+/// integrate(&model, &q, &[0.0, 0.0, std::f64::consts::FRAC_PI_2, 1.0, 0.0, 0.0], 1.0, &mut q1)?;
+/// let r = 2.0 / std::f64::consts::PI;
+/// assert!((q1[0] - r).abs() < 1e-12 && (q1[1] - r).abs() < 1e-12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn integrate(
     model: &Model,
     q: &[f64],

@@ -66,7 +66,6 @@ pub struct Data {
     pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,
     pub(crate) world_inertias: Vec<SpatialInertia>,
-    pub(crate) world_momenta: Vec<Wrench>,
     pub(crate) world_b: Vec<Mat6>,
     pub(crate) chol: DMatrix<f64>,
 }
@@ -110,7 +109,6 @@ impl Data {
             u: DVector::zeros(nv),
             spatial_velocities: vec![Twist::zero(); n],
             world_inertias: vec![SpatialInertia::zero(); n],
-            world_momenta: vec![Wrench::zero(); n],
             world_b: vec![Mat6::zeros(); n],
             chol: DMatrix::zeros(nv, nv),
         }

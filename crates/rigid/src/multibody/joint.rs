@@ -40,6 +40,49 @@ pub enum JointType {
     Planar,
 }
 
+/// Rodrigues' formula `exp([a] q) = c 1 + s [a] + (1 - c) a aᵀ` with `s = sin q`, `c = cos q`
+/// (Lynch & Park, Prop. 3.11), for a unit axis `a`.
+#[inline]
+fn rodrigues(a: &Vec3, s: f64, c: f64) -> Mat3 {
+    let t = 1.0 - c;
+    let (x, y, z) = (a.x, a.y, a.z);
+    Mat3::new(
+        c + t * x * x,
+        t * x * y - s * z,
+        t * x * z + s * y,
+        t * x * y + s * z,
+        c + t * y * y,
+        t * y * z - s * x,
+        t * x * z - s * y,
+        t * y * z + s * x,
+        c + t * z * z,
+    )
+}
+
+/// `R exp([a] q)`: for a coordinate axis `a = ±e_k` only two columns of `R` mix
+/// (12 multiplications); otherwise Rodrigues' formula and a 3x3 product.
+#[inline]
+fn rotate_about(r: &Mat3, a: &Vec3, q: f64) -> Mat3 {
+    let (s, c) = q.sin_cos();
+    let (j, k, sign) = if a.x == 0.0 && a.y == 0.0 {
+        (0, 1, a.z) // about z: columns 0 and 1 turn
+    } else if a.y == 0.0 && a.z == 0.0 {
+        (1, 2, a.x) // about x: columns 1 and 2 turn
+    } else if a.x == 0.0 && a.z == 0.0 {
+        (2, 0, a.y) // about y: columns 2 and 0 turn
+    } else {
+        let rj = rodrigues(a, s, c);
+        return crate::multibody::algorithms::mat3_mul(r, &rj);
+    };
+    let s = s * sign; // a = -e_k turns by -q
+    let u: Vec3 = r.column(j).into();
+    let w: Vec3 = r.column(k).into();
+    let mut out = *r;
+    out.set_column(j, &(u * c + w * s));
+    out.set_column(k, &(w * c - u * s));
+    out
+}
+
 /// Quaternion `(x, y, z, w)` → rotation matrix, normalising first.
 #[inline]
 pub(crate) fn quat_to_rot(x: f64, y: f64, z: f64, w: f64) -> Mat3 {
@@ -171,21 +214,8 @@ impl JointType {
     pub fn transform(&self, q: &[f64]) -> Transform {
         match self {
             Self::Revolute { axis } | Self::Continuous { axis } => {
-                // Rodrigues: R = 1 + sin q [a] + (1 - cos q) [a]²
                 let (s, c) = q[0].sin_cos();
-                let t = 1.0 - c;
-                let (x, y, z) = (axis.x, axis.y, axis.z);
-                let r = Mat3::new(
-                    c + t * x * x,
-                    t * x * y - s * z,
-                    t * x * z + s * y,
-                    t * x * y + s * z,
-                    c + t * y * y,
-                    t * y * z - s * x,
-                    t * x * z - s * y,
-                    t * y * z + s * x,
-                    c + t * z * z,
-                );
+                let r = rodrigues(axis, s, c);
                 Transform::from_rotation(r)
             }
             Self::Prismatic { axis } => Transform::from_translation(axis * q[0]),
@@ -211,7 +241,11 @@ impl JointType {
     #[inline]
     pub fn placed_transform(&self, placement: &Transform, q: &[f64]) -> Transform {
         match self {
-            Self::Revolute { .. } | Self::Continuous { .. } | Self::Spherical => Transform::new(
+            Self::Revolute { axis } | Self::Continuous { axis } => Transform::new(
+                rotate_about(&placement.rotation, axis, q[0]),
+                placement.translation,
+            ),
+            Self::Spherical => Transform::new(
                 crate::multibody::algorithms::mat3_mul(
                     &placement.rotation,
                     &self.transform(q).rotation,

@@ -19,7 +19,7 @@
 //! | `c + g`, `g` | [`nonlinear_effects`], [`gravity_torques`] | RNEA with `q̈ = 0` (and `q̇ = 0`) |
 //! | `M(q)` | [`crba`] | Featherstone 2008 Table 6.2 |
 //! | `q̈ = M⁻¹(τ - c - g)` | [`aba`], [`forward_dynamics_cholesky`] | Featherstone 2008 Table 7.1 |
-//! | `C(q, q̇)`, `Ṁ - 2C` skew | [`coriolis_matrix`] | body-wise factorisation, see its doc |
+//! | `C(q, q̇)` (Christoffel), `Ṁ - 2C` skew | [`coriolis_matrix`] | Lynch & Park §8.1.2; Pinocchio `computeCoriolisMatrix` |
 //! | `K = ½ q̇ᵀ M q̇`, `U = -Σ mᵢ gᵀ cᵢ` | [`kinetic_energy`], [`potential_energy`] | Lynch & Park §8.1 |
 //! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |
 //! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
@@ -191,15 +191,13 @@ pub enum MultibodyError {
 pub(crate) fn check_q(model: &Model, q: &[f64]) -> Result<(), MultibodyError> {
     DimensionError::check("q", model.nq, q.len())?;
     check_finite("q", q)?;
-    for j in &model.joints {
-        if let Some(o) = j.kind.quaternion_offset() {
-            let n = joint::quat_norm(&q[j.idx_q + o..]);
-            if (n - 1.0).abs() > QUATERNION_TOLERANCE {
-                return Err(MultibodyError::NotUnitQuaternion {
-                    joint: j.name.clone(),
-                    norm: n,
-                });
-            }
+    for &(j, o) in &model.quaternions {
+        let n = joint::quat_norm(&q[o..o + 4]);
+        if (n - 1.0).abs() > QUATERNION_TOLERANCE {
+            return Err(MultibodyError::NotUnitQuaternion {
+                joint: model.joints[j].name.clone(),
+                norm: n,
+            });
         }
     }
     Ok(())

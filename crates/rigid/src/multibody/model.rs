@@ -79,6 +79,8 @@ pub struct Model {
     pub(crate) dof_S: Vec<Twist>,
     /// The joint of each degree of freedom.
     pub(crate) dof_joint: Vec<usize>,
+    /// `(joint, index in q)` of every quaternion (spherical and free-flyer joints).
+    pub(crate) quaternions: Vec<(usize, usize)>,
     pub(crate) nq: usize,
     pub(crate) nv: usize,
 }
@@ -227,6 +229,23 @@ impl Model {
 }
 
 /// Builds a [`Model`] joint by joint, in depth-first order.
+///
+/// ```
+/// use rigid::mass::{RotationalInertia, SpatialInertia};
+/// use rigid::multibody::{JointType, ModelBuilder};
+/// use rigid::spatial::{Transform, Vec3};
+/// // a 2-link planar arm: links of 1 kg, CoM 0.5 m along x, joints about z
+/// let link = SpatialInertia::from_com(1.0, Vec3::new(0.5, 0.0, 0.0), RotationalInertia::diagonal(0.01, 0.08, 0.08));
+/// let mut b = ModelBuilder::new("arm");
+/// let j1 = b.add_joint(None, "shoulder", JointType::Revolute { axis: Vec3::z() }, Transform::identity(), link)?;
+/// let j2 = b.add_joint(Some(j1), "elbow", JointType::Revolute { axis: Vec3::z() },
+///                      Transform::from_translation(Vec3::new(1.0, 0.0, 0.0)), link)?;
+/// b.add_frame(Some(j2), "tool", Transform::from_translation(Vec3::new(1.0, 0.0, 0.0)))?;
+/// b.set_limits(j1, &[-2.0], &[2.0], &[3.0], &[50.0])?;
+/// let model = b.build()?;
+/// assert_eq!((model.nq(), model.nv(), model.total_mass()), (2, 2, 2.0));
+/// # Ok::<(), rigid::multibody::ModelError>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ModelBuilder {
     model: Model,
@@ -260,11 +279,12 @@ fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
     if g.mass() < 0.0 {
         return Err(bad(crate::error::InertiaError::BadMass { mass: g.mass() }));
     }
-    // Positive semi-definite rotational inertia about the CoM. The triangle inequality is not
+    // Positive semi-definite rotational inertia about the CoM (to 1e-6 of the largest principal
+    // moment, for the rounding of published values). The triangle inequality is not
     // enforced: published models violate it (the PUMA 560's link 3), so it is reported by
     // `Model::inertia_issues` instead.
     let l = g.inertia_com().principal_moments();
-    if l[0] < -1e-9 * l[2].abs().max(1e-12) {
+    if l[0] < -1e-6 * l[2].abs().max(1e-12) {
         return Err(bad(crate::error::InertiaError::NotPositiveSemiDefinite {
             moment: l[0],
         }));
@@ -290,6 +310,7 @@ impl ModelBuilder {
                 armature: Vec::new(),
                 dof_S: Vec::new(),
                 dof_joint: Vec::new(),
+                quaternions: Vec::new(),
                 nq: 0,
                 nv: 0,
             },
@@ -375,6 +396,9 @@ impl ModelBuilder {
             subtree_end: id + 1,
         });
         m.inertias.push(inertia);
+        if let Some(o) = kind.quaternion_offset() {
+            m.quaternions.push((id, m.nq + o));
+        }
         for k in 0..nv {
             m.dof_S.push(kind.motion_subspace(k));
             m.dof_joint.push(id);

@@ -67,7 +67,15 @@ pub fn random_tree(seed: u64, n: usize, armature: bool) -> Model {
         let cut = 1 + (rng.next_u64() as usize) % stack.len();
         stack.truncate(cut.max(1));
         let parent = *stack.last().unwrap();
-        let kind = match rng.next_u64() % 5 {
+        let kind = match rng.next_u64() % 6 {
+            // a coordinate axis ±x, ±y, ±z (the fast path of the joint transform)
+            5 => {
+                let k = (rng.next_u64() % 3) as usize;
+                let sign = if rng.next_u64() & 1 == 0 { 1.0 } else { -1.0 };
+                JointType::Revolute {
+                    axis: Vec3::ith(k, sign),
+                }
+            }
             0 => JointType::Revolute {
                 axis: unit(&mut rng),
             },
@@ -118,6 +126,7 @@ pub fn models() -> Vec<Model> {
     v.push(random_tree(1, 8, false));
     v.push(random_tree(2, 10, true));
     v.push(random_tree(3, 6, true));
+    v.push(random_tree(4, 12, false));
     v
 }
 

@@ -200,6 +200,17 @@ fn aba_impl(
 ///
 /// # Errors
 /// Wrong lengths, non-finite entries, a non-unit quaternion, or a singular joint inertia `D_i`.
+///
+/// ```
+/// use rigid::multibody::{aba, puma560, rnea, Data, Puma560Options};
+/// let model = puma560(Puma560Options::default());
+/// let mut data = Data::new(&model);
+/// let (q, v, a) = ([0.1; 6], [0.2; 6], [0.3; 6]);
+/// let tau = rnea(&model, &mut data, &q, &v, &a)?.clone();
+/// let ddq = aba(&model, &mut data, &q, &v, tau.as_slice())?;
+/// assert!(ddq.iter().zip(&a).all(|(x, y)| (x - y).abs() < 1e-9));
+/// # Ok::<(), rigid::multibody::MultibodyError>(())
+/// ```
 pub fn aba<'a>(
     model: &Model,
     data: &'a mut Data,

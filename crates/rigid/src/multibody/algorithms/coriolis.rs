@@ -1,22 +1,43 @@
-//! The Coriolis matrix `C(q, v)` with `c(q, v) = C v` and `Ṁ - 2C` skew-symmetric.
+//! The Coriolis matrix `C(q, v)` with `c(q, v) = C v` and `Ṁ - 2C` skew-symmetric: the
+//! Christoffel-symbol matrix, computed as Pinocchio's `computeCoriolisMatrix`.
 
-use super::compute_joint_jacobians_time_variation;
+use super::{compute_joint_jacobians_time_variation, inertia_to_parent};
 use crate::multibody::{Data, Model, MultibodyError};
-use crate::spatial::{Twist, Vec6, Wrench};
+use crate::spatial::{skew, Mat6, Twist, Vec6, Wrench};
 use nalgebra::DMatrix;
 
-/// The Coriolis matrix, from the body-wise factorisation `M = Σ_i J_iᵀ G_i J_i` (body Jacobians):
+/// `B = ½ Ġ + ½ (G V)×̄*` for a body with world inertia matrix `G` and spatial twist `V`:
+/// `Ġ = V×* G - G V× = -[ad_V]ᵀ G - G [ad_V]`, and `h×̄*` is the 6x6 matrix with
+/// `(h×̄*) X = X ×* h = -[ad_X]ᵀ h`, i.e. `[[-[m], -[f]], [-[f], 0]]` for `h = (m, f)`.
+fn body_b(G: &Mat6, V: &Twist, h: &Wrench) -> Mat6 {
+    let ad = V.ad();
+    let mut B = (ad.transpose() * G + G * ad) * -0.5;
+    let (km, kf) = (skew(&h.m) * 0.5, skew(&h.f) * 0.5);
+    let mut top = B.fixed_view_mut::<3, 3>(0, 0);
+    top -= km;
+    let mut tr = B.fixed_view_mut::<3, 3>(0, 3);
+    tr -= kf;
+    let mut bl = B.fixed_view_mut::<3, 3>(3, 0);
+    bl -= kf;
+    B
+}
+
+/// The Coriolis matrix of the Lagrangian dynamics, `C_ij = Σ_k Γ_ijk v_k` with the Christoffel
+/// symbols `Γ_ijk = ½ (∂M_ij/∂q_k + ∂M_ik/∂q_j - ∂M_jk/∂q_i)` (Lynch & Park §8.1.2), so that
+/// `c(q, v) = C v` and `Ṁ - 2C` is skew-symmetric.
 ///
-/// `C = Σ_i J_iᵀ (G_i J̇_i + B_i J_i)` with `B_i = (G_i V_i) ×̄*`, the 6x6 matrix with
-/// `B_i X = X ×* (G_i V_i) = -[ad_X]ᵀ G_i V_i`. Then `C v = Σ_i J_iᵀ (G_i J̇_i v - [ad_{V_i}]ᵀ G_i V_i)`
-/// is the velocity-product term of the Newton-Euler equations, and since `B_i` is skew and `G_i`
-/// constant in body coordinates, `Ṁ - 2C = Σ_i (J̇_iᵀ G_i J_i - J_iᵀ G_i J̇_i) - 2 Σ_i J_iᵀ B_i J_i` is
-/// skew (Garofalo et al., ICRA 2013, in twist form).
+/// In world coordinates, with `J_i` the spatial Jacobian of body i (columns
+/// `J_k = [Ad_{oMi}] S_k` of its supporting joints), `J̇_k = [ad_{V_j(k)}] J_k`, `G_i` the body's
+/// world inertia and `V_i` its spatial twist:
 ///
-/// Computed in world coordinates (`J̇_b = [Ad_{oMi⁻¹}](J̇_s - [ad_{V^s_i}] J_s)`), with composite
-/// sums over subtrees `Gc`, `Hc = Σ G^s_i V^s_i`, `Bc = Σ G^s_i [ad_{V^s_i}]`: for dofs k, l on one
-/// branch and d the deeper joint of the two, `C_lk = J_lᵀ (Gc_d J̇_k + (Hc_d ×̄* - Bc_d) J_k)`.
-/// Returns `data.coriolis`. O(n d).
+/// `C = Σ_i J_iᵀ (G_i J̇_i + B_i J_i)`, `B_i = ½ Ġ_i + ½ (G_i V_i)×̄*`, `Ġ_i = V_i×* G_i - G_i V_i×`.
+///
+/// Then `C v = Σ J_iᵀ (G_i J̇_i v + V_i ×* G_i V_i)` (Newton-Euler), and
+/// `Ṁ - 2C = Σ (J̇ᵀGJ - JᵀGJ̇) - Σ Jᵀ (G V)×̄* J` is skew since `h×̄*` is. Entries are sums over
+/// subtrees: for dofs k, l on one branch and d the deeper joint of the two,
+/// `C_lk = J_lᵀ (Gc_d J̇_k + Bc_d J_k)` with the composite `Gc_d = Σ_{i ⪰ d} G_i`,
+/// `Bc_d = Σ_{i ⪰ d} B_i` (the structure of Pinocchio's `computeCoriolisMatrix`). Returns
+/// `data.coriolis`. O(n d) 6x6 products.
 ///
 /// # Errors
 /// Wrong lengths, non-finite entries, or a non-unit quaternion.
@@ -29,22 +50,15 @@ pub fn coriolis_matrix<'a>(
     compute_joint_jacobians_time_variation(model, data, q, v)?;
     let n = model.joints.len();
     for i in 0..n {
-        let oMi = data.placements[i];
-        let Gs = super::inertia_to_parent(&model.inertias[i], &oMi);
+        let Gs = inertia_to_parent(&model.inertias[i], &data.placements[i]);
         let Vs = data.spatial_velocities[i];
         data.world_inertias[i] = Gs;
-        data.world_momenta[i] = Gs.momentum(&Vs);
-        data.world_b[i] = Gs.matrix() * Vs.ad();
+        data.world_b[i] = body_b(&Gs.matrix(), &Vs, &Gs.momentum(&Vs));
     }
     for i in (0..n).rev() {
         if let Some(p) = model.joints[i].parent {
-            let (g, h, b) = (
-                data.world_inertias[i],
-                data.world_momenta[i],
-                data.world_b[i],
-            );
+            let (g, b) = (data.world_inertias[i], data.world_b[i]);
             data.world_inertias[p.0] += g;
-            data.world_momenta[p.0] += h;
             data.world_b[p.0] += b;
         }
     }
@@ -55,16 +69,12 @@ pub fn coriolis_matrix<'a>(
     let C = &mut data.coriolis;
     C.fill(0.0);
     for i in 0..n {
-        let (Gc, Hc, Bc) = (
-            data.world_inertias[i],
-            data.world_momenta[i],
-            data.world_b[i],
-        );
-        // Y(k) = Gc J̇_k + (Hc ×̄*) J_k - Bc J_k
+        let (Gc, Bc) = (data.world_inertias[i], data.world_b[i]);
+        // Y(k) = Gc J̇_k + Bc J_k
         let Y = |k: usize| -> Wrench {
             let Jk = col(&data.jacobian, k);
             let dJk = col(&data.jacobian_dot, k);
-            Gc.momentum(&dJk) - Jk.ad_transpose(&Hc) - Wrench::from_vector(&(Bc * Jk.to_vector()))
+            Gc.momentum(&dJk) + Wrench::from_vector(&(Bc * Jk.to_vector()))
         };
         let ji = &model.joints[i];
         for k in ji.idx_v..ji.idx_v + ji.nv {

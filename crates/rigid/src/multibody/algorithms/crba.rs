@@ -22,6 +22,17 @@ use nalgebra::DMatrix;
 ///
 /// # Errors
 /// Wrong length, non-finite entry or non-unit quaternion in `q`.
+///
+/// ```
+/// use rigid::multibody::{crba, double_pendulum, Data};
+/// let model = double_pendulum();
+/// let mut data = Data::new(&model);
+/// let m = crba(&model, &mut data, &[0.3, 0.0])?;
+/// // straight: M22 = 1/3, M12 = 1/3 + 1/2, M11 = 1/3 + 1 + 1/3 + 1
+/// assert!((m[(1, 1)] - 1.0 / 3.0).abs() < 1e-12 && (m[(0, 1)] - 5.0 / 6.0).abs() < 1e-12);
+/// assert!((m[(0, 0)] - 8.0 / 3.0).abs() < 1e-12);
+/// # Ok::<(), rigid::multibody::MultibodyError>(())
+/// ```
 pub fn crba<'a>(
     model: &Model,
     data: &'a mut Data,
@@ -52,11 +63,11 @@ pub fn crba<'a>(
             data.crba_forces[k] = Ic.momentum(&data.dof_J[k]);
         }
         for k in ji.idx_v..ji.idx_v + ji.nv {
+            // lower triangle, column k, rows k..end_v (contiguous): M_lk = J_kᵀ F_l
             let Jk = data.dof_J[k];
-            for (l, F) in data.crba_forces[..end_v].iter().enumerate().skip(k) {
-                let m = Jk.dot(F);
-                M[l * nv + k] = m;
-                M[k * nv + l] = m;
+            let column = &mut M[k * nv + k..k * nv + end_v];
+            for (m, F) in column.iter_mut().zip(&data.crba_forces[k..end_v]) {
+                *m = Jk.dot(F);
             }
         }
         if let Some(p) = ji.parent {
@@ -64,8 +75,12 @@ pub fn crba<'a>(
         }
     }
     // Entries of joints in different branches are never written: they stay 0 from Data::new.
-    for (k, a) in model.armature.iter().enumerate() {
-        M[k * nv + k] += a;
+    // upper triangle from the lower one; armature on the diagonal
+    for k in 0..nv {
+        for l in k + 1..nv {
+            M[l * nv + k] = M[k * nv + l];
+        }
+        M[k * nv + k] += model.armature[k];
     }
     Ok(&data.mass_matrix)
 }

@@ -202,6 +202,17 @@ pub fn joint_jacobian<'a>(
 ///
 /// # Errors
 /// As [`compute_joint_jacobians`], or `frame` out of range.
+///
+/// ```
+/// use rigid::multibody::{frame_jacobian, puma560, Data, Puma560Options, ReferenceFrame};
+/// let model = puma560(Puma560Options::default());
+/// let mut data = Data::new(&model);
+/// let flange = model.frame_id("link6").unwrap();
+/// let j = frame_jacobian(&model, &mut data, &[0.0; 6], flange, ReferenceFrame::WorldAligned)?;
+/// // joint 1 turns about the world z axis
+/// assert!((j[(2, 0)] - 1.0).abs() < 1e-12);
+/// # Ok::<(), rigid::multibody::MultibodyError>(())
+/// ```
 pub fn frame_jacobian<'a>(
     model: &Model,
     data: &'a mut Data,

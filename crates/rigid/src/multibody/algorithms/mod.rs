@@ -23,7 +23,7 @@ pub use kinematics::{
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 
 use super::Model;
-use crate::mass::{RotationalInertia, SpatialInertia};
+use crate::mass::SpatialInertia;
 use crate::spatial::{Mat3, Transform, Twist};
 
 /// `S_i q̇_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame).
@@ -80,18 +80,20 @@ pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialIne
     let p = &T.translation;
     let m = G.mass();
     let h = R * G.first_moment();
-    let RI = mat3_mul(R, G.inertia_origin().matrix());
+    let RI = mat3_mul(R, G.inertia_origin_matrix());
     let d = 2.0 * h.dot(p) + m * p.norm_squared();
-    let mut Ia = Mat3::zeros();
+    let (r, ri) = (R.as_slice(), RI.as_slice()); // column-major
+    let (p, hh) = ([p.x, p.y, p.z], [h.x, h.y, h.z]);
+    let mut out = [0.0; 9];
     for i in 0..3 {
         for j in i..3 {
             // (R I Rᵀ)_ij = Σ_k (RI)_ik R_jk
-            let rir = RI[(i, 0)] * R[(j, 0)] + RI[(i, 1)] * R[(j, 1)] + RI[(i, 2)] * R[(j, 2)];
-            let x = rir - p[i] * h[j] - h[i] * p[j] - m * p[i] * p[j];
-            Ia[(i, j)] = x;
-            Ia[(j, i)] = x;
+            let rir = ri[i] * r[j] + ri[3 + i] * r[3 + j] + ri[6 + i] * r[6 + j];
+            let x = rir - p[i] * hh[j] - hh[i] * p[j] - m * p[i] * p[j];
+            out[j * 3 + i] = x;
+            out[i * 3 + j] = x;
         }
-        Ia[(i, i)] += d;
+        out[i * 4] += d;
     }
-    SpatialInertia::from_parts(m, h + p * m, RotationalInertia::from_matrix_unchecked(&Ia))
+    SpatialInertia::from_raw_parts(m, h + T.translation * m, Mat3::from_column_slice(&out))
 }

@@ -91,6 +91,15 @@ enum Out {
 ///
 /// # Errors
 /// Wrong lengths, non-finite entries, or a non-unit quaternion.
+///
+/// ```
+/// use rigid::multibody::{pendulum, rnea, Data};
+/// let model = pendulum(); // M = 1/3, g(q) = 4.905 sin q
+/// let mut data = Data::new(&model);
+/// let tau = rnea(&model, &mut data, &[0.5], &[0.0], &[3.0])?;
+/// assert!((tau[0] - (1.0 + 4.905 * 0.5f64.sin())).abs() < 1e-12);
+/// # Ok::<(), rigid::multibody::MultibodyError>(())
+/// ```
 pub fn rnea<'a>(
     model: &Model,
     data: &'a mut Data,
