@@ -281,3 +281,30 @@ fn planar_axis_and_mimic_target_are_checked() {
     // Imported as an independent joint, as Pinocchio's default.
     assert_eq!(load_urdf_str(&text, false).unwrap().nv(), 2);
 }
+
+#[test]
+fn truncated_or_corrupted_files_never_panic() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/pinocchio/all_joints.urdf"
+    ))
+    .unwrap();
+    let mut cuts = 0;
+    for end in (0..text.len())
+        .step_by(13)
+        .filter(|&e| text.is_char_boundary(e))
+    {
+        // Every prefix is rejected (or, rarely, a smaller valid robot), never a panic.
+        if load_urdf_str(&text[..end], true).is_err() {
+            cuts += 1;
+        }
+    }
+    assert!(cuts > 100);
+    // One word replaced at a time by junk.
+    for (k, word) in text.split_whitespace().enumerate().step_by(5) {
+        for junk in ["\"\"", "\"-1\"", "\"1e999\"", "<", "\"0 0\""] {
+            let corrupted = text.replacen(word, junk, 1);
+            let _ = load_urdf_str(&corrupted, k % 2 == 0);
+        }
+    }
+}
