@@ -21,9 +21,9 @@
 
 use clap::Args;
 use rigid::multibody::{
-    aba, builtin, builtin_names, compute_joint_jacobians, crba, forward_dynamics_cholesky,
-    forward_kinematics, forward_kinematics_q, gravity_torques, nonlinear_effects,
-    random_configuration, rnea, Data, Model, Rng,
+    aba, compute_joint_jacobians, crba, forward_dynamics_cholesky, forward_kinematics,
+    forward_kinematics_q, gravity_torques, nonlinear_effects, random_configuration, rnea, Data,
+    Model, Rng,
 };
 use std::hint::black_box;
 use std::time::Instant;
@@ -140,25 +140,12 @@ pub fn time_algorithm(
     Ok(samples[samples.len() / 2])
 }
 
-/// The model named on the command line. Built-in models only until the URDF loader lands.
-fn load(spec: &str, floating: bool) -> Result<Model, String> {
-    if floating {
-        return Err("--floating applies to URDF models".into());
-    }
-    builtin(spec).ok_or_else(|| {
-        format!(
-            "unknown model \"{spec}\" (built-in models: {})",
-            builtin_names().join(", ")
-        )
-    })
-}
-
 /// Run `rigid bench`.
 ///
 /// # Errors
 /// An unknown model, or an algorithm error.
 pub fn run(args: &BenchArgs) -> Result<(), String> {
-    let model = load(&args.model, args.floating)?;
+    let model = crate::load::load_model(&args.model, args.floating)?;
     let states = States::new(&model, args.states.max(1), args.seed);
     if args.batch {
         return run_batch(args, &model, &states);

@@ -1,12 +1,16 @@
 //! The `rigid` command-line tool. Each subcommand lives in its own module; this file only
-//! parses the command line and dispatches.
+//! parses the command line and dispatches. The contract of `mass` and `eval` output is in
+//! `CONVENTIONS.md` ("The command-line contract").
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod bench;
 mod bench_batch;
+mod eval;
+mod load;
 mod mass;
+mod model;
 mod simulate;
 
 /// Rigid-body dynamics from the command line.
@@ -25,6 +29,10 @@ enum Command {
     Mass(mass::MassArgs),
     /// Simulate one rigid body (free, or on a pivot) and report energy and momentum errors.
     Simulate(simulate::SimulateArgs),
+    /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
+    Eval(eval::EvalArgs),
+    /// Summarise a robot model: bodies, joints, sizes, mass and the validity of every inertia.
+    Model(model::ModelArgs),
 }
 
 /// Exit code 2 and the message on stderr for an error.
@@ -43,5 +51,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => report(bench::run(&args)),
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),
+        Command::Eval(args) => report(eval::run(&args)),
+        Command::Model(args) => report(model::run(&args)),
     }
 }

@@ -34,12 +34,62 @@ fn models() -> Vec<(String, Model)> {
 }
 
 mod robots {
-    //! The example-robot-data URDFs (loaded once the URDF importer is available).
+    //! The example-robot-data URDFs: `$EXAMPLE_ROBOT_DATA` (its `robots/` folder), or the
+    //! `cmeel.prefix/share/example-robot-data/robots` folder of `python3`'s site-packages.
+    use rigid::io::urdf::load_urdf;
     use rigid::multibody::Model;
+    use std::path::PathBuf;
+
+    /// `(name, file under robots/, free-flyer root)`.
+    const ROBOTS: [(&str, &str, bool); 5] = [
+        ("ur5", "ur_description/urdf/ur5_robot.urdf", false),
+        ("panda", "panda_description/urdf/panda.urdf", false),
+        ("solo12", "solo_description/robots/solo12.urdf", true),
+        (
+            "anymal",
+            "anymal_b_simple_description/robots/anymal.urdf",
+            true,
+        ),
+        ("talos", "talos_data/robots/talos_reduced.urdf", true),
+    ];
+
+    fn robots_dir() -> Option<PathBuf> {
+        if let Some(d) = std::env::var_os("EXAMPLE_ROBOT_DATA") {
+            return Some(d.into());
+        }
+        let out = std::process::Command::new("python3")
+            .args([
+                "-c",
+                "import site, sysconfig; print('\\n'.join(site.getsitepackages() + [sysconfig.get_paths()['purelib']]))",
+            ])
+            .output()
+            .ok()?;
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .map(|sp| PathBuf::from(sp).join("cmeel.prefix/share/example-robot-data/robots"))
+            .find(|p| p.is_dir())
+    }
 
     /// `(name, model)` of every robot found; notes on stderr for the others.
     pub fn load_all() -> Vec<(String, Model)> {
-        Vec::new()
+        let Some(dir) = robots_dir() else {
+            eprintln!(
+                "note: example-robot-data not found (set EXAMPLE_ROBOT_DATA): robots skipped"
+            );
+            return Vec::new();
+        };
+        ROBOTS
+            .iter()
+            .filter_map(
+                |&(name, file, floating)| match load_urdf(dir.join(file), floating) {
+                    Ok(m) => Some((name.to_string(), m)),
+                    Err(e) => {
+                        eprintln!("note: {name} skipped: {e}");
+                        None
+                    }
+                },
+            )
+            .collect()
     }
 }
 

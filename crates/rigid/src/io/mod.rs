@@ -1,4 +1,6 @@
-//! Reading files: closed triangle meshes (STL, OBJ) and the body specs of `rigid mass` (TOML).
+//! Reading files: closed triangle meshes (STL, OBJ), the body specs of `rigid mass` (TOML) and
+//! URDF robots.
 
 pub mod mesh_file;
 pub mod spec;
+pub mod urdf;

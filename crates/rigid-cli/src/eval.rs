@@ -1,0 +1,298 @@
+//! `rigid eval MODEL --cases CASES.json [--floating] [--json]`: the dynamics of a model at given
+//! states, for scripts and cross-checks (the contract is in `CONVENTIONS.md`).
+
+use crate::load::load_model;
+use clap::Args;
+use rigid::multibody::{
+    aba, center_of_mass, crba, forward_kinematics_q, gravity_torques, kinetic_energy,
+    nonlinear_effects, potential_energy, rnea, Data, Model,
+};
+use serde::ser::{SerializeMap, Serializer};
+use serde::Serialize;
+use serde_json::Value;
+use std::path::PathBuf;
+
+/// Arguments of `rigid eval`.
+#[derive(Args)]
+pub struct EvalArgs {
+    /// A URDF file, or a built-in model name (`puma560`, `pendulum`, `double_pendulum`).
+    pub model: String,
+    /// The states: `{"cases": [{"q": [...], "v": [...], "a": [...], "tau": [...]}]}`; `v`, `a`
+    /// and `tau` default to zero.
+    #[arg(long)]
+    pub cases: PathBuf,
+    /// Add a free-flyer root joint carrying the URDF's root link.
+    #[arg(long)]
+    pub floating: bool,
+    /// Print one JSON object instead of a readable summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One state to evaluate.
+struct Case {
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    tau: Vec<f64>,
+}
+
+#[derive(Serialize)]
+struct Output {
+    model: ModelInfo,
+    results: Vec<CaseResult>,
+}
+
+#[derive(Serialize)]
+struct ModelInfo {
+    name: String,
+    nq: usize,
+    nv: usize,
+    joints: Vec<JointInfo>,
+    gravity: [f64; 3],
+}
+
+#[derive(Serialize)]
+struct JointInfo {
+    name: String,
+    #[serde(rename = "type")]
+    kind: &'static str,
+    idx_q: usize,
+    nq: usize,
+    idx_v: usize,
+    nv: usize,
+}
+
+#[derive(Serialize)]
+struct CaseResult {
+    rnea: Vec<f64>,
+    mass_matrix: Vec<Vec<f64>>,
+    nonlinear_effects: Vec<f64>,
+    gravity_torques: Vec<f64>,
+    aba: Vec<f64>,
+    kinetic_energy: f64,
+    potential_energy: f64,
+    com: [f64; 3],
+    total_mass: f64,
+    placements: Placements,
+}
+
+#[derive(Serialize)]
+struct Placement {
+    translation: [f64; 3],
+    rotation: [[f64; 3]; 3],
+}
+
+/// Joint name → placement, serialised as a JSON object in joint order.
+struct Placements(Vec<(String, Placement)>);
+
+impl Serialize for Placements {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(Some(self.0.len()))?;
+        for (name, p) in &self.0 {
+            map.serialize_entry(name, p)?;
+        }
+        map.end()
+    }
+}
+
+/// Runs `rigid eval`.
+///
+/// # Errors
+/// A message naming the model, the case and the field, or the joint.
+pub fn run(args: &EvalArgs) -> Result<(), String> {
+    let model = load_model(&args.model, args.floating)?;
+    let path = args.cases.display();
+    let text = std::fs::read_to_string(&args.cases)
+        .map_err(|e| format!("cannot read cases file {path}: {e}"))?;
+    let cases = parse_cases(&text, &model).map_err(|e| format!("{path}: {e}"))?;
+    let results = evaluate_all(&model, &cases)
+        .into_iter()
+        .enumerate()
+        .map(|(i, r)| r.map_err(|e| format!("{path}: case {i}: {e}")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let out = Output {
+        model: model_info(&model),
+        results,
+    };
+    if args.json {
+        let text = serde_json::to_string(&out).map_err(|e| format!("writing JSON: {e}"))?;
+        println!("{text}");
+    } else {
+        print_summary(&out);
+    }
+    Ok(())
+}
+
+fn model_info(model: &Model) -> ModelInfo {
+    let g = model.gravity();
+    ModelInfo {
+        name: model.name().to_string(),
+        nq: model.nq(),
+        nv: model.nv(),
+        joints: model
+            .joints()
+            .iter()
+            .map(|j| JointInfo {
+                name: j.name.clone(),
+                kind: j.kind.name(),
+                idx_q: j.idx_q,
+                nq: j.nq,
+                idx_v: j.idx_v,
+                nv: j.nv,
+            })
+            .collect(),
+        gravity: [g.x, g.y, g.z],
+    }
+}
+
+/// Reads `{"cases": [...]}`, checking every field's type and length against the model.
+fn parse_cases(text: &str, model: &Model) -> Result<Vec<Case>, String> {
+    let root: Value = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
+    let list = root
+        .get("cases")
+        .ok_or("expected an object with a \"cases\" array")?
+        .as_array()
+        .ok_or("\"cases\" is not an array")?;
+    let mut cases = Vec::with_capacity(list.len());
+    for (i, c) in list.iter().enumerate() {
+        if !c.is_object() {
+            return Err(format!("case {i}: not an object"));
+        }
+        let field = |name: &str, len: usize, dim: &str, required: bool| {
+            vector(c.get(name), len, required)
+                .map_err(|e| format!("case {i}: \"{name}\" {e} (expected {dim} = {len})"))
+        };
+        cases.push(Case {
+            q: field("q", model.nq(), "nq", true)?,
+            v: field("v", model.nv(), "nv", false)?,
+            a: field("a", model.nv(), "nv", false)?,
+            tau: field("tau", model.nv(), "nv", false)?,
+        });
+    }
+    Ok(cases)
+}
+
+/// A vector of `len` numbers, or zeros if absent and not required.
+fn vector(value: Option<&Value>, len: usize, required: bool) -> Result<Vec<f64>, String> {
+    let Some(value) = value else {
+        return if required {
+            Err("is missing".into())
+        } else {
+            Ok(vec![0.0; len])
+        };
+    };
+    let arr = value.as_array().ok_or("is not an array of numbers")?;
+    let out = arr
+        .iter()
+        .enumerate()
+        .map(|(k, x)| x.as_f64().ok_or(format!("[{k}] is not a number")))
+        .collect::<Result<Vec<f64>, _>>()?;
+    if out.len() != len {
+        return Err(format!("has {} entries", out.len()));
+    }
+    Ok(out)
+}
+
+/// Case files of at least this many cases are evaluated on every core.
+const PARALLEL_CASES: usize = 64;
+
+/// Every case's result, in order: one loop for small files; for large ones a rayon parallel
+/// iterator with one [`Data`] per worker (`map_init`), as `rigid::multibody::batch` does. Each
+/// case is evaluated alone, so the results are the same bit for bit either way.
+fn evaluate_all(model: &Model, cases: &[Case]) -> Vec<Result<CaseResult, String>> {
+    use rayon::prelude::*;
+    if cases.len() < PARALLEL_CASES {
+        let mut data = Data::new(model);
+        return cases
+            .iter()
+            .map(|c| evaluate(model, &mut data, c))
+            .collect();
+    }
+    cases
+        .par_iter()
+        .map_init(|| Data::new(model), |data, c| evaluate(model, data, c))
+        .collect()
+}
+
+fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, String> {
+    use rigid::multibody::MultibodyError;
+    let e = |what: &'static str| move |e: MultibodyError| format!("{what}: {e}");
+    let rnea = rnea(model, data, &c.q, &c.v, &c.a).map_err(e("rnea"))?;
+    let rnea = rnea.as_slice().to_vec();
+    let m = crba(model, data, &c.q).map_err(e("mass_matrix"))?;
+    let mass_matrix = (0..m.nrows())
+        .map(|r| (0..m.ncols()).map(|k| m[(r, k)]).collect())
+        .collect();
+    let nle = nonlinear_effects(model, data, &c.q, &c.v).map_err(e("nonlinear_effects"))?;
+    let nle = nle.as_slice().to_vec();
+    let g = gravity_torques(model, data, &c.q).map_err(e("gravity_torques"))?;
+    let g = g.as_slice().to_vec();
+    let ddq = aba(model, data, &c.q, &c.v, &c.tau).map_err(e("aba"))?;
+    let ddq = ddq.as_slice().to_vec();
+    let kinetic_energy = kinetic_energy(model, data, &c.q, &c.v).map_err(e("kinetic_energy"))?;
+    let potential_energy = potential_energy(model, data, &c.q).map_err(e("potential_energy"))?;
+    let com = center_of_mass(model, data, &c.q).map_err(e("com"))?;
+    forward_kinematics_q(model, data, &c.q).map_err(e("placements"))?;
+    let placements = model
+        .joints()
+        .iter()
+        .zip(&data.placements)
+        .map(|(j, t)| {
+            let r = &t.rotation;
+            let p = Placement {
+                translation: [t.translation.x, t.translation.y, t.translation.z],
+                rotation: [0, 1, 2].map(|i| [r[(i, 0)], r[(i, 1)], r[(i, 2)]]),
+            };
+            (j.name.clone(), p)
+        })
+        .collect();
+    // `+ 0.0` turns an empty sum's `-0.0` into `0.0`.
+    Ok(CaseResult {
+        rnea,
+        mass_matrix,
+        nonlinear_effects: nle,
+        gravity_torques: g,
+        aba: ddq,
+        kinetic_energy: kinetic_energy + 0.0,
+        potential_energy: potential_energy + 0.0,
+        com: [com.x + 0.0, com.y + 0.0, com.z + 0.0],
+        total_mass: model.total_mass() + 0.0,
+        placements: Placements(placements),
+    })
+}
+
+fn fmt_vec(x: &[f64]) -> String {
+    let items: Vec<String> = x.iter().map(|v| format!("{v:.6}")).collect();
+    format!("[{}]", items.join(", "))
+}
+
+fn print_summary(out: &Output) {
+    let m = &out.model;
+    println!(
+        "model {}: nq = {}, nv = {}, {} joints",
+        m.name,
+        m.nq,
+        m.nv,
+        m.joints.len()
+    );
+    println!("gravity {}", fmt_vec(&m.gravity));
+    for (i, r) in out.results.iter().enumerate() {
+        println!("case {i}:");
+        println!("  rnea              {}", fmt_vec(&r.rnea));
+        println!("  aba               {}", fmt_vec(&r.aba));
+        println!("  nonlinear effects {}", fmt_vec(&r.nonlinear_effects));
+        println!("  gravity torques   {}", fmt_vec(&r.gravity_torques));
+        println!("  kinetic energy    {:.6} J", r.kinetic_energy);
+        println!("  potential energy  {:.6} J", r.potential_energy);
+        println!(
+            "  com               {} m (total mass {:.6} kg)",
+            fmt_vec(&r.com),
+            r.total_mass
+        );
+        println!("  mass matrix");
+        for row in &r.mass_matrix {
+            println!("    {}", fmt_vec(row));
+        }
+    }
+}

@@ -1,0 +1,165 @@
+//! `rigid model MODEL [--floating]`: a readable summary of a model (bodies, joints, sizes, total
+//! mass) and a validity report of every inertia.
+
+use crate::load::{is_file, load_model};
+use clap::Args;
+use rigid::io::urdf::{self, build_model, InertiaIssue};
+use rigid::multibody::{FrameKind, Model};
+
+/// Arguments of `rigid model`.
+#[derive(Args)]
+pub struct ModelArgs {
+    /// A URDF file, or a built-in model name (`puma560`, `pendulum`, `double_pendulum`).
+    pub model: String,
+    /// Add a free-flyer root joint carrying the URDF's root link.
+    #[arg(long)]
+    pub floating: bool,
+}
+
+/// Runs `rigid model`.
+///
+/// # Errors
+/// A model that cannot be read or built (after printing the inertia report, if the file could be
+/// parsed).
+pub fn run(args: &ModelArgs) -> Result<(), String> {
+    if !is_file(&args.model) {
+        let model = load_model(&args.model, args.floating)?;
+        print_model(&model);
+        let mut issues = body_report(&model);
+        issues.extend(massless_subtrees(&model));
+        print_report(&issues, model.joints().len(), "bodies");
+        return Ok(());
+    }
+    let spec = &args.model;
+    let robot = urdf::parse_urdf_file(spec).map_err(|e| format!("{spec}: {e}"))?;
+    let issues: Vec<String> = robot
+        .inertia_report()
+        .iter()
+        .map(|i: &InertiaIssue| {
+            let tag = if i.is_error() { "error" } else { "warning" };
+            format!("{tag}: {i}")
+        })
+        .collect();
+    match build_model(&robot, args.floating) {
+        Ok(model) => {
+            println!(
+                "URDF {spec}: {} links, {} joints ({} fixed)",
+                robot.links.len(),
+                robot.joints.len(),
+                robot
+                    .joints
+                    .iter()
+                    .filter(|j| j.kind == urdf::UrdfJointKind::Fixed)
+                    .count()
+            );
+            print_model(&model);
+            print_report(&issues, robot.links.len(), "links");
+            print_report(&body_report(&model), model.joints().len(), "moving bodies");
+            Ok(())
+        }
+        Err(e) => {
+            println!(
+                "URDF {spec}: robot \"{}\", {} links, {} joints",
+                robot.name,
+                robot.links.len(),
+                robot.joints.len()
+            );
+            print_report(&issues, robot.links.len(), "links");
+            Err(format!("{spec}: {e}"))
+        }
+    }
+}
+
+fn print_model(model: &Model) {
+    let g = model.gravity();
+    println!("model \"{}\"", model.name());
+    println!(
+        "nq = {}, nv = {}, {} moving joints, total mass {:.6} kg (moving bodies), gravity [{}, {}, {}]",
+        model.nq(),
+        model.nv(),
+        model.joints().len(),
+        model.total_mass() + 0.0,
+        g.x,
+        g.y,
+        g.z
+    );
+    println!("joints (depth-first; each carries one body):");
+    println!(
+        "  {:>3}  {:<32} {:<11} {:<32} {:>5} {:>3} {:>5} {:>3} {:>12}",
+        "#", "name", "type", "parent", "idx_q", "nq", "idx_v", "nv", "body mass"
+    );
+    let joints = model.joints();
+    for (i, (j, g)) in joints.iter().zip(model.inertias()).enumerate() {
+        let parent = j.parent.map_or("(world)", |p| joints[p.0].name.as_str());
+        println!(
+            "  {:>3}  {:<32} {:<11} {:<32} {:>5} {:>3} {:>5} {:>3} {:>12.6}",
+            i,
+            j.name,
+            j.kind.name(),
+            parent,
+            j.idx_q,
+            j.nq,
+            j.idx_v,
+            j.nv,
+            g.mass()
+        );
+    }
+    let frames = model.frames();
+    if !frames.is_empty() {
+        println!("frames (links and fixed bodies, named frames):");
+        for f in frames {
+            let on = f.parent.map_or("(world)", |p| joints[p.0].name.as_str());
+            let kind = match f.kind {
+                FrameKind::FixedBody => "fixed body",
+                FrameKind::Operational => "frame",
+            };
+            println!("  {:<10} {:<40} on {}", kind, f.name, on);
+        }
+    }
+}
+
+fn print_report(issues: &[String], checked: usize, what: &str) {
+    if issues.is_empty() {
+        println!("inertias of the {checked} {what}: all physical, none massless where it moves");
+    } else {
+        println!(
+            "inertias of the {checked} {what}: {} finding(s):",
+            issues.len()
+        );
+        for i in issues {
+            println!("  {i}");
+        }
+    }
+}
+
+/// Each moving body's inertia (a link with everything welded to it) that is not physical: zero
+/// mass, or principal moments violating the triangle inequality (warnings: the model is built;
+/// the builder refuses the rest).
+fn body_report(model: &Model) -> Vec<String> {
+    let joints = model.joints();
+    model
+        .inertia_issues()
+        .into_iter()
+        .map(|(j, e)| format!("warning: body of joint \"{}\": {e}", joints[j.0].name))
+        .collect()
+}
+
+/// Moving joints whose whole subtree is massless: the mass matrix is singular.
+fn massless_subtrees(model: &Model) -> Vec<String> {
+    let joints = model.joints();
+    let mut out = Vec::new();
+    for (i, j) in joints.iter().enumerate() {
+        let m: f64 = model.inertias()[i..j.subtree_end]
+            .iter()
+            .map(|g| g.mass())
+            .sum();
+        if m == 0.0 {
+            out.push(format!(
+                "warning: joint \"{}\" moves bodies of zero total mass (singular mass matrix, ABA \
+                 undefined)",
+                j.name
+            ));
+        }
+    }
+    out
+}

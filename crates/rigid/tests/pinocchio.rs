@@ -1,0 +1,273 @@
+//! Agreement with Pinocchio on the robots of example-robot-data.
+//!
+//! For each robot (and for `tests/pinocchio/all_joints.urdf`, every URDF joint type rigid
+//! imports), `tests/pinocchio/reference.py` (Pinocchio 4.1 and example-robot-data 6.0 from
+//! PyPI, `scripts/requirements-test.txt`) loads the URDF with `pin.buildModelFromUrdf`, draws
+//! random states with a fixed seed and prints Pinocchio's results already translated into rigid's
+//! conventions (angular-first free-flyer velocities, one angle per continuous joint, symmetric
+//! `M`). This test loads the same URDF with [`rigid::io::urdf::load_urdf`], matches the joints by
+//! name (urdfdom orders siblings by name, rigid by file order) and evaluates the same states.
+//!
+//! Agreement is measured per quantity as `‖x_rigid - x_pin‖∞ / max(‖x_pin‖∞, 1e-6)` (the
+//! infinity norm over the whole vector or matrix, SI units, with a 1e-6 floor so that a quantity
+//! that is zero compares absolutely) and must be below 1e-9 for rnea, crba, aba, nle, gravity,
+//! kinetic and potential energy, CoM, total mass and every joint placement.
+//!
+//! Requires `python3` with `pin` and `example-robot-data` (`bash scripts/test.sh` installs
+//! them); set `RIGID_SKIP_PINOCCHIO=1` to skip. `RIGID_PYTHON` overrides the interpreter.
+
+use nalgebra::DMatrix;
+use rigid::io::urdf::load_urdf;
+use rigid::multibody::{
+    aba, center_of_mass, crba, forward_kinematics_q, gravity_torques, kinetic_energy,
+    nonlinear_effects, potential_energy, rnea, Data, Model,
+};
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::Command;
+
+/// Random states per robot.
+const STATES: usize = 8;
+/// Largest relative error accepted.
+const TOLERANCE: f64 = 1e-9;
+/// Absolute floor of the scale in the relative error.
+const FLOOR: f64 = 1e-6;
+
+fn python() -> String {
+    std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into())
+}
+
+/// Pinocchio's reference for one robot, or `None` when skipped by `RIGID_SKIP_PINOCCHIO=1`.
+fn reference(robot: &str) -> Option<Value> {
+    if std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1") {
+        eprintln!("RIGID_SKIP_PINOCCHIO=1: not comparing {robot} with Pinocchio");
+        return None;
+    }
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/pinocchio/reference.py");
+    let out = Command::new(python())
+        .arg(&script)
+        .arg(robot)
+        .args(["--states", &STATES.to_string(), "--seed", "7"])
+        .output()
+        .unwrap_or_else(|e| {
+            panic!(
+                "cannot run {} ({e}): install Python 3 and run `bash scripts/test.sh`, which \
+                 pip-installs Pinocchio and example-robot-data (or set RIGID_SKIP_PINOCCHIO=1)",
+                python()
+            )
+        });
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() {
+        if stderr.contains("No module named") {
+            panic!(
+                "Python cannot import Pinocchio or example-robot-data:\n{stderr}\nRun `bash \
+                 scripts/test.sh` (it pip-installs scripts/requirements-test.txt), or set \
+                 RIGID_SKIP_PINOCCHIO=1 to skip this comparison."
+            );
+        }
+        panic!("{} failed for {robot}:\n{stderr}", script.display());
+    }
+    Some(serde_json::from_slice(&out.stdout).expect("reference.py printed invalid JSON"))
+}
+
+fn vec_of(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+fn mat_of(v: &Value) -> Vec<Vec<f64>> {
+    v.as_array().expect("array").iter().map(vec_of).collect()
+}
+
+/// `‖a - b‖∞ / max(‖b‖∞, FLOOR)`.
+fn rel(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let diff = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    let scale = b.iter().map(|y| y.abs()).fold(FLOOR, f64::max);
+    diff / scale
+}
+
+/// Maximum relative errors, one per quantity, over all states.
+#[derive(Default)]
+struct Errors(Vec<(&'static str, f64)>);
+
+impl Errors {
+    fn record(&mut self, what: &'static str, e: f64) {
+        let e = if e.is_nan() { f64::INFINITY } else { e };
+        match self.0.iter_mut().find(|(w, _)| *w == what) {
+            Some((_, m)) => *m = m.max(e),
+            None => self.0.push((what, e)),
+        }
+    }
+}
+
+/// Index maps from the reference's layout (Pinocchio's joint order) into rigid's: `(q, v)`.
+fn index_maps(model: &Model, joints: &[Value]) -> (Vec<usize>, Vec<usize>) {
+    assert_eq!(
+        model.joints().len(),
+        joints.len(),
+        "number of moving joints"
+    );
+    let (mut pq, mut pv) = (vec![0; model.nq()], vec![0; model.nv()]);
+    for rj in joints {
+        let name = rj["name"].as_str().unwrap();
+        let field = |k: &str| rj[k].as_u64().unwrap() as usize;
+        let id = model
+            .joint_id(name)
+            .unwrap_or_else(|| panic!("rigid has no joint {name}"));
+        let j = &model.joints()[id.0];
+        assert_eq!((j.nq, j.nv), (field("nq"), field("nv")), "joint {name}");
+        for t in 0..j.nq {
+            pq[field("idx_q") + t] = j.idx_q + t;
+        }
+        for t in 0..j.nv {
+            pv[field("idx_v") + t] = j.idx_v + t;
+        }
+    }
+    (pq, pv)
+}
+
+/// `x` in rigid's layout from the reference's.
+fn to_rigid(x: &[f64], map: &[usize]) -> Vec<f64> {
+    let mut out = vec![0.0; x.len()];
+    for (k, &r) in map.iter().enumerate() {
+        out[r] = x[k];
+    }
+    out
+}
+
+/// `x` (rigid's layout) in the reference's layout.
+fn from_rigid(x: &[f64], map: &[usize]) -> Vec<f64> {
+    map.iter().map(|&r| x[r]).collect()
+}
+
+fn compare(robot: &str) {
+    let Some(r) = reference(robot) else { return };
+    let start = std::time::Instant::now();
+    let urdf = r["urdf"].as_str().unwrap();
+    let floating = r["floating"].as_bool().unwrap();
+    let model = load_urdf(urdf, floating).unwrap_or_else(|e| panic!("{robot}: {e}"));
+    let mut data = Data::new(&model);
+    let joints = r["joints"].as_array().unwrap();
+    let (pq, pv) = index_maps(&model, joints);
+    let mut err = Errors::default();
+    let g = model.gravity();
+    err.record("gravity", rel(&[g.x, g.y, g.z], &vec_of(&r["gravity"])));
+    let m_ref = r["total_mass"].as_f64().unwrap();
+    err.record("total_mass", rel(&[model.total_mass()], &[m_ref]));
+
+    for s in r["states"].as_array().unwrap() {
+        let q = to_rigid(&vec_of(&s["q"]), &pq);
+        let v = to_rigid(&vec_of(&s["v"]), &pv);
+        let a = to_rigid(&vec_of(&s["a"]), &pv);
+        let tau = to_rigid(&vec_of(&s["tau"]), &pv);
+        let back = |x: &nalgebra::DVector<f64>| from_rigid(x.as_slice(), &pv);
+
+        let x = back(rnea(&model, &mut data, &q, &v, &a).unwrap());
+        err.record("rnea", rel(&x, &vec_of(&s["rnea"])));
+        let m: DMatrix<f64> = crba(&model, &mut data, &q).unwrap().clone();
+        let m_ref = mat_of(&s["mass_matrix"]);
+        let pvr = &pv;
+        let m_flat: Vec<f64> = (0..pv.len())
+            .flat_map(|i| pvr.iter().map(move |&c| (pvr[i], c)))
+            .map(|(r, c)| m[(r, c)])
+            .collect();
+        err.record("crba", rel(&m_flat, &m_ref.concat()));
+        let x = back(aba(&model, &mut data, &q, &v, &tau).unwrap());
+        err.record("aba", rel(&x, &vec_of(&s["aba"])));
+        let x = back(nonlinear_effects(&model, &mut data, &q, &v).unwrap());
+        err.record("nle", rel(&x, &vec_of(&s["nonlinear_effects"])));
+        let x = back(gravity_torques(&model, &mut data, &q).unwrap());
+        err.record("gravity_torques", rel(&x, &vec_of(&s["gravity_torques"])));
+        let ke = kinetic_energy(&model, &mut data, &q, &v).unwrap();
+        err.record(
+            "kinetic_energy",
+            rel(&[ke], &[s["kinetic_energy"].as_f64().unwrap()]),
+        );
+        let pe = potential_energy(&model, &mut data, &q).unwrap();
+        let pe_ref = s["potential_energy"].as_f64().unwrap();
+        err.record("potential_energy", rel(&[pe], &[pe_ref]));
+        let c = center_of_mass(&model, &mut data, &q).unwrap();
+        err.record("com", rel(&[c.x, c.y, c.z], &vec_of(&s["com"])));
+
+        forward_kinematics_q(&model, &mut data, &q).unwrap();
+        let placements = s["placements"].as_object().unwrap();
+        assert_eq!(placements.len(), model.joints().len());
+        for (name, p) in placements {
+            let id = model.joint_id(name).unwrap();
+            let t = &data.placements[id.0];
+            let mut ours: Vec<f64> = t.translation.iter().copied().collect();
+            ours.extend(
+                (0..3)
+                    .flat_map(|i| (0..3).map(move |k| (i, k)))
+                    .map(|ik| t.rotation[ik]),
+            );
+            let mut theirs = vec_of(&p["translation"]);
+            theirs.extend(mat_of(&p["rotation"]).concat());
+            err.record("placements", rel(&ours, &theirs));
+        }
+    }
+
+    let line: Vec<String> = err.0.iter().map(|(w, e)| format!("{w} {e:.1e}")).collect();
+    eprintln!(
+        "{robot} (nq {}, nv {}, {} states, rigid {:.0} ms): max relative error: {}",
+        model.nq(),
+        model.nv(),
+        STATES,
+        start.elapsed().as_secs_f64() * 1e3,
+        line.join(", ")
+    );
+    for (what, e) in &err.0 {
+        assert!(
+            *e <= TOLERANCE,
+            "{robot}: {what} differs from Pinocchio by {e:.3e} relative (tolerance {TOLERANCE:e})"
+        );
+    }
+}
+
+#[test]
+fn ur5_agrees_with_pinocchio() {
+    compare("ur5");
+}
+
+#[test]
+fn panda_agrees_with_pinocchio() {
+    compare("panda");
+}
+
+#[test]
+fn solo12_free_flyer_agrees_with_pinocchio() {
+    compare("solo12");
+}
+
+#[test]
+fn anymal_free_flyer_agrees_with_pinocchio() {
+    compare("anymal");
+}
+
+#[test]
+fn talos_free_flyer_agrees_with_pinocchio() {
+    compare("talos");
+}
+
+#[test]
+fn double_pendulum_agrees_with_pinocchio() {
+    compare("double_pendulum");
+}
+
+#[test]
+fn every_urdf_joint_type_agrees_with_pinocchio() {
+    compare("all_joints");
+}
+
+#[test]
+fn every_urdf_joint_type_on_a_free_flyer_agrees_with_pinocchio() {
+    compare("all_joints_floating");
+}
