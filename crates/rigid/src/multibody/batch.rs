@@ -2,10 +2,10 @@
 //! dynamics and mass matrices for `N` states, each written to a caller-owned, row-major output.
 //!
 //! Inputs are row-major: state `k`'s configuration is `qs[k nq..(k + 1) nq]`, its velocity
-//! `vs[k nv..(k + 1) nv]`, and so on. Each rayon worker owns one [`Data`] (made once per worker
-//! by `map_init`, so no allocation per state), and each state's result goes to its own slice of
-//! the output, so the results are those of single calls, bit for bit, in the input order, for any
-//! number of threads. Run inside a `rayon::ThreadPool::install` to choose the number of threads.
+//! `vs[k nv..(k + 1) nv]`, and so on. The states are cut into a few contiguous blocks per
+//! thread, each evaluated with its own [`Data`] (one allocation per block, none per state), and
+//! each state's result goes to its own slice of the output, so the results are those of single
+//! calls, bit for bit, in the input order, for any number of threads. Run inside a `rayon::ThreadPool::install` to choose the number of threads.
 //!
 //! ```
 //! use rigid::multibody::{batch, puma560, Puma560Options};
@@ -23,8 +23,9 @@ use super::{aba, crba, rnea, Data, Model, MultibodyError};
 use crate::error::DimensionError;
 use rayon::prelude::*;
 
-/// States per rayon task: large enough to amortise the scheduling, small enough to balance.
-const CHUNK: usize = 16;
+/// Tasks per rayon thread: a few, so that a slow thread can be helped, each making one [`Data`]
+/// (whose allocation is then negligible next to its share of states).
+const TASKS_PER_THREAD: usize = 4;
 
 /// Number of states in row-major inputs, checking every length.
 fn count(
@@ -43,7 +44,8 @@ fn count(
     Ok(n)
 }
 
-/// Evaluate `f(data, k, out_k)` for every state `k`, in parallel chunks, one `Data` per worker.
+/// Evaluate `f(data, k, out_k)` for every state `k`: the states are cut into
+/// `TASKS_PER_THREAD × threads` contiguous blocks, run in parallel, each with its own `Data`.
 fn for_each_state<F>(
     model: &Model,
     out: &mut [f64],
@@ -53,20 +55,21 @@ fn for_each_state<F>(
 where
     F: Fn(&mut Data, usize, &mut [f64]) -> Result<(), MultibodyError> + Sync,
 {
-    if out_per == 0 {
+    let n = out.len().checked_div(out_per).unwrap_or(0);
+    if n == 0 {
         return Ok(());
     }
-    out.par_chunks_mut(CHUNK * out_per)
+    let tasks = (rayon::current_num_threads() * TASKS_PER_THREAD).clamp(1, n);
+    let per_task = n.div_ceil(tasks);
+    out.par_chunks_mut(per_task * out_per)
         .enumerate()
-        .map_init(
-            || Data::new(model),
-            |data, (c, block)| {
-                for (j, out_k) in block.chunks_mut(out_per).enumerate() {
-                    f(data, c * CHUNK + j, out_k)?;
-                }
-                Ok(())
-            },
-        )
+        .map(|(c, block)| {
+            let mut data = Data::new(model);
+            for (j, out_k) in block.chunks_mut(out_per).enumerate() {
+                f(&mut data, c * per_task + j, out_k)?;
+            }
+            Ok(())
+        })
         .collect::<Result<(), MultibodyError>>()
 }
 
