@@ -7,7 +7,7 @@
 //! root), found under `$EXAMPLE_ROBOT_DATA` (the `robots/` folder) or through `python3`'s
 //! `cmeel.prefix`; a robot whose URDF is not found is skipped with a note on stderr.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use rigid::multibody::*;
 use std::hint::black_box;
 
@@ -103,41 +103,41 @@ fn bench(c: &mut Criterion) {
             i = (i + 1) % STATES;
             &s[i]
         };
-        g.bench_function(BenchmarkId::new("forward_kinematics", &name), |b| {
+        g.bench_function("forward_kinematics", |b| {
             b.iter(|| {
                 let (q, _, _) = next();
                 forward_kinematics_q(&model, &mut data, q).unwrap();
                 black_box(&data.placements);
             })
         });
-        g.bench_function(BenchmarkId::new("jacobians", &name), |b| {
+        g.bench_function("jacobians", |b| {
             b.iter(|| black_box(compute_joint_jacobians(&model, &mut data, &next().0).unwrap()[0]))
         });
-        g.bench_function(BenchmarkId::new("rnea", &name), |b| {
+        g.bench_function("rnea", |b| {
             b.iter(|| {
                 let (q, v, a) = next();
                 black_box(rnea(&model, &mut data, q, v, a).unwrap()[0])
             })
         });
-        g.bench_function(BenchmarkId::new("gravity", &name), |b| {
+        g.bench_function("gravity", |b| {
             b.iter(|| black_box(gravity_torques(&model, &mut data, &next().0).unwrap()[0]))
         });
-        g.bench_function(BenchmarkId::new("nonlinear_effects", &name), |b| {
+        g.bench_function("nonlinear_effects", |b| {
             b.iter(|| {
                 let (q, v, _) = next();
                 black_box(nonlinear_effects(&model, &mut data, q, v).unwrap()[0])
             })
         });
-        g.bench_function(BenchmarkId::new("crba", &name), |b| {
+        g.bench_function("crba", |b| {
             b.iter(|| black_box(crba(&model, &mut data, &next().0).unwrap()[0]))
         });
-        g.bench_function(BenchmarkId::new("aba", &name), |b| {
+        g.bench_function("aba", |b| {
             b.iter(|| {
                 let (q, v, a) = next();
                 black_box(aba(&model, &mut data, q, v, a).unwrap()[0])
             })
         });
-        g.bench_function(BenchmarkId::new("cholesky_fd", &name), |b| {
+        g.bench_function("cholesky_fd", |b| {
             b.iter(|| {
                 let (q, v, a) = next();
                 black_box(forward_dynamics_cholesky(&model, &mut data, q, v, a).unwrap()[0])
