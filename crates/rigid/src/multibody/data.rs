@@ -68,6 +68,8 @@ pub struct Data {
     pub(crate) world_inertias: Vec<SpatialInertia>,
     pub(crate) world_b: Vec<Mat6>,
     pub(crate) chol: DMatrix<f64>,
+    /// Parent dof `λ(k)` of each dof (`usize::MAX` at the root), for the sparse `Lᵀ L`.
+    pub(crate) dof_parent: Vec<usize>,
 }
 
 impl Data {
@@ -111,6 +113,7 @@ impl Data {
             world_inertias: vec![SpatialInertia::zero(); n],
             world_b: vec![Mat6::zeros(); n],
             chol: DMatrix::zeros(nv, nv),
+            dof_parent: vec![usize::MAX; nv],
         }
     }
 }
