@@ -100,10 +100,7 @@ def puma560(pin):
     parent = 0
     placement = pin.SE3.Identity()  # placement of joint i's frame (DH frame i-1) in parent joint frame
     for i in range(6):
-        jid = model.addJoint(
-            parent, pin.JointModelRZ(), placement, "joint%d" % (i + 1),
-            -np.full(1, 1e3), np.full(1, 1e3), np.array([-math.pi]), np.array([math.pi]),
-        )
+        jid = model.addJoint(parent, pin.JointModelRZ(), placement, "joint%d" % (i + 1))
         # body i lives in DH frame i = (joint frame) * DH(a, alpha, d)
         T = dh_transform(*dh[i])
         I_c = np.diag(inertia[i])
@@ -111,6 +108,8 @@ def puma560(pin):
         model.appendBodyToJoint(jid, T.act(body_in_dh), pin.SE3.Identity())
         parent = jid
         placement = T
+    model.lowerPositionLimit = np.full(6, -math.pi)
+    model.upperPositionLimit = np.full(6, math.pi)
     return model
 
 
