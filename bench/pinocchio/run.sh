@@ -16,7 +16,7 @@
 # Steps: installs pin 4.1.0, example-robot-data 6.0.0 and cmeel-eigen from PyPI if they are not
 # already there; exports the robots with Pinocchio's Python module (export_models.py); compiles
 # timings.cpp against the headers and shared libraries under the wheel's cmeel.prefix (rpath set,
-# builds cached in build/ by a hash of source, flags and compiler); runs it.
+# objects cached in build/ by a hash of source, flags and compiler); runs it.
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -60,52 +60,66 @@ log "Pinocchio $PIN_VERSION headers and libraries under $PREFIX"
   exit 1
 }
 
-# 3. compile. Definitions exported by Pinocchio's CMake config
+# 3. compile: -O3 -DNDEBUG plus the definitions exported by Pinocchio's CMake config
 # (lib/cmake/pinocchio/pinocchioTargets.cmake, target pinocchio::pinocchio_headers); the
 # URDF parser, collision and serialization are not used, so neither urdfdom nor coal is needed.
 COMMON=(-std=c++17 -O3 -DNDEBUG
   -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30
   -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12
   -I"$PREFIX/include" -I"$PREFIX/include/eigen3")
-flags_for() {
+cflags_for() { # compile flags of a variant
   case "$1" in
     header) echo "" ;;
     native) echo "-march=native" ;;
-    lib) echo "-DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION -L$PREFIX/lib -Wl,-rpath,$PREFIX/lib -lpinocchio_default" ;;
+    lib) echo "-DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION" ;;
     *) log "unknown variant $1"; exit 2 ;;
   esac
 }
-compile() { # variant
-  local v="$1" extra out stamp want t0 t1
-  extra="$(flags_for "$v")"
-  out="$BUILD/timings-$v"
-  stamp="$out.stamp"
-  want="$({ cat "$HERE/timings.cpp"; echo "${COMMON[*]} $extra $PIN_VERSION"; "$CXX" --version | head -1; } | sha256sum | cut -c1-16)"
-  if [[ -x "$out" && -f "$stamp" && "$(cat "$stamp")" == "$want" ]]; then
-    log "build $v: up to date ($out)"
-    return 0
-  fi
+ldflags_for() { # link flags of a variant (rpath to the wheel's libraries)
+  case "$1" in
+    lib) echo "-L$PREFIX/lib -Wl,-rpath,$PREFIX/lib -lpinocchio_default" ;;
+    *) echo "" ;;
+  esac
+}
+for v in $VARIANTS; do cflags_for "$v" >/dev/null; done
+# Four translation units per variant (timings.cpp: loading, states, output; timings-kin.cpp,
+# timings-crba.cpp, timings-aba.cpp: the algorithms), compiled in parallel on every core; each object is cached by
+# a hash of its source, the shared header, the flags, Pinocchio's version and the compiler.
+CXXID="$("$CXX" --version | head -1)"
+compile_obj() { # variant unit
+  local v="$1" u="$2" obj want t0
+  obj="$BUILD/obj-$v/$u.o"
+  want="$({ cat "$HERE/$u.cpp" "$HERE/timings.hpp"; echo "${COMMON[*]} $(cflags_for "$v") $PIN_VERSION $CXXID"; } | sha256sum | cut -c1-16)"
+  if [[ -f "$obj" && -f "$obj.stamp" && "$(cat "$obj.stamp")" == "$want" ]]; then return 0; fi
+  mkdir -p "$BUILD/obj-$v"
   t0=$(date +%s)
-  # shellcheck disable=SC2086
-  if ! "$CXX" "${COMMON[@]}" "$HERE/timings.cpp" -o "$out.tmp" $extra 2>"$out.log"; then
-    log "build $v FAILED, see $out.log"
-    tail -20 "$out.log" >&2
+  # shellcheck disable=SC2046
+  if ! "$CXX" "${COMMON[@]}" $(cflags_for "$v") -c "$HERE/$u.cpp" -o "$obj.tmp" 2>"$obj.log"; then
+    log "compile $v/$u FAILED, see $obj.log"
+    tail -20 "$obj.log" >&2
     return 1
   fi
-  mv "$out.tmp" "$out"
-  echo "$want" >"$stamp"
-  t1=$(date +%s)
-  log "build $v: compiled in $((t1 - t0)) s ($CXX ${COMMON[*]:0:3} $extra)"
+  mv "$obj.tmp" "$obj"
+  echo "$want" >"$obj.stamp"
+  log "compiled $v/$u.cpp in $(($(date +%s) - t0)) s"
 }
-# the variants compile in parallel (one translation unit each)
-pids=()
+export -f compile_obj cflags_for log
+export BUILD HERE CXX PIN_VERSION CXXID PREFIX
+export COMMON_STR="${COMMON[*]}"
+T0=$(date +%s)
+JOBS="$(nproc 2>/dev/null || echo 2)"
+# the heaviest units first, so that the cores stay busy to the end
+for u in timings-aba timings-crba timings-kin timings; do for v in $VARIANTS; do echo "$v $u"; done; done |
+  xargs -P "$JOBS" -L 1 bash -c 'COMMON=($COMMON_STR); compile_obj "$0" "$1"' || {
+  log "build failed"
+  exit 1
+}
 for v in $VARIANTS; do
-  compile "$v" &
-  pids+=($!)
+  # shellcheck disable=SC2046
+  "$CXX" -o "$BUILD/timings-$v" "$BUILD/obj-$v/timings.o" "$BUILD/obj-$v/timings-kin.o" \
+    "$BUILD/obj-$v/timings-crba.o" "$BUILD/obj-$v/timings-aba.o" $(ldflags_for "$v")
 done
-fail=0
-for p in "${pids[@]}"; do wait "$p" || fail=1; done
-[[ $fail == 0 ]] || exit 1
+log "builds ($VARIANTS) ready in $(($(date +%s) - T0)) s: $BUILD/timings-{${VARIANTS// /,}}"
 
 [[ $BUILD_ONLY == 1 ]] && exit 0
 

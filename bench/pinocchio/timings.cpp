@@ -18,14 +18,9 @@
 // with -DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION really calls the wheel's
 // precompiled algorithms, and a build without it compiles them here.
 
-#include <pinocchio/multibody.hpp>
+#include "timings.hpp"
+
 #include <pinocchio/algorithm/joint-configuration.hpp>
-#include <pinocchio/algorithm/kinematics.hpp>
-#include <pinocchio/algorithm/jacobian.hpp>
-#include <pinocchio/algorithm/rnea.hpp>
-#include <pinocchio/algorithm/crba.hpp>
-#include <pinocchio/algorithm/aba.hpp>
-#include <pinocchio/algorithm/cholesky.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -39,18 +34,16 @@
 #include <utility>
 #include <vector>
 
-using pinocchio::Data;
-using pinocchio::Model;
-using Vec = Eigen::VectorXd;
-using CRef = Eigen::Ref<const Eigen::VectorXd>;
+using bench::CRef;
+using bench::Data;
+using bench::Model;
+using bench::States;
+using bench::Vec;
+
+volatile double bench::g_sink = 0.0;
 
 namespace
 {
-  struct States
-  {
-    std::vector<Vec> q, v, a, tau;
-  };
-
   States draw_states(const Model & model, int n)
   {
     States s;
@@ -135,8 +128,7 @@ namespace
       throw std::runtime_error("malformed model file " + path);
     const Vec q = read_vec(in, nq), v = read_vec(in, nv), a = read_vec(in, nv),
               tau = read_vec(in, nv);
-    Data data(model);
-    const Vec mine = pinocchio::rnea(model, data, q, v, a);
+    const Vec mine = bench::rnea_once(model, q, v, a);
     return (mine - tau).cwiseAbs().maxCoeff();
   }
 
@@ -147,8 +139,6 @@ namespace
     return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
   }
 
-  // Defeats dead-code elimination: one element of each result is folded in per call.
-  volatile double g_sink = 0.0;
 } // namespace
 
 int main(int argc, char ** argv)
@@ -194,98 +184,15 @@ int main(int argc, char ** argv)
     std::srand(42); // randomConfiguration and Vec::Random draw from std::rand
     const States s = draw_states(model, nstates);
 
-    using pinocchio::Convention;
-    // One timed pass: the algorithm on every state in turn; the lambda is
-    // inlined into the loop (no indirect call per state).
-    auto pass = [&](auto && call) {
-      double acc = 0.0;
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int i = 0; i < nstates; ++i)
-        acc += call(i);
-      const auto t1 = std::chrono::steady_clock::now();
-      g_sink = g_sink + acc;
-      return std::chrono::duration<double, std::nano>(t1 - t0).count() / double(nstates);
-    };
-    static const char * const keys[] = {
-      "forward_kinematics", "forward_kinematics_qva", "jacobians", "rnea",
-      "gravity", "nonlinear_effects", "crba_local", "crba_world",
-      "aba_local", "aba_world", "minverse", "cholesky_fd"};
-    const size_t nalgos = sizeof(keys) / sizeof(keys[0]);
+    const auto & keys = bench::ALGO_KEYS;
+    const size_t nalgos = bench::N_ALGOS;
     auto run = [&](size_t k) -> double {
-      switch (k)
-      {
-      case 0:
-        return pass([&](int i) {
-          pinocchio::forwardKinematics(model, data, CRef(s.q[i]));
-          return data.oMi.back().translation()[0];
-        });
-      case 1:
-        return pass([&](int i) {
-          pinocchio::forwardKinematics(model, data, CRef(s.q[i]), CRef(s.v[i]), CRef(s.a[i]));
-          return data.a.back().linear()[0];
-        });
-      case 2:
-        return pass([&](int i) {
-          pinocchio::computeJointJacobians(model, data, CRef(s.q[i]));
-          return data.J(0, model.nv - 1);
-        });
-      case 3:
-        return pass([&](int i) {
-          pinocchio::rnea(model, data, CRef(s.q[i]), CRef(s.v[i]), CRef(s.a[i]));
-          return data.tau[0];
-        });
-      case 4:
-        return pass([&](int i) {
-          pinocchio::computeGeneralizedGravity(model, data, CRef(s.q[i]));
-          return data.g[0];
-        });
-      case 5:
-        return pass([&](int i) {
-          pinocchio::nonLinearEffects(model, data, CRef(s.q[i]), CRef(s.v[i]));
-          return data.nle[0];
-        });
-      case 6:
-        return pass([&](int i) {
-          pinocchio::crba(model, data, CRef(s.q[i]), Convention::LOCAL);
-          return data.M(0, model.nv - 1);
-        });
-      case 7:
-        return pass([&](int i) {
-          pinocchio::crba(model, data, CRef(s.q[i]), Convention::WORLD);
-          return data.M(0, model.nv - 1);
-        });
-      case 8:
-        return pass([&](int i) {
-          pinocchio::aba(
-            model, data, CRef(s.q[i]), CRef(s.v[i]), CRef(s.tau[i]), Convention::LOCAL);
-          return data.ddq[0];
-        });
-      case 9:
-        return pass([&](int i) {
-          pinocchio::aba(
-            model, data, CRef(s.q[i]), CRef(s.v[i]), CRef(s.tau[i]), Convention::WORLD);
-          return data.ddq[0];
-        });
-      case 10:
-        return pass([&](int i) {
-          pinocchio::computeMinverse(model, data, CRef(s.q[i]));
-          return data.Minv(0, model.nv - 1);
-        });
-      case 11:
-        // forward dynamics the textbook way: nle, M (CRBA), sparse Cholesky
-        // factorisation of M, then ddq = M^-1 (tau - nle)
-        return pass([&](int i) {
-          pinocchio::nonLinearEffects(model, data, CRef(s.q[i]), CRef(s.v[i]));
-          pinocchio::crba(model, data, CRef(s.q[i]), Convention::WORLD);
-          pinocchio::cholesky::decompose(model, data);
-          data.ddq = s.tau[i] - data.nle;
-          pinocchio::cholesky::solve(model, data, data.ddq);
-          return data.ddq[0];
-        });
-      }
-      return -1.0;
+      if (k < 6)
+        return bench::run_kinematics(k, model, data, s, nstates);
+      if (k == 6 || k == 7 || k == 11)
+        return bench::run_crba(k, model, data, s, nstates);
+      return bench::run_aba(k, model, data, s, nstates);
     };
-
     std::vector<std::vector<double>> samples(nalgos);
     for (size_t k = 0; k < nalgos; ++k) // one untimed warm-up pass each
       run(k);
@@ -316,5 +223,5 @@ int main(int argc, char ** argv)
     std::printf("}}\n");
     std::fflush(stdout);
   }
-  return g_sink == 12345.678 ? 1 : 0;
+  return bench::g_sink == 12345.678 ? 1 : 0;
 }
