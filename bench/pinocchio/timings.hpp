@@ -1,6 +1,7 @@
 // Shared declarations of the timing program (see timings.cpp). The algorithms are
 // split over three translation units (timings-kin.cpp, timings-crba.cpp,
-// timings-aba.cpp) so that// Pinocchio's heavy template instantiation compiles on several cores.
+// timings-aba.cpp) so that Pinocchio's heavy template instantiation compiles on
+// several cores.
 #pragma once
 
 #include <pinocchio/multibody.hpp>
