@@ -256,6 +256,24 @@ def main():
     have_rigid = any(rigid_runs[m["name"]] for m in models)
     if rigid_note:
         out.append("**Note: %s**\n" % rigid_note.replace("\n", "\n> "))
+    # both sides must time the same model: same number of position and velocity coordinates
+    for m in models:
+        for run in rigid_runs[m["name"]][:1]:
+            if (run.get("nq"), run.get("nv")) != (m["nq"], m["nv"]):
+                out.append("**Warning: %s: rigid reports nq=%s nv=%s, Pinocchio nq=%d nv=%d: not the same "
+                           "model, its ratios mean nothing.**\n" % (m["name"], run.get("nq"), run.get("nv"),
+                                                                   m["nq"], m["nv"]))
+    # anything else rigid states (e.g. its CRBA convention), once
+    said = {}
+    for m in models:
+        for run in rigid_runs[m["name"]][:1]:
+            for k, v in run.items():
+                if k not in ("model", "nq", "nv", "ns_per_call") and k not in said:
+                    said[k] = v
+    for k, v in said.items():
+        out.append("- rigid: %s: %s" % (k, json.dumps(v) if not isinstance(v, str) else v))
+    if said:
+        out.append("")
 
     hdr = "| model | nq | nv | " + " | ".join(SHORT[k] for k in ALGOS) + " |"
     sep = "|---|---:|---:|" + "---:|" * len(ALGOS)
