@@ -140,3 +140,42 @@ fn double_pendulum_matches_its_closed_form_lagrangian() {
         close(cv[1], -h * v[0] * v[0], "c2");
     }
 }
+
+/// Issue 4: the rod as a chain of two revolute joints (CRBA / RNEA) gives the same `M`, `c`, `g`
+/// as the single-body Lagrangian of [`rigid::body::lagrange::RodOnPivot`] (energies
+/// differentiated by automatic differentiation): two independent derivations of one system.
+#[test]
+fn rod_as_two_revolute_joints_equals_the_autodiff_lagrangian() {
+    use nalgebra::Vector2;
+    use rigid::body::lagrange::{equations_of_motion, RodOnPivot};
+    let (m, L, g) = (1.3, 0.8, 9.81);
+    let model = rod(m, L, g);
+    let lagrangian = RodOnPivot {
+        mass: m,
+        length: L,
+        gravity: g,
+    };
+    let mut data = Data::new(&model);
+    let mut rng = Rng::new(11);
+    for _ in 0..25 {
+        let q = [rng.uniform(-3.0, 3.0), rng.uniform(0.1, 3.0)];
+        let v = [rng.uniform(-3.0, 3.0), rng.uniform(-3.0, 3.0)];
+        let eom = equations_of_motion(
+            &lagrangian,
+            &Vector2::new(q[0], q[1]),
+            &Vector2::new(v[0], v[1]),
+        );
+        let M = crba(&model, &mut data, &q).unwrap().clone();
+        let grav = gravity_torques(&model, &mut data, &q).unwrap().clone();
+        let nle = nonlinear_effects(&model, &mut data, &q, &v)
+            .unwrap()
+            .clone();
+        for i in 0..2 {
+            for j in 0..2 {
+                close(M[(i, j)], eom.mass_matrix[(i, j)], "M");
+            }
+            close(grav[i], eom.gravity[i], "g");
+            close(nle[i] - grav[i], eom.coriolis[i], "c");
+        }
+    }
+}
