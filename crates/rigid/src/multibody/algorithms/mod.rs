@@ -73,7 +73,8 @@ pub(crate) fn compose(a: &Transform, b: &Transform) -> Transform {
 
 /// `G_a = [Ad_{T⁻¹}]ᵀ G_b [Ad_{T⁻¹}]` for `T = T_ab = (R, p)` (an inertia of body b expressed in
 /// frame a), as [`SpatialInertia::transformed`] but with the skew products written out:
-/// with `h' = R h`, `I_a = R I Rᵀ + 2(h'·p) 1 - (p h'ᵀ + h' pᵀ) + m (|p|² 1 - p pᵀ)`,
+/// with `h' = R h`, `I_a = R I Rᵀ + 2(h'·p) 1 - (p h'ᵀ + h' pᵀ) + m (|p|² 1 - p pᵀ)`
+/// `= R I Rᵀ + 2(g·p) 1 - (p gᵀ + g pᵀ)` with `g = h' + ½ m p`,
 /// `h_a = h' + m p` (from `[x][y] = y xᵀ - (x·y) 1`).
 #[inline]
 pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialInertia {
@@ -82,15 +83,17 @@ pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialIne
     let m = G.mass();
     let h = crate::spatial::mat3_vec(R, &G.first_moment());
     let RI = mat3_mul(R, G.inertia_origin_matrix());
-    let d = 2.0 * h.dot(p) + m * p.norm_squared();
+    // with g = h' + ½ m p: p h'ᵀ + h' pᵀ + m p pᵀ = p gᵀ + g pᵀ and 2(h'·p) + m|p|² = 2 g·p
+    let g = h + p * (0.5 * m);
+    let d = 2.0 * g.dot(p);
     let (r, ri) = (R.as_slice(), RI.as_slice()); // column-major
-    let (p, hh) = ([p.x, p.y, p.z], [h.x, h.y, h.z]);
+    let (p, g) = ([p.x, p.y, p.z], [g.x, g.y, g.z]);
     let mut out = [0.0; 9];
     for i in 0..3 {
         for j in i..3 {
             // (R I Rᵀ)_ij = Σ_k (RI)_ik R_jk
             let rir = ri[i] * r[j] + ri[3 + i] * r[3 + j] + ri[6 + i] * r[6 + j];
-            let x = rir - p[i] * hh[j] - hh[i] * p[j] - m * p[i] * p[j];
+            let x = rir - p[i] * g[j] - g[i] * p[j];
             out[j * 3 + i] = x;
             out[i * 3 + j] = x;
         }
