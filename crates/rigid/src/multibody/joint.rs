@@ -61,26 +61,32 @@ fn rodrigues(a: &Vec3, s: f64, c: f64) -> Mat3 {
 
 /// `R exp([a] q)`: for a coordinate axis `a = ±e_k` only two columns of `R` mix
 /// (12 multiplications); otherwise Rodrigues' formula and a 3x3 product.
-#[inline]
+#[inline(always)]
 fn rotate_about(r: &Mat3, a: &Vec3, q: f64) -> Mat3 {
     let (s, c) = super::sincos::sin_cos(q);
-    let (j, k, sign) = if a.x == 0.0 && a.y == 0.0 {
-        (0, 1, a.z) // about z: columns 0 and 1 turn
+    // columns j and k turn: u' = c u + s w, w' = c w - s u (constant indices in each arm)
+    #[inline(always)]
+    fn turn(r: &Mat3, j: usize, k: usize, s: f64, c: f64) -> Mat3 {
+        let m = r.as_slice();
+        let mut out = [0.0; 9];
+        out.copy_from_slice(m);
+        for t in 0..3 {
+            let (u, w) = (m[3 * j + t], m[3 * k + t]);
+            out[3 * j + t] = u * c + w * s;
+            out[3 * k + t] = w * c - u * s;
+        }
+        Mat3::from_column_slice(&out)
+    }
+    if a.x == 0.0 && a.y == 0.0 {
+        turn(r, 0, 1, s * a.z, c) // about ±z: columns 0 and 1 turn (a = -e_k turns by -q)
     } else if a.y == 0.0 && a.z == 0.0 {
-        (1, 2, a.x) // about x: columns 1 and 2 turn
+        turn(r, 1, 2, s * a.x, c) // about ±x: columns 1 and 2 turn
     } else if a.x == 0.0 && a.z == 0.0 {
-        (2, 0, a.y) // about y: columns 2 and 0 turn
+        turn(r, 2, 0, s * a.y, c) // about ±y: columns 2 and 0 turn
     } else {
         let rj = rodrigues(a, s, c);
-        return crate::multibody::algorithms::mat3_mul(r, &rj);
-    };
-    let s = s * sign; // a = -e_k turns by -q
-    let u: Vec3 = r.column(j).into();
-    let w: Vec3 = r.column(k).into();
-    let mut out = *r;
-    out.set_column(j, &(u * c + w * s));
-    out.set_column(k, &(w * c - u * s));
-    out
+        crate::multibody::algorithms::mat3_mul(r, &rj)
+    }
 }
 
 /// Quaternion `(x, y, z, w)` → rotation matrix, normalising first.

@@ -4,7 +4,8 @@
 
 use super::inertia_to_parent;
 use super::kinematics::placements_unchecked;
-use crate::multibody::{check_data, check_q, Data, Model, MultibodyError};
+use crate::multibody::{check_data, check_q, Data, JointType, Model, MultibodyError};
+use crate::spatial::{mat3_vec, Twist};
 use nalgebra::DMatrix;
 
 /// The joint-space inertia matrix `M(q)` (full symmetric), plus the armature on the diagonal:
@@ -46,8 +47,17 @@ pub fn crba<'a>(
         let oMi = data.placements[i];
         data.composite_inertias[i] = inertia_to_parent(&model.inertias[i], &oMi);
         let j = &model.joints[i];
-        for k in j.idx_v..j.idx_v + j.nv {
-            data.dof_J[k] = oMi.act_twist(&model.dof_S[k]);
+        match j.kind {
+            // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
+            JointType::Revolute { axis } | JointType::Continuous { axis } => {
+                let w = mat3_vec(&oMi.rotation, &axis);
+                data.dof_J[j.idx_v] = Twist::new(w, oMi.translation.cross(&w));
+            }
+            _ => {
+                for k in j.idx_v..j.idx_v + j.nv {
+                    data.dof_J[k] = oMi.act_twist(&model.dof_S[k]);
+                }
+            }
         }
     }
     let nv = model.nv;
