@@ -5,7 +5,7 @@
 use super::inertia_to_parent;
 use super::kinematics::placements_unchecked;
 use crate::multibody::{check_data, check_q, Data, JointType, Model, MultibodyError};
-use crate::spatial::{mat3_vec, Twist};
+use crate::spatial::{mat3_vec, Twist, Vec3};
 use nalgebra::DMatrix;
 
 /// The joint-space inertia matrix `M(q)` (full symmetric), plus the armature on the diagonal:
@@ -52,6 +52,15 @@ pub fn crba<'a>(
             JointType::Revolute { axis } | JointType::Continuous { axis } => {
                 let w = mat3_vec(&oMi.rotation, &axis);
                 data.dof_J[j.idx_v] = Twist::new(w, oMi.translation.cross(&w));
+            }
+            // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
+            JointType::FreeFlyer => {
+                let (R, p) = (&oMi.rotation, &oMi.translation);
+                for c in 0..3 {
+                    let r: Vec3 = R.column(c).into();
+                    data.dof_J[j.idx_v + c] = Twist::new(r, p.cross(&r));
+                    data.dof_J[j.idx_v + 3 + c] = Twist::new(Vec3::zeros(), r);
+                }
             }
             _ => {
                 for k in j.idx_v..j.idx_v + j.nv {
