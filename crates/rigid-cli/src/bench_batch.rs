@@ -2,6 +2,7 @@
 //! for a loop of single calls and for the batch entry points on 1, 2, … threads (each in its
 //! own rayon pool), median over the passes.
 
+use nalgebra::DVector;
 use rigid::multibody::{aba, batch, crba, rnea, Data, Model, MultibodyError};
 use std::time::Instant;
 
@@ -30,10 +31,26 @@ type Kernel = fn(&Model, &Rows, &mut [f64]) -> Result<(), MultibodyError>;
 /// A loop of single calls with one workspace.
 type Single = fn(&Model, &Rows, &mut [f64], &mut Data) -> Result<(), MultibodyError>;
 
-fn loop_rnea(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), MultibodyError> {
+/// `rnea` and `aba` share one shape: `(q, v, x) ↦ nv-vector`.
+type QvxFn = for<'a> fn(
+    &Model,
+    &'a mut Data,
+    &[f64],
+    &[f64],
+    &[f64],
+) -> Result<&'a DVector<f64>, MultibodyError>;
+
+/// A loop of single calls of `f` over the states, the third input taken from `r.as_`.
+fn loop_qvx(
+    f: QvxFn,
+    m: &Model,
+    r: &Rows,
+    out: &mut [f64],
+    d: &mut Data,
+) -> Result<(), MultibodyError> {
     let (nq, nv) = (m.nq(), m.nv());
     for k in 0..r.n {
-        let t = rnea(
+        let t = f(
             m,
             d,
             &r.qs[k * nq..][..nq],
@@ -45,19 +62,12 @@ fn loop_rnea(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), M
     Ok(())
 }
 
+fn loop_rnea(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), MultibodyError> {
+    loop_qvx(rnea, m, r, out, d)
+}
+
 fn loop_aba(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), MultibodyError> {
-    let (nq, nv) = (m.nq(), m.nv());
-    for k in 0..r.n {
-        let t = aba(
-            m,
-            d,
-            &r.qs[k * nq..][..nq],
-            &r.vs[k * nv..][..nv],
-            &r.as_[k * nv..][..nv],
-        )?;
-        out[k * nv..][..nv].copy_from_slice(t.as_slice());
-    }
-    Ok(())
+    loop_qvx(aba, m, r, out, d)
 }
 
 fn loop_crba(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), MultibodyError> {

@@ -3,24 +3,14 @@
 //! by `fixtures/gen_tree_pinocchio.py` (PyPI `pin`), converted to rigid's conventions there.
 #![allow(non_snake_case)]
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::multibody::*;
 use rigid::spatial::{Mat3, Transform, Vec3};
 use serde_json::Value;
 
-fn vec_of(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
-
-fn mat_of(v: &Value) -> DMatrix<f64> {
-    let rows: Vec<Vec<f64>> = v.as_array().unwrap().iter().map(vec_of).collect();
-    DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j])
-}
+mod common;
+use common::json::{mat_of, vec_of};
 
 fn mat3(v: &Value) -> Mat3 {
     let m = mat_of(v);

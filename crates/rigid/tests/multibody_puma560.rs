@@ -6,24 +6,14 @@
 use nalgebra::{DMatrix, DVector};
 use rigid::multibody::*;
 use serde_json::Value;
+
+mod common;
+use common::json::{mat_of, vec_of};
 use std::f64::consts::PI;
 
 fn fixture() -> Value {
     let text = include_str!("fixtures/puma560_rtb.json");
     serde_json::from_str(text).unwrap()
-}
-
-fn vec_of(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
-
-fn mat_of(v: &Value) -> DMatrix<f64> {
-    let rows: Vec<Vec<f64>> = v.as_array().unwrap().iter().map(vec_of).collect();
-    DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j])
 }
 
 /// `|x - y|_∞ / |y|_∞`.

@@ -26,6 +26,9 @@ use serde_json::Value;
 use std::path::PathBuf;
 use std::process::Command;
 
+mod common;
+use common::json::vec_of;
+
 /// Random states per robot.
 const STATES: usize = 8;
 /// Largest relative error accepted.
@@ -68,14 +71,6 @@ fn reference(robot: &str) -> Option<Value> {
         panic!("{} failed for {robot}:\n{stderr}", script.display());
     }
     Some(serde_json::from_slice(&out.stdout).expect("reference.py printed invalid JSON"))
-}
-
-fn vec_of(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
 }
 
 fn mat_of(v: &Value) -> Vec<Vec<f64>> {

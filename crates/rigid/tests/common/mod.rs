@@ -1,6 +1,8 @@
 //! Shared helpers for the multibody tests: a random kinematic tree and random states.
 #![allow(dead_code, non_snake_case)]
 
+pub mod json;
+
 use nalgebra::{DMatrix, DVector};
 use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::multibody::*;

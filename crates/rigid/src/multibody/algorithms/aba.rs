@@ -218,10 +218,7 @@ pub fn aba<'a>(
     v: &[f64],
     tau: &[f64],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
-    check_q(model, q)?;
-    check_data(model, data)?;
-    check_v(model, "v", v)?;
-    check_v(model, "tau", tau)?;
+    check_inputs(model, data, q, v, tau)?;
     aba_impl(model, data, q, v, tau, None)?;
     Ok(&data.ddq)
 }
@@ -238,13 +235,24 @@ pub fn aba_with_external<'a>(
     tau: &[f64],
     fext: &[Wrench],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
-    check_q(model, q)?;
-    check_data(model, data)?;
-    check_v(model, "v", v)?;
-    check_v(model, "tau", tau)?;
+    check_inputs(model, data, q, v, tau)?;
     DimensionError::check("fext", model.njoints(), fext.len())?;
     aba_impl(model, data, q, v, tau, Some(fext))?;
     Ok(&data.ddq)
+}
+
+/// The argument checks shared by [`aba`] and [`aba_with_external`].
+fn check_inputs(
+    model: &Model,
+    data: &Data,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+) -> Result<(), MultibodyError> {
+    check_q(model, q)?;
+    check_data(model, data)?;
+    check_v(model, "v", v)?;
+    check_v(model, "tau", tau)
 }
 
 /// The parent degree of freedom `λ(k)`: the previous dof of the same joint, else the last dof of
