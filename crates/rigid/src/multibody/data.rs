@@ -14,7 +14,7 @@ pub struct Data {
     /// Filled by every algorithm that takes `q`.
     pub parent_placements: Vec<Transform>,
     /// `oMi`: world pose of each joint frame as moved by the joint. Forward kinematics,
-    /// Jacobians, CRBA, energies, CoM.
+    /// Jacobians, energies, CoM (not CRBA, which works in the root body's frame).
     pub placements: Vec<Transform>,
     /// `oMf`: world pose of each named frame ([`update_frame_placements`](super::update_frame_placements)).
     pub frame_placements: Vec<Transform>,
@@ -28,7 +28,7 @@ pub struct Data {
     /// Wrench `F_i` transmitted from the parent to body i through joint i, in body i's frame
     /// (RNEA).
     pub forces: Vec<Wrench>,
-    /// Composite rigid-body inertia of each subtree, in world coordinates (CRBA).
+    /// Composite rigid-body inertia of each subtree, in the frame of its tree's root body (CRBA).
     pub composite_inertias: Vec<SpatialInertia>,
     /// Generalised forces `τ` (RNEA).
     pub tau: DVector<f64>,
@@ -62,6 +62,8 @@ pub struct Data {
     pub(crate) d_inv: Vec<Mat6>,
     pub(crate) d_inv_1: Vec<f64>,
     pub(crate) crba_forces: Vec<Wrench>,
+    /// CRBA's placements `rMi` in the frame of each tree's root body.
+    pub(crate) crba_placements: Vec<Transform>,
     pub(crate) dof_J: Vec<Twist>,
     pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,
@@ -107,6 +109,7 @@ impl Data {
             d_inv: vec![Mat6::zeros(); n],
             d_inv_1: vec![0.0; nv],
             crba_forces: vec![Wrench::zero(); nv],
+            crba_placements: vec![Transform::identity(); n],
             dof_J: vec![Twist::zero(); nv],
             u: DVector::zeros(nv),
             spatial_velocities: vec![Twist::zero(); n],

@@ -62,7 +62,7 @@ fn rodrigues(a: &Vec3, s: f64, c: f64) -> Mat3 {
 /// `R exp([a] q)`: for a coordinate axis `a = ±e_k` only two columns of `R` mix
 /// (12 multiplications); otherwise Rodrigues' formula and a 3x3 product.
 #[inline(always)]
-fn rotate_about(r: &Mat3, a: &Vec3, q: f64) -> Mat3 {
+pub(crate) fn rotate_about(r: &Mat3, a: &Vec3, q: f64) -> Mat3 {
     let (s, c) = super::sincos::sin_cos(q);
     // columns j and k turn: u' = c u + s w, w' = c w - s u (constant indices in each arm)
     #[inline(always)]

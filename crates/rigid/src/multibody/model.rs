@@ -4,7 +4,7 @@
 use super::{JointType, ModelError};
 use crate::error::DimensionError;
 use crate::mass::SpatialInertia;
-use crate::spatial::{Transform, Twist, Vec3};
+use crate::spatial::{Mat3, Transform, Twist, Vec3};
 
 /// The depth-first index of a moving joint (0-based); it also names the body the joint moves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -81,6 +81,9 @@ pub struct Model {
     pub(crate) dof_joint: Vec<usize>,
     /// `(joint, index in q)` of every quaternion (spherical and free-flyer joints).
     pub(crate) quaternions: Vec<(usize, usize)>,
+    /// Per joint: `X_T` has exactly the identity rotation (a URDF origin without `rpy`), so that
+    /// `oM_λ X_T X_J(q)` of a revolute joint turns two columns of `R_λ` (no 3x3 product).
+    pub(crate) unrotated: Vec<bool>,
     pub(crate) nq: usize,
     pub(crate) nv: usize,
 }
@@ -311,6 +314,7 @@ impl ModelBuilder {
                 dof_S: Vec::new(),
                 dof_joint: Vec::new(),
                 quaternions: Vec::new(),
+                unrotated: Vec::new(),
                 nq: 0,
                 nv: 0,
             },
@@ -396,6 +400,7 @@ impl ModelBuilder {
             subtree_end: id + 1,
         });
         m.inertias.push(inertia);
+        m.unrotated.push(placement.rotation == Mat3::identity());
         if let Some(o) = kind.quaternion_offset() {
             m.quaternions.push((id, m.nq + o));
         }

@@ -1,25 +1,37 @@
 //! The composite-rigid-body algorithm for the joint-space mass matrix (Featherstone 2008,
-//! Table 6.2), with the composite inertias accumulated in world coordinates (as Pinocchio's
-//! `crba`), so that no force is carried up the chain.
+//! Table 6.2), with the composite inertias accumulated in one frame per tree (the root body's),
+//! so that no force is carried up the chain.
 
-use super::inertia_to_parent;
-use super::kinematics::placements_unchecked;
+use super::{compose, inertia_to_parent, parent_placement};
+use crate::multibody::joint::rotate_about;
 use crate::multibody::{check_data, check_q, Data, JointType, Model, MultibodyError};
-use crate::spatial::{mat3_vec, Twist, Vec3};
+use crate::spatial::{mat3_vec, Transform, Twist, Vec3};
 use nalgebra::DMatrix;
 
 /// The joint-space inertia matrix `M(q)` (full symmetric), plus the armature on the diagonal:
 ///
-/// - world quantities: `oG_i = [Ad_{oMi⁻¹}]ᵀ G_i [Ad_{oMi⁻¹}]`, `J_k = [Ad_{oMi}] S_k`
-/// - composite inertias, i = n..1: `Ic_i = oG_i + Σ_{children c} Ic_c`
+/// - per tree, a reference frame {r} fixed to the root body (the body moved by a joint without a
+///   parent): `rMi = rM_{λ(i)} liMi` with `rM_root = 1`
+/// - quantities in {r}: `rG_i = [Ad_{rMi⁻¹}]ᵀ G_i [Ad_{rMi⁻¹}]`, `J_k = [Ad_{rMi}] S_k`
+/// - composite inertias, i = n..1: `Ic_i = rG_i + Σ_{children c} Ic_c`
 /// - for each dof k of joint i: `F_k = Ic_i J_k`; for every dof l in i's subtree (l ≥ k):
 ///   `M_kl = M_lk = J_kᵀ F_l`, where `F_l = Ic_{j(l)} J_l` uses the composite inertia of l's own
 ///   joint (the deeper one)
 /// - `M_kk += armature_k`
 ///
-/// This is Featherstone 2008, Table 6.2 (`M_ij = S_iᵀ Ic_i S_j` for j ⪯ i), with every quantity
-/// in world coordinates; `M = Σ_i J_iᵀ G_i J_i` (Lynch & Park §8.3.3). Returns
-/// `data.mass_matrix`; also fills `placements`, `parent_placements` and `composite_inertias` (in world coordinates). O(n d) dot products, d the depth.
+/// This is Featherstone 2008, Table 6.2 (`M_ij = S_iᵀ Ic_i S_j` for j ⪯ i) with every quantity in
+/// one frame per tree; `M = Σ_i J_iᵀ G_i J_i` (Lynch & Park §8.3.3). Each `M_kl = J_kᵀ F_l` pairs a
+/// twist with a wrench, so it is the same in every frame: Pinocchio's WORLD convention uses the
+/// world frame; taking the root body's frame instead makes the root's columns constant
+/// (`J_k = S_k`) and the root joint's `q` unused (`M` does not depend on it), so the root's
+/// placement, its children's compositions and, for a free-flyer root, every product of its six
+/// rows (`M_{root, l} = F_l`, `M_{root, root} = Ic_root`) drop out. Distinct trees share no dof,
+/// so their blocks of `M` are zero and each can have its own frame.
+///
+/// Returns `data.mass_matrix`; `data.composite_inertias` holds the composite inertias in the
+/// root body frame of each tree. `data.placements` is not updated (run
+/// [`forward_kinematics_q`](super::forward_kinematics_q) for world poses). O(n d) dot products,
+/// d the depth.
 ///
 /// # Errors
 /// Wrong length, non-finite entry or non-unit quaternion in `q`.
@@ -41,21 +53,46 @@ pub fn crba<'a>(
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_q(model, q)?;
     check_data(model, data)?;
-    placements_unchecked(model, data, q);
     let n = model.joints.len();
     for i in 0..n {
-        let oMi = data.placements[i];
-        data.composite_inertias[i] = inertia_to_parent(&model.inertias[i], &oMi);
         let j = &model.joints[i];
+        let rMi = match j.parent {
+            // the root body's own frame: J = S, rG = G, and the root's q is not used
+            None => {
+                data.composite_inertias[i] = model.inertias[i];
+                let r = j.idx_v..j.idx_v + j.nv;
+                data.dof_J[r.clone()].copy_from_slice(&model.dof_S[r]);
+                data.crba_placements[i] = Transform::identity();
+                continue;
+            }
+            Some(p) if model.joints[p.0].parent.is_none() => parent_placement(model, i, q),
+            Some(p) => {
+                let rMp = &data.crba_placements[p.0];
+                match j.kind {
+                    // X_T without rotation: R_λ exp([a] q) turns two columns of R_λ
+                    JointType::Revolute { axis } | JointType::Continuous { axis }
+                        if model.unrotated[i] =>
+                    {
+                        Transform::new(
+                            rotate_about(&rMp.rotation, &axis, q[j.idx_q]),
+                            mat3_vec(&rMp.rotation, &j.placement.translation) + rMp.translation,
+                        )
+                    }
+                    _ => compose(rMp, &parent_placement(model, i, q)),
+                }
+            }
+        };
+        data.crba_placements[i] = rMi;
+        data.composite_inertias[i] = inertia_to_parent(&model.inertias[i], &rMi);
         match j.kind {
             // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
             JointType::Revolute { axis } | JointType::Continuous { axis } => {
-                let w = mat3_vec(&oMi.rotation, &axis);
-                data.dof_J[j.idx_v] = Twist::new(w, oMi.translation.cross(&w));
+                let w = mat3_vec(&rMi.rotation, &axis);
+                data.dof_J[j.idx_v] = Twist::new(w, rMi.translation.cross(&w));
             }
             // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
             JointType::FreeFlyer => {
-                let (R, p) = (&oMi.rotation, &oMi.translation);
+                let (R, p) = (&rMi.rotation, &rMi.translation);
                 for c in 0..3 {
                     let r: Vec3 = R.column(c).into();
                     data.dof_J[j.idx_v + c] = Twist::new(r, p.cross(&r));
@@ -64,7 +101,7 @@ pub fn crba<'a>(
             }
             _ => {
                 for k in j.idx_v..j.idx_v + j.nv {
-                    data.dof_J[k] = oMi.act_twist(&model.dof_S[k]);
+                    data.dof_J[k] = rMi.act_twist(&model.dof_S[k]);
                 }
             }
         }
@@ -78,10 +115,38 @@ pub fn crba<'a>(
             let last = &model.joints[ji.subtree_end - 1];
             last.idx_v + last.nv
         };
-        for k in ji.idx_v..ji.idx_v + ji.nv {
+        let dofs = ji.idx_v..ji.idx_v + ji.nv;
+        if ji.parent.is_none() && ji.kind == JointType::FreeFlyer {
+            // J = 1₆ in the root frame: the 6x6 block is Ic itself, row r of column l is F_l[r]
+            let (r0, G) = (ji.idx_v, Ic.matrix());
+            for (c, col) in M.chunks_exact_mut(nv).skip(r0).take(6).enumerate() {
+                col[r0..r0 + 6].copy_from_slice(G.column(c).as_slice());
+                // upper triangle, row r0 + c: M[r0 + c, l] = F_l[c] for the subtree's l
+                for (m, F) in col[r0 + 6..end_v]
+                    .iter_mut()
+                    .zip(&data.crba_forces[r0 + 6..end_v])
+                {
+                    *m = if c < 3 { F.m[c] } else { F.f[c - 3] };
+                }
+            }
+            // lower triangle: column l, rows r0..r0 + 6
+            for (col, F) in M
+                .chunks_exact_mut(nv)
+                .take(end_v)
+                .skip(r0 + 6)
+                .zip(&data.crba_forces[r0 + 6..end_v])
+            {
+                col[r0..r0 + 6].copy_from_slice(&[F.m.x, F.m.y, F.m.z, F.f.x, F.f.y, F.f.z]);
+            }
+            for k in dofs {
+                M[k * nv + k] += model.armature[k];
+            }
+            continue;
+        }
+        for k in dofs.clone() {
             data.crba_forces[k] = Ic.momentum(&data.dof_J[k]);
         }
-        for k in ji.idx_v..ji.idx_v + ji.nv {
+        for k in dofs {
             // lower triangle, column k, rows k..end_v (contiguous): M_lk = J_kᵀ F_l
             let Jk = data.dof_J[k];
             let column = &mut M[k * nv + k..k * nv + end_v];
