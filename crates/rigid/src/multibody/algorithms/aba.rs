@@ -347,3 +347,36 @@ pub fn forward_dynamics_cholesky<'a>(
     }
     Ok(&data.ddq)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::congruence;
+    use crate::mass::{RotationalInertia, SpatialInertia};
+    use crate::spatial::{so3, Mat6, Transform, Vec3};
+
+    /// The written-out congruence equals `[Ad_{T⁻¹}]ᵀ I [Ad_{T⁻¹}]` with the dense adjoint, on a
+    /// general symmetric 6x6 (an articulated inertia has no spatial-inertia structure).
+    #[test]
+    fn congruence_equals_the_dense_product() {
+        let T = Transform::new(
+            so3::exp(&Vec3::new(0.3, -1.1, 0.7)),
+            Vec3::new(0.4, -0.2, 0.9),
+        );
+        let G = SpatialInertia::from_com(
+            2.0,
+            Vec3::new(0.1, 0.2, -0.3),
+            RotationalInertia::diagonal(0.5, 0.7, 0.9),
+        )
+        .matrix();
+        let mut I = G + Mat6::from_fn(|r, c| ((r * 7 + c * 3) % 5) as f64 * 0.01);
+        I = (I + I.transpose()) * 0.5;
+        let X = T.inverse().adjoint();
+        let dense = X.transpose() * I * X;
+        let fast = congruence(&I, &T);
+        assert!(
+            (dense - fast).amax() < 1e-12 * dense.amax(),
+            "{}",
+            dense - fast
+        );
+    }
+}
