@@ -79,6 +79,9 @@ pub struct Model {
     pub(crate) dof_S: Vec<Twist>,
     /// The joint of each degree of freedom.
     pub(crate) dof_joint: Vec<usize>,
+    /// `Some((c, s))` when `S_k = s e_c` (a coordinate axis, angular first, `s = ±1`): then
+    /// `I S_k` is a column of `I` and `S_kᵀ F` one component of `F`.
+    pub(crate) dof_axis: Vec<Option<(usize, f64)>>,
     /// `(joint, index in q)` of every quaternion (spherical and free-flyer joints).
     pub(crate) quaternions: Vec<(usize, usize)>,
     /// Per joint: `X_T` has exactly the identity rotation (a URDF origin without `rpy`), so that
@@ -295,6 +298,16 @@ fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
     Ok(())
 }
 
+/// `Some((c, s))` if `S = s e_c` exactly (`s = ±1`), angular components first.
+fn unit_axis(S: &Twist) -> Option<(usize, f64)> {
+    let x = S.to_vector();
+    let nonzero: Vec<usize> = (0..6).filter(|&c| x[c] != 0.0).collect();
+    match nonzero[..] {
+        [c] if x[c].abs() == 1.0 => Some((c, x[c])),
+        _ => None,
+    }
+}
+
 impl ModelBuilder {
     /// An empty model called `name`, with gravity `[0, 0, -9.81]` m/s².
     #[must_use]
@@ -313,6 +326,7 @@ impl ModelBuilder {
                 armature: Vec::new(),
                 dof_S: Vec::new(),
                 dof_joint: Vec::new(),
+                dof_axis: Vec::new(),
                 quaternions: Vec::new(),
                 unrotated: Vec::new(),
                 nq: 0,
@@ -405,7 +419,9 @@ impl ModelBuilder {
             m.quaternions.push((id, m.nq + o));
         }
         for k in 0..nv {
-            m.dof_S.push(kind.motion_subspace(k));
+            let S = kind.motion_subspace(k);
+            m.dof_S.push(S);
+            m.dof_axis.push(unit_axis(&S));
             m.dof_joint.push(id);
         }
         m.lower.resize(m.nq + nq, f64::NEG_INFINITY);

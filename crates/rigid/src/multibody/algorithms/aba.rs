@@ -61,6 +61,61 @@ pub(crate) fn congruence(I: &Mat6, T: &Transform) -> Mat6 {
     out
 }
 
+/// [`congruence`] for `T = (R, p)` with `R` a rotation about the coordinate axis `k` (an
+/// unrotated `X_T` times a revolute `X_J` about `±e_k`): `diag(R, R)` mixes only the rows and
+/// columns of the two other axes (a plane rotation, read from `R`), and the shift by `p` is
+/// `I ↦ Pᵀ I P` with `P = [[1, 0], [-[p], 1]]`: columns `0..3` gain `I[:, 3..6] (-[p])`, then rows
+/// `0..3` gain `[p] I[3..6, :]`. ≈ 170 multiplications against ≈ 240 for the general path.
+#[inline]
+pub(crate) fn congruence_about_axis(I: &Mat6, T: &Transform, k: usize) -> Mat6 {
+    match k {
+        0 => congruence_plane::<1, 2>(I, T),
+        1 => congruence_plane::<2, 0>(I, T),
+        _ => congruence_plane::<0, 1>(I, T),
+    }
+}
+
+/// The rotation mixes axes `A` and `B` (`(A, B, k)` cyclic): `R_AA = R_BB = c`, `R_BA = s`.
+#[inline(always)]
+fn congruence_plane<const A: usize, const B: usize>(I: &Mat6, T: &Transform) -> Mat6 {
+    let r = T.rotation.as_slice(); // column-major
+    let (c, s) = (r[3 * A + A], r[3 * A + B]);
+    let mut m = [0.0; 36];
+    m.copy_from_slice(I.as_slice()); // column-major: m[6 col + row]
+                                     // diag(R, R) I: rows A, B (and A + 3, B + 3) of every column
+    for col in 0..6 {
+        for o in [0, 3] {
+            let (x, y) = (m[6 * col + o + A], m[6 * col + o + B]);
+            m[6 * col + o + A] = c * x - s * y;
+            m[6 * col + o + B] = s * x + c * y;
+        }
+    }
+    // (·) diag(R, R)ᵀ: columns A, B (and A + 3, B + 3)
+    for o in [0, 3] {
+        for row in 0..6 {
+            let (x, y) = (m[6 * (o + A) + row], m[6 * (o + B) + row]);
+            m[6 * (o + A) + row] = c * x - s * y;
+            m[6 * (o + B) + row] = s * x + c * y;
+        }
+    }
+    let p = [T.translation.x, T.translation.y, T.translation.z];
+    // I P: column j < 3 += Σ_l I[:, 3 + l] (-[p])_lj, i.e. row-wise vᵀ (-[p]) = (p × v)ᵀ
+    for row in 0..6 {
+        let v = [m[18 + row], m[24 + row], m[30 + row]];
+        m[row] += p[1] * v[2] - p[2] * v[1];
+        m[6 + row] += p[2] * v[0] - p[0] * v[2];
+        m[12 + row] += p[0] * v[1] - p[1] * v[0];
+    }
+    // Pᵀ (·): row i < 3 += ([p] I[3..6, :])_i, column-wise p × v
+    for col in 0..6 {
+        let v = [m[6 * col + 3], m[6 * col + 4], m[6 * col + 5]];
+        m[6 * col] += p[1] * v[2] - p[2] * v[1];
+        m[6 * col + 1] += p[2] * v[0] - p[0] * v[2];
+        m[6 * col + 2] += p[0] * v[1] - p[1] * v[0];
+    }
+    Mat6::from_column_slice(&m)
+}
+
 fn aba_impl(
     model: &Model,
     data: &mut Data,
@@ -99,9 +154,20 @@ fn aba_impl(
             // one degree of freedom: D and u are scalars
             let IA = &data.ia[i];
             let S = &model.dof_S[iv];
-            let U = mat6_twist(IA, S);
-            let Dinv = 1.0 / (S.dot(&U) + model.armature[iv]);
-            let u = tau[iv] - S.dot(&pA);
+            // U = I^A S, Sᵀ U, Sᵀ p^A: for S = s e_c a column and two components
+            let (U, SU, Sp) = match model.dof_axis[iv] {
+                Some((c, s)) => {
+                    let x = IA.column(c);
+                    let U = Wrench::new(Vec3::new(x[0], x[1], x[2]), Vec3::new(x[3], x[4], x[5]));
+                    (U * s, x[c], s * pA.to_vector()[c])
+                }
+                None => {
+                    let U = mat6_twist(IA, S);
+                    (U, S.dot(&U), S.dot(&pA))
+                }
+            };
+            let Dinv = 1.0 / (SU + model.armature[iv]);
+            let u = tau[iv] - Sp;
             data.u_cols[iv] = U;
             data.d_inv_1[iv] = Dinv;
             data.u[iv] = u;
@@ -112,7 +178,10 @@ fn aba_impl(
                 sub_outer(Ia, &U, Dinv);
                 let pa = pA + mat6_twist(Ia, &data.c_bias[i]) + U * (Dinv * u);
                 let X = &data.parent_placements[i];
-                head[p.0] += congruence(Ia, X);
+                head[p.0] += match model.dof_axis[iv] {
+                    Some((k, _)) if k < 3 && model.unrotated[i] => congruence_about_axis(Ia, X, k),
+                    _ => congruence(Ia, X),
+                };
                 data.pa[p.0] += X.act_wrench(&pa);
             }
             continue;
@@ -350,7 +419,7 @@ pub fn forward_dynamics_cholesky<'a>(
 
 #[cfg(test)]
 mod tests {
-    use super::congruence;
+    use super::{congruence, congruence_about_axis};
     use crate::mass::{RotationalInertia, SpatialInertia};
     use crate::spatial::{so3, Mat6, Transform, Vec3};
 
@@ -378,5 +447,28 @@ mod tests {
             "{}",
             dense - fast
         );
+    }
+
+    /// The plane-rotation path equals the general one for rotations about each axis (±angle).
+    #[test]
+    fn congruence_about_an_axis_equals_the_general_one() {
+        let G = SpatialInertia::from_com(
+            1.5,
+            Vec3::new(-0.2, 0.1, 0.3),
+            RotationalInertia::diagonal(0.4, 0.6, 0.8),
+        )
+        .matrix();
+        let mut I = G + Mat6::from_fn(|r, c| ((r * 5 + c * 2) % 7) as f64 * 0.01);
+        I = (I + I.transpose()) * 0.5;
+        for k in 0..3 {
+            for angle in [0.7, -2.3] {
+                let T = Transform::new(
+                    so3::exp(&(Vec3::ith(k, 1.0) * angle)),
+                    Vec3::new(0.3, -0.5, 0.2),
+                );
+                let (a, b) = (congruence(&I, &T), congruence_about_axis(&I, &T, k));
+                assert!((a - b).amax() < 1e-12 * a.amax(), "axis {k}: {}", a - b);
+            }
+        }
     }
 }

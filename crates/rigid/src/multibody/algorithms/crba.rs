@@ -87,7 +87,10 @@ pub fn crba<'a>(
         match j.kind {
             // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
             JointType::Revolute { axis } | JointType::Continuous { axis } => {
-                let w = mat3_vec(&rMi.rotation, &axis);
+                let w = match model.dof_axis[j.idx_v] {
+                    Some((c, s)) => rMi.rotation.column(c) * s, // R (s e_c)
+                    None => mat3_vec(&rMi.rotation, &axis),
+                };
                 data.dof_J[j.idx_v] = Twist::new(w, rMi.translation.cross(&w));
             }
             // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
