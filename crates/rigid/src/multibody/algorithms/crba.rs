@@ -2,10 +2,9 @@
 //! Table 6.2), with the composite inertias accumulated in world coordinates (as Pinocchio's
 //! `crba`), so that no force is carried up the chain.
 
-use super::inertia_to_parent;
 use super::kinematics::placements_unchecked;
-use crate::multibody::{check_data, check_q, Data, JointType, Model, MultibodyError};
-use crate::spatial::{mat3_vec, Twist, Vec3};
+use super::{inertia_to_parent, world_joint_columns};
+use crate::multibody::{check_data, check_q, Data, Model, MultibodyError};
 use nalgebra::DMatrix;
 
 /// The joint-space inertia matrix `M(q)` (full symmetric), plus the armature on the diagonal:
@@ -46,28 +45,7 @@ pub fn crba<'a>(
     for i in 0..n {
         let oMi = data.placements[i];
         data.composite_inertias[i] = inertia_to_parent(&model.inertias[i], &oMi);
-        let j = &model.joints[i];
-        match j.kind {
-            // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
-            JointType::Revolute { axis } | JointType::Continuous { axis } => {
-                let w = mat3_vec(&oMi.rotation, &axis);
-                data.dof_J[j.idx_v] = Twist::new(w, oMi.translation.cross(&w));
-            }
-            // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
-            JointType::FreeFlyer => {
-                let (R, p) = (&oMi.rotation, &oMi.translation);
-                for c in 0..3 {
-                    let r: Vec3 = R.column(c).into();
-                    data.dof_J[j.idx_v + c] = Twist::new(r, p.cross(&r));
-                    data.dof_J[j.idx_v + 3 + c] = Twist::new(Vec3::zeros(), r);
-                }
-            }
-            _ => {
-                for k in j.idx_v..j.idx_v + j.nv {
-                    data.dof_J[k] = oMi.act_twist(&model.dof_S[k]);
-                }
-            }
-        }
+        world_joint_columns(model, i, &oMi, &mut data.dof_J);
     }
     let nv = model.nv;
     let M = data.mass_matrix.as_mut_slice(); // column-major, M[(k, l)] = M[l * nv + k]
