@@ -17,13 +17,14 @@
 //! | `rnea`, `gravity`, `nonlinear_effects` | `rnea`, `gravity_torques`, `nonlinear_effects` | same |
 //! | `crba` | `crba` (full symmetric `M`) | `crba` (upper triangle only) |
 //! | `aba` | `aba` | `aba` |
+//! | `minverse` | `compute_minverse` (full symmetric `M⁻¹`) | `computeMinverse` (upper triangle only; `bench/pinocchio/timings-aba.cpp` does not symmetrise) |
 //! | `cholesky_fd` | `forward_dynamics_cholesky` (nle + CRBA + Cholesky solve) | nle + crba + `cholesky::solve` |
 
 use clap::Args;
 use rigid::multibody::{
-    aba, compute_joint_jacobians, crba, forward_dynamics_cholesky, forward_kinematics,
-    forward_kinematics_q, gravity_torques, nonlinear_effects, random_configuration, rnea, Data,
-    Model, Rng,
+    aba, compute_joint_jacobians, compute_minverse, crba, forward_dynamics_cholesky,
+    forward_kinematics, forward_kinematics_q, gravity_torques, nonlinear_effects,
+    random_configuration, rnea, Data, Model, Rng,
 };
 use std::hint::black_box;
 use std::time::Instant;
@@ -61,7 +62,7 @@ pub struct BenchArgs {
 }
 
 /// The algorithms timed, in output order (the JSON keys).
-pub const ALGORITHMS: [&str; 9] = [
+pub const ALGORITHMS: [&str; 10] = [
     "forward_kinematics",
     "forward_kinematics_qva",
     "jacobians",
@@ -70,6 +71,7 @@ pub const ALGORITHMS: [&str; 9] = [
     "nonlinear_effects",
     "crba",
     "aba",
+    "minverse",
     "cholesky_fd",
 ];
 
@@ -125,6 +127,7 @@ pub fn time_algorithm(
                 "nonlinear_effects" => nonlinear_effects(model, data, q, v).map(|t| t[0]),
                 "crba" => crba(model, data, q).map(|m| m[0]),
                 "aba" => aba(model, data, q, v, tau).map(|t| t[0]),
+                "minverse" => compute_minverse(model, data, q).map(|m| m[0]),
                 "cholesky_fd" => forward_dynamics_cholesky(model, data, q, v, tau).map(|t| t[0]),
                 _ => return Err(format!("unknown algorithm {name}")),
             };

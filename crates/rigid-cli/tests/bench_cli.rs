@@ -38,6 +38,7 @@ fn bench_json_has_the_contract_keys() {
         "nonlinear_effects",
         "crba",
         "aba",
+        "minverse",
     ] {
         let x = t[key].as_f64().unwrap_or_else(|| panic!("{key} missing"));
         assert!(x > 0.0 && x.is_finite(), "{key} = {x}");
@@ -56,7 +57,7 @@ fn bench_table_names_every_algorithm() {
     ]);
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
-    for key in ["rnea", "crba", "aba", "jacobians"] {
+    for key in ["rnea", "crba", "aba", "minverse", "jacobians"] {
         assert!(text.contains(key), "{text}");
     }
 }

@@ -1,5 +1,5 @@
 //! Multibody algorithms, ns per call: forward kinematics, joint Jacobians, RNEA, gravity,
-//! nonlinear effects, CRBA, ABA and Cholesky forward dynamics, each cycling through 1000
+//! nonlinear effects, CRBA, `M⁻¹`, ABA and Cholesky forward dynamics, each cycling through 1000
 //! pre-drawn random states (so that branch prediction is not flattered).
 //!
 //! `cargo bench -p rigid --bench multibody [-- FILTER]`. Models: the built-in `puma560` and the
@@ -130,6 +130,9 @@ fn bench(c: &mut Criterion) {
         });
         g.bench_function("crba", |b| {
             b.iter(|| black_box(crba(&model, &mut data, &next().0).unwrap()[0]))
+        });
+        g.bench_function("minverse", |b| {
+            b.iter(|| black_box(compute_minverse(&model, &mut data, &next().0).unwrap()[0]))
         });
         g.bench_function("aba", |b| {
             b.iter(|| {

@@ -184,6 +184,25 @@ fn bad_inputs_give_errors_naming_the_joint() {
         aba(&model, &mut data, &z, &z, &z[..2]),
         Err(MultibodyError::Dimension(_))
     ));
+    // M⁻¹ checks q exactly as CRBA does
+    for q in [&z[..5], &q[..]] {
+        assert_eq!(
+            compute_minverse(&model, &mut data, q).unwrap_err(),
+            crba(&model, &mut data, q).unwrap_err()
+        );
+    }
+    assert!(matches!(
+        compute_minverse(&model, &mut data, &q),
+        Err(MultibodyError::NonFinite {
+            what: "q",
+            index: 3
+        })
+    ));
+    let other = double_pendulum();
+    assert!(matches!(
+        compute_minverse(&other, &mut data, &[0.0; 2]),
+        Err(MultibodyError::DataMismatch { .. })
+    ));
 
     let mut b = ModelBuilder::new("bad");
     let root = b
@@ -214,6 +233,20 @@ fn bad_inputs_give_errors_naming_the_joint() {
     let e = forward_kinematics_q(&m, &mut d, &q).unwrap_err();
     assert!(matches!(&e, MultibodyError::NotUnitQuaternion { joint, .. } if joint == "ball"));
     assert!(e.to_string().contains("ball"));
+    assert_eq!(
+        compute_minverse(&m, &mut d, &q).unwrap_err(),
+        crba(&m, &mut d, &q).unwrap_err()
+    );
+    // the ball moves no mass: M is singular, and M⁻¹ says so (as ABA does)
+    let q = neutral(&m);
+    assert_eq!(
+        compute_minverse(&m, &mut d, &q).unwrap_err(),
+        MultibodyError::NotPositiveDefinite
+    );
+    assert_eq!(
+        aba(&m, &mut d, &q, &[0.0; 9], &[0.0; 9]).unwrap_err(),
+        MultibodyError::NotPositiveDefinite
+    );
 
     let unit = SpatialInertia::from_com(
         1.0,

@@ -295,3 +295,103 @@ fn coriolis_matrix_is_the_christoffel_symbol_matrix_for_vector_space_joints() {
         }
     }
 }
+
+/// Every built-in model, the random trees, and a model with two root joints (so that `M⁻¹` has
+/// zero blocks between the two trees).
+fn minverse_models() -> Vec<Model> {
+    let mut v = models();
+    let mut b = ModelBuilder::new("two_roots");
+    let mut rng = Rng::new(40);
+    let a = b
+        .add_joint(
+            None,
+            "a0",
+            JointType::Revolute {
+                axis: unit(&mut rng),
+            },
+            transform(&mut rng),
+            inertia(&mut rng),
+        )
+        .unwrap();
+    b.add_joint(
+        Some(a),
+        "a1",
+        JointType::Spherical,
+        transform(&mut rng),
+        inertia(&mut rng),
+    )
+    .unwrap();
+    let c = b
+        .add_joint(
+            None,
+            "b0",
+            JointType::FreeFlyer,
+            transform(&mut rng),
+            inertia(&mut rng),
+        )
+        .unwrap();
+    b.add_joint(
+        Some(c),
+        "b1",
+        JointType::Prismatic {
+            axis: unit(&mut rng),
+        },
+        transform(&mut rng),
+        inertia(&mut rng),
+    )
+    .unwrap();
+    b.set_armature(JointId(3), &[0.2]).unwrap();
+    v.push(b.build().unwrap());
+    v
+}
+
+#[test]
+fn minverse_times_mass_matrix_is_the_identity_and_solves_forward_dynamics() {
+    let mut rng = Rng::new(20);
+    let (mut worst_eye, mut worst_aba) = (0.0f64, 0.0f64);
+    for model in minverse_models() {
+        let mut data = Data::new(&model);
+        let n = model.nv();
+        for _ in 0..STATES {
+            let (q, v, tau) = state(&model, &mut rng);
+            let M = crba(&model, &mut data, &q).unwrap().clone();
+            let Minv = compute_minverse(&model, &mut data, &q).unwrap().clone();
+            assert_eq!(Minv, Minv.transpose(), "{}: not symmetric", model.name());
+            let eye = DMatrix::<f64>::identity(n, n);
+            let e1 = rel_err_m(&(&M * &Minv), &eye);
+            let e2 = rel_err_m(&(&Minv * &M), &eye);
+            worst_eye = worst_eye.max(e1).max(e2);
+            assert!(e1 < 1e-9 && e2 < 1e-9, "{}: {e1} {e2}", model.name());
+            let ddq = aba(&model, &mut data, &q, &v, &tau).unwrap().clone();
+            let nle = nonlinear_effects(&model, &mut data, &q, &v)
+                .unwrap()
+                .clone();
+            let x = &Minv * (DVector::from_column_slice(&tau) - nle);
+            let e = rel_err_v(&x, &ddq);
+            worst_aba = worst_aba.max(e);
+            assert!(e < 1e-9, "{}: {e}", model.name());
+        }
+    }
+    eprintln!("max |M M⁻¹ - 1|: {worst_eye:.1e}, max M⁻¹(τ - nle) vs aba: {worst_aba:.1e}");
+}
+
+#[test]
+fn minverse_keeps_no_state_from_a_previous_call() {
+    let mut rng = Rng::new(21);
+    for model in minverse_models() {
+        let mut data = Data::new(&model);
+        let (q1, v1, a1) = state(&model, &mut rng);
+        let (q2, _, _) = state(&model, &mut rng);
+        compute_minverse(&model, &mut data, &q1).unwrap();
+        // other algorithms share workspaces (`ia`, the joint columns)
+        aba(&model, &mut data, &q1, &v1, &a1).unwrap();
+        crba(&model, &mut data, &q1).unwrap();
+        // every entry is written by every call
+        data.minv.fill(f64::NAN);
+        let again = compute_minverse(&model, &mut data, &q2).unwrap().clone();
+        let fresh = compute_minverse(&model, &mut Data::new(&model), &q2)
+            .unwrap()
+            .clone();
+        assert_eq!(again, fresh, "{}", model.name());
+    }
+}

@@ -1,6 +1,7 @@
 //! A random tree (free-flyer root, revolute / prismatic with random axes, continuous, spherical,
 //! planar joints, armature) against Pinocchio: fixture `fixtures/tree_pinocchio.json` generated
-//! by `fixtures/gen_tree_pinocchio.py` (PyPI `pin`), converted to rigid's conventions there.
+//! by `fixtures/gen_tree_pinocchio.py` (PyPI `pin`), converted to rigid's conventions there
+//! (`M` and `M⁻¹` symmetrised from Pinocchio's upper triangles).
 #![allow(non_snake_case)]
 
 use nalgebra::DVector;
@@ -60,6 +61,7 @@ fn random_tree_agrees_with_pinocchio_to_1e9() {
     let fx: Value = serde_json::from_str(include_str!("fixtures/tree_pinocchio.json")).unwrap();
     let model = build(&fx);
     let mut d = Data::new(&model);
+    let mut worst_minv = 0.0f64;
     for c in fx["cases"].as_array().unwrap() {
         let (q, v, a, tau) = (
             vec_of(&c["q"]),
@@ -81,6 +83,11 @@ fn random_tree_agrees_with_pinocchio_to_1e9() {
             "crba {}",
             (&M - &Mp).amax()
         );
+        let Minv = compute_minverse(&model, &mut d, &q).unwrap().clone();
+        let Mp = mat_of(&c["minverse"]);
+        let e = (&Minv - &Mp).amax() / Mp.amax();
+        worst_minv = worst_minv.max(e);
+        assert!(e < tol, "minverse {e}");
         let nle = nonlinear_effects(&model, &mut d, &q, &v).unwrap().clone();
         assert!(rel(&nle, &vec_of(&c["nonlinear_effects"])) < tol, "nle");
         let g = gravity_torques(&model, &mut d, &q).unwrap().clone();
@@ -132,4 +139,5 @@ fn random_tree_agrees_with_pinocchio_to_1e9() {
         let cv = C * DVector::from_column_slice(&v);
         assert!(rel(&cv, &vec_of(&c["coriolis_times_v"])) < tol, "coriolis");
     }
+    eprintln!("minverse: max relative error {worst_minv:.1e}");
 }

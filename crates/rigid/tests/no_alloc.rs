@@ -1,5 +1,5 @@
 //! After `Data::new`, forward kinematics, Jacobians, RNEA (and gravity, nle, external wrenches),
-//! CRBA, ABA, Cholesky forward dynamics, the Coriolis matrix and the energies allocate nothing:
+//! CRBA, `M⁻¹`, ABA, Cholesky forward dynamics, the Coriolis matrix and the energies allocate nothing:
 //! a counting global allocator proves it.
 
 mod common;
@@ -77,6 +77,7 @@ fn algorithms_allocate_nothing_after_data_new() {
             gravity_torques(model, &mut data, &q).unwrap();
             nonlinear_effects(model, &mut data, &q, &v).unwrap();
             crba(model, &mut data, &q).unwrap();
+            compute_minverse(model, &mut data, &q).unwrap();
             aba(model, &mut data, &q, &v, &a).unwrap();
             forward_dynamics_cholesky(model, &mut data, &q, &v, &a).unwrap();
             coriolis_matrix(model, &mut data, &q, &v).unwrap();

@@ -10,8 +10,9 @@
 //!
 //! Agreement is measured per quantity as `‖x_rigid - x_pin‖∞ / max(‖x_pin‖∞, 1e-6)` (the
 //! infinity norm over the whole vector or matrix, SI units, with a 1e-6 floor so that a quantity
-//! that is zero compares absolutely) and must be below 1e-9 for rnea, crba, aba, nle, gravity,
-//! kinetic and potential energy, CoM, total mass and every joint placement.
+//! that is zero compares absolutely) and must be below 1e-9 for rnea, crba, aba, `M⁻¹`
+//! (`computeMinverse`, symmetrised like `M`), nle, gravity, kinetic and potential energy, CoM,
+//! total mass and every joint placement.
 //!
 //! Requires `python3` with `pin` and `example-robot-data` (`bash scripts/test.sh` installs
 //! them); set `RIGID_SKIP_PINOCCHIO=1` to skip. `RIGID_PYTHON` overrides the interpreter.
@@ -19,8 +20,8 @@
 use nalgebra::DMatrix;
 use rigid::io::urdf::load_urdf;
 use rigid::multibody::{
-    aba, center_of_mass, crba, forward_kinematics_q, gravity_torques, kinetic_energy,
-    nonlinear_effects, potential_energy, rnea, Data, Model,
+    aba, center_of_mass, compute_minverse, crba, forward_kinematics_q, gravity_torques,
+    kinetic_energy, nonlinear_effects, potential_energy, rnea, Data, Model,
 };
 use serde_json::Value;
 use std::path::PathBuf;
@@ -170,11 +171,17 @@ fn compare(robot: &str) {
         let m: DMatrix<f64> = crba(&model, &mut data, &q).unwrap().clone();
         let m_ref = mat_of(&s["mass_matrix"]);
         let pvr = &pv;
-        let m_flat: Vec<f64> = (0..pv.len())
-            .flat_map(|i| pvr.iter().map(move |&c| (pvr[i], c)))
-            .map(|(r, c)| m[(r, c)])
-            .collect();
-        err.record("crba", rel(&m_flat, &m_ref.concat()));
+        // a matrix of rigid's layout, row by row in the reference's layout
+        let flat = |m: &DMatrix<f64>| -> Vec<f64> {
+            (0..pv.len())
+                .flat_map(|i| pvr.iter().map(move |&c| (pvr[i], c)))
+                .map(|(r, c)| m[(r, c)])
+                .collect()
+        };
+        err.record("crba", rel(&flat(&m), &m_ref.concat()));
+        let minv = compute_minverse(&model, &mut data, &q).unwrap().clone();
+        let minv_ref = mat_of(&s["minverse"]);
+        err.record("minverse", rel(&flat(&minv), &minv_ref.concat()));
         let x = back(aba(&model, &mut data, &q, &v, &tau).unwrap());
         err.record("aba", rel(&x, &vec_of(&s["aba"])));
         let x = back(nonlinear_effects(&model, &mut data, &q, &v).unwrap());

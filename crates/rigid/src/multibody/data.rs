@@ -14,7 +14,7 @@ pub struct Data {
     /// Filled by every algorithm that takes `q`.
     pub parent_placements: Vec<Transform>,
     /// `oMi`: world pose of each joint frame as moved by the joint. Forward kinematics,
-    /// Jacobians, energies, CoM (not CRBA, which works in the root body's frame).
+    /// Jacobians, `M⁻¹`, energies, CoM (not CRBA, which works in the root body's frame).
     pub placements: Vec<Transform>,
     /// `oMf`: world pose of each named frame ([`update_frame_placements`](super::update_frame_placements)).
     pub frame_placements: Vec<Transform>,
@@ -40,6 +40,9 @@ pub struct Data {
     pub ddq: DVector<f64>,
     /// Joint-space mass matrix `M(q)`, full symmetric, armature on the diagonal (CRBA).
     pub mass_matrix: DMatrix<f64>,
+    /// Inverse joint-space mass matrix `M(q)⁻¹`, full symmetric, armature included: the inverse
+    /// of [`mass_matrix`](Self::mass_matrix) ([`compute_minverse`](super::compute_minverse)).
+    pub minv: DMatrix<f64>,
     /// Coriolis matrix `C(q, v)`, `c = C v`, `Ṁ - 2C` skew ([`coriolis_matrix`](super::coriolis_matrix)).
     pub coriolis: DMatrix<f64>,
     /// Spatial (world-frame) Jacobian of all joints, column k = `[Ad_{oMi}] S_k` (6 x nv).
@@ -70,6 +73,14 @@ pub struct Data {
     pub(crate) world_inertias: Vec<SpatialInertia>,
     pub(crate) world_b: Vec<Mat6>,
     pub(crate) chol: DMatrix<f64>,
+    /// `compute_minverse`: `U_i D_i⁻¹` per dof (world), the bias forces `P` for every unit
+    /// torque per dof, a depth stack of the accelerations `A` for every unit torque (`n` rows of
+    /// `nv` columns, row = depth of the joint), and the depth of each joint. It also uses `ia`
+    /// (world articulated inertias) and `dof_J` (world joint columns).
+    pub(crate) minv_ud: Vec<Wrench>,
+    pub(crate) minv_p: Vec<Wrench>,
+    pub(crate) minv_a: Vec<Twist>,
+    pub(crate) minv_depth: Vec<usize>,
     /// Parent dof `λ(k)` of each dof (`usize::MAX` at the root), for the sparse `Lᵀ L`.
     pub(crate) dof_parent: Vec<usize>,
 }
@@ -95,6 +106,7 @@ impl Data {
             g: DVector::zeros(nv),
             ddq: DVector::zeros(nv),
             mass_matrix: DMatrix::zeros(nv, nv),
+            minv: DMatrix::zeros(nv, nv),
             coriolis: DMatrix::zeros(nv, nv),
             jacobian: DMatrix::zeros(6, nv),
             jacobian_dot: DMatrix::zeros(6, nv),
@@ -116,6 +128,10 @@ impl Data {
             world_inertias: vec![SpatialInertia::zero(); n],
             world_b: vec![Mat6::zeros(); n],
             chol: DMatrix::zeros(nv, nv),
+            minv_ud: vec![Wrench::zero(); nv],
+            minv_p: vec![Wrench::zero(); nv],
+            minv_a: vec![Twist::zero(); n * nv],
+            minv_depth: vec![0; n],
             dof_parent: vec![usize::MAX; nv],
         }
     }

@@ -1,6 +1,6 @@
 //! Multibody dynamics of kinematic trees: a constant [`Model`], a reusable [`Data`] workspace and
-//! the classic recursive algorithms (forward kinematics, Jacobians, RNEA, CRBA, ABA, energies,
-//! Coriolis matrix).
+//! the classic recursive algorithms (forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`,
+//! energies, Coriolis matrix).
 //!
 //! Conventions (see `CONVENTIONS.md`): joints are numbered depth-first from the root; twists and
 //! wrenches are angular first; every body's quantities are expressed in its own joint frame
@@ -19,6 +19,7 @@
 //! | `c + g`, `g` | [`nonlinear_effects`], [`gravity_torques`] | RNEA with `q̈ = 0` (and `q̇ = 0`) |
 //! | `M(q)` | [`crba`] | Featherstone 2008 Table 6.2 |
 //! | `q̈ = M⁻¹(τ - c - g)` | [`aba`], [`forward_dynamics_cholesky`] | Featherstone 2008 Table 7.1 |
+//! | `M(q)⁻¹` | [`compute_minverse`] | ABA for all unit torques: Featherstone 2008 §7.3; Carpentier & Mansard 2018 |
 //! | `C(q, q̇)` (Christoffel), `Ṁ - 2C` skew | [`coriolis_matrix`] | Lynch & Park §8.1.2; Pinocchio `computeCoriolisMatrix` |
 //! | `K = ½ q̇ᵀ M q̇`, `U = -Σ mᵢ gᵀ cᵢ` | [`kinetic_energy`], [`potential_energy`] | Lynch & Park §8.1 |
 //! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |

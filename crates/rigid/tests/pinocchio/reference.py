@@ -5,8 +5,8 @@ Usage: python3 reference.py ROBOT [--states N] [--seed S]     (ROBOT: see ROBOTS
 
 Loads the robot's URDF from the PyPI package example-robot-data with `pin.buildModelFromUrdf`
 (a free-flyer root for the legged robots), draws N random states with a fixed seed and prints one
-JSON object with Pinocchio's rnea, crba, aba, nle, generalized gravity, kinetic and potential
-energy, centre of mass, total mass and the joint placements data.oMi.
+JSON object with Pinocchio's rnea, crba, aba, computeMinverse, nle, generalized gravity, kinetic
+and potential energy, centre of mass, total mass and the joint placements data.oMi.
 
 Everything printed is already in rigid's conventions (shared/CONVENTIONS.md):
 - free-flyer velocity, acceleration and force: Pinocchio stores (v, w) / (f, m), linear first;
@@ -14,7 +14,7 @@ Everything printed is already in rigid's conventions (shared/CONVENTIONS.md):
   rows and columns of M;
 - continuous joints: Pinocchio's q is (cos t, sin t), rigid's is the angle t; planar joints:
   Pinocchio's q is (x, y, cos t, sin t), rigid's (x, y, t);
-- crba fills only the upper triangle: M is symmetrised.
+- crba and computeMinverse fill only the upper triangle: M and M⁻¹ are symmetrised.
 The joints stay in Pinocchio's order (urdfdom sorts siblings by joint name; rigid keeps file
 order): each joint is listed with its name and its slices in the vectors printed here, and the
 Rust test matches joints by name.
@@ -162,6 +162,8 @@ def main():
         tau = np.random.uniform(-10.0, 10.0, model.nv)
         M = pin.crba(model, data, q).copy()
         M = np.triu(M) + np.triu(M, 1).T
+        Minv = pin.computeMinverse(model, data, q).copy()
+        Minv = np.triu(Minv) + np.triu(Minv, 1).T
         st = dict(
             q=q_to_rigid(joints, q, nq),
             v=v[p],
@@ -169,6 +171,7 @@ def main():
             tau=tau[p],
             rnea=pin.rnea(model, data, q, v, a)[p],
             mass_matrix=M[np.ix_(p, p)],
+            minverse=Minv[np.ix_(p, p)],
             aba=pin.aba(model, data, q, v, tau)[p],
             nonlinear_effects=pin.nonLinearEffects(model, data, q, v)[p],
             gravity_torques=pin.computeGeneralizedGravity(model, data, q)[p],

@@ -10,7 +10,7 @@ use nalgebra::DVector;
 /// `I V` for a 6x6 (articulated) inertia acting on a twist, giving a wrench (column-major loop
 /// over a fixed-size array: unrolled, no bounds checks).
 #[inline]
-fn mat6_twist(m: &Mat6, t: &Twist) -> Wrench {
+pub(crate) fn mat6_twist(m: &Mat6, t: &Twist) -> Wrench {
     let x = [t.w.x, t.w.y, t.w.z, t.v.x, t.v.y, t.v.z];
     let a: &[f64; 36] = m.as_slice().try_into().expect("6x6");
     let mut y = [0.0; 6];

@@ -7,6 +7,7 @@ mod crba;
 mod energy;
 mod jacobian;
 mod kinematics;
+mod minverse;
 mod rnea;
 
 pub use aba::{aba, aba_with_external, forward_dynamics_cholesky};
@@ -20,11 +21,12 @@ pub use jacobian::{
 pub use kinematics::{
     forward_kinematics, forward_kinematics_q, forward_kinematics_qv, update_frame_placements,
 };
+pub use minverse::compute_minverse;
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 
-use super::Model;
+use super::{JointType, Model};
 use crate::mass::SpatialInertia;
-use crate::spatial::{Mat3, Transform, Twist};
+use crate::spatial::{mat3_vec, Mat3, Transform, Twist, Vec3};
 
 /// `S_i q̇_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame).
 #[inline]
@@ -36,6 +38,36 @@ pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
         t += *S * *xk;
     }
     t
+}
+
+/// The world joint columns `J_k = [Ad_{oMi}] S_k` of joint `i` (posed at `oMi`), written to
+/// `J[idx_v..idx_v + nv]`; revolute and free-flyer joints skip the products with zeros of `S`.
+/// Always inlined: it is on the hot path of [`crba`] and [`compute_minverse`].
+#[inline(always)]
+pub(crate) fn world_joint_columns(model: &Model, i: usize, oMi: &Transform, J: &mut [Twist]) {
+    let j = &model.joints[i];
+    match j.kind {
+        // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
+        JointType::Revolute { axis } | JointType::Continuous { axis } => {
+            let w = mat3_vec(&oMi.rotation, &axis);
+            J[j.idx_v] = Twist::new(w, oMi.translation.cross(&w));
+        }
+        // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
+        JointType::FreeFlyer => {
+            let (R, p) = (&oMi.rotation, &oMi.translation);
+            for c in 0..3 {
+                let r: Vec3 = R.column(c).into();
+                J[j.idx_v + c] = Twist::new(r, p.cross(&r));
+                J[j.idx_v + 3 + c] = Twist::new(Vec3::zeros(), r);
+            }
+        }
+        _ => {
+            let r = j.idx_v..j.idx_v + j.nv;
+            for (Jk, S) in J[r.clone()].iter_mut().zip(&model.dof_S[r]) {
+                *Jk = oMi.act_twist(S);
+            }
+        }
+    }
 }
 
 /// `liMi = X_T X_J(q_i)`: the pose of body i in its parent (one match on the joint type).
