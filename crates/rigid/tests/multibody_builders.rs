@@ -247,6 +247,35 @@ fn bad_inputs_give_errors_naming_the_joint() {
         aba(&m, &mut d, &q, &[0.0; 9], &[0.0; 9]).unwrap_err(),
         MultibodyError::NotPositiveDefinite
     );
+    // the same for a massless revolute leaf (ABA's one-dof path): an error, not NaN
+    let mut b = ModelBuilder::new("massless leaf");
+    let root = b
+        .add_joint(
+            None,
+            "shoulder",
+            JointType::Revolute { axis: Vec3::z() },
+            Transform::identity(),
+            SpatialInertia::from_com(
+                1.0,
+                Vec3::new(0.5, 0.0, 0.0),
+                RotationalInertia::diagonal(0.1, 0.1, 0.1),
+            ),
+        )
+        .unwrap();
+    b.add_joint(
+        Some(root),
+        "wrist",
+        JointType::Revolute { axis: Vec3::x() },
+        Transform::from_translation(Vec3::new(1.0, 0.0, 0.0)),
+        SpatialInertia::zero(),
+    )
+    .unwrap();
+    let m = b.build().unwrap();
+    let mut d = Data::new(&m);
+    assert_eq!(
+        aba(&m, &mut d, &[0.3, 0.2], &[0.0; 2], &[1.0, 0.0]).unwrap_err(),
+        MultibodyError::NotPositiveDefinite
+    );
 
     let unit = SpatialInertia::from_com(
         1.0,

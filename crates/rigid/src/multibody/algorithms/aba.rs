@@ -166,7 +166,12 @@ fn aba_impl(
                     (U, S.dot(&U), S.dot(&pA))
                 }
             };
-            let Dinv = 1.0 / (SU + model.armature[iv]);
+            let D = SU + model.armature[iv];
+            // a massless subtree moved by this joint (or a NaN): M is singular, not a NaN result
+            if D.is_nan() || D <= 0.0 {
+                return Err(MultibodyError::NotPositiveDefinite);
+            }
+            let Dinv = 1.0 / D;
             let u = tau[iv] - Sp;
             data.u_cols[iv] = U;
             data.d_inv_1[iv] = Dinv;
