@@ -5,7 +5,8 @@
 //! Method: `--states` random states `(q, v, a, τ)` are drawn once (`q` uniform within the joint
 //! limits, unit quaternions uniform on SO(3); `v`, `a`, `τ` uniform in `[-1, 1]`); one pass calls
 //! the algorithm once per state; the time of a pass divided by the number of states is one
-//! sample; the report is the median of `--repetitions` samples, after one warm-up pass. The keys
+//! sample; the report is the median of `--repetitions` samples, after one warm-up pass; the
+//! algorithms take turns pass by pass, as in Pinocchio's timing program. The keys
 //! are those of Pinocchio's timing program in `bench/pinocchio/` so that `bench/compare.py` can
 //! divide one by the other:
 //!
@@ -24,7 +25,7 @@ use clap::Args;
 use rigid::multibody::{
     aba, compute_joint_jacobians, compute_minverse, crba, forward_dynamics_cholesky,
     forward_kinematics, forward_kinematics_q, gravity_torques, nonlinear_effects,
-    random_configuration, rnea, Data, Model, Rng,
+    random_configuration, rnea, Data, Model, MultibodyError, Rng,
 };
 use std::hint::black_box;
 use std::time::Instant;
@@ -101,46 +102,75 @@ impl States {
     }
 }
 
-/// Median ns per call of algorithm `name` over `reps` passes through `states` (one warm-up pass
-/// first).
+/// One call of an algorithm on state `i`, returning one entry of its result (kept alive with
+/// `black_box` so that nothing is optimised away).
+type Call = fn(&Model, &mut Data, &States, usize) -> Result<f64, MultibodyError>;
+
+/// The call timed under each key of [`ALGORITHMS`].
+fn call_of(name: &str) -> Option<Call> {
+    let f: Call = match name {
+        "forward_kinematics" => |m, d, s, i| forward_kinematics_q(m, d, &s.q[i]).map(|()| 0.0),
+        "forward_kinematics_qva" => {
+            |m, d, s, i| forward_kinematics(m, d, &s.q[i], &s.v[i], &s.a[i]).map(|()| 0.0)
+        }
+        "jacobians" => |m, d, s, i| compute_joint_jacobians(m, d, &s.q[i]).map(|j| j[0]),
+        "rnea" => |m, d, s, i| rnea(m, d, &s.q[i], &s.v[i], &s.a[i]).map(|t| t[0]),
+        "gravity" => |m, d, s, i| gravity_torques(m, d, &s.q[i]).map(|t| t[0]),
+        "nonlinear_effects" => |m, d, s, i| nonlinear_effects(m, d, &s.q[i], &s.v[i]).map(|t| t[0]),
+        "crba" => |m, d, s, i| crba(m, d, &s.q[i]).map(|x| x[0]),
+        "aba" => |m, d, s, i| aba(m, d, &s.q[i], &s.v[i], &s.tau[i]).map(|t| t[0]),
+        "minverse" => |m, d, s, i| compute_minverse(m, d, &s.q[i]).map(|x| x[0]),
+        "cholesky_fd" => {
+            |m, d, s, i| forward_dynamics_cholesky(m, d, &s.q[i], &s.v[i], &s.tau[i]).map(|t| t[0])
+        }
+        _ => return None,
+    };
+    Some(f)
+}
+
+/// Mean ns per call of one pass of `f` through every state.
+fn pass(model: &Model, data: &mut Data, s: &States, name: &str, f: Call) -> Result<f64, String> {
+    let n = s.q.len();
+    let t = Instant::now();
+    for i in 0..n {
+        black_box(f(model, data, s, i).map_err(|e| format!("{name}: {e}"))?);
+    }
+    Ok(t.elapsed().as_nanos() as f64 / n.max(1) as f64)
+}
+
+/// Median ns per call of each algorithm in `names` over `reps` passes through `states`: one
+/// warm-up pass each, then the algorithms take turns pass by pass (as Pinocchio's timing program
+/// does), so that a slow spell of a shared machine hits all of them alike.
 ///
 /// # Errors
-/// An algorithm error (e.g. a singular mass matrix).
-pub fn time_algorithm(
+/// An unknown key, or an algorithm error (e.g. a singular mass matrix).
+pub fn time_algorithms(
     model: &Model,
     data: &mut Data,
     s: &States,
-    name: &str,
+    names: &[&str],
     reps: usize,
-) -> Result<f64, String> {
-    let n = s.q.len();
-    let pass = |data: &mut Data| -> Result<f64, String> {
-        let t = Instant::now();
-        for i in 0..n {
-            let (q, v, a, tau) = (&s.q[i], &s.v[i], &s.a[i], &s.tau[i]);
-            let r = match name {
-                "forward_kinematics" => forward_kinematics_q(model, data, q).map(|()| 0.0),
-                "forward_kinematics_qva" => forward_kinematics(model, data, q, v, a).map(|()| 0.0),
-                "jacobians" => compute_joint_jacobians(model, data, q).map(|j| j[0]),
-                "rnea" => rnea(model, data, q, v, a).map(|t| t[0]),
-                "gravity" => gravity_torques(model, data, q).map(|t| t[0]),
-                "nonlinear_effects" => nonlinear_effects(model, data, q, v).map(|t| t[0]),
-                "crba" => crba(model, data, q).map(|m| m[0]),
-                "aba" => aba(model, data, q, v, tau).map(|t| t[0]),
-                "minverse" => compute_minverse(model, data, q).map(|m| m[0]),
-                "cholesky_fd" => forward_dynamics_cholesky(model, data, q, v, tau).map(|t| t[0]),
-                _ => return Err(format!("unknown algorithm {name}")),
-            };
-            black_box(r.map_err(|e| format!("{name}: {e}"))?);
-        }
-        Ok(t.elapsed().as_nanos() as f64 / n.max(1) as f64)
-    };
-    pass(data)?;
-    let mut samples = (0..reps.max(1))
-        .map(|_| pass(data))
+) -> Result<Vec<f64>, String> {
+    let calls = names
+        .iter()
+        .map(|n| call_of(n).ok_or_else(|| format!("unknown algorithm {n}")))
         .collect::<Result<Vec<_>, _>>()?;
-    samples.sort_by(f64::total_cmp);
-    Ok(samples[samples.len() / 2])
+    for (name, f) in names.iter().zip(&calls) {
+        pass(model, data, s, name, *f)?;
+    }
+    let mut samples = vec![Vec::with_capacity(reps.max(1)); names.len()];
+    for _ in 0..reps.max(1) {
+        for ((name, f), x) in names.iter().zip(&calls).zip(&mut samples) {
+            x.push(pass(model, data, s, name, *f)?);
+        }
+    }
+    Ok(samples
+        .into_iter()
+        .map(|mut x| {
+            x.sort_by(f64::total_cmp);
+            x[x.len() / 2]
+        })
+        .collect())
 }
 
 /// Run `rigid bench`.
@@ -154,13 +184,14 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         return run_batch(args, &model, &states);
     }
     let mut data = Data::new(&model);
+    let names: Vec<&str> = ALGORITHMS
+        .into_iter()
+        .filter(|name| args.only.is_empty() || args.only.iter().any(|o| o == name))
+        .collect();
+    let t = time_algorithms(&model, &mut data, &states, &names, args.repetitions)?;
     let mut times = serde_json::Map::new();
-    for name in ALGORITHMS {
-        if !args.only.is_empty() && !args.only.iter().any(|o| o == name) {
-            continue;
-        }
-        let t = time_algorithm(&model, &mut data, &states, name, args.repetitions)?;
-        times.insert(name.to_string(), serde_json::json!(t));
+    for (name, t) in names.iter().zip(t) {
+        times.insert((*name).to_string(), serde_json::json!(t));
     }
     if args.json {
         let out = serde_json::json!({
