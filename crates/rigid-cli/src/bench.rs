@@ -241,14 +241,20 @@ fn run_batch(args: &BenchArgs, model: &Model, s: &States) -> Result<(), String> 
         s.q.len(),
         args.repetitions.max(1)
     );
+    let first = args.threads.first().copied().unwrap_or(1);
+    let f = |row: &serde_json::Value, key: String| row[key].as_f64().unwrap_or(f64::NAN);
     for (name, row) in t.as_object().into_iter().flatten() {
-        let base = row["loop"].as_f64().unwrap_or(f64::NAN);
-        print!("  {name:<6} loop {base:>12.0}");
+        print!("  {name:<6} loop {:>9.0}", f(row, "loop".into()));
         for k in &args.threads {
-            let x = row[format!("threads_{k}")].as_f64().unwrap_or(f64::NAN);
-            print!("   {k} thread(s) {x:>12.0} ({:.2}x)", x / base);
+            print!(
+                "   {k} thread(s) {:>9.0} ({:.2}x loop, {:.2}x {first} thread(s))",
+                f(row, format!("threads_{k}")),
+                f(row, format!("threads_{k}_vs_loop")),
+                f(row, format!("threads_{k}_vs_{first}")),
+            );
         }
         println!();
     }
+    println!("(speed-ups: median over passes of the ratio of times within a pass)");
     Ok(())
 }

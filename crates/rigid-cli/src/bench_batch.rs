@@ -1,6 +1,6 @@
 //! `rigid bench MODEL --batch`: throughput of [`rigid::multibody::batch`] in states per second,
 //! for a loop of single calls and for the batch entry points on 1, 2, … threads (each in its
-//! own rayon pool), median over the passes.
+//! own rayon pool), median over the passes; the configurations take turns pass by pass.
 
 use nalgebra::DVector;
 use rigid::multibody::{aba, batch, crba, rnea, Data, Model, MultibodyError};
@@ -26,8 +26,8 @@ impl Rows {
     }
 }
 
-/// A batch entry point on row-major states.
-type Kernel = fn(&Model, &Rows, &mut [f64]) -> Result<(), MultibodyError>;
+/// A batch entry point on row-major states, with workspaces made once per thread pool.
+type Kernel = fn(&mut batch::Batch, &Model, &Rows, &mut [f64]) -> Result<(), MultibodyError>;
 /// A loop of single calls with one workspace.
 type Single = fn(&Model, &Rows, &mut [f64], &mut Data) -> Result<(), MultibodyError>;
 
@@ -79,23 +79,21 @@ fn loop_crba(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), M
     Ok(())
 }
 
-/// Median wall time (s) of `reps` runs of `f` (after one warm-up run).
-fn median_secs(
-    reps: usize,
-    mut f: impl FnMut() -> Result<(), MultibodyError>,
-) -> Result<f64, String> {
+/// Wall time (s) of one run of `f`.
+fn secs(f: impl FnOnce() -> Result<(), MultibodyError>) -> Result<f64, String> {
+    let s = Instant::now();
     f().map_err(|e| e.to_string())?;
-    let mut t = Vec::with_capacity(reps.max(1));
-    for _ in 0..reps.max(1) {
-        let s = Instant::now();
-        f().map_err(|e| e.to_string())?;
-        t.push(s.elapsed().as_secs_f64());
-    }
-    t.sort_by(f64::total_cmp);
-    Ok(t[t.len() / 2])
+    Ok(s.elapsed().as_secs_f64())
 }
 
-/// `{"rnea": {"loop": states/s, "threads_1": …, "threads_2": …}, "aba": …, "crba": …}`.
+fn median(mut x: Vec<f64>) -> f64 {
+    x.sort_by(f64::total_cmp);
+    x[x.len() / 2]
+}
+
+/// `{"rnea": {"loop": states/s, "threads_1": …, "threads_2": …, "threads_2_vs_loop": speed-up,
+/// "threads_2_vs_1": speed-up, …}, "aba": …, "crba": …}`; a speed-up is the median over passes of
+/// the ratio of the two configurations' times within the pass.
 ///
 /// # Errors
 /// An algorithm error, or a thread pool that cannot be built.
@@ -110,36 +108,68 @@ pub fn throughput(
         (
             "rnea",
             nv,
-            |m, r, o| batch::rnea_batch(m, &r.qs, &r.vs, &r.as_, o),
+            |b, m, r, o| b.rnea(m, &r.qs, &r.vs, &r.as_, o),
             loop_rnea,
         ),
         (
             "aba",
             nv,
-            |m, r, o| batch::aba_batch(m, &r.qs, &r.vs, &r.as_, o),
+            |b, m, r, o| b.aba(m, &r.qs, &r.vs, &r.as_, o),
             loop_aba,
         ),
-        (
-            "crba",
-            nv * nv,
-            |m, r, o| batch::crba_batch(m, &r.qs, o),
-            loop_crba,
-        ),
+        ("crba", nv * nv, |b, m, r, o| b.crba(m, &r.qs, o), loop_crba),
     ];
+    let pools = threads
+        .iter()
+        .map(|&k| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(k)
+                .build()
+                .map_err(|e| e.to_string())
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     let mut out = serde_json::Map::new();
     for (name, per, par, single) in kernels {
         let mut buf = vec![0.0; rows.n * per];
         let mut data = Data::new(model);
+        let mut batches: Vec<batch::Batch> = pools
+            .iter()
+            .map(|p| p.install(|| batch::Batch::new(model)))
+            .collect();
+        // one warm-up run each, then the loop and every thread count take turns run by run, so
+        // that a slow spell of a shared machine hits them alike
+        let mut t = vec![Vec::with_capacity(reps.max(1)); 1 + pools.len()];
+        for r in 0..=reps.max(1) {
+            let mut x = vec![secs(|| single(model, rows, &mut buf, &mut data))?];
+            for (pool, b) in pools.iter().zip(&mut batches) {
+                x.push(pool.install(|| secs(|| par(b, model, rows, &mut buf)))?);
+            }
+            if r > 0 {
+                t.iter_mut().zip(x).for_each(|(t, x)| t.push(x));
+            }
+        }
+        // speed-ups as the median over passes of the ratio within each pass (the configurations
+        // ran back to back), which cancels the slow spells that a ratio of medians keeps
+        let ratio = |a: &[f64], b: &[f64]| median(a.iter().zip(b).map(|(a, b)| a / b).collect());
         let mut row = serde_json::Map::new();
-        let t = median_secs(reps, || single(model, rows, &mut buf, &mut data))?;
-        row.insert("loop".into(), serde_json::json!(rows.n as f64 / t));
-        for &k in threads {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(k)
-                .build()
-                .map_err(|e| e.to_string())?;
-            let t = pool.install(|| median_secs(reps, || par(model, rows, &mut buf)))?;
-            row.insert(format!("threads_{k}"), serde_json::json!(rows.n as f64 / t));
+        row.insert(
+            "loop".into(),
+            serde_json::json!(rows.n as f64 / median(t[0].clone())),
+        );
+        for (c, &k) in threads.iter().enumerate() {
+            let tk = &t[c + 1];
+            row.insert(
+                format!("threads_{k}"),
+                serde_json::json!(rows.n as f64 / median(tk.clone())),
+            );
+            row.insert(
+                format!("threads_{k}_vs_loop"),
+                serde_json::json!(ratio(&t[0], tk)),
+            );
+            row.insert(
+                format!("threads_{k}_vs_{}", threads[0]),
+                serde_json::json!(ratio(&t[1], tk)),
+            );
         }
         out.insert(name.into(), serde_json::Value::Object(row));
     }

@@ -3,9 +3,11 @@
 //!
 //! Inputs are row-major: state `k`'s configuration is `qs[k nq..(k + 1) nq]`, its velocity
 //! `vs[k nv..(k + 1) nv]`, and so on. The states are cut into a few contiguous blocks per
-//! thread, each evaluated with its own [`Data`] (one allocation per block, none per state), and
-//! each state's result goes to its own slice of the output, so the results are those of single
-//! calls, bit for bit, in the input order, for any number of threads. Run inside a `rayon::ThreadPool::install` to choose the number of threads.
+//! thread, each evaluated with its own [`Data`], and each state's result goes to its own slice of
+//! the output, so the results are those of single calls, bit for bit, in the input order, for
+//! any number of threads. Run inside a `rayon::ThreadPool::install` to choose the number of
+//! threads. The free functions make their workspaces per call; a [`Batch`] keeps them across
+//! calls (nothing allocated per call).
 //!
 //! ```
 //! use rigid::multibody::{batch, puma560, Puma560Options};
@@ -23,8 +25,8 @@ use super::{aba, crba, rnea, Data, Model, MultibodyError};
 use crate::error::DimensionError;
 use rayon::prelude::*;
 
-/// Tasks per rayon thread: a few, so that a slow thread can be helped, each making one [`Data`]
-/// (whose allocation is then negligible next to its share of states).
+/// Tasks per rayon thread: a few, so that a slow thread can be helped, each with its own
+/// [`Data`].
 const TASKS_PER_THREAD: usize = 4;
 
 /// Number of states in row-major inputs, checking every length.
@@ -44,10 +46,122 @@ fn count(
     Ok(n)
 }
 
-/// Evaluate `f(data, k, out_k)` for every state `k`: the states are cut into
-/// `TASKS_PER_THREAD × threads` contiguous blocks, run in parallel, each with its own `Data`.
+/// The workspaces of the batch entry points: one [`Data`] per task (a few per thread of the
+/// current rayon pool), made once and reused by every call, so that a batch call allocates
+/// nothing per state and nothing per call (as Pinocchio's `ModelPool`).
+///
+/// ```
+/// use rigid::multibody::{batch::Batch, puma560, Puma560Options};
+/// let model = puma560(Puma560Options::default());
+/// let mut batch = Batch::new(&model);
+/// let (nq, nv, n) = (model.nq(), model.nv(), 100);
+/// let (qs, zeros) = (vec![0.2; n * nq], vec![0.0; n * nv]);
+/// let mut g = vec![0.0; n * nv];
+/// for _ in 0..3 {
+///     batch.rnea(&model, &qs, &zeros, &zeros, &mut g)?; // g(q) for 100 states, no allocation
+/// }
+/// # Ok::<(), rigid::multibody::MultibodyError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Batch {
+    datas: Vec<Data>,
+}
+
+impl Batch {
+    /// Workspaces for `model`, for the current rayon pool (`TASKS_PER_THREAD` per thread).
+    #[must_use]
+    pub fn new(model: &Model) -> Self {
+        let tasks = (rayon::current_num_threads() * TASKS_PER_THREAD).max(1);
+        Self {
+            // made by the pool's threads, so that each lands in its thread's heap arena
+            datas: (0..tasks)
+                .into_par_iter()
+                .map(|_| Data::new(model))
+                .collect(),
+        }
+    }
+
+    /// `τ_k = rnea(q_k, v_k, a_k)` for every state k (see [`rnea_batch`]).
+    ///
+    /// # Errors
+    /// As [`rnea_batch`]; a model other than the one the workspaces were made for is
+    /// [`MultibodyError::DataMismatch`].
+    pub fn rnea(
+        &mut self,
+        model: &Model,
+        qs: &[f64],
+        vs: &[f64],
+        as_: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        count(model, qs, &[vs, as_], tau.len(), model.nv)?;
+        let (nq, nv) = (model.nq, model.nv);
+        for_each_state(&mut self.datas, tau, nv, |data, k, out| {
+            let r = rnea(
+                model,
+                data,
+                &qs[k * nq..(k + 1) * nq],
+                &vs[k * nv..(k + 1) * nv],
+                &as_[k * nv..(k + 1) * nv],
+            )?;
+            out.copy_from_slice(r.as_slice());
+            Ok(())
+        })
+    }
+
+    /// `q̈_k = aba(q_k, v_k, τ_k)` for every state k (see [`aba_batch`]).
+    ///
+    /// # Errors
+    /// As [`aba_batch`], or [`MultibodyError::DataMismatch`].
+    pub fn aba(
+        &mut self,
+        model: &Model,
+        qs: &[f64],
+        vs: &[f64],
+        taus: &[f64],
+        ddq: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        count(model, qs, &[vs, taus], ddq.len(), model.nv)?;
+        let (nq, nv) = (model.nq, model.nv);
+        for_each_state(&mut self.datas, ddq, nv, |data, k, out| {
+            let r = aba(
+                model,
+                data,
+                &qs[k * nq..(k + 1) * nq],
+                &vs[k * nv..(k + 1) * nv],
+                &taus[k * nv..(k + 1) * nv],
+            )?;
+            out.copy_from_slice(r.as_slice());
+            Ok(())
+        })
+    }
+
+    /// `M(q_k)` for every state k (see [`crba_batch`]).
+    ///
+    /// # Errors
+    /// As [`crba_batch`], or [`MultibodyError::DataMismatch`].
+    pub fn crba(
+        &mut self,
+        model: &Model,
+        qs: &[f64],
+        mass: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        let nn = model.nv * model.nv;
+        count(model, qs, &[], mass.len(), nn)?;
+        let nq = model.nq;
+        for_each_state(&mut self.datas, mass, nn, |data, k, out| {
+            let m = crba(model, data, &qs[k * nq..(k + 1) * nq])?;
+            out.copy_from_slice(m.as_slice());
+            Ok(())
+        })
+    }
+}
+
+/// Evaluate `f(data, k, out_k)` for every state `k`: the states are cut into one contiguous
+/// block per workspace (fewer if there are fewer states), run in parallel, each with its own
+/// `Data`.
 fn for_each_state<F>(
-    model: &Model,
+    datas: &mut [Data],
     out: &mut [f64],
     out_per: usize,
     f: F,
@@ -59,21 +173,20 @@ where
     if n == 0 {
         return Ok(());
     }
-    let tasks = (rayon::current_num_threads() * TASKS_PER_THREAD).clamp(1, n);
-    let per_task = n.div_ceil(tasks);
+    let per_task = n.div_ceil(datas.len().clamp(1, n));
     out.par_chunks_mut(per_task * out_per)
+        .zip(datas.par_iter_mut())
         .enumerate()
-        .map(|(c, block)| {
-            let mut data = Data::new(model);
+        .map(|(c, (block, data))| {
             for (j, out_k) in block.chunks_mut(out_per).enumerate() {
-                f(&mut data, c * per_task + j, out_k)?;
+                f(data, c * per_task + j, out_k)?;
             }
             Ok(())
         })
         .collect::<Result<(), MultibodyError>>()
 }
 
-/// `τ_k = rnea(q_k, v_k, a_k)` for every state k (see [`rnea`]), into `tau` (row-major,
+/// `τ_k = rnea(q_k, v_k, a_k)` for every state k (see [`rnea`]; workspaces made for this call, see [`Batch`]), into `tau` (row-major,
 /// `N × nv`).
 ///
 /// # Errors
@@ -85,22 +198,10 @@ pub fn rnea_batch(
     as_: &[f64],
     tau: &mut [f64],
 ) -> Result<(), MultibodyError> {
-    count(model, qs, &[vs, as_], tau.len(), model.nv)?;
-    let (nq, nv) = (model.nq, model.nv);
-    for_each_state(model, tau, nv, |data, k, out| {
-        let r = rnea(
-            model,
-            data,
-            &qs[k * nq..(k + 1) * nq],
-            &vs[k * nv..(k + 1) * nv],
-            &as_[k * nv..(k + 1) * nv],
-        )?;
-        out.copy_from_slice(r.as_slice());
-        Ok(())
-    })
+    Batch::new(model).rnea(model, qs, vs, as_, tau)
 }
 
-/// `q̈_k = aba(q_k, v_k, τ_k)` for every state k (see [`aba`]), into `ddq` (row-major,
+/// `q̈_k = aba(q_k, v_k, τ_k)` for every state k (see [`aba`]; workspaces made for this call, see [`Batch`]), into `ddq` (row-major,
 /// `N × nv`).
 ///
 /// # Errors
@@ -112,33 +213,14 @@ pub fn aba_batch(
     taus: &[f64],
     ddq: &mut [f64],
 ) -> Result<(), MultibodyError> {
-    count(model, qs, &[vs, taus], ddq.len(), model.nv)?;
-    let (nq, nv) = (model.nq, model.nv);
-    for_each_state(model, ddq, nv, |data, k, out| {
-        let r = aba(
-            model,
-            data,
-            &qs[k * nq..(k + 1) * nq],
-            &vs[k * nv..(k + 1) * nv],
-            &taus[k * nv..(k + 1) * nv],
-        )?;
-        out.copy_from_slice(r.as_slice());
-        Ok(())
-    })
+    Batch::new(model).aba(model, qs, vs, taus, ddq)
 }
 
-/// `M(q_k)` for every state k (see [`crba`]), into `mass` (`N` matrices of `nv × nv`, each
+/// `M(q_k)` for every state k (see [`crba`]; workspaces made for this call, see [`Batch`]), into `mass` (`N` matrices of `nv × nv`, each
 /// column-major, which for a symmetric matrix is also row-major).
 ///
 /// # Errors
 /// A length that is not `N nq` / `N nv²`, or the first failing state's error.
 pub fn crba_batch(model: &Model, qs: &[f64], mass: &mut [f64]) -> Result<(), MultibodyError> {
-    let nn = model.nv * model.nv;
-    count(model, qs, &[], mass.len(), nn)?;
-    let nq = model.nq;
-    for_each_state(model, mass, nn, |data, k, out| {
-        let m = crba(model, data, &qs[k * nq..(k + 1) * nq])?;
-        out.copy_from_slice(m.as_slice());
-        Ok(())
-    })
+    Batch::new(model).crba(model, qs, mass)
 }
