@@ -65,3 +65,39 @@ fn batch_rejects_ragged_inputs() {
     let mut m = vec![0.0; 72];
     assert!(batch::crba_batch(&model, &[0.0; 12], &mut m).is_ok());
 }
+
+/// A reused `Batch` gives the free functions' results bit for bit on every call (no state left
+/// from the previous call: the second call's states differ), and refuses another model.
+#[test]
+fn a_reused_batch_equals_fresh_calls_and_checks_the_model() {
+    let model = common::random_tree(4, 8, true);
+    let nv = model.nv();
+    let mut b = batch::Batch::new(&model);
+    for (seed, n) in [(1, 23), (2, 40)] {
+        let mut rng = Rng::new(seed);
+        let (mut qs, mut vs, mut as_) = (vec![], vec![], vec![]);
+        for _ in 0..n {
+            let (q, v, a) = common::state(&model, &mut rng);
+            qs.extend(q);
+            vs.extend(v);
+            as_.extend(a);
+        }
+        let (mut t1, mut t2) = (vec![0.0; n * nv], vec![0.0; n * nv]);
+        b.rnea(&model, &qs, &vs, &as_, &mut t1).unwrap();
+        batch::rnea_batch(&model, &qs, &vs, &as_, &mut t2).unwrap();
+        assert_eq!(t1, t2);
+        b.aba(&model, &qs, &vs, &as_, &mut t1).unwrap();
+        batch::aba_batch(&model, &qs, &vs, &as_, &mut t2).unwrap();
+        assert_eq!(t1, t2);
+        let (mut m1, mut m2) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+        b.crba(&model, &qs, &mut m1).unwrap();
+        batch::crba_batch(&model, &qs, &mut m2).unwrap();
+        assert_eq!(m1, m2);
+    }
+    let other = puma560(Puma560Options::default());
+    let mut tau = vec![0.0; 6];
+    assert!(matches!(
+        b.rnea(&other, &[0.0; 6], &[0.0; 6], &[0.0; 6], &mut tau),
+        Err(MultibodyError::DataMismatch { .. })
+    ));
+}
