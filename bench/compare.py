@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """rigid vs Pinocchio, side by side, in one run (see BENCHMARKS.md).
 
-    python3 bench/compare.py                 # 3 rounds, every model of bench/models.tsv
-    python3 bench/compare.py --rounds 5 --models ur5,talos
+    python3 bench/compare.py                 # 5 rounds, every model of bench/models.tsv
+    python3 bench/compare.py --rounds 3 --models ur5,talos
     python3 bench/compare.py --json out.json # also save every raw measurement
 
 Steps:
@@ -175,7 +175,7 @@ def fmt_ns(x):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--rounds", type=int, default=3, help="interleaved rounds (default 3)")
+    ap.add_argument("--rounds", type=int, default=5, help="interleaved rounds (default 5)")
     ap.add_argument("--reps", type=int, default=21, help="Pinocchio: passes over the states per round (default 21)")
     ap.add_argument("--states", type=int, default=1000, help="Pinocchio: random states (default 1000)")
     ap.add_argument("--models", default="", help="comma-separated subset of bench/models.tsv")
