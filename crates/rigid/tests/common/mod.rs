@@ -6,7 +6,7 @@ pub mod json;
 use nalgebra::{DMatrix, DVector};
 use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::multibody::*;
-use rigid::spatial::{so3, Transform, Vec3};
+use rigid::spatial::{so3, Mat3, Transform, Vec3};
 
 /// A random unit vector.
 pub fn unit(rng: &mut Rng) -> Vec3 {
@@ -69,7 +69,8 @@ pub fn random_tree(seed: u64, n: usize, armature: bool) -> Model {
         let cut = 1 + (rng.next_u64() as usize) % stack.len();
         stack.truncate(cut.max(1));
         let parent = *stack.last().unwrap();
-        let kind = match rng.next_u64() % 6 {
+        let pick = rng.next_u64() % 6;
+        let kind = match pick {
             // a coordinate axis ±x, ±y, ±z (the fast path of the joint transform)
             5 => {
                 let k = (rng.next_u64() % 3) as usize;
@@ -90,14 +91,14 @@ pub fn random_tree(seed: u64, n: usize, armature: bool) -> Model {
             3 => JointType::Spherical,
             _ => JointType::Planar,
         };
+        // a coordinate-axis revolute joint gets an X_T without rotation every other time (a URDF
+        // origin without rpy: the algorithms' unrotated fast paths)
+        let mut x_t = transform(&mut rng);
+        if pick == 5 && k % 2 == 0 {
+            x_t.rotation = Mat3::identity();
+        }
         let id = b
-            .add_joint(
-                Some(parent),
-                &format!("j{k}"),
-                kind,
-                transform(&mut rng),
-                inertia(&mut rng),
-            )
+            .add_joint(Some(parent), &format!("j{k}"), kind, x_t, inertia(&mut rng))
             .unwrap();
         if armature {
             let arm: Vec<f64> = (0..kind.nv()).map(|_| rng.uniform(0.0, 0.5)).collect();
@@ -129,7 +130,51 @@ pub fn models() -> Vec<Model> {
     v.push(random_tree(2, 10, true));
     v.push(random_tree(3, 6, true));
     v.push(random_tree(4, 12, false));
+    v.push(aligned_forest());
     v
+}
+
+/// Two trees from the world, neither with a free-flyer root (a revolute about z and a planar
+/// joint), whose chains are revolute joints about ±x, ±y, ±z with X_T translations only (as in
+/// most URDFs), with armature: the root-frame CRBA and the unrotated fast paths of ABA.
+pub fn aligned_forest() -> Model {
+    let mut rng = Rng::new(77);
+    let mut b = ModelBuilder::new("aligned_forest");
+    let shift = |rng: &mut Rng| {
+        Transform::from_translation(Vec3::new(
+            rng.uniform(-0.5, 0.5),
+            rng.uniform(-0.5, 0.5),
+            rng.uniform(-0.5, 0.5),
+        ))
+    };
+    for (t, root_kind) in [JointType::Revolute { axis: Vec3::z() }, JointType::Planar]
+        .into_iter()
+        .enumerate()
+    {
+        let mut parent = b
+            .add_joint(
+                None,
+                &format!("root{t}"),
+                root_kind,
+                transform(&mut rng),
+                inertia(&mut rng),
+            )
+            .unwrap();
+        for k in 0..4 {
+            let axis = Vec3::ith(k % 3, if k % 2 == 0 { 1.0 } else { -1.0 });
+            parent = b
+                .add_joint(
+                    Some(parent),
+                    &format!("t{t}j{k}"),
+                    JointType::Revolute { axis },
+                    shift(&mut rng),
+                    inertia(&mut rng),
+                )
+                .unwrap();
+            b.set_armature(parent, &[0.05 * k as f64]).unwrap();
+        }
+    }
+    b.build().unwrap()
 }
 
 /// A random state (q, v, a) of the model.
