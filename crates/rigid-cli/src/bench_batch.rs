@@ -136,16 +136,18 @@ pub fn throughput(
             .iter()
             .map(|p| p.install(|| batch::Batch::new(model)))
             .collect();
-        // one warm-up run each, then the loop and every thread count take turns run by run, so
-        // that a slow spell of a shared machine hits them alike
+        // the loop and every thread count take turns pass by pass, so that a slow spell of a
+        // shared machine hits them alike; each turn is an untimed pass then a timed one, so that
+        // what is timed is a pool already awake (the steady state of a long batch), not the wake-up
+        // of threads that slept through the other configurations' turns
         let mut t = vec![Vec::with_capacity(reps.max(1)); 1 + pools.len()];
-        for r in 0..=reps.max(1) {
-            let mut x = vec![secs(|| single(model, rows, &mut buf, &mut data))?];
-            for (pool, b) in pools.iter().zip(&mut batches) {
-                x.push(pool.install(|| secs(|| par(b, model, rows, &mut buf)))?);
-            }
-            if r > 0 {
-                t.iter_mut().zip(x).for_each(|(t, x)| t.push(x));
+        for _ in 0..reps.max(1) {
+            single(model, rows, &mut buf, &mut data).map_err(|e| e.to_string())?;
+            t[0].push(secs(|| single(model, rows, &mut buf, &mut data))?);
+            for ((pool, b), t) in pools.iter().zip(&mut batches).zip(&mut t[1..]) {
+                pool.install(|| par(b, model, rows, &mut buf))
+                    .map_err(|e| e.to_string())?;
+                t.push(pool.install(|| secs(|| par(b, model, rows, &mut buf)))?);
             }
         }
         // speed-ups as the median over passes of the ratio within each pass (the configurations

@@ -27,7 +27,7 @@ use rayon::prelude::*;
 
 /// Tasks per rayon thread: a few, so that a slow thread can be helped, each with its own
 /// [`Data`].
-const TASKS_PER_THREAD: usize = 4;
+const TASKS_PER_THREAD: usize = 2;
 
 /// Number of states in row-major inputs, checking every length.
 fn count(
