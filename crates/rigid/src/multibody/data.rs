@@ -14,7 +14,7 @@ pub struct Data {
     /// Filled by every algorithm that takes `q`.
     pub parent_placements: Vec<Transform>,
     /// `oMi`: world pose of each joint frame as moved by the joint. Forward kinematics,
-    /// Jacobians, `M⁻¹`, energies, CoM (not CRBA, which works in the root body's frame).
+    /// Jacobians, energies, CoM (not CRBA and `M⁻¹`, which work in the root body's frame).
     pub placements: Vec<Transform>,
     /// `oMf`: world pose of each named frame ([`update_frame_placements`](super::update_frame_placements)).
     pub frame_placements: Vec<Transform>,
@@ -65,11 +65,13 @@ pub struct Data {
     pub(crate) d_inv: Vec<Mat6>,
     pub(crate) d_inv_1: Vec<f64>,
     pub(crate) crba_forces: Vec<Wrench>,
-    /// CRBA's placements `rMi` in the frame of each tree's root body.
-    pub(crate) crba_placements: Vec<Transform>,
+    /// Placements `rMi` in the frame of each tree's root body (CRBA, `M⁻¹`).
+    pub(crate) root_placements: Vec<Transform>,
     pub(crate) dof_J: Vec<Twist>,
     pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,
+    /// Each body's inertia in a frame common to its tree (Coriolis: the world; `M⁻¹`: the root
+    /// body's frame).
     pub(crate) world_inertias: Vec<SpatialInertia>,
     pub(crate) world_b: Vec<Mat6>,
     pub(crate) chol: DMatrix<f64>,
@@ -121,7 +123,7 @@ impl Data {
             d_inv: vec![Mat6::zeros(); n],
             d_inv_1: vec![0.0; nv],
             crba_forces: vec![Wrench::zero(); nv],
-            crba_placements: vec![Transform::identity(); n],
+            root_placements: vec![Transform::identity(); n],
             dof_J: vec![Twist::zero(); nv],
             u: DVector::zeros(nv),
             spatial_velocities: vec![Twist::zero(); n],

@@ -2,10 +2,8 @@
 //! Table 6.2), with the composite inertias accumulated in one frame per tree (the root body's),
 //! so that no force is carried up the chain.
 
-use super::{compose, inertia_to_parent, parent_placement};
-use crate::multibody::joint::rotate_about;
+use super::root_frame_bodies;
 use crate::multibody::{check_data, check_q, Data, JointType, Model, MultibodyError};
-use crate::spatial::{mat3_vec, Transform, Twist, Vec3};
 use nalgebra::DMatrix;
 
 /// The joint-space inertia matrix `M(q)` (full symmetric), plus the armature on the diagonal:
@@ -53,62 +51,14 @@ pub fn crba<'a>(
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_q(model, q)?;
     check_data(model, data)?;
+    root_frame_bodies(
+        model,
+        q,
+        &mut data.root_placements,
+        &mut data.dof_J,
+        &mut data.composite_inertias,
+    );
     let n = model.joints.len();
-    for i in 0..n {
-        let j = &model.joints[i];
-        let rMi = match j.parent {
-            // the root body's own frame: J = S, rG = G, and the root's q is not used
-            None => {
-                data.composite_inertias[i] = model.inertias[i];
-                let r = j.idx_v..j.idx_v + j.nv;
-                data.dof_J[r.clone()].copy_from_slice(&model.dof_S[r]);
-                data.crba_placements[i] = Transform::identity();
-                continue;
-            }
-            Some(p) if model.joints[p.0].parent.is_none() => parent_placement(model, i, q),
-            Some(p) => {
-                let rMp = &data.crba_placements[p.0];
-                match j.kind {
-                    // X_T without rotation: R_λ exp([a] q) turns two columns of R_λ
-                    JointType::Revolute { axis } | JointType::Continuous { axis }
-                        if model.unrotated[i] =>
-                    {
-                        Transform::new(
-                            rotate_about(&rMp.rotation, &axis, q[j.idx_q]),
-                            mat3_vec(&rMp.rotation, &j.placement.translation) + rMp.translation,
-                        )
-                    }
-                    _ => compose(rMp, &parent_placement(model, i, q)),
-                }
-            }
-        };
-        data.crba_placements[i] = rMi;
-        data.composite_inertias[i] = inertia_to_parent(&model.inertias[i], &rMi);
-        match j.kind {
-            // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
-            JointType::Revolute { axis } | JointType::Continuous { axis } => {
-                let w = match model.dof_axis[j.idx_v] {
-                    Some((c, s)) => rMi.rotation.column(c) * s, // R (s e_c)
-                    None => mat3_vec(&rMi.rotation, &axis),
-                };
-                data.dof_J[j.idx_v] = Twist::new(w, rMi.translation.cross(&w));
-            }
-            // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
-            JointType::FreeFlyer => {
-                let (R, p) = (&rMi.rotation, &rMi.translation);
-                for c in 0..3 {
-                    let r: Vec3 = R.column(c).into();
-                    data.dof_J[j.idx_v + c] = Twist::new(r, p.cross(&r));
-                    data.dof_J[j.idx_v + 3 + c] = Twist::new(Vec3::zeros(), r);
-                }
-            }
-            _ => {
-                for k in j.idx_v..j.idx_v + j.nv {
-                    data.dof_J[k] = rMi.act_twist(&model.dof_S[k]);
-                }
-            }
-        }
-    }
     let nv = model.nv;
     let M = data.mass_matrix.as_mut_slice(); // column-major, M[(k, l)] = M[l * nv + k]
     for i in (0..n).rev() {

@@ -1,10 +1,10 @@
 //! The inverse of the joint-space mass matrix, `M(q)⁻¹`, by the articulated-body algorithm run
-//! for every unit torque at once (Featherstone 2008, §7.3; Carpentier & Mansard 2018), in world
-//! coordinates so that no spatial transform is applied on the way.
+//! for every unit torque at once (Featherstone 2008, §7.3; Carpentier & Mansard 2018), in one
+//! frame per tree (the root body's, as [`crba`](super::crba)) so that no spatial transform is
+//! applied on the way.
 
 use super::aba::mat6_twist;
-use super::kinematics::placements_unchecked;
-use super::{inertia_to_parent, world_joint_columns};
+use super::root_frame_bodies;
 use crate::multibody::{check_data, check_q, Data, Model, MultibodyError};
 use crate::spatial::{Mat6, Twist, Wrench};
 use nalgebra::DMatrix;
@@ -17,10 +17,11 @@ use nalgebra::DMatrix;
 /// maps `τ` linearly to `q̈ = M⁻¹ τ`; running it for the `nv` unit torques `τ = e_j` together
 /// gives the columns of `M⁻¹` (Carpentier & Mansard 2018, "Analytical derivatives of rigid
 /// body dynamics algorithms", RSS, the `M⁻¹` recursion; Pinocchio's `computeMinverse`). With
-/// no velocity the bias terms vanish, and in world coordinates (`J_i = [Ad_{oMi}] S_i`,
-/// `oG_i = [Ad_{oMi⁻¹}]ᵀ G_i [Ad_{oMi⁻¹}]`) a parent and a child share their frame, so:
+/// no velocity the bias terms vanish, and in one frame common to a tree (here its root body's
+/// frame {r}, as in [`crba`](super::crba): `J_i = [Ad_{rMi}] S_i`,
+/// `oG_i = [Ad_{rMi⁻¹}]ᵀ G_i [Ad_{rMi⁻¹}]`) a parent and a child share their frame, so:
 ///
-/// - forward (i = 1..n): `oMi`, `J_i`, `I^A_i = oG_i`
+/// - forward (i = 1..n): `rMi`, `J_i`, `I^A_i = oG_i`
 /// - backward (i = n..1), with `P` the 6 x nv matrix of the bias forces `p^a` for every unit
 ///   torque (the columns of a subtree are contiguous and only its own joints write them):
 ///   `U_i = I^A_i J_i`, `D_i = J_iᵀ U_i + diag(armature_i)`;
@@ -29,14 +30,14 @@ use nalgebra::DMatrix;
 ///   `P(:, i) = U_i D_i⁻¹`, `P(:, s) += U_i M⁻¹(i, s)` (`p^a = p^A + U D⁻¹ u`);
 ///   `I^A_{λ(i)} += I^A_i - U_i D_i⁻¹ U_iᵀ`
 /// - forward (i = 1..n), columns `c ≥ idx_v(i)` only (the upper triangle), with `A_j` the
-///   6 x nv world accelerations of body j for every unit torque (`A_world = 0`):
+///   6 x nv accelerations (tree frame) of body j for every unit torque (`A_world = 0`):
 ///   `M⁻¹(i, c) -= (U_i D_i⁻¹)ᵀ A_{λ(i)}(:, c)` (`q̈_i = D_i⁻¹ (u_i - U_iᵀ a_λ)`),
 ///   `A_i(:, c) = A_{λ(i)}(:, c) + J_i M⁻¹(i, c)`
 /// - the upper triangle is mirrored into the lower one.
 ///
 /// The backward pass costs O(nv_i · subtree) per joint, the last pass O(nv_i · nv): O(n nv)
-/// overall, against O(nv³) for a dense inverse. Returns `data.minv`; also fills
-/// `data.placements` and `data.parent_placements`. Nothing is allocated.
+/// overall, against O(nv³) for a dense inverse. Returns `data.minv` (`data.placements` is not
+/// updated). Nothing is allocated.
 ///
 /// # Errors
 /// Wrong length, non-finite entry or non-unit quaternion in `q` (as [`crba`](super::crba)), a
@@ -66,13 +67,17 @@ pub fn compute_minverse<'a>(
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_q(model, q)?;
     check_data(model, data)?;
-    placements_unchecked(model, data, q);
+    root_frame_bodies(
+        model,
+        q,
+        &mut data.root_placements,
+        &mut data.dof_J,
+        &mut data.world_inertias,
+    );
     let n = model.joints.len();
     let nv = model.nv;
     for i in 0..n {
-        let oMi = data.placements[i];
-        data.ia[i] = inertia_to_parent(&model.inertias[i], &oMi).matrix();
-        world_joint_columns(model, i, &oMi, &mut data.dof_J);
+        data.ia[i] = data.world_inertias[i].matrix();
         data.minv_depth[i] = model.joints[i]
             .parent
             .map_or(0, |p| data.minv_depth[p.0] + 1);

@@ -24,6 +24,7 @@ pub use kinematics::{
 pub use minverse::compute_minverse;
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 
+use super::joint::rotate_about;
 use super::{JointType, Model};
 use crate::mass::SpatialInertia;
 use crate::spatial::{mat3_vec, Mat3, Transform, Twist, Vec3};
@@ -40,31 +41,77 @@ pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
     t
 }
 
-/// The world joint columns `J_k = [Ad_{oMi}] S_k` of joint `i` (posed at `oMi`), written to
-/// `J[idx_v..idx_v + nv]`; revolute and free-flyer joints skip the products with zeros of `S`.
-/// Always inlined: it is on the hot path of [`crba`] and [`compute_minverse`].
+/// The first pass of [`crba`] and [`compute_minverse`]: every body posed in the frame {r} of its
+/// tree's root body (the body moved by a joint without a parent), `rMi = rM_{λ(i)} liMi` with
+/// `rM_root = 1`, its joint columns `J_k = [Ad_{rMi}] S_k` into `J` and its inertia
+/// `rG_i = [Ad_{rMi⁻¹}]ᵀ G_i [Ad_{rMi⁻¹}]` into `G`.
+///
+/// `M` and `M⁻¹` pair twists with wrenches, so any frame common to a tree gives them, and trees
+/// share no dof. In the root body's frame the root's columns are its constant `S` and its `q` is
+/// not used (`M` does not depend on it), its children's placements are their `liMi` (no
+/// composition), and a revolute joint whose `X_T` has no rotation turns two columns of `R_λ`
+/// instead of a 3x3 product. Revolute and free-flyer columns skip the products with the zeros of
+/// `S`.
 #[inline(always)]
-pub(crate) fn world_joint_columns(model: &Model, i: usize, oMi: &Transform, J: &mut [Twist]) {
-    let j = &model.joints[i];
-    match j.kind {
-        // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
-        JointType::Revolute { axis } | JointType::Continuous { axis } => {
-            let w = mat3_vec(&oMi.rotation, &axis);
-            J[j.idx_v] = Twist::new(w, oMi.translation.cross(&w));
-        }
-        // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
-        JointType::FreeFlyer => {
-            let (R, p) = (&oMi.rotation, &oMi.translation);
-            for c in 0..3 {
-                let r: Vec3 = R.column(c).into();
-                J[j.idx_v + c] = Twist::new(r, p.cross(&r));
-                J[j.idx_v + 3 + c] = Twist::new(Vec3::zeros(), r);
+pub(crate) fn root_frame_bodies(
+    model: &Model,
+    q: &[f64],
+    rM: &mut [Transform],
+    J: &mut [Twist],
+    G: &mut [SpatialInertia],
+) {
+    for i in 0..model.joints.len() {
+        let j = &model.joints[i];
+        let rMi = match j.parent {
+            None => {
+                G[i] = model.inertias[i];
+                let r = j.idx_v..j.idx_v + j.nv;
+                J[r.clone()].copy_from_slice(&model.dof_S[r]);
+                rM[i] = Transform::identity();
+                continue;
             }
-        }
-        _ => {
-            let r = j.idx_v..j.idx_v + j.nv;
-            for (Jk, S) in J[r.clone()].iter_mut().zip(&model.dof_S[r]) {
-                *Jk = oMi.act_twist(S);
+            Some(p) if model.joints[p.0].parent.is_none() => parent_placement(model, i, q),
+            Some(p) => {
+                let rMp = &rM[p.0];
+                match j.kind {
+                    // X_T without rotation: R_λ exp([a] q) turns two columns of R_λ
+                    JointType::Revolute { axis } | JointType::Continuous { axis }
+                        if model.unrotated[i] =>
+                    {
+                        Transform::new(
+                            rotate_about(&rMp.rotation, &axis, q[j.idx_q]),
+                            mat3_vec(&rMp.rotation, &j.placement.translation) + rMp.translation,
+                        )
+                    }
+                    _ => compose(rMp, &parent_placement(model, i, q)),
+                }
+            }
+        };
+        rM[i] = rMi;
+        G[i] = inertia_to_parent(&model.inertias[i], &rMi);
+        match j.kind {
+            // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
+            JointType::Revolute { axis } | JointType::Continuous { axis } => {
+                let w = match model.dof_axis[j.idx_v] {
+                    Some((c, s)) => rMi.rotation.column(c) * s, // R (s e_c)
+                    None => mat3_vec(&rMi.rotation, &axis),
+                };
+                J[j.idx_v] = Twist::new(w, rMi.translation.cross(&w));
+            }
+            // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
+            JointType::FreeFlyer => {
+                let (R, p) = (&rMi.rotation, &rMi.translation);
+                for c in 0..3 {
+                    let r: Vec3 = R.column(c).into();
+                    J[j.idx_v + c] = Twist::new(r, p.cross(&r));
+                    J[j.idx_v + 3 + c] = Twist::new(Vec3::zeros(), r);
+                }
+            }
+            _ => {
+                let r = j.idx_v..j.idx_v + j.nv;
+                for (Jk, S) in J[r.clone()].iter_mut().zip(&model.dof_S[r]) {
+                    *Jk = rMi.act_twist(S);
+                }
             }
         }
     }
