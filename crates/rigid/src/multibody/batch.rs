@@ -23,7 +23,17 @@
 
 use super::{aba, crba, rnea, Data, Model, MultibodyError};
 use crate::error::DimensionError;
+use nalgebra::DVector;
 use rayon::prelude::*;
+
+/// `rnea` and `aba` share one shape: `(q, v, x) ↦ nv-vector`.
+type QvxFn = for<'a> fn(
+    &Model,
+    &'a mut Data,
+    &[f64],
+    &[f64],
+    &[f64],
+) -> Result<&'a DVector<f64>, MultibodyError>;
 
 /// Tasks per rayon thread: a few, so that a slow thread can be helped, each with its own
 /// [`Data`].
@@ -94,19 +104,7 @@ impl Batch {
         as_: &[f64],
         tau: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        count(model, qs, &[vs, as_], tau.len(), model.nv)?;
-        let (nq, nv) = (model.nq, model.nv);
-        for_each_state(&mut self.datas, tau, nv, |data, k, out| {
-            let r = rnea(
-                model,
-                data,
-                &qs[k * nq..(k + 1) * nq],
-                &vs[k * nv..(k + 1) * nv],
-                &as_[k * nv..(k + 1) * nv],
-            )?;
-            out.copy_from_slice(r.as_slice());
-            Ok(())
-        })
+        self.qvx(rnea, model, qs, vs, as_, tau)
     }
 
     /// `q̈_k = aba(q_k, v_k, τ_k)` for every state k (see [`aba_batch`]).
@@ -121,15 +119,28 @@ impl Batch {
         taus: &[f64],
         ddq: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        count(model, qs, &[vs, taus], ddq.len(), model.nv)?;
+        self.qvx(aba, model, qs, vs, taus, ddq)
+    }
+
+    /// `out_k = f(q_k, v_k, x_k)` (an `nv`-vector) for every state k.
+    fn qvx(
+        &mut self,
+        f: QvxFn,
+        model: &Model,
+        qs: &[f64],
+        vs: &[f64],
+        xs: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        count(model, qs, &[vs, xs], out.len(), model.nv)?;
         let (nq, nv) = (model.nq, model.nv);
-        for_each_state(&mut self.datas, ddq, nv, |data, k, out| {
-            let r = aba(
+        for_each_state(&mut self.datas, out, nv, |data, k, out| {
+            let r = f(
                 model,
                 data,
                 &qs[k * nq..(k + 1) * nq],
                 &vs[k * nv..(k + 1) * nv],
-                &taus[k * nv..(k + 1) * nv],
+                &xs[k * nv..(k + 1) * nv],
             )?;
             out.copy_from_slice(r.as_slice());
             Ok(())
