@@ -157,6 +157,12 @@ def ns(run, key):
 def paired_ratio(rigid_runs, pin_runs_by_variant, variants, key):
     """Median over rounds of rigid's time / Pinocchio's (fastest build) in the same round: the two
     sides of one round ran back to back, so a slow spell of the machine largely cancels out."""
+    ratios = round_ratios(rigid_runs, pin_runs_by_variant, variants, key)
+    return statistics.median(ratios) if ratios else None
+
+
+def round_ratios(rigid_runs, pin_runs_by_variant, variants, key):
+    """rigid's time / Pinocchio's (fastest build) within each round."""
     ratios = []
     for i, rr in enumerate(rigid_runs):
         a = ns(rr, key)
@@ -164,7 +170,7 @@ def paired_ratio(rigid_runs, pin_runs_by_variant, variants, key):
         bs = [b for b in bs if b]
         if a and bs:
             ratios.append(a / min(bs))
-    return statistics.median(ratios) if ratios else None
+    return ratios
 
 
 def fmt_ns(x):
@@ -318,6 +324,19 @@ def main():
             out.append("| %s | %d | %d | %s |" % (n, m["nq"], m["nv"], " | ".join(cells)))
         out.append("")
         out.append("Bars missed (bold): " + (", ".join(misses) if misses else "none") + "\n")
+        spread = [k for k in ALGOS if k in TARGET]
+        out.append("Spread of the per-round ratios behind those medians (min–max over %d rounds):\n"
+                   % args.rounds)
+        out.append("| model | " + " | ".join(SHORT[k] for k in spread) + " |")
+        out.append("|---|" + "---:|" * len(spread))
+        for m in models:
+            n = m["name"]
+            cells = []
+            for k in spread:
+                r = round_ratios(rigid_runs[n], pin_runs[n], variants, k)
+                cells.append("%.2f–%.2f" % (min(r), max(r)) if r else "–")
+            out.append("| %s | %s |" % (n, " | ".join(cells)))
+        out.append("")
         out.append("### rigid, ns per call\n")
         out.append(hdr)
         out.append(sep)
