@@ -64,6 +64,11 @@ pub fn random_tree(seed: u64, n: usize, armature: bool) -> Model {
             inertia(&mut rng),
         )
         .unwrap();
+    if armature {
+        // the free-flyer root too (CRBA writes its 6x6 block on its own path)
+        let arm: Vec<f64> = (0..6).map(|_| rng.uniform(0.0, 0.5)).collect();
+        b.set_armature(root, &arm).unwrap();
+    }
     let mut stack = vec![root];
     for k in 0..n {
         let cut = 1 + (rng.next_u64() as usize) % stack.len();
