@@ -301,9 +301,9 @@ fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
 /// `Some((c, s))` if `S = s e_c` exactly (`s = ±1`), angular components first.
 fn unit_axis(S: &Twist) -> Option<(usize, f64)> {
     let x = S.to_vector();
-    let nonzero: Vec<usize> = (0..6).filter(|&c| x[c] != 0.0).collect();
-    match nonzero[..] {
-        [c] if x[c].abs() == 1.0 => Some((c, x[c])),
+    let mut nonzero = (0..6).filter(|&c| x[c] != 0.0);
+    match (nonzero.next(), nonzero.next()) {
+        (Some(c), None) if x[c].abs() == 1.0 => Some((c, x[c])),
         _ => None,
     }
 }
