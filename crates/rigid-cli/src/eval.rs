@@ -21,9 +21,8 @@ pub struct EvalArgs {
     /// and `tau` default to zero.
     #[arg(long)]
     pub cases: PathBuf,
-    /// Add a free-flyer root joint carrying the URDF's root link.
-    #[arg(long)]
-    pub floating: bool,
+    #[command(flatten)]
+    pub load: crate::load::LoadArgs,
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     pub json: bool,
@@ -101,7 +100,7 @@ impl Serialize for Placements {
 /// # Errors
 /// A message naming the model, the case and the field, or the joint.
 pub fn run(args: &EvalArgs) -> Result<(), String> {
-    let model = load_model(&args.model, args.floating)?;
+    let model = load_model(&args.model, &args.load)?;
     let path = args.cases.display();
     let text = std::fs::read_to_string(&args.cases)
         .map_err(|e| format!("cannot read cases file {path}: {e}"))?;

@@ -1,8 +1,33 @@
-//! Finding a model from the command line: a URDF file or a built-in model name.
+//! Finding a model from the command line: a URDF file or a built-in model name, with the
+//! loading options every model command shares (`--floating`, `--inertia`).
 
-use rigid::io::urdf;
+use clap::Args;
+use rigid::io::urdf::{self, InertiaPolicy, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, Model};
 use std::path::Path;
+
+/// How to load a URDF: shared by the commands that take a model.
+#[derive(Args, Clone, Copy, Debug)]
+pub struct LoadArgs {
+    /// Add a free-flyer root joint carrying the URDF's root link.
+    #[arg(long)]
+    pub floating: bool,
+    /// Non-physical inertias in a URDF: `strict` refuses them, `warn` loads them as written
+    /// with a warning, `repair` loads the doctor's repair (see `rigid doctor`).
+    #[arg(long, default_value = "warn", value_name = "strict|warn|repair")]
+    pub inertia: InertiaPolicy,
+}
+
+impl LoadArgs {
+    /// The URDF options these arguments ask for.
+    pub fn urdf_options(&self) -> UrdfOptions {
+        UrdfOptions {
+            floating: self.floating,
+            inertia: self.inertia,
+            ..UrdfOptions::default()
+        }
+    }
+}
 
 /// True when `spec` names a file (or looks like a URDF path) rather than a built-in model.
 pub fn is_file(spec: &str) -> bool {
@@ -10,15 +35,41 @@ pub fn is_file(spec: &str) -> bool {
     p.exists() || spec.ends_with(".urdf") || spec.ends_with(".xml") || spec.contains('/')
 }
 
-/// The model named by `spec`: a URDF file, loaded with a free-flyer root if `floating`, or a
-/// built-in model.
+/// Warnings printed on stderr by the commands that are not about the model itself.
+const SHOWN_WARNINGS: usize = 5;
+
+/// The model named by `spec`: a URDF file loaded under `args`, or a built-in model. The URDF's
+/// warnings go to stderr (the first few, then a count).
 ///
 /// # Errors
 /// The URDF error (with its file, link or joint and line), an unknown built-in name, or
 /// `--floating` asked of a built-in model.
-pub fn load_model(spec: &str, floating: bool) -> Result<Model, String> {
+pub fn load_model(spec: &str, args: &LoadArgs) -> Result<Model, String> {
+    let (model, warnings) = load_model_with_warnings(spec, args)?;
+    for w in warnings.iter().take(SHOWN_WARNINGS) {
+        eprintln!("warning: {spec}: {w}");
+    }
+    if warnings.len() > SHOWN_WARNINGS {
+        eprintln!(
+            "warning: {spec}: {} more warnings (`rigid model {spec}` lists them all)",
+            warnings.len() - SHOWN_WARNINGS
+        );
+    }
+    Ok(model)
+}
+
+/// As [`load_model`], returning the warnings instead of printing them.
+///
+/// # Errors
+/// As [`load_model`].
+pub fn load_model_with_warnings(
+    spec: &str,
+    args: &LoadArgs,
+) -> Result<(Model, Vec<String>), String> {
     if is_file(spec) {
-        return urdf::load_urdf(spec, floating).map_err(|e| format!("{spec}: {e}"));
+        let (model, warnings) =
+            urdf::load_urdf_with(spec, &args.urdf_options()).map_err(|e| format!("{spec}: {e}"))?;
+        return Ok((model, warnings.iter().map(ToString::to_string).collect()));
     }
     let model = builtin(spec).ok_or_else(|| {
         format!(
@@ -26,10 +77,10 @@ pub fn load_model(spec: &str, floating: bool) -> Result<Model, String> {
             builtin_names().join(", ")
         )
     })?;
-    if floating {
+    if args.floating {
         return Err(format!(
             "--floating applies to URDF models; the built-in model \"{spec}\" has a fixed base"
         ));
     }
-    Ok(model)
+    Ok((model, Vec::new()))
 }

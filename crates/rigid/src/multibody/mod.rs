@@ -55,7 +55,9 @@ pub use builtins::{builtin, builtin_names, double_pendulum, pendulum, puma560, P
 pub use configuration::{difference, integrate, neutral, normalize, random_configuration, Rng};
 pub use data::Data;
 pub use joint::JointType;
-pub use model::{Frame, FrameId, FrameKind, Joint, JointId, Model, ModelBuilder};
+pub use model::{
+    Frame, FrameId, FrameKind, FrameLookupError, InertiaCheck, Joint, JointId, Model, ModelBuilder,
+};
 
 use crate::error::{DimensionError, InertiaError};
 use thiserror::Error;
@@ -66,8 +68,8 @@ pub const QUATERNION_TOLERANCE: f64 = 1e-6;
 /// An invalid model description.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum ModelError {
-    /// Two joints or frames with the same name.
-    #[error("duplicate joint or frame name '{name}'")]
+    /// Two joints, or two frames of one kind, with the same name.
+    #[error("duplicate name '{name}' (joint names are unique among joints, frame names within their kind)")]
     DuplicateName {
         /// The name.
         name: String,

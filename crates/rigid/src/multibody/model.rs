@@ -39,13 +39,49 @@ pub struct Joint {
     pub subtree_end: usize,
 }
 
-/// What a named frame stands for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What a named frame stands for. Frame names are unique within a kind, and joint names among the
+/// joints; a URDF link and a joint may share a name (links and joints are two namespaces in URDF,
+/// as in Pinocchio, whose frames carry their type too).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum FrameKind {
-    /// A body welded to its parent by a fixed joint (its inertia was merged into the parent).
-    FixedBody,
+    /// A body's own frame (a URDF link): the link moved by a joint, or a link welded to its parent
+    /// by a fixed joint (its inertia merged into the parent's).
+    Body,
+    /// The frame of a fixed joint (a URDF `fixed` joint, at its child link's frame).
+    FixedJoint,
     /// An operational frame (a tool point, a sensor).
     Operational,
+}
+
+impl FrameKind {
+    /// Lower-case name: `body`, `fixed joint`, `operational`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Body => "body",
+            Self::FixedJoint => "fixed joint",
+            Self::Operational => "operational",
+        }
+    }
+}
+
+/// Why [`Model::frame_id`] found no single frame.
+#[derive(Clone, Debug, thiserror::Error, PartialEq, Eq)]
+pub enum FrameLookupError {
+    /// No frame has this name.
+    #[error("no frame named \"{name}\"")]
+    NotFound {
+        /// The name looked up.
+        name: String,
+    },
+    /// Several frames of different kinds have this name.
+    #[error("frame name \"{name}\" is ambiguous: there is a {} frame of that name; ask for one kind (Model::frame_id_of_kind)", kinds.iter().map(|k| k.as_str()).collect::<Vec<_>>().join(" and a "))]
+    Ambiguous {
+        /// The name looked up.
+        name: String,
+        /// The kinds of the frames with that name.
+        kinds: Vec<FrameKind>,
+    },
 }
 
 /// A named frame fixed in a moving body (or in the world).
@@ -148,10 +184,39 @@ impl Model {
     pub fn frames(&self) -> &[Frame] {
         &self.frames
     }
-    /// The frame called `name`.
+    /// The frame called `name`, whatever its kind.
+    ///
+    /// # Errors
+    /// [`FrameLookupError::NotFound`], or [`FrameLookupError::Ambiguous`] when frames of several
+    /// kinds have this name (a URDF link and a fixed joint of the same name): then use
+    /// [`frame_id_of_kind`](Self::frame_id_of_kind).
+    pub fn frame_id(&self, name: &str) -> Result<FrameId, FrameLookupError> {
+        let mut hits = self
+            .frames
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| f.name == name);
+        match (hits.next(), hits.next()) {
+            (Some((i, _)), None) => Ok(FrameId(i)),
+            (None, _) => Err(FrameLookupError::NotFound { name: name.into() }),
+            (Some(_), Some(_)) => Err(FrameLookupError::Ambiguous {
+                name: name.into(),
+                kinds: self
+                    .frames
+                    .iter()
+                    .filter(|f| f.name == name)
+                    .map(|f| f.kind)
+                    .collect(),
+            }),
+        }
+    }
+    /// The frame of kind `kind` called `name` (names are unique within a kind).
     #[must_use]
-    pub fn frame_id(&self, name: &str) -> Option<FrameId> {
-        self.frames.iter().position(|f| f.name == name).map(FrameId)
+    pub fn frame_id_of_kind(&self, name: &str, kind: FrameKind) -> Option<FrameId> {
+        self.frames
+            .iter()
+            .position(|f| f.name == name && f.kind == kind)
+            .map(FrameId)
     }
     /// The total mass of the moving bodies (welded-to-world links excluded).
     #[must_use]
@@ -255,6 +320,7 @@ impl Model {
 #[derive(Clone, Debug)]
 pub struct ModelBuilder {
     model: Model,
+    inertia_check: InertiaCheck,
     /// The chain of joints from the root to the last joint added (for the depth-first check).
     stack: Vec<usize>,
 }
@@ -271,7 +337,21 @@ fn check_placement(name: &str, t: &Transform) -> Result<(), ModelError> {
     Ok(())
 }
 
-fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
+/// What [`ModelBuilder`] accepts as a body inertia.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum InertiaCheck {
+    /// Finite, mass `≥ 0`, and an inertia about the CoM positive semi-definite to
+    /// `max(10⁻⁶ λ3, round-off)` (the rounding of published values; round-off as in
+    /// [`SpatialInertia::round_off`]). The triangle inequality is not enforced: published models
+    /// violate it (the PUMA 560's link 3); [`Model::inertia_issues`] reports it.
+    #[default]
+    Physical,
+    /// Finite and mass `≥ 0` only: the inertia is kept as written, even when no mass
+    /// distribution has it (a URDF loaded with the `warn` inertia policy, as other tools do).
+    AsWritten,
+}
+
+fn check_inertia(name: &str, g: &SpatialInertia, check: InertiaCheck) -> Result<(), ModelError> {
     let bad = |source| ModelError::BadInertia {
         name: name.into(),
         source,
@@ -285,12 +365,11 @@ fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
     if g.mass() < 0.0 {
         return Err(bad(crate::error::InertiaError::BadMass { mass: g.mass() }));
     }
-    // Positive semi-definite rotational inertia about the CoM (to 1e-6 of the largest principal
-    // moment, for the rounding of published values). The triangle inequality is not
-    // enforced: published models violate it (the PUMA 560's link 3), so it is reported by
-    // `Model::inertia_issues` instead.
+    if check == InertiaCheck::AsWritten {
+        return Ok(());
+    }
     let l = g.inertia_com().principal_moments();
-    if l[0] < -1e-6 * l[2].abs().max(1e-12) {
+    if l[0] < -(1e-6 * l[2].abs()).max(g.round_off()).max(1e-300) {
         return Err(bad(crate::error::InertiaError::NotPositiveSemiDefinite {
             moment: l[0],
         }));
@@ -333,7 +412,14 @@ impl ModelBuilder {
                 nv: 0,
             },
             stack: Vec::new(),
+            inertia_check: InertiaCheck::Physical,
         }
+    }
+
+    /// What the following `add_*` calls accept as a body inertia (default
+    /// [`InertiaCheck::Physical`]).
+    pub fn set_inertia_check(&mut self, check: InertiaCheck) {
+        self.inertia_check = check;
     }
 
     /// Set gravity in the world frame (m/s²).
@@ -341,9 +427,16 @@ impl ModelBuilder {
         self.model.gravity = g;
     }
 
-    fn check_name(&self, name: &str) -> Result<(), ModelError> {
-        let taken = self.model.joints.iter().any(|j| j.name == name)
-            || self.model.frames.iter().any(|f| f.name == name);
+    /// Joint names are unique among joints; frame names within their kind.
+    fn check_name(&self, name: &str, kind: Option<FrameKind>) -> Result<(), ModelError> {
+        let taken = match kind {
+            None => self.model.joints.iter().any(|j| j.name == name),
+            Some(k) => self
+                .model
+                .frames
+                .iter()
+                .any(|f| f.name == name && f.kind == k),
+        };
         if taken {
             Err(ModelError::DuplicateName { name: name.into() })
         } else {
@@ -379,13 +472,13 @@ impl ModelBuilder {
         placement: Transform,
         inertia: SpatialInertia,
     ) -> Result<JointId, ModelError> {
-        self.check_name(name)?;
+        self.check_name(name, None)?;
         self.check_parent(name, parent)?;
         let kind = joint
             .normalized_axis()
             .ok_or_else(|| ModelError::BadAxis { name: name.into() })?;
         check_placement(name, &placement)?;
-        check_inertia(name, &inertia)?;
+        check_inertia(name, &inertia, self.inertia_check)?;
         // depth-first: pop the stack down to the parent
         match parent {
             None => self.stack.clear(),
@@ -448,10 +541,10 @@ impl ModelBuilder {
         placement: Transform,
         inertia: SpatialInertia,
     ) -> Result<FrameId, ModelError> {
-        self.check_name(name)?;
+        self.check_name(name, Some(FrameKind::Body))?;
         self.check_parent(name, parent)?;
         check_placement(name, &placement)?;
-        check_inertia(name, &inertia)?;
+        check_inertia(name, &inertia, self.inertia_check)?;
         if let Some(p) = parent {
             self.model.inertias[p.0] += inertia.transformed(&placement);
         }
@@ -459,7 +552,7 @@ impl ModelBuilder {
             name: name.into(),
             parent,
             placement,
-            kind: FrameKind::FixedBody,
+            kind: FrameKind::Body,
         });
         Ok(FrameId(self.model.frames.len() - 1))
     }
@@ -474,14 +567,30 @@ impl ModelBuilder {
         name: &str,
         placement: Transform,
     ) -> Result<FrameId, ModelError> {
-        self.check_name(name)?;
+        self.add_frame_of_kind(parent, name, placement, FrameKind::Operational)
+    }
+
+    /// A named frame of kind `kind` fixed in `parent` (or the world) at `placement`, carrying no
+    /// inertia (for a body frame with an inertia, use [`add_fixed_body`](Self::add_fixed_body)).
+    ///
+    /// # Errors
+    /// Unknown parent, a frame of the same kind and name, or a placement that is not a rigid
+    /// transform.
+    pub fn add_frame_of_kind(
+        &mut self,
+        parent: Option<JointId>,
+        name: &str,
+        placement: Transform,
+        kind: FrameKind,
+    ) -> Result<FrameId, ModelError> {
+        self.check_name(name, Some(kind))?;
         self.check_parent(name, parent)?;
         check_placement(name, &placement)?;
         self.model.frames.push(Frame {
             name: name.into(),
             parent,
             placement,
-            kind: FrameKind::Operational,
+            kind,
         });
         Ok(FrameId(self.model.frames.len() - 1))
     }
