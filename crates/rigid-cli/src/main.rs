@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 mod bench;
 mod bench_batch;
+mod doctor;
 mod eval;
 mod load;
 mod mass;
@@ -25,6 +26,8 @@ struct Cli {
 enum Command {
     /// Time the multibody algorithms on a model (median ns per call over random states).
     Bench(bench::BenchArgs),
+    /// Check a URDF's inertial data: what is wrong, the likely cause, the nearest valid value.
+    Doctor(doctor::DoctorArgs),
     /// Mass properties of a body made of parts (a TOML spec): mass, CoM, inertia, G.
     Mass(mass::MassArgs),
     /// Simulate one rigid body (free, or on a pivot) and report energy and momentum errors.
@@ -46,9 +49,39 @@ fn report(result: Result<(), String>) -> ExitCode {
     }
 }
 
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so that an
+/// output is never left half-written.
+///
+/// # Errors
+/// The file cannot be written (the message names it).
+pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), String> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(format!("cannot write {}: {e}", path.display()));
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
+    // Rust ignores SIGPIPE, so a closed stdout (`rigid doctor x.urdf | head`) would make every
+    // `println!` panic; restore the default: the process ends quietly, as other tools do.
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to its default before any thread is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     match Cli::parse().command {
         Command::Bench(args) => report(bench::run(&args)),
+        Command::Doctor(args) => report(doctor::run(&args)),
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),

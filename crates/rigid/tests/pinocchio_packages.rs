@@ -13,7 +13,7 @@
 //! The packages are pinned in `scripts/requirements-test.txt` (installed by `scripts/test.sh`);
 //! `RIGID_SKIP_PINOCCHIO=1` skips the comparison, `RIGID_PYTHON` overrides the interpreter.
 
-use rigid::io::urdf::load_urdf;
+use rigid::io::urdf::{load_urdf, load_urdf_with, InertiaPolicy, UrdfOptions};
 use rigid::multibody::{aba, crba, rnea, Data, Model};
 use serde_json::Value;
 use std::path::PathBuf;
@@ -150,6 +150,43 @@ fn compare_file(r: &Value) -> Result<(f64, f64, Option<f64>), String> {
     Ok((e_rnea, e_crba, e_aba))
 }
 
+/// Every file under the three inertia policies: `strict` loads it or refuses it with an error
+/// naming the link or joint and the line; `repair` loads it, with no non-physical body left.
+fn policies(file: &str, tag: &str, failures: &mut Vec<String>) {
+    let with = |inertia| {
+        let opts = UrdfOptions {
+            inertia,
+            ..UrdfOptions::default()
+        };
+        load_urdf_with(file, &opts)
+    };
+    if let Err(e) = with(InertiaPolicy::Strict) {
+        let msg = e.to_string();
+        let named = msg.contains("link \"") || msg.contains("joint \"") || msg.contains("robot");
+        if e.line().is_none() || !named {
+            failures.push(format!(
+                "{tag}: strict error without a line or a name: {msg}"
+            ));
+        }
+    }
+    let pinocchio_loads = load_urdf(file, false).is_ok();
+    match with(InertiaPolicy::Repair) {
+        Ok((model, _)) => {
+            let bad: Vec<String> = model
+                .inertia_issues()
+                .iter()
+                .filter(|(_, e)| !matches!(e, rigid::error::InertiaError::BadMass { .. }))
+                .map(|(j, e)| format!("{}: {e}", model.joints()[j.0].name))
+                .collect();
+            if !bad.is_empty() {
+                failures.push(format!("{tag}: repair left {bad:?}"));
+            }
+        }
+        Err(e) if pinocchio_loads => failures.push(format!("{tag}: repair refuses it: {e}")),
+        Err(_) => {}
+    }
+}
+
 fn check_package(package: &str) {
     let Some(records) = references(package) else {
         return;
@@ -160,6 +197,9 @@ fn check_package(package: &str) {
         let floating = r["floating"].as_bool().unwrap();
         let short = file.rsplit("/robots/").next().unwrap_or(file);
         let tag = format!("{short}{}", if floating { " (floating)" } else { "" });
+        if !floating {
+            policies(file, &tag, &mut failures);
+        }
         if let Some(why) = r.get("refused") {
             // Pinocchio refuses it: rigid may load it or give a clear error; it must not panic.
             let rigid = load_urdf(file, floating)

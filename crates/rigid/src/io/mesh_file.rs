@@ -1,5 +1,5 @@
-//! Triangle mesh files: binary and ASCII STL (through the `stl_io` crate) and Wavefront OBJ
-//! (through `tobj`), read into a [`TriMesh`] whose duplicate vertices are merged, so that the
+//! Triangle mesh files: binary and ASCII STL (through the `stl_io` crate), Wavefront OBJ
+//! (through `tobj`) and COLLADA ([`super::collada`]), read into a [`TriMesh`] whose duplicate vertices are merged, so that the
 //! facets of an STL file (which repeats every vertex once per facet) share their edges.
 
 use crate::mass::TriMesh;
@@ -15,8 +15,8 @@ pub enum MeshFileError {
     /// The file could not be opened or read.
     #[error("cannot read mesh file: {0}")]
     Io(#[from] std::io::Error),
-    /// The extension is neither `.stl` nor `.obj`.
-    #[error("unknown mesh file extension {0:?}: expected .stl or .obj")]
+    /// The extension is none of `.stl`, `.obj`, `.dae`.
+    #[error("unknown mesh file extension {0:?}: expected .stl, .obj or .dae")]
     UnknownFormat(String),
     /// The STL reader failed.
     #[error("invalid STL file: {0}")]
@@ -24,10 +24,13 @@ pub enum MeshFileError {
     /// The OBJ reader failed.
     #[error("invalid OBJ file: {0}")]
     Obj(tobj::LoadError),
+    /// The COLLADA reader failed.
+    #[error("invalid COLLADA file: {0}")]
+    Dae(String),
 }
 
-/// Reads an STL (binary or ASCII, detected from the content) or OBJ file, chosen by the
-/// extension (case-insensitive), and merges duplicate vertices. The mesh is not checked: call
+/// Reads an STL (binary or ASCII, detected from the content), OBJ or COLLADA file
+/// ([`super::collada`]), chosen by the extension (case-insensitive), and merges duplicate vertices. The mesh is not checked: call
 /// [`TriMesh::check`] or [`TriMesh::mass_properties`].
 ///
 /// # Errors
@@ -41,6 +44,7 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshFileError> {
     match ext.as_str() {
         "stl" => read_stl(path),
         "obj" => read_obj(path),
+        "dae" => super::collada::parse_dae(&std::fs::read_to_string(path)?),
         _ => Err(MeshFileError::UnknownFormat(ext)),
     }
 }

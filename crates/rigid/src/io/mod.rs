@@ -1,6 +1,7 @@
-//! Reading files: closed triangle meshes (STL, OBJ), the body specs of `rigid mass` (TOML) and
+//! Reading files: triangle meshes (STL, OBJ, COLLADA), the body specs of `rigid mass` (TOML) and
 //! URDF robots.
 
+pub mod collada;
 pub mod mesh_file;
 pub mod spec;
 pub mod urdf;

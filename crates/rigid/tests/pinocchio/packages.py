@@ -4,6 +4,7 @@
 
 Usage: python3 packages.py PACKAGE [--states N] [--seed S]
        python3 packages.py list
+       python3 packages.py roots     (each package's folder, as JSON)
 
 PACKAGE is one of PACKAGES below (PyPI packages pinned in scripts/requirements-test.txt). For each
 URDF file the package ships (found by walking its folder, not from a hand-picked list), the file
@@ -120,6 +121,9 @@ def main():
         return
     if args[0] == "list":
         print(json.dumps(sorted(PACKAGES)))
+        return
+    if args[0] == "roots":
+        print(json.dumps({name: find() for name, find in PACKAGES.items()}))
         return
     name = args[0]
     states = int(args[args.index("--states") + 1]) if "--states" in args else 3

@@ -1,6 +1,7 @@
 //! [`UrdfRobot`] to [`Model`]: depth-first from the root link, children in file order (or by
 //! name), fixed joints merged into their parent body, non-physical inertias under a policy.
 
+use super::doctor::Doctor;
 use super::{
     parse_urdf_file, parse_urdf_str, InertiaIssueKind, InertiaPolicy, SiblingOrder, UrdfError,
     UrdfJointKind, UrdfOptions, UrdfRobot, UrdfWarning,
@@ -119,12 +120,24 @@ pub fn build_model_with(
     let mut inertias: Vec<SpatialInertia> = (0..robot.links.len())
         .map(|l| robot.link_inertia(l))
         .collect();
-    for issue in robot.inertia_report() {
+    let issues = robot.inertia_report();
+    let needs_repair = |e: &InertiaError| {
+        matches!(
+            e,
+            InertiaError::NotPositiveSemiDefinite { .. } | InertiaError::TriangleInequality { .. }
+        )
+    };
+    let doctor = (opts.inertia == InertiaPolicy::Repair
+        && issues
+            .iter()
+            .any(|i| matches!(&i.kind, InertiaIssueKind::Invalid(e) if needs_repair(e))))
+    .then(|| Doctor::new().examine(robot));
+    for issue in issues {
         let element = format!("link \"{}\"", issue.link);
         if issue.is_error_under(opts.inertia) {
             let hint = if opts.inertia == InertiaPolicy::Strict {
                 " (refused by the strict inertia policy; `warn` loads it as written, `repair` \
-                 loads the nearest valid inertia, `rigid doctor` explains it)"
+                 loads the doctor's repair, `rigid doctor` explains it)"
             } else {
                 ""
             };
@@ -142,19 +155,18 @@ pub fn build_model_with(
             });
             continue;
         };
-        let repaired = match (opts.inertia, &e) {
-            (InertiaPolicy::Repair, InertiaError::NotPositiveSemiDefinite { .. })
-            | (InertiaPolicy::Repair, InertiaError::TriangleInequality { .. }) => {
-                let l = robot.link_index(&issue.link).unwrap_or_default();
-                super::doctor::repair_link(robot, l)
-            }
-            _ => None,
-        };
+        let repaired = doctor
+            .as_ref()
+            .filter(|_| needs_repair(e))
+            .and_then(|d| d.body(&issue.link))
+            .and_then(|b| Some((b.repaired.as_ref()?, b)));
         let message = match repaired {
-            Some((g, how)) => {
-                let l = robot.link_index(&issue.link).unwrap_or_default();
-                inertias[l] = g;
-                format!("inertia: {e}; repaired: {how}")
+            Some((r, b)) => {
+                if let Some(l) = robot.link_index(&issue.link) {
+                    inertias[l] = r.spatial_inertia();
+                }
+                let cause = b.likely_cause.map_or("unknown", |c| c.code());
+                format!("inertia: {e}; repaired ({cause}: {})", b.explanation)
             }
             None => format!("inertia: {e}; loaded as written"),
         };

@@ -45,11 +45,13 @@
 mod build;
 pub mod doctor;
 mod elements;
+mod mesh_path;
 mod parse;
 
 pub use build::{
     build_model, build_model_with, load_urdf, load_urdf_str, load_urdf_with, ROOT_JOINT_NAME,
 };
+pub use mesh_path::resolve_mesh_path;
 pub use parse::{parse_urdf_file, parse_urdf_str};
 
 use crate::error::InertiaError;
