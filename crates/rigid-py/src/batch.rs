@@ -1,0 +1,191 @@
+//! Many states at once, on every core, with the GIL released: `rnea_batch`, `aba_batch`,
+//! `crba_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's `multibody::batch`). Each state's
+//! result is that of the single call, bit for bit.
+
+use crate::convert::{matrix, rows_array, value_error, Matrix};
+use crate::model::{Model, ModelCore};
+use numpy::{PyArray2, PyArray3, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use rigid::multibody::{self as mb, batch, Data};
+
+/// `rnea` and `aba`: `(q, v, x) ↦ nv-vector`.
+type QvxFn = for<'a> fn(
+    &mb::Model,
+    &'a mut Data,
+    &[f64],
+    &[f64],
+    &[f64],
+) -> Result<&'a nalgebra::DVector<f64>, mb::MultibodyError>;
+
+/// The states in rigid's layout: the caller's rows, or converted rows.
+fn q_rows(core: &ModelCore, func: &str, name: &str, x: &Matrix<'_>) -> PyResult<Vec<f64>> {
+    let (nq, nq_r) = (core.nq(), core.model.nq());
+    let l = core.layout.as_ref().filter(|_| core.convert_q);
+    let Some(l) = l else {
+        return Ok(x.as_slice().to_vec());
+    };
+    let mut out = vec![0.0; x.rows * nq_r];
+    for (k, (src, dst)) in x
+        .as_slice()
+        .chunks_exact(nq)
+        .zip(out.chunks_exact_mut(nq_r))
+        .enumerate()
+    {
+        l.q_from_pinocchio(src, dst)
+            .map_err(|e| value_error(func, format!("{name}[{k}]: {e}")))?;
+    }
+    Ok(out)
+}
+
+/// Velocity-space rows (`V`, `A`, `TAU`, results) permuted between the layouts.
+fn permute_rows(core: &ModelCore, x: &mut [f64]) {
+    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
+        return;
+    };
+    let nv = core.nv();
+    let mut row = vec![0.0; nv];
+    for r in x.chunks_exact_mut(nv) {
+        l.permute_v(r, &mut row);
+        r.copy_from_slice(&row);
+    }
+}
+
+fn v_rows(core: &ModelCore, x: &Matrix<'_>) -> Vec<f64> {
+    let mut out = x.as_slice().to_vec();
+    permute_rows(core, &mut out);
+    out
+}
+
+/// The inputs of a batch call: `Q` and the velocity-space arrays, checked and in rigid's layout.
+fn inputs(
+    core: &ModelCore,
+    func: &str,
+    q: &Bound<'_, PyAny>,
+    vs: &[(&str, &Bound<'_, PyAny>)],
+) -> PyResult<(usize, Vec<f64>, Vec<Vec<f64>>)> {
+    let qm = matrix(q, func, "Q", "nq", core.nq())?;
+    let n = qm.rows;
+    let mut out = Vec::with_capacity(vs.len());
+    for (name, x) in vs {
+        let m = matrix(x, func, name, "nv", core.nv())?;
+        if m.rows != n {
+            return Err(PyValueError::new_err(format!(
+                "{func}: {name} has {} rows, Q has {n} (one state per row)",
+                m.rows
+            )));
+        }
+        let cols = core.nv().max(1);
+        if let Some(i) = m.as_slice().iter().position(|x| !x.is_finite()) {
+            return Err(value_error(
+                func,
+                format!("{name}[{}, {}] is not finite", i / cols, i % cols),
+            ));
+        }
+        out.push(v_rows(core, &m));
+    }
+    Ok((n, q_rows(core, func, "Q", &qm)?, out))
+}
+
+/// The first failing state's error, with its row (the batch error does not say which state).
+fn state_error(
+    core: &ModelCore,
+    func: &str,
+    e: mb::MultibodyError,
+    qs: &[f64],
+    check: impl Fn(&mut Data, usize, &[f64]) -> Result<(), mb::MultibodyError>,
+) -> PyErr {
+    let nq = core.model.nq();
+    let mut data = Data::new(&core.model);
+    for (k, q) in qs.chunks_exact(nq).enumerate() {
+        if let Err(e) = check(&mut data, k, q) {
+            return value_error(func, format!("state {k} (row {k} of the inputs): {e}"));
+        }
+    }
+    value_error(func, e)
+}
+
+/// `(q, v, x) ↦ nv-vector` over the rows, for `rnea_batch` and `aba_batch`.
+fn qvx_batch<'py>(
+    py: Python<'py>,
+    model: &Model,
+    func: &'static str,
+    names: [&str; 2],
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    f: fn(&mb::Model, &[f64], &[f64], &[f64], &mut [f64]) -> Result<(), mb::MultibodyError>,
+    single: QvxFn,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let core = &*model.inner;
+    let (n, qs, vx) = inputs(core, func, q, &[(names[0], v), (names[1], x)])?;
+    let nv = core.nv();
+    let mut out = vec![0.0; n * nv];
+    let (vs, xs) = (&vx[0], &vx[1]);
+    py.detach(|| f(&core.model, &qs, vs, xs, &mut out))
+        .map_err(|e| {
+            state_error(core, func, e, &qs, |d, k, q| {
+                let r = k * nv..(k + 1) * nv;
+                single(&core.model, d, q, &vs[r.clone()], &xs[r]).map(|_| ())
+            })
+        })?;
+    permute_rows(core, &mut out);
+    rows_array(py, out, n, nv)
+}
+
+/// Inverse dynamics for every row: `TAU[k] = rnea(Q[k], V[k], A[k])`, an `(N, nv)` array.
+#[pyfunction]
+#[pyo3(name = "rnea_batch")]
+pub fn rnea_batch<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    a: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    qvx_batch(py, &model, "rnea_batch", ["V", "A"], q, v, a, batch::rnea_batch, mb::rnea)
+}
+
+/// Forward dynamics for every row: `DDQ[k] = aba(Q[k], V[k], TAU[k])`, an `(N, nv)` array.
+#[pyfunction]
+#[pyo3(name = "aba_batch")]
+pub fn aba_batch<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    tau: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    qvx_batch(py, &model, "aba_batch", ["V", "TAU"], q, v, tau, batch::aba_batch, mb::aba)
+}
+
+/// The mass matrix for every row: `M[k] = crba(Q[k])`, an `(N, nv, nv)` array.
+#[pyfunction]
+pub fn crba_batch<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    q: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    const F: &str = "crba_batch";
+    let core = &*model.inner;
+    let (n, qs, _) = inputs(core, F, q, &[])?;
+    let nv = core.nv();
+    let mut out = vec![0.0; n * nv * nv];
+    py.detach(|| batch::crba_batch(&core.model, &qs, &mut out))
+        .map_err(|e| {
+            state_error(core, F, e, &qs, |d, _, q| mb::crba(&core.model, d, q).map(|_| ()))
+        })?;
+    if core.convert_v {
+        // M_pin[r][c] = M[p(r)][p(c)] in every state (M symmetric: column-major = row-major)
+        let mut m = vec![0.0; nv * nv];
+        for block in out.chunks_exact_mut(nv * nv) {
+            m.copy_from_slice(block);
+            for r in 0..nv {
+                for c in 0..nv {
+                    block[r * nv + c] = m[core.v_index(r) * nv + core.v_index(c)];
+                }
+            }
+        }
+    }
+    Ok(numpy::PyArray1::from_vec(py, out).reshape([n, nv, nv])?)
+}

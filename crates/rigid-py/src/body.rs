@@ -1,0 +1,361 @@
+//! One rigid body: `mass_properties` (a `rigid mass` spec as a TOML file or the same structure in
+//! Python), the shape helpers that make its parts, `spatial_inertia`, `simulate_body`; and the
+//! inertia doctor of a URDF file, `doctor`.
+
+use crate::convert::{array1, array2, io_error, rows_array, value_error, vec3};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use rigid::body::{Integrator, RigidBody, Simulator, State};
+use rigid::io::spec::{parse_spec, read_spec, SpecError};
+use rigid::mass::{
+    Compound, CompoundError, MassProperties, RotationalInertia, SpatialInertia,
+    DEFAULT_INERTIA_TOLERANCE,
+};
+use rigid::spatial::{so3, Mat3, Transform, Twist, Vec3};
+use std::path::{Path, PathBuf};
+
+/// A Python value of a spec as TOML (`at` names it in messages).
+fn to_toml(x: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
+    use toml::Value;
+    if x.is_instance_of::<PyBool>() {
+        return Ok(Value::Boolean(x.extract()?));
+    }
+    if x.is_instance_of::<PyInt>() {
+        return Ok(Value::Integer(x.extract()?));
+    }
+    if x.is_instance_of::<PyFloat>() {
+        return Ok(Value::Float(x.extract()?));
+    }
+    if x.is_instance_of::<PyString>() {
+        return Ok(Value::String(x.extract()?));
+    }
+    if let Ok(d) = x.cast::<PyDict>() {
+        let mut t = toml::Table::new();
+        for (k, v) in d.iter() {
+            let k: String = k
+                .extract()
+                .map_err(|_| PyTypeError::new_err(format!("{at}: keys must be strings")))?;
+            let value = to_toml(&v, &format!("{at}[\"{k}\"]"))?;
+            t.insert(k, value);
+        }
+        return Ok(Value::Table(t));
+    }
+    if x.is_instance_of::<PyList>() || x.is_instance_of::<PyTuple>() {
+        let items = x
+            .try_iter()?
+            .enumerate()
+            .map(|(i, v)| to_toml(&v?, &format!("{at}[{i}]")))
+            .collect::<PyResult<Vec<_>>>()?;
+        return Ok(Value::Array(items));
+    }
+    if x.hasattr("tolist")? {
+        // a numpy array or scalar
+        return to_toml(&x.call_method0("tolist")?, at);
+    }
+    Err(PyTypeError::new_err(format!(
+        "{at}: expected a number, string, list or dict, got {}",
+        x.get_type().name()?
+    )))
+}
+
+fn spec_error(func: &str, e: SpecError) -> PyErr {
+    match &e {
+        SpecError::Io { path, source } => {
+            io_error(source, format!("{func}: {}: {e}", path.display()))
+        }
+        _ => value_error(func, e),
+    }
+}
+
+/// The body described by `spec`: a path to a TOML spec, a dict `{"part": [...]}`, a list of
+/// part dicts, or one part dict.
+fn compound(func: &str, spec: &Bound<'_, PyAny>) -> PyResult<Compound> {
+    if let Ok(path) = spec.extract::<PathBuf>() {
+        if !spec.is_instance_of::<PyDict>() {
+            return read_spec(&path).map_err(|e| spec_error(func, e));
+        }
+    }
+    let value = to_toml(spec, "spec")?;
+    let table = match value {
+        toml::Value::Table(t) if t.contains_key("part") => t,
+        part @ toml::Value::Table(_) => {
+            toml::Table::from_iter([("part".to_string(), toml::Value::Array(vec![part]))])
+        }
+        parts @ toml::Value::Array(_) => toml::Table::from_iter([("part".to_string(), parts)]),
+        _ => {
+            return Err(PyTypeError::new_err(format!(
+                "{func}: spec must be a path, a dict {{\"part\": [...]}}, a list of parts or a part"
+            )))
+        }
+    };
+    let text = toml::to_string(&table).map_err(|e| value_error(func, e))?;
+    parse_spec(&text, Path::new(".")).map_err(|e| spec_error(func, e))
+}
+
+fn properties(func: &str, body: &Compound) -> PyResult<MassProperties> {
+    body.mass_properties().map_err(|e| match e {
+        CompoundError::Part { index, source } => {
+            let name = body.parts[index]
+                .name
+                .as_deref()
+                .map(|n| format!(" (\"{n}\")"))
+                .unwrap_or_default();
+            value_error(func, format!("part {}{name}: {source}", index + 1))
+        }
+        other => value_error(func, other),
+    })
+}
+
+fn mat3<'py>(py: Python<'py>, m: &Mat3) -> Bound<'py, PyAny> {
+    array2(py, 3, 3, |r, c| m[(r, c)]).into_any()
+}
+
+fn vec3_array<'py>(py: Python<'py>, v: &Vec3) -> Bound<'py, PyAny> {
+    array1(py, &[v.x, v.y, v.z]).into_any()
+}
+
+/// Mass properties of a body made of parts, with the keys of `rigid mass --json`.
+#[pyfunction]
+pub fn mass_properties<'py>(
+    py: Python<'py>,
+    spec: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    const F: &str = "mass_properties";
+    let p = properties(F, &compound(F, spec)?)?;
+    let g = p.spatial_inertia_origin.matrix();
+    let validity = p.validity(DEFAULT_INERTIA_TOLERANCE);
+    let d = PyDict::new(py);
+    d.set_item("mass", p.mass)?;
+    d.set_item("com", vec3_array(py, &p.com))?;
+    d.set_item("inertia_com", mat3(py, p.inertia_com.matrix()))?;
+    d.set_item("inertia_origin", mat3(py, p.inertia_origin.matrix()))?;
+    d.set_item("principal_moments", vec3_array(py, &p.principal_moments))?;
+    d.set_item("principal_axes", mat3(py, &p.principal_axes))?;
+    d.set_item(
+        "spatial_inertia_origin",
+        array2(py, 6, 6, |r, c| g[(r, c)]),
+    )?;
+    d.set_item("valid", validity.is_ok())?;
+    d.set_item("validity_error", validity.err().map(|e| e.to_string()))?;
+    Ok(d)
+}
+
+/// One part of a spec as a dict, checked: `shape`, its dimensions, and the optional keys.
+fn part<'py>(
+    py: Python<'py>,
+    shape: &str,
+    dims: &[(&str, &Bound<'py, PyAny>)],
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("shape", shape)?;
+    for (k, v) in dims {
+        d.set_item(*k, v)?;
+    }
+    if let Some(o) = options {
+        for (k, v) in o.iter() {
+            if !v.is_none() {
+                d.set_item(k, v)?;
+            }
+        }
+    }
+    let func = format!("rigid.{shape}");
+    // checked now, so that a wrong dimension is reported where the part is made
+    compound(&func, d.as_any())?;
+    Ok(d)
+}
+
+macro_rules! shape_fn {
+    ($(#[$doc:meta])* $fn:ident, $shape:literal, ($($dim:ident),*)) => {
+        $(#[$doc])*
+        #[pyfunction]
+        #[pyo3(signature = ($($dim,)* **options))]
+        pub fn $fn<'py>(
+            py: Python<'py>,
+            $($dim: &Bound<'py, PyAny>,)*
+            options: Option<&Bound<'py, PyDict>>,
+        ) -> PyResult<Bound<'py, PyDict>> {
+            part(py, $shape, &[$((stringify!($dim), $dim)),*], options)
+        }
+    };
+}
+
+shape_fn!(
+    /// A box of edge lengths `size = [lx, ly, lz]` (m), centred on its frame.
+    r#box, "box", (size)
+);
+shape_fn!(
+    /// A solid cylinder, axis along z, centred.
+    cylinder, "cylinder", (radius, length)
+);
+shape_fn!(
+    /// A solid ball.
+    sphere, "sphere", (radius)
+);
+shape_fn!(
+    /// A solid ellipsoid of semi-axes `[a, b, c]`.
+    ellipsoid, "ellipsoid", (semi_axes)
+);
+shape_fn!(
+    /// A capsule: a cylinder of `radius` and `length` along z with hemispherical caps.
+    capsule, "capsule", (radius, length)
+);
+shape_fn!(
+    /// A solid cone, axis along z, origin at its centroid (base at `z = -h/4`).
+    cone, "cone", (radius, height)
+);
+shape_fn!(
+    /// A thin rod along z (give a mass).
+    rod, "rod", (length)
+);
+shape_fn!(
+    /// A point mass (give a mass).
+    point, "point", ()
+);
+shape_fn!(
+    /// A closed triangle mesh (STL or OBJ) of uniform density, in its own coordinates.
+    mesh, "mesh", (file)
+);
+
+/// The 6 × 6 spatial inertia `G` about the frame's origin, angular first:
+/// `[[I_c + m[c]ᵀ[c], m[c]], [m[c]ᵀ, m 1]]`.
+#[pyfunction]
+#[pyo3(signature = (mass, com = None, inertia = None))]
+pub fn spatial_inertia<'py>(
+    py: Python<'py>,
+    mass: f64,
+    com: Option<&Bound<'py, PyAny>>,
+    inertia: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    const F: &str = "spatial_inertia";
+    if !(mass.is_finite() && mass >= 0.0) {
+        return Err(value_error(F, format!("mass must be finite and >= 0, got {mass}")));
+    }
+    let c = com.map_or(Ok(Vec3::zeros()), |c| vec3(c, F, "com"))?;
+    let i = match inertia {
+        None => RotationalInertia::zero(),
+        Some(x) => {
+            let rows: [[f64; 3]; 3] = x
+                .call_method0("tolist")
+                .unwrap_or_else(|_| x.clone())
+                .extract()
+                .map_err(|_| PyTypeError::new_err(format!("{F}: inertia must be a 3 x 3 matrix")))?;
+            let m = Mat3::from_fn(|r, c| rows[r][c]);
+            RotationalInertia::from_matrix(&m).map_err(|e| value_error(F, format!("inertia: {e}")))?
+        }
+    };
+    let g = SpatialInertia::from_com(mass, c, i).matrix();
+    Ok(array2(py, 6, 6, |r, c| g[(r, c)]).into_any())
+}
+
+/// Simulates one rigid body, free or on a pivot, and returns its trajectory.
+#[pyfunction]
+#[pyo3(signature = (spec, omega = None, velocity = None, gravity = None, pivot = None,
+                    duration = 10.0, dt = 1e-3, integrator = "variational"))]
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_body<'py>(
+    py: Python<'py>,
+    spec: &Bound<'py, PyAny>,
+    omega: Option<&Bound<'py, PyAny>>,
+    velocity: Option<&Bound<'py, PyAny>>,
+    gravity: Option<&Bound<'py, PyAny>>,
+    pivot: Option<&Bound<'py, PyAny>>,
+    duration: f64,
+    dt: f64,
+    integrator: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    const F: &str = "simulate_body";
+    let opt = |x: Option<&Bound<'py, PyAny>>, name| x.map_or(Ok(Vec3::zeros()), |x| vec3(x, F, name));
+    let (w0, v0, g) = (opt(omega, "omega")?, opt(velocity, "velocity")?, opt(gravity, "gravity")?);
+    let pivot = pivot.map(|p| vec3(p, F, "pivot")).transpose()?;
+    let integrator: Integrator = integrator.parse().map_err(|e| value_error(F, e))?;
+    if !(dt.is_finite() && dt > 0.0 && duration.is_finite() && duration > 0.0) {
+        return Err(value_error(F, format!("dt and duration must be positive and finite, got {dt} and {duration}")));
+    }
+    let steps = (duration / dt).round().max(1.0);
+    if steps > 1e8 {
+        return Err(value_error(F, format!("{steps:.0} steps is too many (at most 1e8): raise dt")));
+    }
+    let p = properties(F, &compound(F, spec)?)?;
+    let err = |e: rigid::body::BodyError| value_error(F, e);
+    // integrated in a frame {b} with the spec frame's axes, at the CoM (free) or at the pivot
+    let (body, r) = match pivot {
+        None => (RigidBody::free(SpatialInertia::from_com(p.mass, Vec3::zeros(), p.inertia_com)), Vec3::zeros()),
+        Some(o) => {
+            if v0 != Vec3::zeros() {
+                return Err(PyValueError::new_err(format!("{F}: velocity must be zero on a pivot")));
+            }
+            let r = p.com - o;
+            (RigidBody::pivot(SpatialInertia::from_com(p.mass, r, p.inertia_com)), r)
+        }
+    };
+    let body = body.and_then(|b| b.with_gravity(g)).map_err(err)?;
+    let x0 = State::new(Transform::identity(), Twist::new(w0, v0));
+    let mut sim = Simulator::new(body, x0, integrator, dt).map_err(err)?;
+    let n = steps as usize + 1;
+    let (mut t, mut energy) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    let (mut pos, mut quat) = (Vec::with_capacity(3 * n), Vec::with_capacity(4 * n));
+    let (mut w, mut v) = (Vec::with_capacity(3 * n), Vec::with_capacity(3 * n));
+    let t_bc = Transform::from_translation(r);
+    let mut record = |time: f64, x: &State, e: f64| {
+        // the frame at the CoM with the spec frame's axes, and its body twist
+        let pose = x.pose * t_bc;
+        let twist = t_bc.inv_act_twist(&x.twist);
+        t.push(time);
+        energy.push(e);
+        pos.extend_from_slice(pose.translation.as_slice());
+        quat.extend_from_slice(&so3::to_quaternion(&pose.rotation));
+        w.extend_from_slice(twist.w.as_slice());
+        v.extend_from_slice(twist.v.as_slice());
+    };
+    record(0.0, sim.state(), sim.body().energy(sim.state()));
+    let failure = py.detach(|| {
+        for _ in 1..n {
+            if let Err(e) = sim.step() {
+                return Some(format!("t = {:.6} s: {e}", sim.time()));
+            }
+            record(sim.time(), sim.state(), sim.body().energy(sim.state()));
+        }
+        None
+    });
+    if let Some(e) = failure {
+        return Err(value_error(F, e));
+    }
+    let rows = t.len();
+    let d = PyDict::new(py);
+    d.set_item("t", array1(py, &t))?;
+    d.set_item("position", rows_array(py, pos, rows, 3)?)?;
+    d.set_item("quaternion", rows_array(py, quat, rows, 4)?)?;
+    d.set_item("omega", rows_array(py, w, rows, 3)?)?;
+    d.set_item("velocity", rows_array(py, v, rows, 3)?)?;
+    d.set_item("energy", array1(py, &energy))?;
+    Ok(d)
+}
+
+/// The inertia doctor of a URDF file: the structure of `rigid doctor --json` as dicts.
+#[pyfunction]
+#[pyo3(signature = (path, fix = None))]
+pub fn doctor<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    fix: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use rigid::io::urdf::doctor::{fixed_urdf, Doctor};
+    use rigid::io::urdf::{parse_urdf_file, UrdfError};
+    let shown = path.display().to_string();
+    let robot = parse_urdf_file(&path).map_err(|e| match &e {
+        UrdfError::Io { source, .. } => io_error(source, format!("doctor: {e}")),
+        _ => value_error("doctor", format!("{shown}: {e}")),
+    })?;
+    let report = Doctor::new().examine(&robot);
+    if let Some(out) = fix {
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| io_error(&e, format!("doctor: {shown}: {e}")))?;
+        std::fs::write(&out, fixed_urdf(&text, &robot, &report)).map_err(|e| {
+            io_error(&e, format!("doctor: cannot write {}: {e}", out.display()))
+        })?;
+    }
+    let json = serde_json::to_string(&report).map_err(|e| value_error("doctor", e))?;
+    py.import("json")?.call_method1("loads", (json,))
+}

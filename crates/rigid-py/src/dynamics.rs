@@ -1,0 +1,297 @@
+//! The multibody verbs, with Pinocchio's names and signatures: `rnea`, `crba`, `aba`, `nle`,
+//! `gravity`, `minverse`, `coriolis_matrix`, `forward_kinematics`, `jacobian`, `com`, the
+//! energies. Each checks its inputs, converts them from the model's layout, calls rigid and
+//! returns a fresh float64 array in the model's layout.
+
+use crate::convert::{array1, value_error, vector, Vector};
+use crate::model::{Data, Model, ModelCore, Place};
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use rigid::multibody::{self as mb, ReferenceFrame};
+
+/// The inputs of one call: the function's name (for messages) and the model.
+struct Call<'a> {
+    func: &'static str,
+    core: &'a ModelCore,
+}
+
+impl<'a> Call<'a> {
+    fn new(func: &'static str, model: &'a Model, data: &Data) -> PyResult<Self> {
+        model.inner.check_data(func, data)?;
+        Ok(Self {
+            func,
+            core: &model.inner,
+        })
+    }
+
+    fn q<'py>(&self, x: &Bound<'py, PyAny>, name: &str) -> PyResult<Vector<'py>> {
+        vector(x, self.func, name, "nq", self.core.nq())
+    }
+
+    fn v<'py>(&self, x: &Bound<'py, PyAny>, name: &str) -> PyResult<Vector<'py>> {
+        vector(x, self.func, name, "nv", self.core.nv())
+    }
+
+    fn err(&self) -> impl Fn(mb::MultibodyError) -> PyErr + '_ {
+        move |e| value_error(self.func, e)
+    }
+}
+
+/// Inverse dynamics `τ = M(q) a + C(q, v) v + g(q)` by the recursive Newton-Euler algorithm
+/// (Featherstone 2008, Table 5.1).
+#[pyfunction]
+pub fn rnea<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    a: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let c = Call::new("rnea", &model, &data)?;
+    let (q, v, a) = (c.q(q, "q")?, c.v(v, "v")?, c.v(a, "a")?);
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
+    let a = c.core.v_in(&a, &mut d.a, c.func, "a")?;
+    let tau = mb::rnea(&c.core.model, &mut d.inner, q, v, a).map_err(c.err())?;
+    Ok(c.core.v_out(py, tau.as_slice()))
+}
+
+/// Forward dynamics `a = M(q)⁻¹ (τ - C(q, v) v - g(q))` by the articulated-body algorithm
+/// (Featherstone 2008, Table 7.1).
+#[pyfunction]
+pub fn aba<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    tau: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let c = Call::new("aba", &model, &data)?;
+    let (q, v, tau) = (c.q(q, "q")?, c.v(v, "v")?, c.v(tau, "tau")?);
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
+    let tau = c.core.v_in(&tau, &mut d.a, c.func, "tau")?;
+    let ddq = mb::aba(&c.core.model, &mut d.inner, q, v, tau).map_err(c.err())?;
+    Ok(c.core.v_out(py, ddq.as_slice()))
+}
+
+/// Nonlinear effects `C(q, v) v + g(q)` (Pinocchio's `nonLinearEffects`).
+#[pyfunction]
+pub fn nle<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let c = Call::new("nle", &model, &data)?;
+    let (q, v) = (c.q(q, "q")?, c.v(v, "v")?);
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
+    let b = mb::nonlinear_effects(&c.core.model, &mut d.inner, q, v).map_err(c.err())?;
+    Ok(c.core.v_out(py, b.as_slice()))
+}
+
+/// Generalised gravity `g(q)` (Pinocchio's `computeGeneralizedGravity`).
+#[pyfunction]
+pub fn gravity<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let c = Call::new("gravity", &model, &data)?;
+    let q = c.q(q, "q")?;
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let g = mb::gravity_torques(&c.core.model, &mut d.inner, q).map_err(c.err())?;
+    Ok(c.core.v_out(py, g.as_slice()))
+}
+
+/// The joint-space mass matrix `M(q)`, full and symmetric, by the composite rigid-body algorithm
+/// (Featherstone 2008, Table 6.2).
+#[pyfunction]
+pub fn crba<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let c = Call::new("crba", &model, &data)?;
+    let q = c.q(q, "q")?;
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let m = mb::crba(&c.core.model, &mut d.inner, q).map_err(c.err())?;
+    Ok(c.core.matrix_out(py, m))
+}
+
+/// `M(q)⁻¹`, full and symmetric (Pinocchio's `computeMinverse`).
+#[pyfunction]
+pub fn minverse<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let c = Call::new("minverse", &model, &data)?;
+    let q = c.q(q, "q")?;
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let m = mb::compute_minverse(&c.core.model, &mut d.inner, q).map_err(c.err())?;
+    Ok(c.core.matrix_out(py, m))
+}
+
+/// The Coriolis matrix `C(q, v)`: `C v` the Coriolis and centrifugal torques, `Ṁ - 2C` skew
+/// (Pinocchio's `computeCoriolisMatrix`).
+#[pyfunction]
+pub fn coriolis_matrix<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let c = Call::new("coriolis_matrix", &model, &data)?;
+    let (q, v) = (c.q(q, "q")?, c.v(v, "v")?);
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
+    let m = mb::coriolis_matrix(&c.core.model, &mut d.inner, q, v).map_err(c.err())?;
+    Ok(c.core.matrix_out(py, m))
+}
+
+/// Forward kinematics: the world pose of every joint (then `data.placement(name)`), and with
+/// `v` (and `a`) the body twists (and accelerations).
+#[pyfunction]
+#[pyo3(signature = (model, data, q, v = None, a = None))]
+pub fn forward_kinematics<'py>(
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    v: Option<&Bound<'py, PyAny>>,
+    a: Option<&Bound<'py, PyAny>>,
+) -> PyResult<()> {
+    let c = Call::new("forward_kinematics", &model, &data)?;
+    let q = c.q(q, "q")?;
+    let v = v.map(|v| c.v(v, "v")).transpose()?;
+    let a = a.map(|a| c.v(a, "a")).transpose()?;
+    if a.is_some() && v.is_none() {
+        return Err(PyValueError::new_err(
+            "forward_kinematics: a given without v",
+        ));
+    }
+    let d = &mut *data;
+    let m = &c.core.model;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    match (&v, &a) {
+        (Some(v), Some(a)) => {
+            let v = c.core.v_in(v, &mut d.v, c.func, "v")?;
+            let a = c.core.v_in(a, &mut d.a, c.func, "a")?;
+            mb::forward_kinematics(m, &mut d.inner, q, v, a)
+        }
+        (Some(v), None) => {
+            let v = c.core.v_in(v, &mut d.v, c.func, "v")?;
+            mb::forward_kinematics_qv(m, &mut d.inner, q, v)
+        }
+        _ => mb::forward_kinematics_q(m, &mut d.inner, q),
+    }
+    .map_err(c.err())
+}
+
+fn reference_frame(frame: &Bound<'_, PyAny>) -> PyResult<ReferenceFrame> {
+    // a string, or an enum value with a `name` (Pinocchio's `pin.ReferenceFrame.LOCAL`)
+    let name: String = match frame.extract::<String>() {
+        Ok(s) => s,
+        Err(_) => frame.getattr("name")?.extract()?,
+    };
+    match name.to_ascii_lowercase().as_str() {
+        "world_aligned" | "local_world_aligned" => Ok(ReferenceFrame::WorldAligned),
+        "body" | "local" => Ok(ReferenceFrame::Body),
+        "spatial" | "world" => Ok(ReferenceFrame::Spatial),
+        _ => Err(PyValueError::new_err(format!(
+            "jacobian: frame must be \"world_aligned\", \"body\" or \"spatial\" (Pinocchio's \
+             LOCAL_WORLD_ALIGNED, LOCAL, WORLD), got \"{name}\""
+        ))),
+    }
+}
+
+/// The Jacobian (6 × nv) of a joint's frame or a named frame, `V = J v`: in `frame`
+/// `"world_aligned"` (the angular velocity and the velocity of the frame's origin, world axes),
+/// `"body"` (the frame's body twist) or `"spatial"` (the spatial twist, world frame).
+#[pyfunction]
+#[pyo3(signature = (model, data, q, name, frame = None))]
+pub fn jacobian<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    name: &str,
+    frame: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let c = Call::new("jacobian", &model, &data)?;
+    let rf = frame.map_or(Ok(ReferenceFrame::WorldAligned), reference_frame)?;
+    let place = c.core.lookup(c.func, name)?;
+    let q = c.q(q, "q")?;
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let m = &c.core.model;
+    let j = match place {
+        Place::Joint(j) => mb::joint_jacobian(m, &mut d.inner, q, j, rf),
+        Place::Frame(f) => mb::frame_jacobian(m, &mut d.inner, q, f, rf),
+    }
+    .map_err(c.err())?;
+    Ok(c.core.jacobian_out(py, j))
+}
+
+/// The centre of mass of the moving bodies in the world (m; Pinocchio's `centerOfMass`).
+#[pyfunction]
+pub fn com<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let c = Call::new("com", &model, &data)?;
+    let q = c.q(q, "q")?;
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let x = mb::center_of_mass(&c.core.model, &mut d.inner, q).map_err(c.err())?;
+    Ok(array1(py, &[x.x, x.y, x.z]))
+}
+
+/// Kinetic energy `½ vᵀ M(q) v` (J; Pinocchio's `computeKineticEnergy`).
+#[pyfunction]
+pub fn kinetic_energy(
+    model: PyRef<'_, Model>,
+    mut data: PyRefMut<'_, Data>,
+    q: &Bound<'_, PyAny>,
+    v: &Bound<'_, PyAny>,
+) -> PyResult<f64> {
+    let c = Call::new("kinetic_energy", &model, &data)?;
+    let (q, v) = (c.q(q, "q")?, c.v(v, "v")?);
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
+    mb::kinetic_energy(&c.core.model, &mut d.inner, q, v).map_err(c.err())
+}
+
+/// Potential energy `-Σ mᵢ gᵀ cᵢ` (J, zero at the world origin; Pinocchio's
+/// `computePotentialEnergy`).
+#[pyfunction]
+pub fn potential_energy(
+    model: PyRef<'_, Model>,
+    mut data: PyRefMut<'_, Data>,
+    q: &Bound<'_, PyAny>,
+) -> PyResult<f64> {
+    let c = Call::new("potential_energy", &model, &data)?;
+    let q = c.q(q, "q")?;
+    let d = &mut *data;
+    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    mb::potential_energy(&c.core.model, &mut d.inner, q).map_err(c.err())
+}

@@ -1,0 +1,81 @@
+//! The Python module `rigid`: rigid's multibody and single-body dynamics with Pinocchio's verbs
+//! and numpy arrays. Built by maturin (`pip install ./crates/rigid-py`); the Python-side
+//! documentation is `rigid.pyi` beside this crate's `Cargo.toml`.
+//!
+//! | file | what |
+//! | --- | --- |
+//! | `convert.rs` | array-likes in (zero-copy for contiguous float64), fresh arrays out, errors |
+//! | `model.rs` | `Model`, `Data`, the layouts (rigid's, Pinocchio's) |
+//! | `dynamics.rs` | `rnea`, `crba`, `aba`, `nle`, `gravity`, `minverse`, `coriolis_matrix`, `forward_kinematics`, `jacobian`, `com`, energies |
+//! | `configuration.rs` | `neutral`, `random_configuration`, `seed`, `integrate`, `difference` |
+//! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch` (all cores, GIL released) |
+//! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
+
+mod batch;
+mod body;
+mod configuration;
+mod convert;
+mod dynamics;
+mod model;
+
+use pyo3::prelude::*;
+
+/// Pinocchio's names of the verbs whose signature is the same, so that porting a script is a
+/// search-and-replace of `pin.` by `rigid.`.
+const PINOCCHIO_ALIASES: [(&str, &str); 9] = [
+    ("nonLinearEffects", "nle"),
+    ("computeGeneralizedGravity", "gravity"),
+    ("computeMinverse", "minverse"),
+    ("computeCoriolisMatrix", "coriolis_matrix"),
+    ("forwardKinematics", "forward_kinematics"),
+    ("centerOfMass", "com"),
+    ("computeKineticEnergy", "kinetic_energy"),
+    ("computePotentialEnergy", "potential_energy"),
+    ("randomConfiguration", "random_configuration"),
+];
+
+#[pymodule]
+#[pyo3(name = "rigid")]
+fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<model::Model>()?;
+    m.add_class::<model::Data>()?;
+    m.add("UrdfWarning", m.py().get_type::<model::UrdfWarning>())?;
+    m.add_function(wrap_pyfunction!(dynamics::rnea, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::aba, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::crba, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::nle, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::gravity, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::minverse, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::coriolis_matrix, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::forward_kinematics, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::jacobian, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::com, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::kinetic_energy, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::potential_energy, m)?)?;
+    m.add_function(wrap_pyfunction!(configuration::seed, m)?)?;
+    m.add_function(wrap_pyfunction!(configuration::neutral, m)?)?;
+    m.add_function(wrap_pyfunction!(configuration::random_configuration, m)?)?;
+    m.add_function(wrap_pyfunction!(configuration::integrate, m)?)?;
+    m.add_function(wrap_pyfunction!(configuration::difference, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::rnea_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::aba_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::crba_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(body::mass_properties, m)?)?;
+    m.add_function(wrap_pyfunction!(body::spatial_inertia, m)?)?;
+    m.add_function(wrap_pyfunction!(body::simulate_body, m)?)?;
+    m.add_function(wrap_pyfunction!(body::doctor, m)?)?;
+    m.add_function(wrap_pyfunction!(body::r#box, m)?)?;
+    m.add_function(wrap_pyfunction!(body::cylinder, m)?)?;
+    m.add_function(wrap_pyfunction!(body::sphere, m)?)?;
+    m.add_function(wrap_pyfunction!(body::ellipsoid, m)?)?;
+    m.add_function(wrap_pyfunction!(body::capsule, m)?)?;
+    m.add_function(wrap_pyfunction!(body::cone, m)?)?;
+    m.add_function(wrap_pyfunction!(body::rod, m)?)?;
+    m.add_function(wrap_pyfunction!(body::point, m)?)?;
+    m.add_function(wrap_pyfunction!(body::mesh, m)?)?;
+    for (alias, name) in PINOCCHIO_ALIASES {
+        m.add(alias, m.getattr(name)?)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,512 @@
+//! `rigid.Model` and `rigid.Data`: a kinematic tree and its workspace, in rigid's layout or in
+//! Pinocchio's (joint order by sibling name, `(cos θ, sin θ)` coordinates, linear-first
+//! free-flyer velocities), with the conversions the verbs apply at the boundary.
+
+use crate::convert::{self, array1, array2, Vector};
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyAny;
+use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfError, UrdfOptions};
+use rigid::multibody::layout::{LayoutError, PinocchioLayout};
+use rigid::multibody::{builtin, builtin_names, FrameId, JointId};
+use rigid::spatial::Transform;
+use std::ffi::CString;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+
+pyo3::create_exception!(
+    rigid,
+    UrdfWarning,
+    pyo3::exceptions::PyUserWarning,
+    "Something in a URDF file that was tolerated (a non-physical inertia loaded as written, an \
+     unknown element, ...): the file loads, the message names the element and the line."
+);
+
+/// The model and what the Python verbs need around it.
+pub struct ModelCore {
+    /// The kinematic tree, in rigid's layout.
+    pub model: rigid::multibody::Model,
+    /// `Some` for `layout="pinocchio"`.
+    pub layout: Option<PinocchioLayout>,
+    /// `q` differs between the layouts (a continuous or planar joint, Pinocchio layout).
+    pub convert_q: bool,
+    /// `v` differs (a free-flyer, Pinocchio layout).
+    pub convert_v: bool,
+    /// The warnings of the URDF loader.
+    pub warnings: Vec<String>,
+    /// Unique per loaded model (kept when gravity is changed): a `Data` works with the model it
+    /// was made for.
+    pub id: u64,
+}
+
+/// The next [`ModelCore::id`].
+static NEXT_ID: AtomicU64 = AtomicU64::new(0);
+
+impl ModelCore {
+    fn new(
+        model: rigid::multibody::Model,
+        pinocchio: bool,
+        warnings: Vec<String>,
+    ) -> Self {
+        let layout = pinocchio.then(|| PinocchioLayout::new(&model));
+        let convert_q = layout.as_ref().is_some_and(|l| l.nq() != model.nq());
+        let convert_v = layout
+            .as_ref()
+            .is_some_and(|l| (0..model.nv()).any(|k| l.v_index(k) != k));
+        Self {
+            model,
+            layout,
+            convert_q,
+            convert_v,
+            warnings,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
+        }
+    }
+
+    /// The length of `q` in this model's layout.
+    pub fn nq(&self) -> usize {
+        self.layout.as_ref().map_or(self.model.nq(), PinocchioLayout::nq)
+    }
+
+    /// The length of `v`.
+    pub fn nv(&self) -> usize {
+        self.model.nv()
+    }
+
+    /// `q` (argument `name` of `func`) in rigid's layout: the caller's numbers, or converted
+    /// into `buf`.
+    pub fn q_in<'a>(
+        &self,
+        x: &'a Vector<'_>,
+        buf: &'a mut Vec<f64>,
+        func: &str,
+        name: &str,
+    ) -> PyResult<&'a [f64]> {
+        let q = x.as_slice();
+        match &self.layout {
+            Some(l) if self.convert_q => {
+                buf.resize(self.model.nq(), 0.0);
+                l.q_from_pinocchio(q, buf).map_err(|e| match e {
+                    LayoutError::NonFinite { index, .. } => {
+                        convert::value_error(func, format!("{name}[{index}] is not finite"))
+                    }
+                    e => convert::value_error(func, format!("{name}: {e}")),
+                })?;
+                Ok(buf)
+            }
+            _ => Ok(q),
+        }
+    }
+
+    /// A velocity-space vector (`v`, `a`, `τ`: argument `name` of `func`) in rigid's layout.
+    /// In Pinocchio's layout with a free-flyer, non-finite entries are refused here, so that the
+    /// error gives the index in the caller's vector.
+    pub fn v_in<'a>(
+        &self,
+        x: &'a Vector<'_>,
+        buf: &'a mut Vec<f64>,
+        func: &str,
+        name: &str,
+    ) -> PyResult<&'a [f64]> {
+        match &self.layout {
+            Some(l) if self.convert_v => {
+                let v = x.as_slice();
+                if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                    return Err(convert::value_error(func, format!("{name}[{i}] is not finite")));
+                }
+                buf.resize(self.nv(), 0.0);
+                l.permute_v(v, buf);
+                Ok(buf)
+            }
+            _ => Ok(x.as_slice()),
+        }
+    }
+
+    /// A velocity-space result as a fresh array in this model's layout.
+    pub fn v_out<'py>(&self, py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
+        match &self.layout {
+            Some(l) if self.convert_v => {
+                let mut out = vec![0.0; v.len()];
+                l.permute_v(v, &mut out);
+                PyArray1::from_vec(py, out)
+            }
+            _ => array1(py, v),
+        }
+    }
+
+    /// A configuration as a fresh array in this model's layout.
+    pub fn q_out<'py>(&self, py: Python<'py>, q: &[f64]) -> Bound<'py, PyArray1<f64>> {
+        match &self.layout {
+            Some(l) if self.convert_q => {
+                let mut out = vec![0.0; l.nq()];
+                l.q_to_pinocchio(q, &mut out);
+                PyArray1::from_vec(py, out)
+            }
+            _ => array1(py, q),
+        }
+    }
+
+    /// The velocity-space index of this layout's coordinate `k` in rigid's.
+    pub fn v_index(&self, k: usize) -> usize {
+        match &self.layout {
+            Some(l) if self.convert_v => l.v_index(k),
+            _ => k,
+        }
+    }
+
+    /// An `nv × nv` matrix (`M`, `M⁻¹`, `C`) as a fresh array in this layout.
+    pub fn matrix_out<'py>(
+        &self,
+        py: Python<'py>,
+        m: &nalgebra::DMatrix<f64>,
+    ) -> Bound<'py, PyArray2<f64>> {
+        let n = m.nrows();
+        array2(py, n, m.ncols(), |r, c| m[(self.v_index(r), self.v_index(c))])
+    }
+
+    /// A `6 × nv` Jacobian as a fresh array: rows `(ω, v)` in rigid's layout, `(v, ω)` and
+    /// columns permuted in Pinocchio's.
+    pub fn jacobian_out<'py>(
+        &self,
+        py: Python<'py>,
+        j: &nalgebra::DMatrix<f64>,
+    ) -> Bound<'py, PyArray2<f64>> {
+        let row = |r: usize| if self.layout.is_some() { (r + 3) % 6 } else { r };
+        array2(py, 6, j.ncols(), |r, c| j[(row(r), self.v_index(c))])
+    }
+
+    /// `data` was made for this model (or for it before a gravity change).
+    pub fn check_data(&self, func: &str, data: &Data) -> PyResult<()> {
+        if data.model.id == self.id {
+            Ok(())
+        } else {
+            Err(PyValueError::new_err(format!(
+                "{func}: data was made for model '{}', not for this model '{}' (use \
+                 model.create_data())",
+                data.model.model.name(),
+                self.model.name()
+            )))
+        }
+    }
+
+    /// What a name stands for: a joint (its moved frame), or else a named frame.
+    pub fn lookup(&self, func: &str, name: &str) -> PyResult<Place> {
+        if let Some(j) = self.model.joint_id(name) {
+            return Ok(Place::Joint(j));
+        }
+        self.model.frame_id(name).map(Place::Frame).map_err(|e| {
+            PyValueError::new_err(format!(
+                "{func}: {e} (a joint or frame name of model '{}')",
+                self.model.name()
+            ))
+        })
+    }
+}
+
+/// A joint or a named frame.
+#[derive(Clone, Copy)]
+pub enum Place {
+    /// The frame of a joint, as moved by it.
+    Joint(JointId),
+    /// A named frame (a link, a fixed joint, an operational frame).
+    Frame(FrameId),
+}
+
+fn policy(inertia: &str) -> PyResult<InertiaPolicy> {
+    inertia
+        .parse()
+        .map_err(|e: String| PyValueError::new_err(format!("Model.from_urdf: inertia: {e}")))
+}
+
+fn is_pinocchio(func: &str, layout: &str) -> PyResult<bool> {
+    match layout {
+        "rigid" => Ok(false),
+        "pinocchio" => Ok(true),
+        _ => Err(PyValueError::new_err(format!(
+            "{func}: layout must be \"rigid\" or \"pinocchio\", got \"{layout}\""
+        ))),
+    }
+}
+
+/// A kinematic tree (Pinocchio's `Model`): joints depth-first from the root, their placements,
+/// the bodies' spatial inertias, limits and gravity. Constant but for `gravity`.
+#[pyclass(module = "rigid", name = "Model")]
+pub struct Model {
+    pub inner: Arc<ModelCore>,
+}
+
+#[pymethods]
+impl Model {
+    /// Load a URDF file (Pinocchio's `buildModelFromUrdf`).
+    #[staticmethod]
+    #[pyo3(signature = (path, floating = false, inertia = "warn", layout = "rigid"))]
+    fn from_urdf(
+        py: Python<'_>,
+        path: PathBuf,
+        floating: bool,
+        inertia: &str,
+        layout: &str,
+    ) -> PyResult<Self> {
+        let pinocchio = is_pinocchio("Model.from_urdf", layout)?;
+        let opts = UrdfOptions {
+            floating,
+            inertia: policy(inertia)?,
+            sibling_order: if pinocchio {
+                SiblingOrder::Name
+            } else {
+                SiblingOrder::File
+            },
+        };
+        let shown = path.display().to_string();
+        let (model, warnings) = urdf::load_urdf_with(&path, &opts).map_err(|e| match &e {
+            UrdfError::Io { source, .. } => convert::io_error(source, e.to_string()),
+            _ => PyValueError::new_err(format!("{shown}: {e}")),
+        })?;
+        let warnings: Vec<String> = warnings.iter().map(|w| format!("{shown}: {w}")).collect();
+        let category = py.get_type::<UrdfWarning>();
+        for w in &warnings {
+            let text = CString::new(w.replace('\0', " ")).unwrap_or_default();
+            PyErr::warn(py, category.as_any(), &text, 2)?;
+        }
+        Ok(Self {
+            inner: Arc::new(ModelCore::new(model, pinocchio, warnings)),
+        })
+    }
+
+    /// A built-in model: `puma560`, `puma560_armature`, `pendulum`, `double_pendulum`.
+    #[staticmethod]
+    #[pyo3(signature = (name, layout = "rigid"))]
+    fn builtin(name: &str, layout: &str) -> PyResult<Self> {
+        let pinocchio = is_pinocchio("Model.builtin", layout)?;
+        let model = builtin(name).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "Model.builtin: unknown model \"{name}\" (built-in models: {})",
+                builtin_names().join(", ")
+            ))
+        })?;
+        Ok(Self {
+            inner: Arc::new(ModelCore::new(model, pinocchio, Vec::new())),
+        })
+    }
+
+    /// A new workspace for this model (Pinocchio's `model.createData()`).
+    fn create_data(&self) -> Data {
+        Data::of(&self.inner)
+    }
+
+    /// Alias of `create_data` (Pinocchio's name).
+    #[pyo3(name = "createData")]
+    fn create_data_pinocchio(&self) -> Data {
+        Data::of(&self.inner)
+    }
+
+    /// The model's name.
+    #[getter]
+    fn name(&self) -> &str {
+        self.inner.model.name()
+    }
+
+    /// Number of configuration coordinates (in this model's layout).
+    #[getter]
+    fn nq(&self) -> usize {
+        self.inner.nq()
+    }
+
+    /// Number of degrees of freedom.
+    #[getter]
+    fn nv(&self) -> usize {
+        self.inner.nv()
+    }
+
+    /// Number of moving joints (Pinocchio's `njoints - 1`: no "universe").
+    #[getter]
+    fn njoints(&self) -> usize {
+        self.inner.model.njoints()
+    }
+
+    /// `"rigid"` or `"pinocchio"`.
+    #[getter]
+    fn layout(&self) -> &'static str {
+        if self.inner.layout.is_some() {
+            "pinocchio"
+        } else {
+            "rigid"
+        }
+    }
+
+    /// The moving joints' names in order (Pinocchio's `model.names[1:]`).
+    #[getter]
+    fn names(&self) -> Vec<String> {
+        self.inner
+            .model
+            .joints()
+            .iter()
+            .map(|j| j.name.clone())
+            .collect()
+    }
+
+    /// Each joint's type: `revolute`, `continuous`, `prismatic`, `spherical`, `free_flyer`,
+    /// `planar`.
+    #[getter]
+    fn joint_types(&self) -> Vec<&'static str> {
+        self.inner.model.joints().iter().map(|j| j.kind.name()).collect()
+    }
+
+    /// First index of each joint's coordinates in `q` (this layout).
+    #[getter]
+    fn idx_qs(&self) -> Vec<usize> {
+        self.joint_q().into_iter().map(|(i, _)| i).collect()
+    }
+
+    /// Number of configuration coordinates of each joint (this layout).
+    #[getter]
+    fn nqs(&self) -> Vec<usize> {
+        self.joint_q().into_iter().map(|(_, n)| n).collect()
+    }
+
+    /// First index of each joint's coordinates in `v`.
+    #[getter]
+    fn idx_vs(&self) -> Vec<usize> {
+        self.inner.model.joints().iter().map(|j| j.idx_v).collect()
+    }
+
+    /// Number of degrees of freedom of each joint.
+    #[getter]
+    fn nvs(&self) -> Vec<usize> {
+        self.inner.model.joints().iter().map(|j| j.nv).collect()
+    }
+
+    /// The named frames (links, fixed joints, operational frames), in order.
+    #[getter]
+    fn frame_names(&self) -> Vec<String> {
+        self.inner
+            .model
+            .frames()
+            .iter()
+            .map(|f| f.name.clone())
+            .collect()
+    }
+
+    /// Total mass of the moving bodies (kg; Pinocchio's `computeTotalMass` less the bodies
+    /// welded to the world).
+    #[getter]
+    fn total_mass(&self) -> f64 {
+        self.inner.model.total_mass()
+    }
+
+    /// The URDF loader's warnings (each also issued as a `rigid.UrdfWarning`).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings.clone()
+    }
+
+    /// Gravity in the world frame (m/s², default `[0, 0, -9.81]`; Pinocchio's
+    /// `model.gravity.linear`). Settable.
+    #[getter]
+    fn gravity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let g = self.inner.model.gravity();
+        array1(py, &[g.x, g.y, g.z])
+    }
+
+    #[setter]
+    fn set_gravity(&mut self, g: &Bound<'_, PyAny>) -> PyResult<()> {
+        let g = convert::vec3(g, "Model.gravity", "gravity")?;
+        let core = &self.inner;
+        let model = core.model.clone().with_gravity(g);
+        self.inner = Arc::new(ModelCore {
+            model,
+            layout: core.layout.clone(),
+            convert_q: core.convert_q,
+            convert_v: core.convert_v,
+            warnings: core.warnings.clone(),
+            id: core.id,
+        });
+        Ok(())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "rigid.Model('{}', nq={}, nv={}, njoints={}, layout='{}')",
+            self.inner.model.name(),
+            self.inner.nq(),
+            self.inner.nv(),
+            self.inner.model.njoints(),
+            self.layout()
+        )
+    }
+}
+
+impl Model {
+    fn joint_q(&self) -> Vec<(usize, usize)> {
+        let joints = self.inner.model.joints();
+        match &self.inner.layout {
+            Some(l) => (0..joints.len()).map(|i| l.joint_q(i)).collect(),
+            None => joints.iter().map(|j| (j.idx_q, j.nq)).collect(),
+        }
+    }
+}
+
+/// The workspace of the algorithms for one model (Pinocchio's `Data`): every buffer allocated
+/// once. After `forward_kinematics`, `placement(name)` gives a joint's or frame's world pose.
+#[pyclass(module = "rigid", name = "Data")]
+pub struct Data {
+    pub inner: rigid::multibody::Data,
+    /// The model it was made for (names, layout).
+    pub model: Arc<ModelCore>,
+    /// Scratch buffers for the layout conversions.
+    pub q: Vec<f64>,
+    pub v: Vec<f64>,
+    pub a: Vec<f64>,
+}
+
+impl Data {
+    fn of(core: &Arc<ModelCore>) -> Self {
+        Self {
+            inner: rigid::multibody::Data::new(&core.model),
+            model: Arc::clone(core),
+            q: Vec::new(),
+            v: Vec::new(),
+            a: Vec::new(),
+        }
+    }
+}
+
+#[pymethods]
+impl Data {
+    /// A workspace for `model` (Pinocchio's `pin.Data(model)`).
+    #[new]
+    fn new(model: PyRef<'_, Model>) -> Self {
+        Self::of(&model.inner)
+    }
+
+    /// The world pose `(R, p)` of a joint's frame (as moved by the joint; Pinocchio's
+    /// `data.oMi[model.getJointId(name)]`) or of a named frame (a link, a fixed joint;
+    /// Pinocchio's `data.oMf[model.getFrameId(name)]`), from the last `forward_kinematics`:
+    /// `R` (3, 3) a rotation matrix, `p` (3,) in metres, `x_world = R x_frame + p`.
+    fn placement<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
+        let core = &self.model;
+        let t: Transform = match core.lookup("Data.placement", name)? {
+            Place::Joint(j) => self.inner.placements[j.0],
+            Place::Frame(f) => {
+                let frame = &core.model.frames()[f.0];
+                match frame.parent {
+                    Some(p) => self.inner.placements[p.0] * frame.placement,
+                    None => frame.placement,
+                }
+            }
+        };
+        let r = &t.rotation;
+        let p = &t.translation;
+        Ok((array2(py, 3, 3, |i, j| r[(i, j)]), array1(py, &[p.x, p.y, p.z])))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("rigid.Data(model='{}')", self.model.model.name())
+    }
+}

@@ -1,0 +1,301 @@
+//! Pinocchio's layout of the configuration and velocity vectors, so that `q`, `v`, `a` and `τ`
+//! pass between rigid and Pinocchio-based code unchanged.
+//!
+//! For the same joints in the same order (a URDF loaded with
+//! [`SiblingOrder::Name`](crate::io::urdf::SiblingOrder::Name), the order of urdfdom and so of
+//! Pinocchio), the two layouts differ in three joint types only:
+//!
+//! | joint | rigid `q` | Pinocchio `q` | rigid `v` | Pinocchio `v` |
+//! | --- | --- | --- | --- | --- |
+//! | continuous | `θ` | `(cos θ, sin θ)` | `θ̇` | `θ̇` |
+//! | planar | `(x, y, θ)` | `(x, y, cos θ, sin θ)` | `(v_x, v_y, ω)` | `(v_x, v_y, ω)` |
+//! | free-flyer | `(x, y, z, qx, qy, qz, qw)` | the same | `(ω_b, v_b)` | `(v_b, ω_b)` |
+//!
+//! Every other joint (revolute, prismatic, spherical) has the same coordinates in both. So a
+//! Pinocchio vector in velocity space (`v`, `a`, `τ`, rows and columns of `M`) is rigid's with
+//! each free-flyer's two halves swapped ([`PinocchioLayout::v_index`]), and a Pinocchio
+//! configuration is rigid's with each angle of a continuous or planar joint written as its cosine
+//! and sine ([`PinocchioLayout::q_to_pinocchio`], [`PinocchioLayout::q_from_pinocchio`]).
+//!
+//! ```
+//! use rigid::multibody::{layout::PinocchioLayout, JointType, ModelBuilder};
+//! use rigid::mass::SpatialInertia;
+//! use rigid::spatial::{Transform, Vec3};
+//! let mut b = ModelBuilder::new("wheel");
+//! let g = SpatialInertia::from_com(1.0, Vec3::zeros(), rigid::mass::RotationalInertia::diagonal(1.0, 1.0, 1.0));
+//! let base = b.add_joint(None, "base", JointType::FreeFlyer, Transform::identity(), g)?;
+//! b.add_joint(Some(base), "wheel", JointType::Continuous { axis: Vec3::y() }, Transform::identity(), g)?;
+//! let model = b.build()?;
+//! let layout = PinocchioLayout::new(&model);
+//! assert_eq!((model.nq(), layout.nq()), (8, 9));
+//! let mut q_pin = vec![0.0; 9];
+//! layout.q_to_pinocchio(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.5], &mut q_pin);
+//! assert_eq!(&q_pin[7..], &[0.5f64.cos(), 0.5f64.sin()]);
+//! assert_eq!(layout.v_index(0), 3); // Pinocchio's v[0] (linear x) is rigid's v[3]
+//! # Ok::<(), rigid::multibody::ModelError>(())
+//! ```
+
+use super::{JointType, Model};
+use crate::error::DimensionError;
+use thiserror::Error;
+
+/// Largest accepted `|√(c² + s²) - 1|` for the `(cos θ, sin θ)` pair of a continuous or planar
+/// joint in Pinocchio's layout (as [`QUATERNION_TOLERANCE`](super::QUATERNION_TOLERANCE)).
+pub const COS_SIN_TOLERANCE: f64 = 1e-6;
+
+/// A Pinocchio-layout configuration that rigid cannot read.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum LayoutError {
+    /// A vector of the wrong length.
+    #[error(transparent)]
+    Dimension(#[from] DimensionError),
+    /// A NaN or infinite entry (index in the Pinocchio-layout vector).
+    #[error("{what}[{index}] is not finite")]
+    NonFinite {
+        /// Which vector.
+        what: &'static str,
+        /// The index of the bad entry.
+        index: usize,
+    },
+    /// A `(cos θ, sin θ)` pair that is not on the unit circle.
+    #[error("joint '{joint}': (cos θ, sin θ) = ({cos}, {sin}) has norm {norm}, not 1 (tolerance 1e-6)")]
+    NotUnitCosSin {
+        /// The joint.
+        joint: String,
+        /// The cosine given.
+        cos: f64,
+        /// The sine given.
+        sin: f64,
+        /// `√(c² + s²)`.
+        norm: f64,
+    },
+}
+
+/// How one joint's coordinates differ between the layouts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Coords {
+    /// The same coordinates.
+    Same,
+    /// `θ` ↔ `(cos θ, sin θ)`.
+    Continuous,
+    /// `(x, y, θ)` ↔ `(x, y, cos θ, sin θ)`.
+    Planar,
+    /// `(ω, v)` ↔ `(v, ω)` in velocity space; `q` the same.
+    FreeFlyer,
+    /// `q` a quaternion, the same; only [`PinocchioLayout::integrate_signs`] cares.
+    Spherical,
+}
+
+/// One joint: its kind of difference and where its coordinates start in each layout.
+#[derive(Clone, Copy, Debug)]
+struct JointMap {
+    coords: Coords,
+    /// First index in rigid's `q`.
+    idx_q: usize,
+    /// Number of rigid configuration coordinates.
+    nq: usize,
+    /// First index in Pinocchio's `q`.
+    pin_idx_q: usize,
+    /// Number of Pinocchio configuration coordinates.
+    pin_nq: usize,
+    /// First index in `v` (the same in both).
+    idx_v: usize,
+}
+
+/// The map between rigid's layout of a [`Model`]'s vectors and Pinocchio's (see the
+/// [module](self) documentation). Made once per model; the conversions allocate nothing.
+#[derive(Clone, Debug)]
+pub struct PinocchioLayout {
+    joints: Vec<JointMap>,
+    names: Vec<String>,
+    nq: usize,
+    /// `v_pin[k] = v[perm[k]]`; an involution (each free-flyer's halves swapped).
+    perm: Vec<usize>,
+}
+
+impl PinocchioLayout {
+    /// The layout map of `model` (joints in the model's order).
+    #[must_use]
+    pub fn new(model: &Model) -> Self {
+        let mut joints = Vec::with_capacity(model.njoints());
+        let mut names = Vec::with_capacity(model.njoints());
+        let mut perm: Vec<usize> = (0..model.nv()).collect();
+        let mut pin_idx_q = 0;
+        for j in model.joints() {
+            let (coords, pin_nq) = match j.kind {
+                JointType::Continuous { .. } => (Coords::Continuous, 2),
+                JointType::Planar => (Coords::Planar, 4),
+                JointType::FreeFlyer => (Coords::FreeFlyer, 7),
+                JointType::Spherical => (Coords::Spherical, 4),
+                JointType::Revolute { .. } | JointType::Prismatic { .. } => (Coords::Same, j.nq),
+            };
+            if coords == Coords::FreeFlyer {
+                for k in 0..3 {
+                    perm.swap(j.idx_v + k, j.idx_v + 3 + k);
+                }
+            }
+            joints.push(JointMap {
+                coords,
+                idx_q: j.idx_q,
+                nq: j.nq,
+                pin_idx_q,
+                pin_nq,
+                idx_v: j.idx_v,
+            });
+            names.push(j.name.clone());
+            pin_idx_q += pin_nq;
+        }
+        Self {
+            joints,
+            names,
+            nq: pin_idx_q,
+            perm,
+        }
+    }
+
+    /// Pinocchio's `nq`: rigid's plus one per continuous or planar joint.
+    #[must_use]
+    pub fn nq(&self) -> usize {
+        self.nq
+    }
+
+    /// `nv` (the same in both layouts).
+    #[must_use]
+    pub fn nv(&self) -> usize {
+        self.perm.len()
+    }
+
+    /// True when the two layouts are the same for this model (no continuous, planar or
+    /// free-flyer joint): every conversion is a copy.
+    #[must_use]
+    pub fn is_identity(&self) -> bool {
+        self.joints
+            .iter()
+            .all(|j| matches!(j.coords, Coords::Same | Coords::Spherical))
+    }
+
+    /// `(idx_q, nq)` of joint `i` (model order) in Pinocchio's `q`.
+    #[must_use]
+    pub fn joint_q(&self, i: usize) -> (usize, usize) {
+        (self.joints[i].pin_idx_q, self.joints[i].pin_nq)
+    }
+
+    /// The index in rigid's velocity-space vectors of Pinocchio's coordinate `k`:
+    /// `v_pin[k] = v[v_index(k)]`, and `M_pin[(r, c)] = M[(v_index(r), v_index(c))]`. The map is
+    /// its own inverse.
+    #[must_use]
+    pub fn v_index(&self, k: usize) -> usize {
+        self.perm[k]
+    }
+
+    /// `v_pin[k] = v[v_index(k)]` (also rigid from Pinocchio: the map is its own inverse).
+    ///
+    /// # Panics
+    /// If a slice is shorter than `nv`.
+    pub fn permute_v(&self, v: &[f64], out: &mut [f64]) {
+        for (o, &p) in out.iter_mut().zip(&self.perm) {
+            *o = v[p];
+        }
+    }
+
+    /// Pinocchio's configuration of rigid's `q`: `(cos θ, sin θ)` for each angle of a continuous
+    /// or planar joint, other coordinates copied.
+    ///
+    /// # Panics
+    /// If `q` is shorter than the model's `nq` or `q_pin` than [`nq`](Self::nq).
+    pub fn q_to_pinocchio(&self, q: &[f64], q_pin: &mut [f64]) {
+        for j in &self.joints {
+            let (src, dst) = (&q[j.idx_q..j.idx_q + j.nq], &mut q_pin[j.pin_idx_q..]);
+            match j.coords {
+                Coords::Continuous => (dst[1], dst[0]) = src[0].sin_cos(),
+                Coords::Planar => {
+                    dst[0] = src[0];
+                    dst[1] = src[1];
+                    (dst[3], dst[2]) = src[2].sin_cos();
+                }
+                _ => dst[..j.nq].copy_from_slice(src),
+            }
+        }
+    }
+
+    /// Rigid's configuration of Pinocchio's `q_pin`: `θ = atan2(sin θ, cos θ)` for each
+    /// continuous or planar joint, other coordinates copied.
+    ///
+    /// # Errors
+    /// A wrong length, a non-finite entry (its index in `q_pin`), or a `(cos θ, sin θ)` pair off
+    /// the unit circle by more than [`COS_SIN_TOLERANCE`] (naming the joint).
+    pub fn q_from_pinocchio(&self, q_pin: &[f64], q: &mut [f64]) -> Result<(), LayoutError> {
+        DimensionError::check("q", self.nq, q_pin.len())?;
+        if let Some(index) = q_pin.iter().position(|x| !x.is_finite()) {
+            return Err(LayoutError::NonFinite { what: "q", index });
+        }
+        for (j, name) in self.joints.iter().zip(&self.names) {
+            let src = &q_pin[j.pin_idx_q..j.pin_idx_q + j.pin_nq];
+            let dst = &mut q[j.idx_q..j.idx_q + j.nq];
+            let angle = |c: f64, s: f64| {
+                let norm = c.hypot(s);
+                if (norm - 1.0).abs() > COS_SIN_TOLERANCE {
+                    return Err(LayoutError::NotUnitCosSin {
+                        joint: name.clone(),
+                        cos: c,
+                        sin: s,
+                        norm,
+                    });
+                }
+                Ok(s.atan2(c))
+            };
+            match j.coords {
+                Coords::Continuous => dst[0] = angle(src[0], src[1])?,
+                Coords::Planar => {
+                    dst[0] = src[0];
+                    dst[1] = src[1];
+                    dst[2] = angle(src[2], src[3])?;
+                }
+                _ => dst.copy_from_slice(src),
+            }
+        }
+        Ok(())
+    }
+
+    /// Moves each continuous and planar angle of `q1` by a multiple of 2π to within π of `q0`'s
+    /// (`θ1 ← θ0 + atan2(sin(θ1 - θ0), cos(θ1 - θ0))`), so that rigid's
+    /// [`difference`](super::difference)`(q0, q1)` is Pinocchio's, whose angles are points on
+    /// the circle (the shortest way round).
+    pub fn nearest_angles(&self, q0: &[f64], q1: &mut [f64]) {
+        for j in &self.joints {
+            let k = match j.coords {
+                Coords::Continuous => j.idx_q,
+                Coords::Planar => j.idx_q + 2,
+                _ => continue,
+            };
+            let d = q1[k] - q0[k];
+            q1[k] = q0[k] + d.sin().atan2(d.cos());
+        }
+    }
+
+    /// Gives each quaternion of `q_out = integrate(q, v)` Pinocchio's sign (rigid's
+    /// [`integrate`](super::integrate) returns `w ≥ 0`): for a free-flyer, the one with
+    /// `q_out · q ≥ 0` (Pinocchio's SE(3) integration keeps the hemisphere); for a spherical
+    /// joint, that of the product `q ⊗ exp(ω dt / 2)`, whose dot product with `q` is
+    /// `cos(|ω| dt / 2)` (Pinocchio's SO(3) integration does not change the sign). `q`, `v` and
+    /// `q_out` are in rigid's layout.
+    pub fn integrate_signs(&self, q: &[f64], v: &[f64], dt: f64, q_out: &mut [f64]) {
+        for j in &self.joints {
+            let (o, cos_half) = match j.coords {
+                Coords::FreeFlyer => (j.idx_q + 3, 1.0),
+                Coords::Spherical => {
+                    let w = &v[j.idx_v..j.idx_v + 3];
+                    let angle = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt() * dt;
+                    (j.idx_q, (0.5 * angle).cos())
+                }
+                _ => continue,
+            };
+            let dot: f64 = (o..o + 4).map(|k| q[k] * q_out[k]).sum();
+            if dot * cos_half < 0.0 {
+                for x in &mut q_out[o..o + 4] {
+                    *x = -*x;
+                }
+            }
+        }
+    }
+}
