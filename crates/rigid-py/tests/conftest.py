@@ -7,6 +7,7 @@ The reference is Pinocchio 4.1 (`pin`, with `example-robot-data`), installed by 
 import glob
 import os
 import sys
+import warnings
 
 import numpy as np
 import pinocchio as pin
@@ -72,8 +73,10 @@ class Pair:
         else:
             self.pm = pin.buildModelFromUrdf(path)
         self.pd = self.pm.createData()
-        self.rp = rigid.Model.from_urdf(path, floating=floating, layout="pinocchio")
-        self.rr = rigid.Model.from_urdf(path, floating=floating)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", rigid.UrdfWarning)  # ANYmal's dummy base inertia
+            self.rp = rigid.Model.from_urdf(path, floating=floating, layout="pinocchio")
+            self.rr = rigid.Model.from_urdf(path, floating=floating)
         lo, up = self.pm.lowerPositionLimit, self.pm.upperPositionLimit
         self.pm.lowerPositionLimit = np.where(np.abs(lo) < 1e10, lo, -1.0)
         self.pm.upperPositionLimit = np.where(np.abs(up) < 1e10, up, 1.0)

@@ -1,0 +1,110 @@
+"""The batch verbs: each row is the single call's result, bit for bit, in both layouts; the GIL
+is released while they run; shapes are checked."""
+
+import threading
+import time
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import rigid
+from conftest import assert_close, pair
+
+
+def states(m, n, seed):
+    rigid.seed(seed)
+    rng = np.random.default_rng(seed)
+    Q = np.array([rigid.random_configuration(m) for _ in range(n)])
+    return Q, rng.uniform(-1, 1, (n, m.nv)), rng.uniform(-1, 1, (n, m.nv))
+
+
+@pytest.mark.parametrize("name", ["ur5", "anymal", "all_joints_floating"])
+@pytest.mark.parametrize("layout", ["rigid", "pinocchio"])
+def test_batch_rows_equal_single_calls_bit_for_bit(name, layout):
+    p = pair(name)
+    m = p.rp if layout == "pinocchio" else p.rr
+    d = m.create_data()
+    Q, V, A = states(m, 57, 3)
+    tau = rigid.rnea_batch(m, Q, V, A)
+    ddq = rigid.aba_batch(m, Q, V, tau)
+    M = rigid.crba_batch(m, Q)
+    assert tau.shape == (57, m.nv) and ddq.shape == (57, m.nv) and M.shape == (57, m.nv, m.nv)
+    for k in range(len(Q)):
+        assert np.array_equal(tau[k], rigid.rnea(m, d, Q[k], V[k], A[k]))
+        assert np.array_equal(ddq[k], rigid.aba(m, d, Q[k], V[k], tau[k]))
+        assert np.array_equal(M[k], rigid.crba(m, d, Q[k]))
+    # and ABA inverts RNEA
+    assert_close(ddq, A, "aba_batch(rnea_batch(a))", tol=1e-8)
+
+
+def test_batch_in_pinocchio_layout_equals_pinocchio():
+    p = pair("solo12")
+    pm, pd = p.pm, p.pd
+    Q = np.array([s[0] for s in p.states])
+    V = np.array([s[1] for s in p.states])
+    A = np.array([s[2] for s in p.states])
+    tau = rigid.rnea_batch(p.rp, Q, V, A)
+    for k in range(len(Q)):
+        assert_close(tau[k], pin.rnea(pm, pd, Q[k], V[k], A[k]), "rnea_batch")
+
+
+def test_batch_accepts_array_likes_and_no_states():
+    m = rigid.Model.builtin("double_pendulum")
+    out = rigid.rnea_batch(m, [[0.1, 0.2]], [[0, 0]], [[0, 0]])
+    d = m.create_data()
+    assert np.array_equal(out[0], rigid.rnea(m, d, [0.1, 0.2], [0, 0], [0, 0]))
+    # non-contiguous and float32 inputs are converted
+    Q = np.zeros((4, 4))[:, ::2] + 0.3
+    out = rigid.rnea_batch(m, Q, np.zeros((4, 2), np.float32), np.zeros((4, 2), int))
+    assert out.shape == (4, 2)
+    empty = rigid.rnea_batch(m, np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 2)))
+    assert empty.shape == (0, 2)
+    assert rigid.crba_batch(m, np.zeros((0, 2))).shape == (0, 2, 2)
+
+
+def test_batch_shape_errors_name_the_argument():
+    m = rigid.Model.builtin("puma560")
+    Q = np.zeros((3, 6))
+    with pytest.raises(ValueError, match=r"rnea_batch: Q must be an array of shape \(N, nq = 6\), got shape \(3, 5\)"):
+        rigid.rnea_batch(m, np.zeros((3, 5)), Q, Q)
+    with pytest.raises(ValueError, match=r"V has 2 rows, Q has 3"):
+        rigid.rnea_batch(m, Q, np.zeros((2, 6)), Q)
+    with pytest.raises(ValueError, match=r"shape \(N, nv = 6\), got shape \(18,\)"):
+        rigid.aba_batch(m, Q, np.zeros(18), Q)
+    bad = Q.copy()
+    bad[1, 2] = np.nan
+    with pytest.raises(ValueError, match=r"A\[1, 2\] is not finite"):
+        rigid.rnea_batch(m, Q, Q, bad)
+    with pytest.raises(ValueError, match=r"state 1 .*q\[2\] is not finite"):
+        rigid.crba_batch(m, bad)
+    with pytest.raises(TypeError, match="real numbers"):
+        rigid.crba_batch(m, Q.astype(complex))
+
+
+def test_batch_releases_the_gil():
+    """Another Python thread runs while a batch computes: with the GIL held it could not."""
+    p = pair("talos")
+    m = p.rr
+    Q, V, A = states(m, 2000, 5)
+    Q, V, A = (np.tile(x, (40, 1)) for x in (Q, V, A))
+    ticks, stop = [], threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.0005)
+
+    t = threading.Thread(target=tick)
+    t.start()
+    try:
+        time.sleep(0.01)
+        t0 = time.perf_counter()
+        rigid.rnea_batch(m, Q, V, A)
+        t1 = time.perf_counter()
+    finally:
+        stop.set()
+        t.join()
+    assert t1 - t0 > 0.05, "batch too short to tell"
+    inside = [x for x in ticks if t0 + 0.02 < x < t1 - 0.001]
+    assert len(inside) >= 3, f"{len(inside)} ticks of the other thread in {t1 - t0:.3f} s"
