@@ -3,6 +3,8 @@
 
 use crate::load::load_model;
 use clap::Args;
+use rigid::io::urdf::SiblingOrder;
+use rigid::multibody::layout::PinocchioLayout;
 use rigid::multibody::{
     aba, center_of_mass, crba, forward_kinematics_q, gravity_torques, kinetic_energy,
     nonlinear_effects, potential_energy, rnea, Data, Model,
@@ -26,6 +28,20 @@ pub struct EvalArgs {
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     pub json: bool,
+    /// `pinocchio`: read and write `q`, `v`, `a`, `τ` and `M` in Pinocchio's layout (sibling
+    /// joints sorted by name, `(cos θ, sin θ)` for continuous and planar angles, free-flyer
+    /// velocities linear first), so that they pass to and from Pinocchio unchanged.
+    #[arg(long, value_enum, default_value = "rigid")]
+    pub layout: Layout,
+}
+
+/// The layout of the vectors of `rigid eval` (see `rigid::multibody::layout`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Layout {
+    /// rigid's: file order, one angle per continuous joint, angular-first free-flyer.
+    Rigid,
+    /// Pinocchio's.
+    Pinocchio,
 }
 
 /// One state to evaluate.
@@ -45,6 +61,8 @@ struct Output {
 #[derive(Serialize)]
 struct ModelInfo {
     name: String,
+    /// `rigid` or `pinocchio` (added key).
+    layout: &'static str,
     nq: usize,
     nv: usize,
     joints: Vec<JointInfo>,
@@ -100,18 +118,32 @@ impl Serialize for Placements {
 /// # Errors
 /// A message naming the model, the case and the field, or the joint.
 pub fn run(args: &EvalArgs) -> Result<(), String> {
-    let model = load_model(&args.model, &args.load)?;
+    let mut load = args.load;
+    if args.layout == Layout::Pinocchio {
+        load.sibling_order = SiblingOrder::Name;
+    }
+    let model = load_model(&args.model, &load)?;
+    let layout = (args.layout == Layout::Pinocchio).then(|| PinocchioLayout::new(&model));
     let path = args.cases.display();
     let text = std::fs::read_to_string(&args.cases)
         .map_err(|e| format!("cannot read cases file {path}: {e}"))?;
-    let cases = parse_cases(&text, &model).map_err(|e| format!("{path}: {e}"))?;
-    let results = evaluate_all(&model, &cases)
+    let nq = layout.as_ref().map_or(model.nq(), PinocchioLayout::nq);
+    let mut cases = parse_cases(&text, nq, model.nv()).map_err(|e| format!("{path}: {e}"))?;
+    if let Some(l) = &layout {
+        for (i, c) in cases.iter_mut().enumerate() {
+            case_from_pinocchio(l, model.nq(), c).map_err(|e| format!("{path}: case {i}: {e}"))?;
+        }
+    }
+    let mut results = evaluate_all(&model, &cases)
         .into_iter()
         .enumerate()
         .map(|(i, r)| r.map_err(|e| format!("{path}: case {i}: {e}")))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(l) = &layout {
+        results.iter_mut().for_each(|r| result_to_pinocchio(l, r));
+    }
     let out = Output {
-        model: model_info(&model),
+        model: model_info(&model, layout.as_ref()),
         results,
     };
     if args.json {
@@ -123,22 +155,60 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
     Ok(())
 }
 
-fn model_info(model: &Model) -> ModelInfo {
+/// A case read in Pinocchio's layout, in rigid's.
+fn case_from_pinocchio(l: &PinocchioLayout, nq: usize, c: &mut Case) -> Result<(), String> {
+    let mut q = vec![0.0; nq];
+    l.q_from_pinocchio(&c.q, &mut q)
+        .map_err(|e| format!("\"q\": {e}"))?;
+    c.q = q;
+    for x in [&mut c.v, &mut c.a, &mut c.tau] {
+        let mut y = vec![0.0; x.len()];
+        l.permute_v(x, &mut y);
+        *x = y;
+    }
+    Ok(())
+}
+
+/// A result in Pinocchio's layout (placements, energies and the CoM are the same in both).
+fn result_to_pinocchio(l: &PinocchioLayout, r: &mut CaseResult) {
+    for x in [
+        &mut r.rnea,
+        &mut r.nonlinear_effects,
+        &mut r.gravity_torques,
+        &mut r.aba,
+    ] {
+        let mut y = vec![0.0; x.len()];
+        l.permute_v(x, &mut y);
+        *x = y;
+    }
+    let m = &r.mass_matrix;
+    let n = m.len();
+    r.mass_matrix = (0..n)
+        .map(|i| (0..n).map(|k| m[l.v_index(i)][l.v_index(k)]).collect())
+        .collect();
+}
+
+fn model_info(model: &Model, layout: Option<&PinocchioLayout>) -> ModelInfo {
     let g = model.gravity();
     ModelInfo {
         name: model.name().to_string(),
-        nq: model.nq(),
+        layout: if layout.is_some() { "pinocchio" } else { "rigid" },
+        nq: layout.map_or(model.nq(), PinocchioLayout::nq),
         nv: model.nv(),
         joints: model
             .joints()
             .iter()
-            .map(|j| JointInfo {
-                name: j.name.clone(),
-                kind: j.kind.name(),
-                idx_q: j.idx_q,
-                nq: j.nq,
-                idx_v: j.idx_v,
-                nv: j.nv,
+            .enumerate()
+            .map(|(i, j)| {
+                let (idx_q, nq) = layout.map_or((j.idx_q, j.nq), |l| l.joint_q(i));
+                JointInfo {
+                    name: j.name.clone(),
+                    kind: j.kind.name(),
+                    idx_q,
+                    nq,
+                    idx_v: j.idx_v,
+                    nv: j.nv,
+                }
             })
             .collect(),
         gravity: [g.x, g.y, g.z],
@@ -146,7 +216,7 @@ fn model_info(model: &Model) -> ModelInfo {
 }
 
 /// Reads `{"cases": [...]}`, checking every field's type and length against the model.
-fn parse_cases(text: &str, model: &Model) -> Result<Vec<Case>, String> {
+fn parse_cases(text: &str, nq: usize, nv: usize) -> Result<Vec<Case>, String> {
     let root: Value = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
     let list = root
         .get("cases")
@@ -163,10 +233,10 @@ fn parse_cases(text: &str, model: &Model) -> Result<Vec<Case>, String> {
                 .map_err(|e| format!("case {i}: \"{name}\" {e} (expected {dim} = {len})"))
         };
         cases.push(Case {
-            q: field("q", model.nq(), "nq", true)?,
-            v: field("v", model.nv(), "nv", false)?,
-            a: field("a", model.nv(), "nv", false)?,
-            tau: field("tau", model.nv(), "nv", false)?,
+            q: field("q", nq, "nq", true)?,
+            v: field("v", nv, "nv", false)?,
+            a: field("a", nv, "nv", false)?,
+            tau: field("tau", nv, "nv", false)?,
         });
     }
     Ok(cases)

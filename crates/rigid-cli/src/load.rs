@@ -2,7 +2,7 @@
 //! loading options every model command shares (`--floating`, `--inertia`).
 
 use clap::Args;
-use rigid::io::urdf::{self, InertiaPolicy, UrdfOptions};
+use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, Model};
 use std::path::Path;
 
@@ -16,6 +16,9 @@ pub struct LoadArgs {
     /// with a warning, `repair` loads the doctor's repair (see `rigid doctor`).
     #[arg(long, default_value = "warn", value_name = "strict|warn|repair")]
     pub inertia: InertiaPolicy,
+    /// The order of sibling joints (not a flag: `rigid eval --layout pinocchio` sets it).
+    #[arg(skip)]
+    pub sibling_order: SiblingOrder,
 }
 
 impl LoadArgs {
@@ -24,7 +27,7 @@ impl LoadArgs {
         UrdfOptions {
             floating: self.floating,
             inertia: self.inertia,
-            ..UrdfOptions::default()
+            sibling_order: self.sibling_order,
         }
     }
 }

@@ -5,7 +5,9 @@ The reference is Pinocchio 4.1 (`pin`, with `example-robot-data`), installed by 
 """
 
 import glob
+import json
 import os
+import subprocess
 import sys
 import warnings
 
@@ -40,6 +42,13 @@ def robot_path(name):
 def every_urdf():
     """Every URDF file of example-robot-data (found by walking its folder)."""
     return sorted(glob.glob(os.path.join(robots_dir(), "**", "*.urdf"), recursive=True))
+
+
+def cli(*args):
+    """`rigid ARGS --json` of the command-line tool (built by `cargo test --workspace`)."""
+    out = subprocess.run(["cargo", "run", "-q", "-p", "rigid-cli", "--", *args, "--json"],
+                         cwd=ROOT, capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
 
 
 def rel_err(x, ref):

@@ -1,16 +1,14 @@
 """One rigid body from Python: mass properties (file or dict, the keys of `rigid mass --json`),
 the shape helpers, spatial_inertia, simulate_body; and the inertia doctor."""
 
-import json
 import os
-import subprocess
 import tomllib
 
 import numpy as np
 import pytest
 
 import rigid
-from conftest import ROOT, every_urdf
+from conftest import ROOT, cli, every_urdf
 
 COMPOUND = os.path.join(ROOT, "examples", "compound.toml")
 # CONVENTIONS.md, "The command-line contract": the keys of `rigid mass --json`
@@ -144,13 +142,6 @@ def test_doctor_returns_the_json_report_as_dicts(tmp_path):
     assert arm["status"] != "ok" and arm["likely_cause"] == "units_grams"
     fixed_arm = [b for b in rigid.doctor(fixed)["bodies"] if b["name"] == "arm"][0]
     assert fixed_arm["status"] == "ok"
-
-
-def cli(*args):
-    """`rigid ARGS --json` of the command-line tool (built by `cargo test --workspace`)."""
-    out = subprocess.run(["cargo", "run", "-q", "-p", "rigid-cli", "--", *args, "--json"],
-                         cwd=ROOT, capture_output=True, text=True, check=True)
-    return json.loads(out.stdout)
 
 
 def test_mass_properties_and_doctor_equal_the_command_line_json():

@@ -5,6 +5,7 @@ layout they must equal Pinocchio's once mapped joint by joint (by name: rigid ke
 sibling order, angular-first free-flyer blocks and one angle per continuous joint).
 """
 
+import json
 import warnings
 
 import numpy as np
@@ -12,7 +13,7 @@ import pinocchio as pin
 import pytest
 
 import rigid
-from conftest import assert_close, every_urdf, rel_err, symmetric, TOL
+from conftest import assert_close, cli, every_urdf, pair, rel_err, symmetric, TOL
 
 RFS = [("world_aligned", pin.LOCAL_WORLD_ALIGNED), ("body", pin.LOCAL), ("spatial", pin.WORLD)]
 SWAP = [3, 4, 5, 0, 1, 2]  # rigid's Jacobian rows (ω, v) from Pinocchio's (v, ω)
@@ -238,3 +239,25 @@ def test_every_example_robot_data_urdf_layout_pinocchio_equals_pinocchio():
         compared += 1
     assert compared > 40, f"only {compared} files compared"
     assert not failures, "\n".join(failures)
+
+
+@pytest.mark.parametrize("name", ["all_joints_floating", "anymal"])
+def test_cli_eval_layout_pinocchio_reads_and_writes_pinocchio_arrays(name, tmp_path):
+    """`rigid eval --layout pinocchio`: cases and results in Pinocchio's raw layout."""
+    p = pair(name)
+    pm, pd = p.pm, p.pd
+    cases = [dict(q=q.tolist(), v=v.tolist(), a=a.tolist(), tau=t.tolist())
+             for q, v, a, t in p.states]
+    f = tmp_path / "cases.json"
+    f.write_text(json.dumps(dict(cases=cases)))
+    args = ["eval", p.path, "--cases", str(f), "--layout", "pinocchio"]
+    out = cli(*(args + (["--floating"] if p.floating else [])))
+    info = out["model"]
+    assert (info["layout"], info["nq"], info["nv"]) == ("pinocchio", pm.nq, pm.nv)
+    assert [j["name"] for j in info["joints"]] == list(pm.names)[1:]
+    assert [j["idx_q"] for j in info["joints"]] == [pm.joints[i].idx_q for i in range(1, pm.njoints)]
+    for (q, v, a, tau), r in zip(p.states, out["results"]):
+        assert_close(r["rnea"], pin.rnea(pm, pd, q, v, a), "eval rnea")
+        assert_close(r["mass_matrix"], symmetric(pin.crba(pm, pd, q)), "eval mass_matrix")
+        assert_close(r["aba"], pin.aba(pm, pd, q, v, tau), "eval aba")
+        assert_close(r["nonlinear_effects"], pin.nonLinearEffects(pm, pd, q, v), "eval nle")

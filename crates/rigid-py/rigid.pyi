@@ -1,0 +1,279 @@
+"""rigid: rigid-body dynamics from Rust, with Pinocchio's verbs and numpy arrays.
+
+Conventions (rigid's layout, the default; see CONVENTIONS.md):
+
+- SI units: kg, m, s, N, N·m, rad. Every result is a fresh float64 numpy array.
+- Twists and wrenches **angular first**: V = (ω, v), F = (m, f); Jacobian rows (ω, v).
+- Joints depth-first from the root, sibling joints in the order the URDF file lists them.
+- Free-flyer q = (x, y, z, qx, qy, qz, qw) (quaternion **x-y-z-w**), velocity the body twist
+  (ω_b, v_b); spherical q = (qx, qy, qz, qw), velocity ω_b; continuous joint q = θ (one angle);
+  planar q = (x, y, θ), velocity (v_x, v_y, ω).
+
+Pinocchio's layout (``layout="pinocchio"``): the joints in Pinocchio's order (urdfdom sorts
+sibling joints by name), a continuous joint's q = (cos θ, sin θ), a planar joint's
+q = (x, y, cos θ, sin θ), free-flyer velocity, acceleration and force **linear first** (v_b, ω_b),
+Jacobian rows (v, ω). Then q, v, a, τ, M, M⁻¹, C and Jacobians are Pinocchio's raw arrays, with
+no reordering. Everything else (placements, CoM, energies) is the same in both layouts.
+
+Inputs: any array-like of real numbers of the right length (a contiguous float64 numpy array is
+used in place, without a copy). A wrong length or shape is a ValueError naming the argument, the
+expected and the given length; complex numbers, strings and other non-numbers a TypeError; NaN
+or infinity a ValueError; a missing file FileNotFoundError; a malformed URDF a ValueError with
+the line.
+"""
+
+from os import PathLike
+from typing import Any, Literal, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+ArrayLike = npt.ArrayLike
+Vector = npt.NDArray[np.float64]
+Matrix = npt.NDArray[np.float64]
+Path = Union[str, PathLike[str]]
+Layout = Literal["rigid", "pinocchio"]
+Frame = Union[Literal["world_aligned", "body", "spatial", "local_world_aligned", "local",
+                      "world"], Any]
+
+class UrdfWarning(UserWarning):
+    """Something in a URDF file that was tolerated (a non-physical inertia loaded as written, an
+    unknown element, a massless moving link, ...): the message names the element and the line.
+    Filter with ``warnings.simplefilter("ignore", rigid.UrdfWarning)``."""
+
+class Model:
+    """A kinematic tree (Pinocchio's ``Model``): joints depth-first from the root, their
+    placements, the bodies' spatial inertias, limits and gravity. Constant but for ``gravity``."""
+
+    @staticmethod
+    def from_urdf(path: Path, floating: bool = False,
+                  inertia: Literal["strict", "warn", "repair"] = "warn",
+                  layout: Layout = "rigid") -> Model:
+        """Load a URDF file (Pinocchio's ``buildModelFromUrdf``).
+
+        floating: add a free-flyer root joint ``root_joint`` carrying the root link (Pinocchio's
+        ``pin.JointModelFreeFlyer()`` root); otherwise the root link is welded to the world.
+        inertia: non-physical inertias are refused (``strict``), loaded as written with a
+        ``UrdfWarning`` (``warn``), or replaced by the inertia doctor's repair (``repair``).
+        layout: ``"rigid"`` or ``"pinocchio"`` (see the module documentation)."""
+    @staticmethod
+    def builtin(name: Literal["puma560", "puma560_armature", "pendulum", "double_pendulum"],
+                layout: Layout = "rigid") -> Model:
+        """A built-in model: the standard-DH PUMA 560 of the Robotics Toolbox (with rotor inertia
+        ``Jm G²`` for ``puma560_armature``), a pendulum, a double pendulum."""
+    def create_data(self) -> Data:
+        """A new workspace for this model (Pinocchio's ``model.createData()``)."""
+    def createData(self) -> Data:
+        """Alias of ``create_data`` (Pinocchio's name)."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def nq(self) -> int:
+        """Number of configuration coordinates, in this model's layout."""
+    @property
+    def nv(self) -> int:
+        """Number of degrees of freedom (the length of v, a, τ)."""
+    @property
+    def njoints(self) -> int:
+        """Number of moving joints (Pinocchio's ``njoints - 1``: rigid has no "universe")."""
+    @property
+    def layout(self) -> Layout: ...
+    @property
+    def names(self) -> list[str]:
+        """The moving joints' names in order (Pinocchio's ``model.names[1:]``)."""
+    @property
+    def joint_types(self) -> list[str]:
+        """Each joint's type: revolute, continuous, prismatic, spherical, free_flyer, planar."""
+    @property
+    def idx_qs(self) -> list[int]:
+        """First index of each joint's coordinates in q (this layout; Pinocchio's
+        ``idx_qs[1:]``)."""
+    @property
+    def nqs(self) -> list[int]: ...
+    @property
+    def idx_vs(self) -> list[int]:
+        """First index of each joint's coordinates in v (Pinocchio's ``idx_vs[1:]``)."""
+    @property
+    def nvs(self) -> list[int]: ...
+    @property
+    def frame_names(self) -> list[str]:
+        """The named frames: URDF links, fixed joints, operational frames."""
+    @property
+    def total_mass(self) -> float:
+        """Mass of the moving bodies (kg); links welded to the world are left out."""
+    @property
+    def warnings(self) -> list[str]:
+        """The URDF loader's warnings (each also issued as a ``UrdfWarning``)."""
+    @property
+    def gravity(self) -> Vector:
+        """Gravity in the world frame, m/s², default [0, 0, -9.81] (Pinocchio's
+        ``model.gravity.linear``). Settable: ``model.gravity = [0, 0, -1.62]``."""
+    @gravity.setter
+    def gravity(self, g: ArrayLike) -> None: ...
+
+class Data:
+    """The workspace of the algorithms for one model (Pinocchio's ``Data``), allocated once."""
+
+    def __init__(self, model: Model) -> None:
+        """A workspace for ``model`` (Pinocchio's ``pin.Data(model)``)."""
+    def placement(self, name: str) -> tuple[Matrix, Vector]:
+        """World pose ``(R, p)`` of a joint's frame (as moved by the joint; Pinocchio's
+        ``data.oMi[model.getJointId(name)]``) or of a named frame (a link, a fixed joint;
+        Pinocchio's ``data.oMf[model.getFrameId(name)]``), from the last ``forward_kinematics``:
+        R (3, 3) a rotation, p (3,) in m, ``x_world = R x_frame + p``. A joint name is looked up
+        first, then the frames."""
+
+def rnea(model: Model, data: Data, q: ArrayLike, v: ArrayLike, a: ArrayLike) -> Vector:
+    """Inverse dynamics ``τ = M(q) a + C(q, v) v + g(q)`` (N·m or N, length nv) by the recursive
+    Newton-Euler algorithm (Featherstone 2008, Table 5.1). Pinocchio: ``rnea``."""
+
+def aba(model: Model, data: Data, q: ArrayLike, v: ArrayLike, tau: ArrayLike) -> Vector:
+    """Forward dynamics ``a = M(q)⁻¹ (τ - C(q, v) v - g(q))`` by the articulated-body algorithm
+    (Featherstone 2008, Table 7.1). A singular M is a ValueError. Pinocchio: ``aba``."""
+
+def crba(model: Model, data: Data, q: ArrayLike) -> Matrix:
+    """The joint-space mass matrix ``M(q)`` (nv, nv), full and symmetric, armature on the
+    diagonal, by the composite rigid-body algorithm (Featherstone 2008, Table 6.2). Pinocchio:
+    ``crba`` (which fills the upper triangle only)."""
+
+def nle(model: Model, data: Data, q: ArrayLike, v: ArrayLike) -> Vector:
+    """Nonlinear effects ``b = C(q, v) v + g(q) = rnea(q, v, 0)``. Pinocchio:
+    ``nonLinearEffects``."""
+
+def gravity(model: Model, data: Data, q: ArrayLike) -> Vector:
+    """Generalised gravity ``g(q) = rnea(q, 0, 0)``. Pinocchio: ``computeGeneralizedGravity``."""
+
+def minverse(model: Model, data: Data, q: ArrayLike) -> Matrix:
+    """``M(q)⁻¹`` (nv, nv), full and symmetric, by the articulated-body method (Carpentier &
+    Mansard 2018). Pinocchio: ``computeMinverse`` (upper triangle only)."""
+
+def coriolis_matrix(model: Model, data: Data, q: ArrayLike, v: ArrayLike) -> Matrix:
+    """The Coriolis matrix ``C(q, v)`` (nv, nv) with ``C v`` the Coriolis and centrifugal
+    torques and ``Ṁ - 2C`` skew-symmetric (Christoffel symbols; Lynch & Park §8.1.2).
+    Pinocchio: ``computeCoriolisMatrix``."""
+
+def forward_kinematics(model: Model, data: Data, q: ArrayLike, v: ArrayLike | None = None,
+                       a: ArrayLike | None = None) -> None:
+    """World pose of every joint frame ``oMi = oM_parent X_T X_J(q)`` (then
+    ``data.placement(name)``), with v (and a) the body twists (and accelerations) too.
+    Pinocchio: ``forwardKinematics``."""
+
+def jacobian(model: Model, data: Data, q: ArrayLike, name: str,
+             frame: Frame = "world_aligned") -> Matrix:
+    """The Jacobian (6, nv) of a joint's frame or a named frame, ``V = J v``:
+    ``"world_aligned"`` (ω and the velocity of the frame's origin, world axes; Pinocchio's
+    LOCAL_WORLD_ALIGNED), ``"body"`` (the body twist; LOCAL) or ``"spatial"`` (the spatial
+    twist, world frame; WORLD). ``pin.ReferenceFrame`` values are accepted too. Rows (ω, v) in
+    rigid's layout, (v, ω) in Pinocchio's. Pinocchio: ``computeFrameJacobian`` /
+    ``getJointJacobian``."""
+
+def com(model: Model, data: Data, q: ArrayLike) -> Vector:
+    """Centre of mass of the moving bodies in the world, ``Σ mᵢ cᵢ / Σ mᵢ`` (m, shape (3,)).
+    Pinocchio: ``centerOfMass``."""
+
+def kinetic_energy(model: Model, data: Data, q: ArrayLike, v: ArrayLike) -> float:
+    """``K = ½ vᵀ M(q) v`` (J). Pinocchio: ``computeKineticEnergy``."""
+
+def potential_energy(model: Model, data: Data, q: ArrayLike) -> float:
+    """``U = -Σ mᵢ gᵀ cᵢ`` (J, zero at the world origin). Pinocchio:
+    ``computePotentialEnergy``."""
+
+def neutral(model: Model) -> Vector:
+    """The neutral configuration: zeros, identity quaternions (and (1, 0) cos/sin pairs in
+    Pinocchio's layout). Pinocchio: ``neutral``."""
+
+def random_configuration(model: Model) -> Vector:
+    """A random configuration within the position limits (angles in [-π, π] and translations in
+    [-1, 1] m where a limit is infinite; quaternions uniform on SO(3)). Pinocchio:
+    ``randomConfiguration`` (a different generator: the numbers differ)."""
+
+def seed(seed: int) -> None:
+    """Seed the generator of ``random_configuration``. Pinocchio: ``pin.seed``."""
+
+def integrate(model: Model, q: ArrayLike, v: ArrayLike) -> Vector:
+    """``q ⊕ v``: the configuration reached from q moving with the constant velocity v for 1 s,
+    joint by joint on each joint's Lie group (SE(3) exponential for a free-flyer). Pinocchio:
+    ``integrate`` (in Pinocchio's layout also its quaternion signs)."""
+
+def difference(model: Model, q0: ArrayLike, q1: ArrayLike) -> Vector:
+    """``q1 ⊖ q0``: the velocity v with ``integrate(q0, v) = q1``. Rigid's layout does not wrap
+    angles (θ1 - θ0); Pinocchio's takes the shortest way round. Pinocchio: ``difference``."""
+
+def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike) -> Matrix:
+    """``rnea`` for every row: Q (N, nq), V and A (N, nv) → τ (N, nv), on every core with the GIL
+    released; each row equals the single call bit for bit. Not in Pinocchio's Python."""
+
+def aba_batch(model: Model, Q: ArrayLike, V: ArrayLike, TAU: ArrayLike) -> Matrix:
+    """``aba`` for every row: (N, nv) accelerations, on every core, GIL released."""
+
+def crba_batch(model: Model, Q: ArrayLike) -> npt.NDArray[np.float64]:
+    """``crba`` for every row: (N, nv, nv) mass matrices, on every core, GIL released."""
+
+Spec = Union[Path, dict[str, Any], Sequence[dict[str, Any]]]
+
+def mass_properties(spec: Spec) -> dict[str, Any]:
+    """Mass properties of a body made of parts: a ``rigid mass`` TOML spec file, the same
+    structure as a dict ``{"part": [{...}, ...]}``, a list of parts or one part (see the shape
+    helpers). Returns the keys of ``rigid mass --json``: ``mass`` (kg), ``com`` (3,) (m),
+    ``inertia_com`` and ``inertia_origin`` (3, 3) (kg·m², spec-frame axes, about the CoM and the
+    origin), ``principal_moments`` (ascending) and ``principal_axes`` (columns),
+    ``spatial_inertia_origin`` (6, 6) (angular first), ``valid`` and ``validity_error``."""
+
+def box(size: ArrayLike, **options: Any) -> dict[str, Any]:
+    """A part: a box of edge lengths [lx, ly, lz] (m) centred on its frame. Options: ``mass``
+    (kg) or ``density`` (kg/m³), ``position`` [x, y, z] (m), ``rpy`` [r, p, y] (rad, URDF's
+    fixed axes) or ``quaternion`` [x, y, z, w], ``name``. Checked when made."""
+def cylinder(radius: float, length: float, **options: Any) -> dict[str, Any]:
+    """A part: a solid cylinder, axis along z, centred (``I_zz = ½ m r²``)."""
+def sphere(radius: float, **options: Any) -> dict[str, Any]:
+    """A part: a solid ball (``I = ⅖ m r²``)."""
+def ellipsoid(semi_axes: ArrayLike, **options: Any) -> dict[str, Any]:
+    """A part: a solid ellipsoid of semi-axes [a, b, c]."""
+def capsule(radius: float, length: float, **options: Any) -> dict[str, Any]:
+    """A part: a cylinder of radius and length along z capped by two hemispheres."""
+def cone(radius: float, height: float, **options: Any) -> dict[str, Any]:
+    """A part: a solid cone, axis z, origin at its centroid (base at z = -h/4)."""
+def rod(length: float, **options: Any) -> dict[str, Any]:
+    """A part: a thin rod along z (give a mass)."""
+def point(**options: Any) -> dict[str, Any]:
+    """A part: a point mass (give a mass)."""
+def mesh(file: Path, **options: Any) -> dict[str, Any]:
+    """A part: a closed triangle mesh (STL or OBJ) of uniform density, in its own coordinates."""
+
+def spatial_inertia(mass: float, com: ArrayLike | None = None,
+                    inertia: ArrayLike | None = None) -> Matrix:
+    """The spatial inertia ``G`` (6, 6) about the frame's origin, angular first:
+    ``[[I_c + m[c]ᵀ[c], m[c]], [m[c]ᵀ, m 1]]`` for a mass (kg), a CoM c (m) and an inertia I_c
+    (3, 3) about the CoM (kg·m²). Pinocchio: ``pin.Inertia(mass, c, I_c).matrix()`` with the
+    blocks swapped (Pinocchio is linear first)."""
+
+def simulate_body(spec: Spec, omega: ArrayLike | None = None, velocity: ArrayLike | None = None,
+                  gravity: ArrayLike | None = None, pivot: ArrayLike | None = None,
+                  duration: float = 10.0, dt: float = 1e-3,
+                  integrator: Literal["variational", "rk4"] = "variational") -> dict[str, Vector]:
+    """One rigid body (a spec, as for ``mass_properties``), free or on a spherical pivot (a point
+    of the spec frame fixed at the world origin), integrated on SE(3) (``rigid simulate``):
+    initial body angular velocity ``omega`` (rad/s) and CoM velocity ``velocity`` (m/s), spec-frame
+    axes; world ``gravity`` (m/s², none by default). Returns arrays of N + 1 rows: ``t`` (s),
+    ``position`` (N+1, 3) and ``quaternion`` (N+1, 4, x-y-z-w) of the frame at the CoM with the
+    spec frame's axes, its body twist ``omega`` and ``velocity`` (N+1, 3), and the total
+    ``energy`` (J)."""
+
+def doctor(path: Path, fix: Path | None = None) -> dict[str, Any]:
+    """The inertia doctor of a URDF file: the structure of ``rigid doctor --json``
+    (``{"robot", "bodies": [{"name", "line", "status", "findings", "likely_cause",
+    "explanation", "repair", ...}]}``). With ``fix``, writes a copy of the file in which the
+    ``<inertial>`` blocks that needed a repair are replaced."""
+
+# Pinocchio's names of the verbs with the same signature.
+nonLinearEffects = nle
+computeGeneralizedGravity = gravity
+computeMinverse = minverse
+computeCoriolisMatrix = coriolis_matrix
+forwardKinematics = forward_kinematics
+centerOfMass = com
+computeKineticEnergy = kinetic_energy
+computePotentialEnergy = potential_energy
+randomConfiguration = random_configuration
