@@ -34,6 +34,10 @@ const PINOCCHIO_ALIASES: [(&str, &str); 9] = [
     ("randomConfiguration", "random_configuration"),
 ];
 
+/// rigid: rigid-body dynamics (RNEA, CRBA, ABA, Jacobians, mass properties) with Pinocchio's
+/// verbs and numpy arrays. SI units; twists angular first; quaternions x-y-z-w; joints
+/// depth-first. `layout="pinocchio"` models read and write Pinocchio's raw arrays. See the stubs
+/// (`rigid.pyi`) for every verb's formula, units and conventions.
 #[pymodule]
 #[pyo3(name = "rigid")]
 fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
