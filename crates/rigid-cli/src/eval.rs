@@ -192,7 +192,11 @@ fn model_info(model: &Model, layout: Option<&PinocchioLayout>) -> ModelInfo {
     let g = model.gravity();
     ModelInfo {
         name: model.name().to_string(),
-        layout: if layout.is_some() { "pinocchio" } else { "rigid" },
+        layout: if layout.is_some() {
+            "pinocchio"
+        } else {
+            "rigid"
+        },
         nq: layout.map_or(model.nq(), PinocchioLayout::nq),
         nv: model.nv(),
         joints: model

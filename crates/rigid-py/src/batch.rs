@@ -143,7 +143,17 @@ pub fn rnea_batch<'py>(
     v: &Bound<'py, PyAny>,
     a: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    qvx_batch(py, &model, "rnea_batch", ["V", "A"], q, v, a, batch::rnea_batch, mb::rnea)
+    qvx_batch(
+        py,
+        &model,
+        "rnea_batch",
+        ["V", "A"],
+        q,
+        v,
+        a,
+        batch::rnea_batch,
+        mb::rnea,
+    )
 }
 
 /// Forward dynamics for every row: `DDQ[k] = aba(Q[k], V[k], TAU[k])`, an `(N, nv)` array.
@@ -156,7 +166,17 @@ pub fn aba_batch<'py>(
     v: &Bound<'py, PyAny>,
     tau: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    qvx_batch(py, &model, "aba_batch", ["V", "TAU"], q, v, tau, batch::aba_batch, mb::aba)
+    qvx_batch(
+        py,
+        &model,
+        "aba_batch",
+        ["V", "TAU"],
+        q,
+        v,
+        tau,
+        batch::aba_batch,
+        mb::aba,
+    )
 }
 
 /// The mass matrix for every row: `M[k] = crba(Q[k])`, an `(N, nv, nv)` array.
@@ -173,7 +193,9 @@ pub fn crba_batch<'py>(
     let mut out = vec![0.0; n * nv * nv];
     py.detach(|| batch::crba_batch(&core.model, &qs, &mut out))
         .map_err(|e| {
-            state_error(core, F, e, &qs, |d, _, q| mb::crba(&core.model, d, q).map(|_| ()))
+            state_error(core, F, e, &qs, |d, _, q| {
+                mb::crba(&core.model, d, q).map(|_| ())
+            })
         })?;
     if core.convert_v {
         // M_pin[r][c] = M[p(r)][p(c)] in every state (M symmetric: column-major = row-major)

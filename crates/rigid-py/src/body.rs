@@ -132,10 +132,7 @@ pub fn mass_properties<'py>(
     d.set_item("inertia_origin", mat3(py, p.inertia_origin.matrix()))?;
     d.set_item("principal_moments", vec3_array(py, &p.principal_moments))?;
     d.set_item("principal_axes", mat3(py, &p.principal_axes))?;
-    d.set_item(
-        "spatial_inertia_origin",
-        array2(py, 6, 6, |r, c| g[(r, c)]),
-    )?;
+    d.set_item("spatial_inertia_origin", array2(py, 6, 6, |r, c| g[(r, c)]))?;
     d.set_item("valid", validity.is_ok())?;
     d.set_item("validity_error", validity.err().map(|e| e.to_string()))?;
     Ok(d)
@@ -230,7 +227,10 @@ pub fn spatial_inertia<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     const F: &str = "spatial_inertia";
     if !(mass.is_finite() && mass >= 0.0) {
-        return Err(value_error(F, format!("mass must be finite and >= 0, got {mass}")));
+        return Err(value_error(
+            F,
+            format!("mass must be finite and >= 0, got {mass}"),
+        ));
     }
     let c = com.map_or(Ok(Vec3::zeros()), |c| vec3(c, F, "com"))?;
     let i = match inertia {
@@ -240,9 +240,12 @@ pub fn spatial_inertia<'py>(
                 .call_method0("tolist")
                 .unwrap_or_else(|_| x.clone())
                 .extract()
-                .map_err(|_| PyTypeError::new_err(format!("{F}: inertia must be a 3 x 3 matrix")))?;
+                .map_err(|_| {
+                    PyTypeError::new_err(format!("{F}: inertia must be a 3 x 3 matrix"))
+                })?;
             let m = Mat3::from_fn(|r, c| rows[r][c]);
-            RotationalInertia::from_matrix(&m).map_err(|e| value_error(F, format!("inertia: {e}")))?
+            RotationalInertia::from_matrix(&m)
+                .map_err(|e| value_error(F, format!("inertia: {e}")))?
         }
     };
     let g = SpatialInertia::from_com(mass, c, i).matrix();
@@ -266,28 +269,51 @@ pub fn simulate_body<'py>(
     integrator: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     const F: &str = "simulate_body";
-    let opt = |x: Option<&Bound<'py, PyAny>>, name| x.map_or(Ok(Vec3::zeros()), |x| vec3(x, F, name));
-    let (w0, v0, g) = (opt(omega, "omega")?, opt(velocity, "velocity")?, opt(gravity, "gravity")?);
+    let opt =
+        |x: Option<&Bound<'py, PyAny>>, name| x.map_or(Ok(Vec3::zeros()), |x| vec3(x, F, name));
+    let (w0, v0, g) = (
+        opt(omega, "omega")?,
+        opt(velocity, "velocity")?,
+        opt(gravity, "gravity")?,
+    );
     let pivot = pivot.map(|p| vec3(p, F, "pivot")).transpose()?;
     let integrator: Integrator = integrator.parse().map_err(|e| value_error(F, e))?;
     if !(dt.is_finite() && dt > 0.0 && duration.is_finite() && duration > 0.0) {
-        return Err(value_error(F, format!("dt and duration must be positive and finite, got {dt} and {duration}")));
+        return Err(value_error(
+            F,
+            format!("dt and duration must be positive and finite, got {dt} and {duration}"),
+        ));
     }
     let steps = (duration / dt).round().max(1.0);
     if steps > 1e8 {
-        return Err(value_error(F, format!("{steps:.0} steps is too many (at most 1e8): raise dt")));
+        return Err(value_error(
+            F,
+            format!("{steps:.0} steps is too many (at most 1e8): raise dt"),
+        ));
     }
     let p = properties(F, &compound(F, spec)?)?;
     let err = |e: rigid::body::BodyError| value_error(F, e);
     // integrated in a frame {b} with the spec frame's axes, at the CoM (free) or at the pivot
     let (body, r) = match pivot {
-        None => (RigidBody::free(SpatialInertia::from_com(p.mass, Vec3::zeros(), p.inertia_com)), Vec3::zeros()),
+        None => (
+            RigidBody::free(SpatialInertia::from_com(
+                p.mass,
+                Vec3::zeros(),
+                p.inertia_com,
+            )),
+            Vec3::zeros(),
+        ),
         Some(o) => {
             if v0 != Vec3::zeros() {
-                return Err(PyValueError::new_err(format!("{F}: velocity must be zero on a pivot")));
+                return Err(PyValueError::new_err(format!(
+                    "{F}: velocity must be zero on a pivot"
+                )));
             }
             let r = p.com - o;
-            (RigidBody::pivot(SpatialInertia::from_com(p.mass, r, p.inertia_com)), r)
+            (
+                RigidBody::pivot(SpatialInertia::from_com(p.mass, r, p.inertia_com)),
+                r,
+            )
         }
     };
     let body = body.and_then(|b| b.with_gravity(g)).map_err(err)?;
@@ -352,9 +378,8 @@ pub fn doctor<'py>(
     if let Some(out) = fix {
         let text = std::fs::read_to_string(&path)
             .map_err(|e| io_error(&e, format!("doctor: {shown}: {e}")))?;
-        std::fs::write(&out, fixed_urdf(&text, &robot, &report)).map_err(|e| {
-            io_error(&e, format!("doctor: cannot write {}: {e}", out.display()))
-        })?;
+        std::fs::write(&out, fixed_urdf(&text, &robot, &report))
+            .map_err(|e| io_error(&e, format!("doctor: cannot write {}: {e}", out.display())))?;
     }
     let json = serde_json::to_string(&report).map_err(|e| value_error("doctor", e))?;
     py.import("json")?.call_method1("loads", (json,))

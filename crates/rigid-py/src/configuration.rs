@@ -14,7 +14,8 @@ static RNG: Mutex<Option<Rng>> = Mutex::new(None);
 /// Seed the generator of `random_configuration` (Pinocchio's `pin.seed`).
 #[pyfunction]
 pub fn seed(seed: u64) {
-    *RNG.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(Rng::new(seed));
+    *RNG.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner) = Some(Rng::new(seed));
 }
 
 /// The neutral configuration: zeros, identity quaternions (and `(cos 0, sin 0) = (1, 0)` in
@@ -34,7 +35,9 @@ pub fn random_configuration<'py>(
 ) -> Bound<'py, PyArray1<f64>> {
     let core = &model.inner;
     let q = {
-        let mut rng = RNG.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut rng = RNG
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
         let rng = rng.get_or_insert_with(|| {
             // not seeded: from the clock, as Pinocchio without `pin.seed`
             let t = std::time::SystemTime::now()

@@ -3,8 +3,7 @@
 //! rigid's errors as Python exceptions.
 
 use numpy::{
-    PyArray1, PyArray2, PyArrayDescrMethods, PyArrayMethods, PyUntypedArray,
-    PyUntypedArrayMethods,
+    PyArray1, PyArray2, PyArrayDescrMethods, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -120,7 +119,13 @@ pub fn vector<'py>(
     Ok(Vector::Owned(v))
 }
 
-fn vector_slow(x: &Bound<'_, PyAny>, func: &str, name: &str, what: &str, n: usize) -> PyResult<Vec<f64>> {
+fn vector_slow(
+    x: &Bound<'_, PyAny>,
+    func: &str,
+    name: &str,
+    what: &str,
+    n: usize,
+) -> PyResult<Vec<f64>> {
     if let Ok(a) = x.cast::<PyUntypedArray>() {
         check_real(func, name, a)?;
         let shape = a.shape().to_vec();
@@ -232,7 +237,12 @@ pub fn array2<'py>(
 }
 
 /// A fresh float64 array of `rows` rows of `cols` numbers from a row-major vector.
-pub fn rows_array(py: Python<'_>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'_, PyArray2<f64>>> {
+pub fn rows_array(
+    py: Python<'_>,
+    data: Vec<f64>,
+    rows: usize,
+    cols: usize,
+) -> PyResult<Bound<'_, PyArray2<f64>>> {
     Ok(PyArray1::from_vec(py, data).reshape([rows, cols])?)
 }
 
@@ -254,7 +264,9 @@ pub fn vec3(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<rigid::spa
     let v = vector(x, func, name, "3", 3)?;
     let s = v.as_slice();
     if let Some(i) = s.iter().position(|x| !x.is_finite()) {
-        return Err(PyValueError::new_err(format!("{func}: {name}[{i}] is not finite")));
+        return Err(PyValueError::new_err(format!(
+            "{func}: {name}[{i}] is not finite"
+        )));
     }
     Ok(rigid::spatial::Vec3::new(s[0], s[1], s[2]))
 }

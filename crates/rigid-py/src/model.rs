@@ -45,11 +45,7 @@ pub struct ModelCore {
 static NEXT_ID: AtomicU64 = AtomicU64::new(0);
 
 impl ModelCore {
-    fn new(
-        model: rigid::multibody::Model,
-        pinocchio: bool,
-        warnings: Vec<String>,
-    ) -> Self {
+    fn new(model: rigid::multibody::Model, pinocchio: bool, warnings: Vec<String>) -> Self {
         let layout = pinocchio.then(|| PinocchioLayout::new(&model));
         let convert_q = layout.as_ref().is_some_and(|l| l.nq() != model.nq());
         let convert_v = layout
@@ -67,7 +63,9 @@ impl ModelCore {
 
     /// The length of `q` in this model's layout.
     pub fn nq(&self) -> usize {
-        self.layout.as_ref().map_or(self.model.nq(), PinocchioLayout::nq)
+        self.layout
+            .as_ref()
+            .map_or(self.model.nq(), PinocchioLayout::nq)
     }
 
     /// The length of `v`.
@@ -114,7 +112,10 @@ impl ModelCore {
             Some(l) if self.convert_v => {
                 let v = x.as_slice();
                 if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-                    return Err(convert::value_error(func, format!("{name}[{i}] is not finite")));
+                    return Err(convert::value_error(
+                        func,
+                        format!("{name}[{i}] is not finite"),
+                    ));
                 }
                 buf.resize(self.nv(), 0.0);
                 l.permute_v(v, buf);
@@ -163,7 +164,9 @@ impl ModelCore {
         m: &nalgebra::DMatrix<f64>,
     ) -> Bound<'py, PyArray2<f64>> {
         let n = m.nrows();
-        array2(py, n, m.ncols(), |r, c| m[(self.v_index(r), self.v_index(c))])
+        array2(py, n, m.ncols(), |r, c| {
+            m[(self.v_index(r), self.v_index(c))]
+        })
     }
 
     /// A `6 × nv` Jacobian as a fresh array: rows `(ω, v)` in rigid's layout, `(v, ω)` and
@@ -173,7 +176,13 @@ impl ModelCore {
         py: Python<'py>,
         j: &nalgebra::DMatrix<f64>,
     ) -> Bound<'py, PyArray2<f64>> {
-        let row = |r: usize| if self.layout.is_some() { (r + 3) % 6 } else { r };
+        let row = |r: usize| {
+            if self.layout.is_some() {
+                (r + 3) % 6
+            } else {
+                r
+            }
+        };
         array2(py, 6, j.ncols(), |r, c| j[(row(r), self.v_index(c))])
     }
 
@@ -351,7 +360,12 @@ impl Model {
     /// `planar`.
     #[getter]
     fn joint_types(&self) -> Vec<&'static str> {
-        self.inner.model.joints().iter().map(|j| j.kind.name()).collect()
+        self.inner
+            .model
+            .joints()
+            .iter()
+            .map(|j| j.kind.name())
+            .collect()
     }
 
     /// First index of each joint's coordinates in `q` (this layout).
@@ -503,7 +517,10 @@ impl Data {
         };
         let r = &t.rotation;
         let p = &t.translation;
-        Ok((array2(py, 3, 3, |i, j| r[(i, j)]), array1(py, &[p.x, p.y, p.z])))
+        Ok((
+            array2(py, 3, 3, |i, j| r[(i, j)]),
+            array1(py, &[p.x, p.y, p.z]),
+        ))
     }
 
     fn __repr__(&self) -> String {

@@ -58,7 +58,9 @@ pub enum LayoutError {
         index: usize,
     },
     /// A `(cos θ, sin θ)` pair that is not on the unit circle.
-    #[error("joint '{joint}': (cos θ, sin θ) = ({cos}, {sin}) has norm {norm}, not 1 (tolerance 1e-6)")]
+    #[error(
+        "joint '{joint}': (cos θ, sin θ) = ({cos}, {sin}) has norm {norm}, not 1 (tolerance 1e-6)"
+    )]
     NotUnitCosSin {
         /// The joint.
         joint: String,
