@@ -301,3 +301,109 @@ impl PinocchioLayout {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::urdf::{load_urdf_with, SiblingOrder, UrdfOptions};
+    use crate::multibody::{integrate, random_configuration, Rng};
+
+    /// The fixture with every joint type (continuous, planar, a free-flyer below the root).
+    fn all_joints() -> Model {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/pinocchio/all_joints.urdf"
+        );
+        let opts = UrdfOptions {
+            floating: true,
+            sibling_order: SiblingOrder::Name,
+            ..UrdfOptions::default()
+        };
+        load_urdf_with(path, &opts).unwrap().0
+    }
+
+    #[test]
+    fn configurations_survive_the_round_trip_through_pinocchio_layout() {
+        let model = all_joints();
+        let l = PinocchioLayout::new(&model);
+        assert!(!l.is_identity());
+        assert_eq!(l.nq(), model.nq() + 2); // one continuous, one planar joint
+        let mut rng = Rng::new(3);
+        for _ in 0..20 {
+            let q = random_configuration(&model, &mut rng);
+            let mut q_pin = vec![0.0; l.nq()];
+            l.q_to_pinocchio(&q, &mut q_pin);
+            let mut back = vec![0.0; model.nq()];
+            l.q_from_pinocchio(&q_pin, &mut back).unwrap();
+            for (a, b) in q.iter().zip(&back) {
+                assert!((a - b).abs() < 1e-14, "{a} != {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn velocity_map_swaps_each_free_flyer_half_and_is_its_own_inverse() {
+        let model = all_joints();
+        let l = PinocchioLayout::new(&model);
+        let v: Vec<f64> = (0..model.nv()).map(|k| k as f64).collect();
+        let (mut p, mut back) = (vec![0.0; v.len()], vec![0.0; v.len()]);
+        l.permute_v(&v, &mut p);
+        l.permute_v(&p, &mut back);
+        assert_eq!(back, v);
+        let root = &model.joints()[0];
+        assert_eq!(root.kind, JointType::FreeFlyer);
+        assert_eq!(&p[..6], &[3.0, 4.0, 5.0, 0.0, 1.0, 2.0]);
+    }
+
+    #[test]
+    fn bad_pinocchio_configurations_are_errors_naming_the_joint_or_index() {
+        let model = all_joints();
+        let l = PinocchioLayout::new(&model);
+        let mut q_pin = vec![0.0; l.nq()];
+        l.q_to_pinocchio(&crate::multibody::neutral(&model), &mut q_pin);
+        let mut q = vec![0.0; model.nq()];
+        let short = l.q_from_pinocchio(&q_pin[1..], &mut q).unwrap_err();
+        assert!(matches!(short, LayoutError::Dimension(_)));
+        let mut nan = q_pin.clone();
+        nan[4] = f64::NAN;
+        let e = l.q_from_pinocchio(&nan, &mut q).unwrap_err();
+        assert_eq!(
+            e,
+            LayoutError::NonFinite {
+                what: "q",
+                index: 4
+            }
+        );
+        let (k, _) = l.joint_q(model.joint_id("a_wheel").unwrap().0);
+        q_pin[k] = 2.0;
+        let e = l.q_from_pinocchio(&q_pin, &mut q).unwrap_err().to_string();
+        assert!(e.contains("a_wheel") && e.contains("norm 2"), "{e}");
+    }
+
+    #[test]
+    fn nearest_angles_take_the_short_way_round() {
+        let model = all_joints();
+        let l = PinocchioLayout::new(&model);
+        let i = model.joints()[model.joint_id("a_wheel").unwrap().0].idx_q;
+        let q0 = crate::multibody::neutral(&model);
+        let mut q1 = q0.clone();
+        q1[i] = 3.0 * std::f64::consts::PI / 2.0;
+        l.nearest_angles(&q0, &mut q1);
+        assert!((q1[i] + std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn free_flyer_quaternions_keep_the_hemisphere_of_the_start() {
+        let model = all_joints();
+        let l = PinocchioLayout::new(&model);
+        let mut q = crate::multibody::neutral(&model);
+        q[3..7].copy_from_slice(&[0.0, 0.0, 0.0, -1.0]); // w < 0: rigid's integrate flips it
+        let mut v = vec![0.0; model.nv()];
+        v[2] = 0.1;
+        let mut out = vec![0.0; model.nq()];
+        integrate(&model, &q, &v, 1.0, &mut out).unwrap();
+        assert!(out[6] > 0.0);
+        l.integrate_signs(&q, &v, 1.0, &mut out);
+        assert!(out[6] < 0.0 && (out[5] + (0.05f64).sin()).abs() < 1e-15);
+    }
+}
