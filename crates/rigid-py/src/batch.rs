@@ -9,15 +9,6 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rigid::multibody::{self as mb, batch, Data};
 
-/// `rnea` and `aba`: `(q, v, x) ↦ nv-vector`.
-type QvxFn = for<'a> fn(
-    &mb::Model,
-    &'a mut Data,
-    &[f64],
-    &[f64],
-    &[f64],
-) -> Result<&'a nalgebra::DVector<f64>, mb::MultibodyError>;
-
 /// The states in rigid's layout: the caller's rows, or converted rows.
 fn q_rows(core: &ModelCore, func: &str, name: &str, x: &Matrix<'_>) -> PyResult<Vec<f64>> {
     let (nq, nq_r) = (core.nq(), core.model.nq());
@@ -105,28 +96,50 @@ fn state_error(
     value_error(func, e)
 }
 
-/// `(q, v, x) ↦ nv-vector` over the rows, for `rnea_batch` and `aba_batch`.
+/// The two `(q, v, x) ↦ nv-vector` verbs.
+#[derive(Clone, Copy)]
+enum Qvx {
+    Rnea,
+    Aba,
+}
+
+impl Qvx {
+    fn batch(self, m: &mb::Model, q: &[f64], v: &[f64], x: &[f64], out: &mut [f64]) -> MbResult {
+        match self {
+            Self::Rnea => batch::rnea_batch(m, q, v, x, out),
+            Self::Aba => batch::aba_batch(m, q, v, x, out),
+        }
+    }
+
+    fn single(self, m: &mb::Model, d: &mut Data, q: &[f64], v: &[f64], x: &[f64]) -> MbResult {
+        match self {
+            Self::Rnea => mb::rnea(m, d, q, v, x).map(|_| ()),
+            Self::Aba => mb::aba(m, d, q, v, x).map(|_| ()),
+        }
+    }
+}
+
+type MbResult = Result<(), mb::MultibodyError>;
+
+/// `f(Q[k], V[k], X[k])` for every row `k` (`args`: the names and values of `V` and `X`).
 fn qvx_batch<'py>(
-    py: Python<'py>,
     model: &Model,
     func: &'static str,
-    names: [&str; 2],
+    f: Qvx,
     q: &Bound<'py, PyAny>,
-    v: &Bound<'py, PyAny>,
-    x: &Bound<'py, PyAny>,
-    f: fn(&mb::Model, &[f64], &[f64], &[f64], &mut [f64]) -> Result<(), mb::MultibodyError>,
-    single: QvxFn,
+    args: [(&str, &Bound<'py, PyAny>); 2],
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let py = q.py();
     let core = &*model.inner;
-    let (n, qs, vx) = inputs(core, func, q, &[(names[0], v), (names[1], x)])?;
+    let (n, qs, vx) = inputs(core, func, q, &args)?;
     let nv = core.nv();
     let mut out = vec![0.0; n * nv];
     let (vs, xs) = (&vx[0], &vx[1]);
-    py.detach(|| f(&core.model, &qs, vs, xs, &mut out))
+    py.detach(|| f.batch(&core.model, &qs, vs, xs, &mut out))
         .map_err(|e| {
             state_error(core, func, e, &qs, |d, k, q| {
                 let r = k * nv..(k + 1) * nv;
-                single(&core.model, d, q, &vs[r.clone()], &xs[r]).map(|_| ())
+                f.single(&core.model, d, q, &vs[r.clone()], &xs[r])
             })
         })?;
     permute_rows(core, &mut out);
@@ -135,48 +148,24 @@ fn qvx_batch<'py>(
 
 /// Inverse dynamics for every row: `TAU[k] = rnea(Q[k], V[k], A[k])`, an `(N, nv)` array.
 #[pyfunction]
-#[pyo3(name = "rnea_batch")]
 pub fn rnea_batch<'py>(
-    py: Python<'py>,
     model: PyRef<'py, Model>,
     q: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
     a: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    qvx_batch(
-        py,
-        &model,
-        "rnea_batch",
-        ["V", "A"],
-        q,
-        v,
-        a,
-        batch::rnea_batch,
-        mb::rnea,
-    )
+    qvx_batch(&model, "rnea_batch", Qvx::Rnea, q, [("V", v), ("A", a)])
 }
 
 /// Forward dynamics for every row: `DDQ[k] = aba(Q[k], V[k], TAU[k])`, an `(N, nv)` array.
 #[pyfunction]
-#[pyo3(name = "aba_batch")]
 pub fn aba_batch<'py>(
-    py: Python<'py>,
     model: PyRef<'py, Model>,
     q: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
     tau: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    qvx_batch(
-        py,
-        &model,
-        "aba_batch",
-        ["V", "TAU"],
-        q,
-        v,
-        tau,
-        batch::aba_batch,
-        mb::aba,
-    )
+    qvx_batch(&model, "aba_batch", Qvx::Aba, q, [("V", v), ("TAU", tau)])
 }
 
 /// The mass matrix for every row: `M[k] = crba(Q[k])`, an `(N, nv, nv)` array.
@@ -209,5 +198,5 @@ pub fn crba_batch<'py>(
             }
         }
     }
-    Ok(numpy::PyArray1::from_vec(py, out).reshape([n, nv, nv])?)
+    numpy::PyArray1::from_vec(py, out).reshape([n, nv, nv])
 }

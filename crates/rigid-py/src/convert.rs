@@ -243,7 +243,7 @@ pub fn rows_array(
     rows: usize,
     cols: usize,
 ) -> PyResult<Bound<'_, PyArray2<f64>>> {
-    Ok(PyArray1::from_vec(py, data).reshape([rows, cols])?)
+    PyArray1::from_vec(py, data).reshape([rows, cols])
 }
 
 /// rigid's `MultibodyError` (and other input errors) as `ValueError: func: message`.

@@ -462,6 +462,9 @@ impl Model {
     }
 }
 
+/// A world pose `(R, p)` as numpy arrays.
+type Pose<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>);
+
 /// The workspace of the algorithms for one model (Pinocchio's `Data`): every buffer allocated
 /// once. After `forward_kinematics`, `placement(name)` gives a joint's or frame's world pose.
 #[pyclass(module = "rigid", name = "Data")]
@@ -499,11 +502,7 @@ impl Data {
     /// `data.oMi[model.getJointId(name)]`) or of a named frame (a link, a fixed joint;
     /// Pinocchio's `data.oMf[model.getFrameId(name)]`), from the last `forward_kinematics`:
     /// `R` (3, 3) a rotation matrix, `p` (3,) in metres, `x_world = R x_frame + p`.
-    fn placement<'py>(
-        &self,
-        py: Python<'py>,
-        name: &str,
-    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
+    fn placement<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Pose<'py>> {
         let core = &self.model;
         let t: Transform = match core.lookup("Data.placement", name)? {
             Place::Joint(j) => self.inner.placements[j.0],
