@@ -220,7 +220,7 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
     let rnea = rnea(model, data, &c.q, &c.v, &c.a).map_err(e("rnea"))?;
     let rnea = rnea.as_slice().to_vec();
     let m = crba(model, data, &c.q).map_err(e("mass_matrix"))?;
-    let mass_matrix = (0..m.nrows())
+    let mass_matrix: Vec<Vec<f64>> = (0..m.nrows())
         .map(|r| (0..m.ncols()).map(|k| m[(r, k)]).collect())
         .collect();
     let nle = nonlinear_effects(model, data, &c.q, &c.v).map_err(e("nonlinear_effects"))?;
@@ -246,6 +246,23 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
             (j.name.clone(), p)
         })
         .collect();
+    // A result that overflowed (huge masses, huge velocities) is an error, not a JSON `null`.
+    let finite = |what: &'static str, x: &[f64]| {
+        if x.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} is not finite: the numbers overflow (check the masses and the state)"
+            ))
+        }
+    };
+    finite("rnea", &rnea)?;
+    finite("mass_matrix", &mass_matrix.concat())?;
+    finite("nonlinear_effects", &nle)?;
+    finite("gravity_torques", &g)?;
+    finite("aba", &ddq)?;
+    finite("kinetic_energy", &[kinetic_energy, potential_energy])?;
+    finite("com", &[com.x, com.y, com.z])?;
     // `+ 0.0` turns an empty sum's `-0.0` into `0.0`.
     Ok(CaseResult {
         rnea,
