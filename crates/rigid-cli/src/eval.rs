@@ -3,13 +3,13 @@
 
 use crate::load::load_model;
 use clap::Args;
+use rigid::io::cases::{parse_cases, Case};
 use rigid::multibody::{
     aba, center_of_mass, crba, forward_kinematics_q, gravity_torques, kinetic_energy,
     nonlinear_effects, potential_energy, rnea, Data, Model,
 };
 use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
-use serde_json::Value;
 use std::path::PathBuf;
 
 /// Arguments of `rigid eval`.
@@ -26,14 +26,6 @@ pub struct EvalArgs {
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     pub json: bool,
-}
-
-/// One state to evaluate.
-struct Case {
-    q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    tau: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -143,54 +135,6 @@ fn model_info(model: &Model) -> ModelInfo {
             .collect(),
         gravity: [g.x, g.y, g.z],
     }
-}
-
-/// Reads `{"cases": [...]}`, checking every field's type and length against the model.
-fn parse_cases(text: &str, model: &Model) -> Result<Vec<Case>, String> {
-    let root: Value = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
-    let list = root
-        .get("cases")
-        .ok_or("expected an object with a \"cases\" array")?
-        .as_array()
-        .ok_or("\"cases\" is not an array")?;
-    let mut cases = Vec::with_capacity(list.len());
-    for (i, c) in list.iter().enumerate() {
-        if !c.is_object() {
-            return Err(format!("case {i}: not an object"));
-        }
-        let field = |name: &str, len: usize, dim: &str, required: bool| {
-            vector(c.get(name), len, required)
-                .map_err(|e| format!("case {i}: \"{name}\" {e} (expected {dim} = {len})"))
-        };
-        cases.push(Case {
-            q: field("q", model.nq(), "nq", true)?,
-            v: field("v", model.nv(), "nv", false)?,
-            a: field("a", model.nv(), "nv", false)?,
-            tau: field("tau", model.nv(), "nv", false)?,
-        });
-    }
-    Ok(cases)
-}
-
-/// A vector of `len` numbers, or zeros if absent and not required.
-fn vector(value: Option<&Value>, len: usize, required: bool) -> Result<Vec<f64>, String> {
-    let Some(value) = value else {
-        return if required {
-            Err("is missing".into())
-        } else {
-            Ok(vec![0.0; len])
-        };
-    };
-    let arr = value.as_array().ok_or("is not an array of numbers")?;
-    let out = arr
-        .iter()
-        .enumerate()
-        .map(|(k, x)| x.as_f64().ok_or(format!("[{k}] is not a number")))
-        .collect::<Result<Vec<f64>, _>>()?;
-    if out.len() != len {
-        return Err(format!("has {} entries", out.len()));
-    }
-    Ok(out)
 }
 
 /// Case files of at least this many cases are evaluated on every core.
