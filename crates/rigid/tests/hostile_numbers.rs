@@ -55,7 +55,7 @@ fn hostile_tree(seed: u64, n: usize) -> Model {
     for k in 0..n {
         let parent = ids[(rng.next_u64() as usize) % ids.len()];
         // depth-first: the parent must be on the current branch, so chain from the last one
-        let parent = if rng.next_u64() % 2 == 0 {
+        let parent = if rng.next_u64().is_multiple_of(2) {
             *ids.last().unwrap()
         } else {
             parent
@@ -73,7 +73,7 @@ fn hostile_tree(seed: u64, n: usize) -> Model {
             so3::exp(&Vec3::new(rng.normal(), rng.normal(), rng.normal())),
             Vec3::new(rng.normal(), rng.normal(), rng.normal()) * l,
         );
-        let thin = rng.next_u64() % 4 == 0;
+        let thin = rng.next_u64().is_multiple_of(4);
         match b.add_joint(
             Some(parent),
             &format!("j{k}"),
@@ -239,8 +239,8 @@ fn aba_loses_digits_to_mass_ratios_cholesky_less() {
         }
         let av = DVector::from_column_slice(&a);
         let (Ok(x), Ok(y)) = (
-            aba(&model, &mut d, &q, &v, tau.as_slice()).map(|x| x.clone()),
-            forward_dynamics_cholesky(&model, &mut d, &q, &v, tau.as_slice()).map(|y| y.clone()),
+            aba(&model, &mut d, &q, &v, tau.as_slice()).cloned(),
+            forward_dynamics_cholesky(&model, &mut d, &q, &v, tau.as_slice()).cloned(),
         ) else {
             continue;
         };
@@ -248,7 +248,7 @@ fn aba_loses_digits_to_mass_ratios_cholesky_less() {
         g_aba.push(growth(x));
         g_chol.push(growth(y));
     }
-    let mut stats = |name: &str, g: &mut Vec<f64>| {
+    let stats = |name: &str, g: &mut Vec<f64>| {
         g.sort_by(f64::total_cmp);
         let p = |x: f64| g[((g.len() - 1) as f64 * x) as usize];
         eprintln!(
