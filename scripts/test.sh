@@ -5,7 +5,8 @@
 # and runs its tests against Pinocchio.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-pip() { python3 -m pip --quiet --disable-pip-version-check --root-user-action=ignore "$@"; }
+export PIP_ROOT_USER_ACTION=ignore PIP_DISABLE_PIP_VERSION_CHECK=1
+pip() { python3 -m pip --quiet "$@"; }
 pip install -r scripts/requirements-test.txt
 cargo test --workspace
 start=$(date +%s)
