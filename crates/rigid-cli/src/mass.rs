@@ -3,7 +3,7 @@
 
 use clap::Args;
 use rigid::io::spec::read_spec;
-use rigid::mass::{CompoundError, MassProperties, DEFAULT_INERTIA_TOLERANCE};
+use rigid::mass::{MassProperties, DEFAULT_INERTIA_TOLERANCE};
 use rigid::spatial::{Mat3, Vec3};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -76,17 +76,8 @@ pub fn run(args: &MassArgs) -> ExitCode {
 /// the field. Shared with `rigid simulate`.
 pub fn load_mass_properties(spec: &Path) -> Result<MassProperties, String> {
     let body = read_spec(spec).map_err(|e| format!("{}: {e}", spec.display()))?;
-    body.mass_properties().map_err(|e| match e {
-        CompoundError::Part { index, source } => {
-            let name = body.parts[index]
-                .name
-                .as_deref()
-                .map(|n| format!(" (\"{n}\")"))
-                .unwrap_or_default();
-            format!("{}: part {}{name}: {source}", spec.display(), index + 1)
-        }
-        other => format!("{}: {other}", spec.display()),
-    })
+    body.mass_properties()
+        .map_err(|e| format!("{}: {}", spec.display(), body.error_message(&e)))
 }
 
 fn compute(args: &MassArgs) -> Result<(MassProperties, String), String> {

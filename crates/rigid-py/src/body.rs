@@ -9,8 +9,7 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use rigid::body::{Integrator, RigidBody, Simulator, State};
 use rigid::io::spec::{parse_spec, read_spec, SpecError};
 use rigid::mass::{
-    Compound, CompoundError, MassProperties, RotationalInertia, SpatialInertia,
-    DEFAULT_INERTIA_TOLERANCE,
+    Compound, MassProperties, RotationalInertia, SpatialInertia, DEFAULT_INERTIA_TOLERANCE,
 };
 use rigid::spatial::{so3, Mat3, Transform, Twist, Vec3};
 use std::path::{Path, PathBuf};
@@ -94,17 +93,8 @@ fn compound(func: &str, spec: &Bound<'_, PyAny>) -> PyResult<Compound> {
 }
 
 fn properties(func: &str, body: &Compound) -> PyResult<MassProperties> {
-    body.mass_properties().map_err(|e| match e {
-        CompoundError::Part { index, source } => {
-            let name = body.parts[index]
-                .name
-                .as_deref()
-                .map(|n| format!(" (\"{n}\")"))
-                .unwrap_or_default();
-            value_error(func, format!("part {}{name}: {source}", index + 1))
-        }
-        other => value_error(func, other),
-    })
+    body.mass_properties()
+        .map_err(|e| value_error(func, body.error_message(&e)))
 }
 
 fn mat3<'py>(py: Python<'py>, m: &Mat3) -> Bound<'py, PyAny> {

@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyAny;
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfError, UrdfOptions};
 use rigid::multibody::layout::{LayoutError, PinocchioLayout};
-use rigid::multibody::{builtin, builtin_names, FrameId, JointId};
+use rigid::multibody::{builtin, builtin_names, FrameId, JointId, MultibodyError};
 use rigid::spatial::Transform;
 use std::ffi::CString;
 use std::path::PathBuf;
@@ -87,7 +87,7 @@ impl ModelCore {
             Some(l) if self.convert_q => {
                 buf.resize(self.model.nq(), 0.0);
                 l.q_from_pinocchio(q, buf).map_err(|e| match e {
-                    LayoutError::NonFinite { index, .. } => {
+                    LayoutError::Input(MultibodyError::NonFinite { index, .. }) => {
                         convert::value_error(func, format!("{name}[{index}] is not finite"))
                     }
                     e => convert::value_error(func, format!("{name}: {e}")),

@@ -217,6 +217,29 @@ impl MassProperties {
 }
 
 impl Compound {
+    /// What is wrong, naming a bad part by its number from 1 and its name:
+    /// `part 2 ("prism"): ...`.
+    ///
+    /// ```
+    /// use rigid::mass::{Compound, CompoundError};
+    /// assert_eq!(Compound::new(vec![]).error_message(&CompoundError::NoMass), "the body has no mass (no parts)");
+    /// ```
+    #[must_use]
+    pub fn error_message(&self, e: &CompoundError) -> String {
+        match e {
+            CompoundError::Part { index, source } => {
+                let name = self
+                    .parts
+                    .get(*index)
+                    .and_then(|p| p.name.as_deref())
+                    .map(|n| format!(" (\"{n}\")"))
+                    .unwrap_or_default();
+                format!("part {}{name}: {source}", index + 1)
+            }
+            other => other.to_string(),
+        }
+    }
+
     /// A compound of the given parts.
     #[must_use]
     pub fn new(parts: Vec<Part>) -> Self {

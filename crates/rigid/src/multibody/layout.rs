@@ -35,7 +35,7 @@
 //! # Ok::<(), rigid::multibody::ModelError>(())
 //! ```
 
-use super::{JointType, Model};
+use super::{JointType, Model, MultibodyError};
 use crate::error::DimensionError;
 use thiserror::Error;
 
@@ -46,17 +46,10 @@ pub const COS_SIN_TOLERANCE: f64 = 1e-6;
 /// A Pinocchio-layout configuration that rigid cannot read.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum LayoutError {
-    /// A vector of the wrong length.
+    /// A vector of the wrong length ([`MultibodyError::Dimension`]) or a NaN or infinite entry
+    /// ([`MultibodyError::NonFinite`], its index in the Pinocchio-layout vector).
     #[error(transparent)]
-    Dimension(#[from] DimensionError),
-    /// A NaN or infinite entry (index in the Pinocchio-layout vector).
-    #[error("{what}[{index}] is not finite")]
-    NonFinite {
-        /// Which vector.
-        what: &'static str,
-        /// The index of the bad entry.
-        index: usize,
-    },
+    Input(#[from] MultibodyError),
     /// A `(cos θ, sin θ)` pair that is not on the unit circle.
     #[error(
         "joint '{joint}': (cos θ, sin θ) = ({cos}, {sin}) has norm {norm}, not 1 (tolerance 1e-6)"
@@ -227,9 +220,9 @@ impl PinocchioLayout {
     /// A wrong length, a non-finite entry (its index in `q_pin`), or a `(cos θ, sin θ)` pair off
     /// the unit circle by more than [`COS_SIN_TOLERANCE`] (naming the joint).
     pub fn q_from_pinocchio(&self, q_pin: &[f64], q: &mut [f64]) -> Result<(), LayoutError> {
-        DimensionError::check("q", self.nq, q_pin.len())?;
+        DimensionError::check("q", self.nq, q_pin.len()).map_err(MultibodyError::from)?;
         if let Some(index) = q_pin.iter().position(|x| !x.is_finite()) {
-            return Err(LayoutError::NonFinite { what: "q", index });
+            return Err(MultibodyError::NonFinite { what: "q", index }.into());
         }
         for (j, name) in self.joints.iter().zip(&self.names) {
             let src = &q_pin[j.pin_idx_q..j.pin_idx_q + j.pin_nq];
@@ -363,17 +356,18 @@ mod tests {
         l.q_to_pinocchio(&crate::multibody::neutral(&model), &mut q_pin);
         let mut q = vec![0.0; model.nq()];
         let short = l.q_from_pinocchio(&q_pin[1..], &mut q).unwrap_err();
-        assert!(matches!(short, LayoutError::Dimension(_)));
+        assert!(matches!(
+            short,
+            LayoutError::Input(MultibodyError::Dimension(_))
+        ));
         let mut nan = q_pin.clone();
         nan[4] = f64::NAN;
         let e = l.q_from_pinocchio(&nan, &mut q).unwrap_err();
-        assert_eq!(
-            e,
-            LayoutError::NonFinite {
-                what: "q",
-                index: 4
-            }
-        );
+        let nonfinite = MultibodyError::NonFinite {
+            what: "q",
+            index: 4,
+        };
+        assert_eq!(e, LayoutError::Input(nonfinite));
         let (k, _) = l.joint_q(model.joint_id("a_wheel").unwrap().0);
         q_pin[k] = 2.0;
         let e = l.q_from_pinocchio(&q_pin, &mut q).unwrap_err().to_string();
