@@ -70,7 +70,11 @@ fn eval_json_has_the_contract_keys_and_the_pendulum_values() {
     let out = eval_json(&fixture("pendulum.urdf"), &cases, &[]);
     assert_eq!(keys(&out), set(&["model", "results"]));
     let model = &out["model"];
-    assert_eq!(keys(model), set(&["name", "nq", "nv", "joints", "gravity"]));
+    assert_eq!(
+        keys(model),
+        set(&["name", "layout", "nq", "nv", "joints", "gravity"])
+    );
+    assert_eq!(model["layout"], "rigid");
     assert_eq!(model["name"], "pendulum");
     assert_eq!(
         (model["nq"].as_u64(), model["nv"].as_u64()),
