@@ -63,13 +63,13 @@ pub fn integrate<'py>(
     let core = &model.inner;
     let q = vector(q, F, "q", "nq", core.nq())?;
     let v = vector(v, F, "v", "nv", core.nv())?;
-    let (mut qb, mut vb) = (Vec::new(), Vec::new());
-    let q = core.q_in(&q, &mut qb, F, "q")?;
-    let v = core.v_in(&v, &mut vb, F, "v")?;
+    let (mut qr, mut vr) = (Vec::new(), Vec::new());
+    core.q_into(&q, &mut qr, F, "q")?;
+    core.v_into(&v, &mut vr, F, "v")?;
     let mut out = vec![0.0; core.model.nq()];
-    mb::integrate(&core.model, q, v, 1.0, &mut out).map_err(|e| value_error(F, e))?;
+    mb::integrate(&core.model, &qr, &vr, 1.0, &mut out).map_err(|e| value_error(F, e))?;
     if let Some(l) = &core.layout {
-        l.integrate_signs(q, v, 1.0, &mut out);
+        l.integrate_signs(&qr, &vr, 1.0, &mut out);
     }
     Ok(core.q_out(py, &out))
 }
@@ -86,13 +86,13 @@ pub fn difference<'py>(
     let core = &model.inner;
     let q0 = vector(q0, F, "q0", "nq", core.nq())?;
     let q1 = vector(q1, F, "q1", "nq", core.nq())?;
-    let (mut b0, mut b1) = (Vec::new(), Vec::new());
-    let q0 = core.q_in(&q0, &mut b0, F, "q0")?;
-    let mut q1 = core.q_in(&q1, &mut b1, F, "q1")?.to_vec();
+    let (mut r0, mut r1) = (Vec::new(), Vec::new());
+    core.q_into(&q0, &mut r0, F, "q0")?;
+    core.q_into(&q1, &mut r1, F, "q1")?;
     if let Some(l) = &core.layout {
-        l.nearest_angles(q0, &mut q1);
+        l.nearest_angles(&r0, &mut r1);
     }
     let mut v = vec![0.0; core.nv()];
-    mb::difference(&core.model, q0, &q1, &mut v).map_err(|e| value_error(F, e))?;
+    mb::difference(&core.model, &r0, &r1, &mut v).map_err(|e| value_error(F, e))?;
     Ok(core.v_out(py, &v))
 }

@@ -33,6 +33,23 @@ impl<'a> Call<'a> {
         vector(x, self.func, name, "nv", self.core.nv())
     }
 
+    /// Checks `q` and the velocity-space inputs `vs` (at most two) and writes them, in rigid's
+    /// layout, into `d.q`, then `d.v` and `d.a`.
+    fn load(
+        &self,
+        d: &mut Data,
+        q: &Bound<'_, PyAny>,
+        vs: &[(&str, &Bound<'_, PyAny>)],
+    ) -> PyResult<()> {
+        let x = self.q(q, "q")?;
+        self.core.q_into(&x, &mut d.q, self.func, "q")?;
+        for ((name, x), out) in vs.iter().zip([&mut d.v, &mut d.a]) {
+            let x = self.v(x, name)?;
+            self.core.v_into(&x, out, self.func, name)?;
+        }
+        Ok(())
+    }
+
     fn err(&self) -> impl Fn(mb::MultibodyError) -> PyErr + '_ {
         move |e| value_error(self.func, e)
     }
@@ -50,12 +67,9 @@ pub fn rnea<'py>(
     a: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("rnea", &model, &data)?;
-    let (q, v, a) = (c.q(q, "q")?, c.v(v, "v")?, c.v(a, "a")?);
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
-    let a = c.core.v_in(&a, &mut d.a, c.func, "a")?;
-    let tau = mb::rnea(&c.core.model, &mut d.inner, q, v, a).map_err(c.err())?;
+    c.load(d, q, &[("v", v), ("a", a)])?;
+    let tau = mb::rnea(&c.core.model, &mut d.inner, &d.q, &d.v, &d.a).map_err(c.err())?;
     Ok(c.core.v_out(py, tau.as_slice()))
 }
 
@@ -71,12 +85,9 @@ pub fn aba<'py>(
     tau: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("aba", &model, &data)?;
-    let (q, v, tau) = (c.q(q, "q")?, c.v(v, "v")?, c.v(tau, "tau")?);
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
-    let tau = c.core.v_in(&tau, &mut d.a, c.func, "tau")?;
-    let ddq = mb::aba(&c.core.model, &mut d.inner, q, v, tau).map_err(c.err())?;
+    c.load(d, q, &[("v", v), ("tau", tau)])?;
+    let ddq = mb::aba(&c.core.model, &mut d.inner, &d.q, &d.v, &d.a).map_err(c.err())?;
     Ok(c.core.v_out(py, ddq.as_slice()))
 }
 
@@ -90,11 +101,9 @@ pub fn nle<'py>(
     v: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("nle", &model, &data)?;
-    let (q, v) = (c.q(q, "q")?, c.v(v, "v")?);
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
-    let b = mb::nonlinear_effects(&c.core.model, &mut d.inner, q, v).map_err(c.err())?;
+    c.load(d, q, &[("v", v)])?;
+    let b = mb::nonlinear_effects(&c.core.model, &mut d.inner, &d.q, &d.v).map_err(c.err())?;
     Ok(c.core.v_out(py, b.as_slice()))
 }
 
@@ -107,10 +116,9 @@ pub fn gravity<'py>(
     q: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("gravity", &model, &data)?;
-    let q = c.q(q, "q")?;
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let g = mb::gravity_torques(&c.core.model, &mut d.inner, q).map_err(c.err())?;
+    c.load(d, q, &[])?;
+    let g = mb::gravity_torques(&c.core.model, &mut d.inner, &d.q).map_err(c.err())?;
     Ok(c.core.v_out(py, g.as_slice()))
 }
 
@@ -124,10 +132,9 @@ pub fn crba<'py>(
     q: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let c = Call::new("crba", &model, &data)?;
-    let q = c.q(q, "q")?;
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let m = mb::crba(&c.core.model, &mut d.inner, q).map_err(c.err())?;
+    c.load(d, q, &[])?;
+    let m = mb::crba(&c.core.model, &mut d.inner, &d.q).map_err(c.err())?;
     Ok(c.core.matrix_out(py, m))
 }
 
@@ -140,10 +147,9 @@ pub fn minverse<'py>(
     q: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let c = Call::new("minverse", &model, &data)?;
-    let q = c.q(q, "q")?;
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let m = mb::compute_minverse(&c.core.model, &mut d.inner, q).map_err(c.err())?;
+    c.load(d, q, &[])?;
+    let m = mb::compute_minverse(&c.core.model, &mut d.inner, &d.q).map_err(c.err())?;
     Ok(c.core.matrix_out(py, m))
 }
 
@@ -158,11 +164,9 @@ pub fn coriolis_matrix<'py>(
     v: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let c = Call::new("coriolis_matrix", &model, &data)?;
-    let (q, v) = (c.q(q, "q")?, c.v(v, "v")?);
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
-    let m = mb::coriolis_matrix(&c.core.model, &mut d.inner, q, v).map_err(c.err())?;
+    c.load(d, q, &[("v", v)])?;
+    let m = mb::coriolis_matrix(&c.core.model, &mut d.inner, &d.q, &d.v).map_err(c.err())?;
     Ok(c.core.matrix_out(py, m))
 }
 
@@ -178,28 +182,26 @@ pub fn forward_kinematics<'py>(
     a: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<()> {
     let c = Call::new("forward_kinematics", &model, &data)?;
-    let q = c.q(q, "q")?;
-    let v = v.map(|v| c.v(v, "v")).transpose()?;
-    let a = a.map(|a| c.v(a, "a")).transpose()?;
-    if a.is_some() && v.is_none() {
-        return Err(PyValueError::new_err(
-            "forward_kinematics: a given without v",
-        ));
-    }
     let d = &mut *data;
     let m = &c.core.model;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    match (&v, &a) {
+    match (v, a) {
         (Some(v), Some(a)) => {
-            let v = c.core.v_in(v, &mut d.v, c.func, "v")?;
-            let a = c.core.v_in(a, &mut d.a, c.func, "a")?;
-            mb::forward_kinematics(m, &mut d.inner, q, v, a)
+            c.load(d, q, &[("v", v), ("a", a)])?;
+            mb::forward_kinematics(m, &mut d.inner, &d.q, &d.v, &d.a)
         }
         (Some(v), None) => {
-            let v = c.core.v_in(v, &mut d.v, c.func, "v")?;
-            mb::forward_kinematics_qv(m, &mut d.inner, q, v)
+            c.load(d, q, &[("v", v)])?;
+            mb::forward_kinematics_qv(m, &mut d.inner, &d.q, &d.v)
         }
-        _ => mb::forward_kinematics_q(m, &mut d.inner, q),
+        (None, None) => {
+            c.load(d, q, &[])?;
+            mb::forward_kinematics_q(m, &mut d.inner, &d.q)
+        }
+        (None, Some(_)) => {
+            return Err(PyValueError::new_err(
+                "forward_kinematics: a given without v",
+            ))
+        }
     }
     .map_err(c.err())
 }
@@ -237,13 +239,12 @@ pub fn jacobian<'py>(
     let c = Call::new("jacobian", &model, &data)?;
     let rf = frame.map_or(Ok(ReferenceFrame::WorldAligned), reference_frame)?;
     let place = c.core.lookup(c.func, name)?;
-    let q = c.q(q, "q")?;
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
+    c.load(d, q, &[])?;
     let m = &c.core.model;
     let j = match place {
-        Place::Joint(j) => mb::joint_jacobian(m, &mut d.inner, q, j, rf),
-        Place::Frame(f) => mb::frame_jacobian(m, &mut d.inner, q, f, rf),
+        Place::Joint(j) => mb::joint_jacobian(m, &mut d.inner, &d.q, j, rf),
+        Place::Frame(f) => mb::frame_jacobian(m, &mut d.inner, &d.q, f, rf),
     }
     .map_err(c.err())?;
     Ok(c.core.jacobian_out(py, j))
@@ -258,10 +259,9 @@ pub fn com<'py>(
     q: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("com", &model, &data)?;
-    let q = c.q(q, "q")?;
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let x = mb::center_of_mass(&c.core.model, &mut d.inner, q).map_err(c.err())?;
+    c.load(d, q, &[])?;
+    let x = mb::center_of_mass(&c.core.model, &mut d.inner, &d.q).map_err(c.err())?;
     Ok(array1(py, &[x.x, x.y, x.z]))
 }
 
@@ -274,11 +274,9 @@ pub fn kinetic_energy(
     v: &Bound<'_, PyAny>,
 ) -> PyResult<f64> {
     let c = Call::new("kinetic_energy", &model, &data)?;
-    let (q, v) = (c.q(q, "q")?, c.v(v, "v")?);
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    let v = c.core.v_in(&v, &mut d.v, c.func, "v")?;
-    mb::kinetic_energy(&c.core.model, &mut d.inner, q, v).map_err(c.err())
+    c.load(d, q, &[("v", v)])?;
+    mb::kinetic_energy(&c.core.model, &mut d.inner, &d.q, &d.v).map_err(c.err())
 }
 
 /// Potential energy `-Σ mᵢ gᵀ cᵢ` (J, zero at the world origin; Pinocchio's
@@ -290,8 +288,7 @@ pub fn potential_energy(
     q: &Bound<'_, PyAny>,
 ) -> PyResult<f64> {
     let c = Call::new("potential_energy", &model, &data)?;
-    let q = c.q(q, "q")?;
     let d = &mut *data;
-    let q = c.core.q_in(&q, &mut d.q, c.func, "q")?;
-    mb::potential_energy(&c.core.model, &mut d.inner, q).map_err(c.err())
+    c.load(d, q, &[])?;
+    mb::potential_energy(&c.core.model, &mut d.inner, &d.q).map_err(c.err())
 }

@@ -73,56 +73,61 @@ impl ModelCore {
         self.model.nv()
     }
 
-    /// `q` (argument `name` of `func`) in rigid's layout: the caller's numbers, or converted
-    /// into `buf`.
-    pub fn q_in<'a>(
+    /// Writes `q` (argument `name` of `func`) into `out` in rigid's layout.
+    pub fn q_into(
         &self,
-        x: &'a Vector<'_>,
-        buf: &'a mut Vec<f64>,
+        x: &Vector<'_>,
+        out: &mut Vec<f64>,
         func: &str,
         name: &str,
-    ) -> PyResult<&'a [f64]> {
+    ) -> PyResult<()> {
         let q = x.as_slice();
         match &self.layout {
             Some(l) if self.convert_q => {
-                buf.resize(self.model.nq(), 0.0);
-                l.q_from_pinocchio(q, buf).map_err(|e| match e {
+                out.resize(self.model.nq(), 0.0);
+                l.q_from_pinocchio(q, out).map_err(|e| match e {
                     LayoutError::Input(MultibodyError::NonFinite { index, .. }) => {
                         convert::value_error(func, format!("{name}[{index}] is not finite"))
                     }
                     e => convert::value_error(func, format!("{name}: {e}")),
-                })?;
-                Ok(buf)
+                })
             }
-            _ => Ok(q),
+            _ => {
+                out.clear();
+                out.extend_from_slice(q);
+                Ok(())
+            }
         }
     }
 
-    /// A velocity-space vector (`v`, `a`, `τ`: argument `name` of `func`) in rigid's layout.
-    /// In Pinocchio's layout with a free-flyer, non-finite entries are refused here, so that the
-    /// error gives the index in the caller's vector.
-    pub fn v_in<'a>(
+    /// Writes a velocity-space vector (`v`, `a`, `τ`: argument `name` of `func`) into `out` in
+    /// rigid's layout. In Pinocchio's layout with a free-flyer, non-finite entries are refused
+    /// here, so that the error gives the index in the caller's vector.
+    pub fn v_into(
         &self,
-        x: &'a Vector<'_>,
-        buf: &'a mut Vec<f64>,
+        x: &Vector<'_>,
+        out: &mut Vec<f64>,
         func: &str,
         name: &str,
-    ) -> PyResult<&'a [f64]> {
+    ) -> PyResult<()> {
+        let v = x.as_slice();
         match &self.layout {
             Some(l) if self.convert_v => {
-                let v = x.as_slice();
                 if let Some(i) = v.iter().position(|x| !x.is_finite()) {
                     return Err(convert::value_error(
                         func,
                         format!("{name}[{i}] is not finite"),
                     ));
                 }
-                buf.resize(self.nv(), 0.0);
-                l.permute_v(v, buf);
-                Ok(buf)
+                out.resize(self.nv(), 0.0);
+                l.permute_v(v, out);
             }
-            _ => Ok(x.as_slice()),
+            _ => {
+                out.clear();
+                out.extend_from_slice(v);
+            }
         }
+        Ok(())
     }
 
     /// A velocity-space result as a fresh array in this model's layout.
