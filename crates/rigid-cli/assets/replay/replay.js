@@ -336,5 +336,14 @@
   setFrame(0);
   if (nframes > 1 && !/[?&#]paused/.test(location.href)) toggle();
   // for scripted checks (tests): the current frame and a setter
-  window.replay = { ready: true, nframes, frame: () => frame, setFrame, pause: () => { if (playing) toggle(); } };
+  // screen position (CSS pixels) of node i's origin at the current frame
+  function screen(i) {
+    const P = nodePose(frame, i);
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    const proj = M.perspective(0.8, Math.max(1e-3, w / Math.max(1, h)), cam.dist * 0.01, cam.dist * 100);
+    const c = M.mul(M.mul(proj, view()), [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, P[12], P[13], P[14], 1]);
+    return [(c[12] / c[15] + 1) * w / 2, (1 - c[13] / c[15]) * h / 2];
+  }
+  window.replay = { ready: true, nframes, nodes: nodes.length, frame: () => frame, setFrame, screen,
+    pause: () => { if (playing) toggle(); } };
 })();
