@@ -157,10 +157,15 @@ fn fixed_point<C: Control>(
 ///
 /// - `Φ*` (discrete Lagrangian `s L(q₁, ξ/s)`, `s = h/2`): find `v_a` with
 ///   `q_m = q ⊕ s v_a`, `M(q_m) v_a = dexpᵀ_ξ p` (`ξ = s v_a`); then
-///   `p_m = dexp⁻ᵀ_{-ξ} dexpᵀ_ξ p + s (∇_q K(q_m, v_a) - g(q_m) + τ)`.
+///   `p_m = dexp⁻ᵀ_{-ξ} dexpᵀ_ξ p + s (∇_q K(q_m, v_a) + f)`.
 /// - `Φ` (discrete Lagrangian `s L(q₀, ξ/s)`): find `v_b` with
-///   `M(q_m) v_b = dexpᵀ_ξ (p_m + s (∇_q K(q_m, v_b) - g(q_m) + τ))` (`ξ = s v_b`); then
+///   `M(q_m) v_b = dexpᵀ_ξ (p_m + s (∇_q K(q_m, v_b) + f))` (`ξ = s v_b`); then
 ///   `q⁺ = q_m ⊕ ξ`, `p⁺ = dexp⁻ᵀ_{-ξ} M(q_m) v_b`.
+///
+/// `f = -g(q_m) + Σ Jᵀ F_ext + τ(t + s, q_m, v_a)` (gravity, external wrenches, control and
+/// passive torques) is the discrete Lagrange-d'Alembert force of both halves, evaluated once:
+/// conservative forces keep the scheme variational, and velocity-dependent ones (friction,
+/// damping, gains) stay explicit, so that their stiffness cannot stall the fixed point.
 ///
 /// `v` is the starting guess (the velocity at `q`), updated to `v_b`.
 fn verlet<C: Control>(
@@ -198,10 +203,13 @@ fn verlet<C: Control>(
     }
     dexp_inv(&d.model, &ws.theta, &ws.w, true, &mut ws.p_a);
     momentum(&d.model, &mut d.data, &ws.q_mid, v, &mut ws.y, Some(&mut ws.grad));
+    // gravity, external wrenches, control and passive forces at (q_m, v_a), the same for both
+    // halves: explicit, so that stiff friction or gains cannot stall the fixed point
     d.field_forces(&ws.q_mid, &mut ws.field)?;
     d.torques(t + s, &ws.q_mid, v)?;
     for k in 0..nv {
-        ws.p_a[k] += s * (ws.grad[k] + ws.field[k] + d.tau[k]);
+        ws.field[k] += d.tau[k];
+        ws.p_a[k] += s * (ws.grad[k] + ws.field[k]);
     }
     // Φ: v_b = M(q_m)⁻¹ dexpᵀ_{s v_b} (p_m + s (∇K(q_m, v_b) + field + τ(v_b)))
     {
@@ -217,10 +225,9 @@ fn verlet<C: Control>(
         );
         fixed_point(d, v, &mut ws.v_stage, |d, v, next| {
             momentum(&d.model, &mut d.data, q_mid, v, y, Some(grad));
-            d.torques(t + s, q_mid, v)?;
             for k in 0..nv {
                 x[k] = s * v[k];
-                p_b[k] = p_m[k] + s * (grad[k] + field[k] + d.tau[k]);
+                p_b[k] = p_m[k] + s * (grad[k] + field[k]);
             }
             dexp(&d.model, x, p_b, true, w);
             d.minv(q_mid, w, next)?;
@@ -229,11 +236,10 @@ fn verlet<C: Control>(
     }
     // the final ξ, with p_b at v_b
     momentum(&d.model, &mut d.data, &ws.q_mid, v, &mut ws.y, Some(&mut ws.grad));
-    d.torques(t + s, &ws.q_mid, v)?;
     for k in 0..nv {
         ws.x[k] = s * v[k];
         ws.theta[k] = -ws.x[k];
-        ws.p_b[k] = ws.p_a[k] + s * (ws.grad[k] + ws.field[k] + d.tau[k]);
+        ws.p_b[k] = ws.p_a[k] + s * (ws.grad[k] + ws.field[k]);
     }
     dexp(&d.model, &ws.x, &ws.p_b, true, &mut ws.w);
     dexp_inv(&d.model, &ws.theta, &ws.w, true, &mut ws.p_new);
