@@ -115,13 +115,19 @@ fn example_robot_data() -> Option<std::path::PathBuf> {
     let share = |prefix: &Path| prefix.join("share/example-robot-data/robots");
     for var in ["AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH"] {
         if let Some(paths) = std::env::var_os(var) {
-            if let Some(p) = std::env::split_paths(&paths).map(|p| share(&p)).find(|p| p.is_dir()) {
+            if let Some(p) = std::env::split_paths(&paths)
+                .map(|p| share(&p))
+                .find(|p| p.is_dir())
+            {
                 return Some(p);
             }
         }
     }
     let out = std::process::Command::new("python3")
-        .args(["-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"])
+        .args([
+            "-c",
+            "import sysconfig; print(sysconfig.get_paths()['purelib'])",
+        ])
         .output()
         .ok()?;
     let site = String::from_utf8(out.stdout).ok()?;

@@ -35,7 +35,7 @@ enum Command {
     Mass(mass::MassArgs),
     /// Simulate a robot (URDF or built-in model) or one rigid body (a TOML spec): CSV, plots, a
     /// 3D replay in the browser, and a summary.
-    Simulate(simulate::SimulateArgs),
+    Simulate(Box<simulate::SimulateArgs>),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
     /// Summarise a robot model: bodies, joints, sizes, mass and the validity of every inertia.

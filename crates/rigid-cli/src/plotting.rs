@@ -83,7 +83,7 @@ where
         .build_cartesian_2d(0.0..t_end, lo..hi)?;
     let span = (hi - lo).abs().max(hi.abs()).max(1e-300);
     let fmt = move |y: &f64| {
-        if span >= 1e-2 && span < 1e5 {
+        if (1e-2..1e5).contains(&span) {
             format!("{y:.3}")
         } else {
             format!("{y:.2e}")
@@ -121,7 +121,11 @@ where
     Ok(())
 }
 
-fn draw_all<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, t: &[f64], panels: &[Panel]) -> Result<(), Error>
+fn draw_all<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    t: &[f64],
+    panels: &[Panel],
+) -> Result<(), Error>
 where
     DB::ErrorType: 'static,
 {
@@ -148,8 +152,12 @@ pub fn save(path: &Path, t: &[f64], panels: &[Panel]) -> Result<(), String> {
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     let bytes = if png {
         let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];
-        draw_all(BitMapBackend::with_buffer(&mut buf, size).into_drawing_area(), t, panels)
-            .map_err(err)?;
+        draw_all(
+            BitMapBackend::with_buffer(&mut buf, size).into_drawing_area(),
+            t,
+            panels,
+        )
+        .map_err(err)?;
         let mut out = Vec::new();
         let mut enc = png::Encoder::new(&mut out, size.0, size.1);
         enc.set_color(png::ColorType::Rgb);
@@ -160,8 +168,12 @@ pub fn save(path: &Path, t: &[f64], panels: &[Panel]) -> Result<(), String> {
         out
     } else {
         let mut s = String::new();
-        draw_all(SVGBackend::with_string(&mut s, size).into_drawing_area(), t, panels)
-            .map_err(err)?;
+        draw_all(
+            SVGBackend::with_string(&mut s, size).into_drawing_area(),
+            t,
+            panels,
+        )
+        .map_err(err)?;
         s.into_bytes()
     };
     crate::write_atomic(path, &bytes)

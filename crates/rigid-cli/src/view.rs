@@ -30,7 +30,12 @@ pub fn run(args: &ViewArgs) -> Result<(), String> {
     }
     let mut scene = robot_nodes(&model, urdf_path(&args.model).as_deref());
     scene.title = model.name().to_string();
-    scene.info = format!("nq = {}, nv = {}, {} bodies drawn", model.nq(), model.nv(), scene.nodes.len());
+    scene.info = format!(
+        "nq = {}, nv = {}, {} bodies drawn",
+        model.nq(),
+        model.nv(),
+        scene.nodes.len()
+    );
     let mut rec = Recording::default();
     let mut data = Data::new(&model);
     rec.record_model(&scene, &model, &mut data, 0.0, &q, true)?;
@@ -38,6 +43,10 @@ pub fn run(args: &ViewArgs) -> Result<(), String> {
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }
-    println!("wrote {} ({} bodies drawn)", args.html.display(), scene.nodes.len());
+    println!(
+        "wrote {} ({} bodies drawn)",
+        args.html.display(),
+        scene.nodes.len()
+    );
     Ok(())
 }

@@ -27,13 +27,15 @@ const HEIGHT: u32 = 600;
 const BACKGROUND: [u8; 3] = [244, 245, 247];
 
 fn chromium() -> Option<PathBuf> {
-    ["chromium", "chromium-browser", "google-chrome"].iter().find_map(|name| {
-        std::env::var_os("PATH").and_then(|paths| {
-            std::env::split_paths(&paths)
-                .map(|d| d.join(name))
-                .find(|p| p.is_file())
+    ["chromium", "chromium-browser", "google-chrome"]
+        .iter()
+        .find_map(|name| {
+            std::env::var_os("PATH").and_then(|paths| {
+                std::env::split_paths(&paths)
+                    .map(|d| d.join(name))
+                    .find(|p| p.is_file())
+            })
         })
-    })
 }
 
 /// A browser driven over `--remote-debugging-pipe`: commands on fd 3, replies on fd 4, each a
@@ -99,7 +101,10 @@ impl Browser {
         let (to, from_file) = unsafe {
             libc::close(cmd_r);
             libc::close(resp_w);
-            (std::fs::File::from_raw_fd(cmd_w), std::fs::File::from_raw_fd(resp_r))
+            (
+                std::fs::File::from_raw_fd(cmd_w),
+                std::fs::File::from_raw_fd(resp_r),
+            )
         };
         let (tx, rx) = channel();
         std::thread::spawn(move || {
@@ -161,7 +166,11 @@ impl Browser {
             "Runtime.evaluate",
             json!({"expression": expr, "returnByValue": true, "awaitPromise": true}),
         );
-        assert!(r.get("exceptionDetails").is_none(), "{expr}: {}", r["exceptionDetails"]);
+        assert!(
+            r.get("exceptionDetails").is_none(),
+            "{expr}: {}",
+            r["exceptionDetails"]
+        );
         r["result"]["value"].clone()
     }
 
@@ -177,7 +186,9 @@ impl Browser {
     /// A screenshot as RGB rows.
     fn screenshot(&mut self) -> Image {
         // two frames, so that the last draw is on screen
-        self.eval("new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => r(true))))");
+        self.eval(
+            "new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => r(true))))",
+        );
         let r = self.call("Page.captureScreenshot", json!({"format": "png"}));
         let png = base64::engine::general_purpose::STANDARD
             .decode(r["data"].as_str().unwrap())
@@ -229,8 +240,12 @@ fn decode_png(bytes: &[u8]) -> Image {
 
 /// A pixel of a robot's body: far from the background and not a light grey grid line.
 fn is_robot(p: [u8; 3]) -> bool {
-    let d = (0..3).map(|k| (p[k] as i32 - BACKGROUND[k] as i32).abs()).max().unwrap();
-    let light_grey = p.iter().all(|&c| c > 185) && p.iter().max().unwrap() - p.iter().min().unwrap() < 20;
+    let d = (0..3)
+        .map(|k| (p[k] as i32 - BACKGROUND[k] as i32).abs())
+        .max()
+        .unwrap();
+    let light_grey =
+        p.iter().all(|&c| c > 185) && p.iter().max().unwrap() - p.iter().min().unwrap() < 20;
     d > 40 && !light_grey
 }
 
@@ -293,7 +308,11 @@ fn replay_page_and_png_plot() {
         .arg(&plot)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(
         !String::from_utf8_lossy(&out.stderr).contains("warning"),
         "{}",
@@ -321,9 +340,17 @@ fn replay_page_and_png_plot() {
         .find(|t| t["type"] == "page")
         .expect("a page target")["targetId"]
         .clone();
-    let attached = b.call("Target.attachToTarget", json!({"targetId": page, "flatten": true}));
+    let attached = b.call(
+        "Target.attachToTarget",
+        json!({"targetId": page, "flatten": true}),
+    );
     b.session = Some(attached["sessionId"].as_str().unwrap().to_string());
-    for domain in ["Runtime.enable", "Log.enable", "Network.enable", "Page.enable"] {
+    for domain in [
+        "Runtime.enable",
+        "Log.enable",
+        "Network.enable",
+        "Page.enable",
+    ] {
         b.call(domain, json!({}));
     }
     b.call(
@@ -347,7 +374,11 @@ fn replay_page_and_png_plot() {
                 "(() => { const s = document.getElementById('slider'); s.value = s.max; \
                  s.dispatchEvent(new Event('input')); return true; })()",
             );
-            assert_eq!(b.eval("replay.frame()").as_u64().unwrap(), nframes - 1, "the slider sets the frame");
+            assert_eq!(
+                b.eval("replay.frame()").as_u64().unwrap(),
+                nframes - 1,
+                "the slider sets the frame"
+            );
         } else {
             b.eval(set);
         }
@@ -366,9 +397,16 @@ fn replay_page_and_png_plot() {
                         && is_robot(img.px(px as usize, py as usize))
                 })
             });
-            assert!(hit, "{label}: no robot pixel at link {i}'s origin ({x:.0}, {y:.0})");
+            assert!(
+                hit,
+                "{label}: no robot pixel at link {i}'s origin ({x:.0}, {y:.0})"
+            );
         }
-        let robot = img.rgb.chunks(3).filter(|p| is_robot([p[0], p[1], p[2]])).count();
+        let robot = img
+            .rgb
+            .chunks(3)
+            .filter(|p| is_robot([p[0], p[1], p[2]]))
+            .count();
         eprintln!("{label}: {robot} robot pixels");
         assert!(robot > 1500, "{label}: {robot} robot pixels");
         shots.push(img);
@@ -379,8 +417,14 @@ fn replay_page_and_png_plot() {
         .zip(shots[1].rgb.chunks(3))
         .filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 30))
         .count();
-    eprintln!("t = 0 and t = end differ in {moved} pixels; {} events", b.events.len());
-    assert!(moved > 1000, "t = 0 and t = end differ in {moved} pixels only");
+    eprintln!(
+        "t = 0 and t = end differ in {moved} pixels; {} events",
+        b.events.len()
+    );
+    assert!(
+        moved > 1000,
+        "t = 0 and t = end differ in {moved} pixels only"
+    );
 
     // nothing went wrong in the page, and nothing was fetched
     let page_url = format!("file://{}", html.display());

@@ -222,7 +222,11 @@ fn robot_csv_has_joint_named_columns_and_one_row_per_step() {
         "--plot",
         svg.to_str().unwrap(),
     ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(
         text.lines().next().unwrap(),
@@ -238,23 +242,45 @@ fn robot_csv_has_joint_named_columns_and_one_row_per_step() {
     let svg = std::fs::read_to_string(&svg).unwrap();
     assert!(svg.contains("joint velocities") && svg.contains("total energy"));
     let stdout = String::from_utf8_lossy(&out.stdout);
-    for key in ["relative drift", "max joint speed", "final q: joint1=0.500000"] {
+    for key in [
+        "relative drift",
+        "max joint speed",
+        "final q: joint1=0.500000",
+    ] {
         assert!(stdout.contains(key), "{key} missing from:\n{stdout}");
     }
     // no temporary file left behind
-    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(left.len(), 2, "{left:?}");
 }
 
 #[test]
 fn robot_bad_inputs_fail_cleanly() {
     for (args, expected) in [
-        (&["simulate", "double_pendulum", "--q0", "1,2,3"][..], "--q0 has 3 numbers"),
-        (&["simulate", "double_pendulum", "--controller", "pd"][..], "needs --target"),
-        (&["simulate", "double_pendulum", "--controller", "fly"][..], "expected none, gravity, pd or track"),
-        (&["simulate", "double_pendulum", "--integrator", "leapfrog"][..], "unknown integrator"),
+        (
+            &["simulate", "double_pendulum", "--q0", "1,2,3"][..],
+            "--q0 has 3 numbers",
+        ),
+        (
+            &["simulate", "double_pendulum", "--controller", "pd"][..],
+            "needs --target",
+        ),
+        (
+            &["simulate", "double_pendulum", "--controller", "fly"][..],
+            "expected none, gravity, pd or track",
+        ),
+        (
+            &["simulate", "double_pendulum", "--integrator", "leapfrog"][..],
+            "unknown integrator",
+        ),
         (&["simulate", "no_such_robot"][..], "unknown model"),
-        (&["view", "pendulum", "--q", "1,2", "--html", "x.html"][..], "--q has 2 numbers"),
+        (
+            &["view", "pendulum", "--q", "1,2", "--html", "x.html"][..],
+            "--q has 2 numbers",
+        ),
     ] {
         let out = rigid(args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
@@ -267,8 +293,19 @@ fn robot_bad_inputs_fail_cleanly() {
 fn view_writes_a_self_contained_page() {
     let dir = scratch("view");
     let html = dir.join("p.html");
-    let out = rigid(&["view", "puma560", "--q", "0,0.5,-0.5,0,0.3,0", "--html", html.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = rigid(&[
+        "view",
+        "puma560",
+        "--q",
+        "0,0.5,-0.5,0,0.3,0",
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let page = std::fs::read_to_string(&html).unwrap();
     assert!(page.contains("<canvas") && page.contains("Content-Security-Policy"));
     // nothing to fetch: no external URL in a src or href

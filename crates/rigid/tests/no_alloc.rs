@@ -117,8 +117,11 @@ fn algorithms_allocate_nothing_after_data_new() {
             let ctrl = simulation::Controller::new(model, law).unwrap();
             let small: Vec<f64> = v.iter().map(|x| 0.1 * x).collect();
             let mut sim = simulation::Simulator::new(model, &q, &small, opts, ctrl).unwrap();
-            sim.set_external_wrench(JointId(0), Wrench::from_slice(&[0.1, 0.0, 0.2, 1.0, 0.0, 0.0]))
-                .unwrap();
+            sim.set_external_wrench(
+                JointId(0),
+                Wrench::from_slice(&[0.1, 0.0, 0.2, 1.0, 0.0, 0.0]),
+            )
+            .unwrap();
             sim.step().unwrap(); // warm-up
             let n = allocations(|| {
                 for _ in 0..3 {

@@ -42,7 +42,10 @@ fn robots() -> PathBuf {
         .args([script, "roots"])
         .output()
         .expect("python3: run `bash scripts/test.sh`");
-    assert!(out.status.success(), "run `bash scripts/test.sh` (it installs example-robot-data)");
+    assert!(
+        out.status.success(),
+        "run `bash scripts/test.sh` (it installs example-robot-data)"
+    );
     let roots: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     PathBuf::from(roots["example-robot-data"].as_str().unwrap())
 }
@@ -87,7 +90,10 @@ fn variational_keeps_energy_and_momentum_of_free_floating_ur5_and_talos() {
     ] {
         let model = robot(rel, true);
         let (de, dh) = conservation(&model, Integrator::Variational);
-        eprintln!("{name} (nv = {}): variational energy {de:.2e}, momentum {dh:.2e}", model.nv());
+        eprintln!(
+            "{name} (nv = {}): variational energy {de:.2e}, momentum {dh:.2e}",
+            model.nv()
+        );
         assert!(de <= 1e-6, "{name}: relative energy drift {de:e}");
         assert!(dh <= 1e-10, "{name}: relative momentum error {dh:e}");
     }
@@ -95,11 +101,18 @@ fn variational_keeps_energy_and_momentum_of_free_floating_ur5_and_talos() {
 
 /// The error at `T` of a run with step `h` against a run with step `h/32`, on the manifold
 /// (`q ⊖ q_ref` and `v - v_ref`, max norm).
-fn error_at(model: &Model, integrator: Integrator, q0: &[f64], v0: &[f64], h: f64, T: f64) -> f64 {
+fn error_at(
+    model: &Model,
+    integrator: Integrator,
+    q0: &[f64],
+    v0: &[f64],
+    h: f64,
+    t_end: f64,
+) -> f64 {
     let run = |h: f64| {
         let opts = SimulationOptions::conservative(h, integrator);
         let mut sim = Simulator::new(model, q0, v0, opts, Controller::none(model)).unwrap();
-        sim.run((T / h).round() as u64, |_| {}).unwrap();
+        sim.run((t_end / h).round() as u64, |_| {}).unwrap();
         (sim.q().to_vec(), sim.v().to_vec())
     };
     let (q, v) = run(h);
@@ -107,7 +120,13 @@ fn error_at(model: &Model, integrator: Integrator, q0: &[f64], v0: &[f64], h: f6
     let mut dq = vec![0.0; model.nv()];
     difference(model, &qr, &q, &mut dq).unwrap();
     dq.iter()
-        .chain(v.iter().zip(&vr).map(|(a, b)| a - b).collect::<Vec<_>>().iter())
+        .chain(
+            v.iter()
+                .zip(&vr)
+                .map(|(a, b)| a - b)
+                .collect::<Vec<_>>()
+                .iter(),
+        )
         .fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
@@ -126,7 +145,9 @@ fn rk4_and_variational_converge_at_fourth_order_and_euler_at_first() {
         let e2 = error_at(&model, integrator, &q0, &v0, hs[1], 0.4);
         let ratio = e1 / e2;
         let expected = 2f64.powf(order);
-        eprintln!("{integrator}: error {e1:.3e} -> {e2:.3e}, ratio {ratio:.2} (expected {expected})");
+        eprintln!(
+            "{integrator}: error {e1:.3e} -> {e2:.3e}, ratio {ratio:.2} (expected {expected})"
+        );
         assert!(
             (ratio / expected - 1.0).abs() < 0.25,
             "{integrator}: ratio {ratio} not ≈ {expected}"
@@ -145,20 +166,33 @@ fn double_pendulum_matches_scipy_to_1e_8_over_5_s() {
     if skip() {
         return;
     }
-    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/simulation/double_pendulum.py");
+    let script = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/simulation/double_pendulum.py"
+    );
     let (q0, v0) = ([0.5, -0.3], [0.2, 0.0]);
     let out = Command::new(python())
         .args([script, "0.5", "-0.3", "0.2", "0", "5", "50"])
         .output()
         .expect("python3 with scipy: run `bash scripts/test.sh`");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let reference: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let rows = |k: &str| -> Vec<Vec<f64>> {
         reference[k]
             .as_array()
             .unwrap()
             .iter()
-            .map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect())
+            .map(|r| {
+                r.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_f64().unwrap())
+                    .collect()
+            })
             .collect()
     };
     let (qs, vs) = (rows("q"), rows("v"));
@@ -172,7 +206,9 @@ fn double_pendulum_matches_scipy_to_1e_8_over_5_s() {
             sim.run(100, |_| {}).unwrap(); // 0.1 s
         }
         for i in 0..2 {
-            worst = worst.max((sim.q()[i] - q[i]).abs()).max((sim.v()[i] - v[i]).abs());
+            worst = worst
+                .max((sim.q()[i] - q[i]).abs())
+                .max((sim.v()[i] - v[i]).abs());
         }
     }
     eprintln!("double pendulum, RK4 at 1 ms vs SciPy over 5 s: max error {worst:.2e}");
@@ -193,7 +229,11 @@ fn gravity_compensation_holds_the_panda_and_computed_torque_tracks_a_quintic() {
     let mut sim = Simulator::new(&model, &q0, &zeros, opts, ctrl).unwrap();
     let mut drift = 0.0f64;
     sim.run(10_000, |s| {
-        drift = s.q().iter().zip(&q0).fold(drift, |m, (a, b)| m.max((a - b).abs()));
+        drift = s
+            .q()
+            .iter()
+            .zip(&q0)
+            .fold(drift, |m, (a, b)| m.max((a - b).abs()));
     })
     .unwrap();
     eprintln!("panda, gravity compensation, 10 s: max drift {drift:.2e} rad");
@@ -211,8 +251,14 @@ fn gravity_compensation_holds_the_panda_and_computed_torque_tracks_a_quintic() {
         joint_dynamics: false,
         ..opts
     };
-    let mut sim =
-        Simulator::new(&model, &q0, &zeros, plant, Controller::new(&model, law).unwrap()).unwrap();
+    let mut sim = Simulator::new(
+        &model,
+        &q0,
+        &zeros,
+        plant,
+        Controller::new(&model, law).unwrap(),
+    )
+    .unwrap();
     let (mut qd, mut vd, mut ad) = (vec![0.0; model.nq()], zeros.clone(), zeros.clone());
     let mut e = zeros.clone();
     let mut worst = 0.0f64;
@@ -222,8 +268,13 @@ fn gravity_compensation_holds_the_panda_and_computed_torque_tracks_a_quintic() {
         worst = e.iter().fold(worst, |m, x| m.max(x.abs()));
     })
     .unwrap();
-    let travel = q0.iter().zip(&q1).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    eprintln!("panda, computed torque on a 2 s quintic ({travel:.2} rad): max error {worst:.2e} rad");
+    let travel = q0
+        .iter()
+        .zip(&q1)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    eprintln!(
+        "panda, computed torque on a 2 s quintic ({travel:.2} rad): max error {worst:.2e} rad"
+    );
     assert!(worst < 1e-6, "{worst:e}");
     assert!(travel > 0.5);
 }
@@ -254,10 +305,22 @@ fn batch_gives_the_single_runs_bit_for_bit() {
         })
         .collect();
     for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
         let (mut qs, mut vs) = (vec![0.0; n * nq], vec![0.0; n * nv]);
         pool.install(|| {
-            simulate_batch(&model, &q0s, &v0s, opts, 50, |_| Controller::none(&model), &mut qs, &mut vs)
+            simulate_batch(
+                &model,
+                &q0s,
+                &v0s,
+                opts,
+                50,
+                |_| Controller::none(&model),
+                &mut qs,
+                &mut vs,
+            )
         })
         .unwrap();
         for (k, (q, v)) in single.iter().enumerate() {

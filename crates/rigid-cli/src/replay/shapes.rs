@@ -153,9 +153,9 @@ fn link_shapes(
                     color,
                 },
                 Err(e) => {
-                    scene.warnings.push(format!(
-                        "link \"{link}\": {e}; drawn as a 5 cm box"
-                    ));
+                    scene
+                        .warnings
+                        .push(format!("link \"{link}\": {e}; drawn as a 5 cm box"));
                     shape("box", [0.05; 3], g.origin, [0.9, 0.5, 0.4, 1.0])
                 }
             },
@@ -230,7 +230,11 @@ fn segment(a: Vec3, b: Vec3) -> (Transform, f64) {
     let d = b - a;
     let l = d.norm();
     let z = d / l.max(1e-12);
-    let helper = if z.x.abs() < 0.9 { Vec3::x() } else { Vec3::y() };
+    let helper = if z.x.abs() < 0.9 {
+        Vec3::x()
+    } else {
+        Vec3::y()
+    };
     let x = helper.cross(&z).normalize();
     let y = z.cross(&x);
     (
@@ -245,7 +249,12 @@ fn stick_figure(model: &Model, scene: &mut Scene) {
     let colors = [[0.25, 0.45, 0.8, 1.0], [0.85, 0.55, 0.2, 1.0]];
     for (i, j) in model.joints().iter().enumerate() {
         let color = colors[i % 2];
-        let mut shapes = vec![shape("sphere", [1.3 * r, 0.0, 0.0], Transform::identity(), [0.3, 0.3, 0.3, 1.0])];
+        let mut shapes = vec![shape(
+            "sphere",
+            [1.3 * r, 0.0, 0.0],
+            Transform::identity(),
+            [0.3, 0.3, 0.3, 1.0],
+        )];
         let mut ends: Vec<Vec3> = model
             .joints()
             .iter()
@@ -277,7 +286,11 @@ fn stick_figure(model: &Model, scene: &mut Scene) {
 pub fn body_box(mass: f64, inertia: &RotationalInertia) -> Scene {
     let (l, axes) = inertia.principal();
     let edge = |a: f64, b: f64, c: f64| (6.0 * (b + c - a) / mass.max(1e-300)).max(0.0).sqrt();
-    let mut size = [edge(l[0], l[1], l[2]), edge(l[1], l[2], l[0]), edge(l[2], l[0], l[1])];
+    let mut size = [
+        edge(l[0], l[1], l[2]),
+        edge(l[1], l[2], l[0]),
+        edge(l[2], l[0], l[1]),
+    ];
     let big = size.iter().copied().fold(0.0, f64::max).max(1e-3);
     for s in &mut size {
         *s = s.max(0.02 * big); // a rod or a plate still shows

@@ -1,10 +1,10 @@
 //! `rigid simulate SPEC.toml`: one rigid body, free or on a pivot, integrated on SE(3).
 
+use super::{plot, SimulateArgs};
+use crate::replay::{body_box, Recording};
 use rigid::body::{BodyError, Integrator, RigidBody, Simulator, State};
 use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::spatial::{so3, Transform, Twist, Vec3};
-use super::{plot, SimulateArgs};
-use crate::replay::{body_box, Recording};
 use std::io::Write;
 use std::path::Path;
 
@@ -69,7 +69,11 @@ fn write_row(out: &mut impl Write, t: f64, x: &State, r: &Vec3) -> std::io::Resu
 /// Runs `rigid simulate`.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let steps = super::step_count(args)?;
-    let integrator: Integrator = args.integrator.as_deref().unwrap_or("variational").parse()?;
+    let integrator: Integrator = args
+        .integrator
+        .as_deref()
+        .unwrap_or("variational")
+        .parse()?;
     let (body, x0, r) = setup(args)?;
     let (mass, inertia) = (body.inertia().mass(), body.inertia().inertia_com());
     let mut sim = Simulator::new(body, x0, integrator, args.dt).map_err(|e| e.to_string())?;
@@ -125,7 +129,17 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         plot::draw(path, &samples)?;
     }
     if let Some(path) = &args.html {
-        scene.title = format!("{} ({} body)", args.model, if args.pivot.is_some() { "pivoted" } else { "free" });
+        let name = Path::new(&args.model)
+            .file_name()
+            .map_or(args.model.clone(), |n| n.to_string_lossy().into_owned());
+        scene.title = format!(
+            "{name} ({} body)",
+            if args.pivot.is_some() {
+                "pivoted"
+            } else {
+                "free"
+            }
+        );
         scene.info = format!("{integrator}, dt = {} s, {} s", args.dt, args.duration);
         scene.write_html(&rec, path)?;
     }

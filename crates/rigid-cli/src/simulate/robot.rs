@@ -5,8 +5,8 @@ use super::{robot_plot::Samples, Numbers, SimulateArgs, PLOT_POINTS};
 use crate::load::{load_model, urdf_path};
 use crate::replay::{robot_nodes, Recording};
 use rigid::multibody::simulation::{
-    ControlLaw, Controller, Integrator, JointLimits, JointTrajectory, SimulationOptions,
-    Simulator, TimeScaling,
+    ControlLaw, Controller, Integrator, JointLimits, JointTrajectory, SimulationOptions, Simulator,
+    TimeScaling,
 };
 use rigid::multibody::{neutral, Data, JointType, Model};
 use std::io::Write;
@@ -42,7 +42,13 @@ fn csv_header(model: &Model) -> String {
     cols.join(",")
 }
 
-fn write_row(out: &mut impl Write, t: f64, q: &[f64], v: &[f64], tau: &[f64]) -> std::io::Result<()> {
+fn write_row(
+    out: &mut impl Write,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+) -> std::io::Result<()> {
     write!(out, "{t}")?;
     for x in q.iter().chain(v).chain(tau) {
         write!(out, ",{x}")?;
@@ -95,7 +101,11 @@ fn controller(args: &SimulateArgs, model: &Model, q0: &[f64]) -> Result<Controll
     let target = || -> Result<Vec<f64>, String> {
         match &args.target {
             Some(_) => configuration(model, "target", &args.target),
-            None => Err(format!("--controller {} needs --target (nq = {} numbers)", args.controller, model.nq())),
+            None => Err(format!(
+                "--controller {} needs --target (nq = {} numbers)",
+                args.controller,
+                model.nq()
+            )),
         }
     };
     let law = match args.controller.as_str() {
@@ -107,16 +117,30 @@ fn controller(args: &SimulateArgs, model: &Model, q0: &[f64]) -> Result<Controll
         "track" => {
             let scaling = match args.profile.as_str() {
                 "quintic" => TimeScaling::Quintic,
-                "trapezoidal" => TimeScaling::Trapezoidal { accel_fraction: 0.25 },
-                other => return Err(format!("--profile {other:?}: expected quintic or trapezoidal")),
+                "trapezoidal" => TimeScaling::Trapezoidal {
+                    accel_fraction: 0.25,
+                },
+                other => {
+                    return Err(format!(
+                        "--profile {other:?}: expected quintic or trapezoidal"
+                    ))
+                }
             };
             let time = args.move_time.unwrap_or(0.5 * args.duration);
             let trajectory = JointTrajectory::new(model, q0, &target()?, time, scaling)
                 .map_err(|e| format!("--target: {e}"))?;
             // error dynamics ë + 20 ė + 100 e = 0: critically damped at 10 rad/s
-            ControlLaw::ComputedTorque { trajectory, kp: 100.0, kd: 20.0 }
+            ControlLaw::ComputedTorque {
+                trajectory,
+                kp: 100.0,
+                kd: 20.0,
+            }
         }
-        other => return Err(format!("--controller {other:?}: expected none, gravity, pd or track")),
+        other => {
+            return Err(format!(
+                "--controller {other:?}: expected none, gravity, pd or track"
+            ))
+        }
     };
     Controller::new(model, law).map_err(|e| e.to_string())
 }
@@ -129,9 +153,16 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         model = model.with_gravity(g);
     }
     let q0 = configuration(&model, "q0", &args.q0)?;
-    let v0 = args.v0.clone().map_or_else(|| vec![0.0; model.nv()], |n| n.0);
+    let v0 = args
+        .v0
+        .clone()
+        .map_or_else(|| vec![0.0; model.nv()], |n| n.0);
     if v0.len() != model.nv() {
-        return Err(format!("--v0 has {} numbers; nv = {}", v0.len(), model.nv()));
+        return Err(format!(
+            "--v0 has {} numbers; nv = {}",
+            v0.len(),
+            model.nv()
+        ));
     }
     let opts = options(args)?;
     let ctrl = controller(args, &model, &q0)?;
@@ -209,7 +240,10 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     }
     let limits = match opts.limits {
         JointLimits::Ignored => "ignored".to_string(),
-        JointLimits::Spring { time_constant, damping_ratio } => {
+        JointLimits::Spring {
+            time_constant,
+            damping_ratio,
+        } => {
             format!("spring-damper past a limit (time constant {time_constant} s, damping ratio {damping_ratio})")
         }
     };
@@ -220,7 +254,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             opts.integrator,
             args.dt,
             sim.time(),
-            if opts.limits == JointLimits::Ignored { "ignored" } else { "spring" }
+            if opts.limits == JointLimits::Ignored {
+                "ignored"
+            } else {
+                "spring"
+            }
         );
         if let Some(e) = &failure {
             scene.warnings.push(format!("stopped: {e}"));
@@ -236,22 +274,44 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let (k1, u1) = sim.energies().map_err(|e| e.to_string())?;
     let e1 = k1 + u1;
     let scale = e0.abs().max(k0.abs());
-    let drift = if scale > 0.0 { (e1 - e0).abs() / scale } else { (e1 - e0).abs() };
+    let drift = if scale > 0.0 {
+        (e1 - e0).abs() / scale
+    } else {
+        (e1 - e0).abs()
+    };
     let dof = max_speed.1;
     let dof_name = &model.joints()[model.dof_joint(dof).0].name;
-    let passive = model.damping().iter().chain(model.friction()).any(|x| *x > 0.0) && opts.joint_dynamics;
+    let passive = model
+        .damping()
+        .iter()
+        .chain(model.friction())
+        .any(|x| *x > 0.0)
+        && opts.joint_dynamics;
     println!("model: {} (nq = {nq}, nv = {nv})", model.name());
-    println!("integrator: {}, dt = {} s, controller: {}", opts.integrator, args.dt, args.controller);
+    println!(
+        "integrator: {}, dt = {} s, controller: {}",
+        opts.integrator, args.dt, args.controller
+    );
     println!("joint limits: {limits}");
     println!(
         "joint damping and friction: {}",
-        if passive { "on (URDF <dynamics>)" } else { "off" }
+        if passive {
+            "on (URDF <dynamics>)"
+        } else {
+            "off"
+        }
     );
     println!("steps: {}", sim.steps());
     println!("simulated time: {} s", sim.time());
-    println!("wall time: {wall:.3} s ({:.0} steps/s)", sim.steps() as f64 / wall.max(1e-9));
+    println!(
+        "wall time: {wall:.3} s ({:.0} steps/s)",
+        sim.steps() as f64 / wall.max(1e-9)
+    );
     println!("energy: {e0:.6} J -> {e1:.6} J, relative drift {drift:.3e} (exact only without control, damping, friction and limits)");
-    println!("max joint speed: {:.4} (dof {dof}, joint {dof_name})", max_speed.0);
+    println!(
+        "max joint speed: {:.4} (dof {dof}, joint {dof_name})",
+        max_speed.0
+    );
     let names: Vec<String> = model
         .joints()
         .iter()

@@ -21,7 +21,11 @@ pub struct Samples {
 impl Samples {
     /// Empty series for the 1-dof joints of `model`.
     pub fn new(model: &Model) -> Self {
-        let joints: Vec<_> = model.joints().iter().filter(|j| j.nq == 1 && j.nv == 1).collect();
+        let joints: Vec<_> = model
+            .joints()
+            .iter()
+            .filter(|j| j.nq == 1 && j.nv == 1)
+            .collect();
         let n = joints.len();
         Self {
             names: joints.iter().map(|j| j.name.clone()).collect(),

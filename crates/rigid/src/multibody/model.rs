@@ -699,11 +699,9 @@ impl ModelBuilder {
     ) -> Result<(), ModelError> {
         let j = self.joint_checked(joint)?.clone();
         for (what, x) in [("damping", damping), ("friction", friction)] {
-            DimensionError::check(what, j.nv, x.len()).map_err(|source| {
-                ModelError::Dimension {
-                    joint: j.name.clone(),
-                    source,
-                }
+            DimensionError::check(what, j.nv, x.len()).map_err(|source| ModelError::Dimension {
+                joint: j.name.clone(),
+                source,
             })?;
             if x.iter().any(|a| !a.is_finite() || *a < 0.0) {
                 return Err(ModelError::BadDynamics { joint: j.name });

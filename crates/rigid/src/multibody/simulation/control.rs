@@ -3,7 +3,9 @@
 
 use super::{JointTrajectory, SimulationError};
 use crate::error::DimensionError;
-use crate::multibody::{check_q, crba, difference, gravity_torques, rnea, Data, Model, MultibodyError};
+use crate::multibody::{
+    check_q, crba, difference, gravity_torques, rnea, Data, Model, MultibodyError,
+};
 
 /// A control law `τ = u(t, q, v)`, evaluated by the integrators at every stage (so it should be
 /// a function of its arguments: the RK4 stages are not in time order). Implemented by

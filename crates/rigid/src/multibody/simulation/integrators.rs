@@ -202,7 +202,14 @@ fn verlet<C: Control>(
         ws.theta[k] = -ws.x[k];
     }
     dexp_inv(&d.model, &ws.theta, &ws.w, true, &mut ws.p_a);
-    momentum(&d.model, &mut d.data, &ws.q_mid, v, &mut ws.y, Some(&mut ws.grad));
+    momentum(
+        &d.model,
+        &mut d.data,
+        &ws.q_mid,
+        v,
+        &mut ws.y,
+        Some(&mut ws.grad),
+    );
     // gravity, external wrenches, control and passive forces at (q_m, v_a), the same for both
     // halves: explicit, so that stiff friction or gains cannot stall the fixed point
     d.field_forces(&ws.q_mid, &mut ws.field)?;
@@ -235,7 +242,14 @@ fn verlet<C: Control>(
         })?;
     }
     // the final ξ, with p_b at v_b
-    momentum(&d.model, &mut d.data, &ws.q_mid, v, &mut ws.y, Some(&mut ws.grad));
+    momentum(
+        &d.model,
+        &mut d.data,
+        &ws.q_mid,
+        v,
+        &mut ws.y,
+        Some(&mut ws.grad),
+    );
     for k in 0..nv {
         ws.x[k] = s * v[k];
         ws.theta[k] = -ws.x[k];
@@ -292,19 +306,39 @@ pub(crate) fn variational<C: Control>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::multibody::simulation::{Controller, SimulationOptions, Simulator, Integrator};
+    use crate::multibody::simulation::{Controller, Integrator, SimulationOptions, Simulator};
     use crate::multibody::{difference, random_configuration, Rng};
 
     fn free_tree() -> crate::multibody::Model {
         use crate::mass::{RotationalInertia, SpatialInertia};
         use crate::multibody::{JointType, ModelBuilder};
         use crate::spatial::{Transform, Vec3};
-        let g = SpatialInertia::from_com(2.0, Vec3::new(0.1, 0.2, 0.3), RotationalInertia::diagonal(0.1, 0.2, 0.25));
+        let g = SpatialInertia::from_com(
+            2.0,
+            Vec3::new(0.1, 0.2, 0.3),
+            RotationalInertia::diagonal(0.1, 0.2, 0.25),
+        );
         let mut b = ModelBuilder::new("free");
-        let f = b.add_joint(None, "f", JointType::FreeFlyer, Transform::identity(), g).unwrap();
-        let r = b.add_joint(Some(f), "r", JointType::Revolute { axis: Vec3::z() },
-            Transform::from_translation(Vec3::new(0.5, 0.0, 0.0)), g).unwrap();
-        b.add_joint(Some(r), "s", JointType::Spherical, Transform::from_translation(Vec3::new(0.0, 0.4, 0.0)), g).unwrap();
+        let f = b
+            .add_joint(None, "f", JointType::FreeFlyer, Transform::identity(), g)
+            .unwrap();
+        let r = b
+            .add_joint(
+                Some(f),
+                "r",
+                JointType::Revolute { axis: Vec3::z() },
+                Transform::from_translation(Vec3::new(0.5, 0.0, 0.0)),
+                g,
+            )
+            .unwrap();
+        b.add_joint(
+            Some(r),
+            "s",
+            JointType::Spherical,
+            Transform::from_translation(Vec3::new(0.0, 0.4, 0.0)),
+            g,
+        )
+        .unwrap();
         b.build().unwrap().with_gravity(Vec3::zeros())
     }
 
@@ -326,7 +360,10 @@ mod tests {
         verlet(&mut sim.dynamics, &mut sim.ws, h, -h, &q1, &p1, &mut v).unwrap();
         let mut dq = vec![0.0; model.nv()];
         difference(&model, &q0, &sim.ws.q_new, &mut dq).unwrap();
-        let ep = p0.iter().zip(&sim.ws.p_new).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let ep = p0
+            .iter()
+            .zip(&sim.ws.p_new)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         let eq = dq.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         assert!(eq < 1e-12 && ep < 1e-12, "q {eq:e}, p {ep:e}");
     }

@@ -161,7 +161,13 @@ mod tests {
             .add_joint(None, "f", JointType::FreeFlyer, Transform::identity(), g)
             .unwrap();
         let s = b
-            .add_joint(Some(root), "s", JointType::Spherical, Transform::identity(), g)
+            .add_joint(
+                Some(root),
+                "s",
+                JointType::Spherical,
+                Transform::identity(),
+                g,
+            )
             .unwrap();
         let p = b
             .add_joint(Some(s), "p", JointType::Planar, Transform::identity(), g)
@@ -193,8 +199,15 @@ mod tests {
         let minus_x: Vec<f64> = x.iter().map(|v| -v).collect();
         let mut z = vec![0.0; nv];
         dexp_inv(&model, &minus_x, &eta, false, &mut z);
-        let err = fd.iter().zip(&z).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-        assert!(err < 1e-8, "dexp⁻¹ vs finite differences: {err:e}\n{fd:?}\n{z:?}");
+        let err = fd
+            .iter()
+            .zip(&z)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            err < 1e-8,
+            "dexp⁻¹ vs finite differences: {err:e}\n{fd:?}\n{z:?}"
+        );
         // dexp ∘ dexp⁻¹ = 1, and the transpose pairs: ⟨dexpᵀ μ, η⟩ = ⟨μ, dexp η⟩
         let mut back = vec![0.0; nv];
         dexp(&model, &minus_x, &z, false, &mut back);

@@ -25,6 +25,9 @@
 //! # Ok::<(), rigid::multibody::simulation::SimulationError>(())
 //! ```
 
+// loops over several per-dof arrays at once read better indexed
+#![allow(clippy::needless_range_loop)]
+
 mod batch;
 mod control;
 mod integrators;
@@ -197,7 +200,10 @@ impl SimulationOptions {
     fn check(&self) -> Result<(), SimulationError> {
         let bad = |m: String| Err(SimulationError::Invalid(m));
         if !(self.dt.is_finite() && self.dt > 0.0) {
-            return bad(format!("time step must be positive and finite, got {}", self.dt));
+            return bad(format!(
+                "time step must be positive and finite, got {}",
+                self.dt
+            ));
         }
         if !(self.friction_speed.is_finite() && self.friction_speed > 0.0) {
             return bad(format!(
@@ -210,9 +216,11 @@ impl SimulationOptions {
             damping_ratio,
         } = self.limits
         {
-            if !(time_constant.is_finite() && time_constant > 0.0)
-                || !(damping_ratio.is_finite() && damping_ratio >= 0.0)
-            {
+            let ok = time_constant.is_finite()
+                && time_constant > 0.0
+                && damping_ratio.is_finite()
+                && damping_ratio >= 0.0;
+            if !ok {
                 return bad(format!(
                     "limit time constant must be positive and damping ratio non-negative, got {time_constant}, {damping_ratio}"
                 ));

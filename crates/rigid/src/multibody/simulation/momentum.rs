@@ -85,18 +85,48 @@ mod tests {
             )
         };
         let f = b
-            .add_joint(None, "f", JointType::FreeFlyer, place(&mut rng), body(&mut rng))
+            .add_joint(
+                None,
+                "f",
+                JointType::FreeFlyer,
+                place(&mut rng),
+                body(&mut rng),
+            )
             .unwrap();
         let s = b
-            .add_joint(Some(f), "s", JointType::Spherical, place(&mut rng), body(&mut rng))
+            .add_joint(
+                Some(f),
+                "s",
+                JointType::Spherical,
+                place(&mut rng),
+                body(&mut rng),
+            )
             .unwrap();
         let axis = Vec3::new(0.3, -0.5, 0.8);
-        b.add_joint(Some(s), "r", JointType::Revolute { axis }, place(&mut rng), body(&mut rng))
-            .unwrap();
-        b.add_joint(Some(f), "p", JointType::Planar, place(&mut rng), body(&mut rng))
-            .unwrap();
+        b.add_joint(
+            Some(s),
+            "r",
+            JointType::Revolute { axis },
+            place(&mut rng),
+            body(&mut rng),
+        )
+        .unwrap();
+        b.add_joint(
+            Some(f),
+            "p",
+            JointType::Planar,
+            place(&mut rng),
+            body(&mut rng),
+        )
+        .unwrap();
         let pr = b
-            .add_joint(Some(f), "x", JointType::Prismatic { axis }, place(&mut rng), body(&mut rng))
+            .add_joint(
+                Some(f),
+                "x",
+                JointType::Prismatic { axis },
+                place(&mut rng),
+                body(&mut rng),
+            )
             .unwrap();
         b.set_armature(pr, &[0.3]).unwrap();
         b.build().unwrap()
@@ -115,7 +145,11 @@ mod tests {
         momentum(&model, &mut data, &q, &v, &mut p, Some(&mut g));
         let m = crba(&model, &mut data, &q).unwrap().clone();
         let mv = &m * nalgebra::DVector::from_column_slice(&v);
-        let e = p.iter().zip(mv.iter()).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let e = p
+            .iter()
+            .zip(mv.iter())
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
         assert!(e < 1e-12, "M v: {e:e}");
         let eps = 1e-6;
         let mut qe = vec![0.0; model.nq()];
@@ -127,7 +161,11 @@ mod tests {
             integrate(&model, &q, &dk, -eps, &mut qe).unwrap();
             let km = kinetic_energy(&model, &mut data, &qe, &v).unwrap();
             let fd = (kp - km) / (2.0 * eps);
-            assert!((fd - g[k]).abs() < 1e-7 * (1.0 + fd.abs()), "dof {k}: {fd} vs {}", g[k]);
+            assert!(
+                (fd - g[k]).abs() < 1e-7 * (1.0 + fd.abs()),
+                "dof {k}: {fd} vs {}",
+                g[k]
+            );
         }
         // the free-flyer root: K does not depend on where the robot is
         assert!(g[..6].iter().all(|x| x.abs() < 1e-13));

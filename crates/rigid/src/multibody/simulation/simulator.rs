@@ -87,21 +87,37 @@ impl<C: Control> Dynamics<C> {
     }
 
     /// `out = M(q)⁻¹ x` (ABA without gravity at rest).
-    pub(crate) fn minv(&mut self, q: &[f64], x: &[f64], out: &mut [f64]) -> Result<(), MultibodyError> {
+    pub(crate) fn minv(
+        &mut self,
+        q: &[f64],
+        x: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), MultibodyError> {
         let r = aba(&self.free, &mut self.data, q, &self.zeros, x)?;
         out.copy_from_slice(r.as_slice());
         Ok(())
     }
 
     /// `out = -g(q) + Σ Jᵢᵀ Fᵢ` (gravity and the external wrenches as generalised forces).
-    pub(crate) fn field_forces(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), MultibodyError> {
+    pub(crate) fn field_forces(
+        &mut self,
+        q: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), MultibodyError> {
         let g = gravity_torques(&self.model, &mut self.data, q)?;
         for (o, gk) in out.iter_mut().zip(g.iter()) {
             *o = -gk;
         }
         if self.has_fext {
             // rnea without gravity, at rest, with F: τ = -Σ Jᵀ F
-            let r = rnea_with_external(&self.free, &mut self.data, q, &self.zeros, &self.zeros, &self.fext)?;
+            let r = rnea_with_external(
+                &self.free,
+                &mut self.data,
+                q,
+                &self.zeros,
+                &self.zeros,
+                &self.fext,
+            )?;
             for (o, rk) in out.iter_mut().zip(r.iter()) {
                 *o -= rk;
             }
@@ -207,15 +223,30 @@ impl<C: Control> Simulator<C> {
     pub fn step(&mut self) -> Result<(), SimulationError> {
         let h = self.dynamics.options.dt;
         let ok = match self.dynamics.options.integrator {
-            super::Integrator::SemiImplicitEuler => {
-                integrators::semi_implicit_euler(&mut self.dynamics, &mut self.ws, self.t, h, &self.q, &self.v)
-            }
-            super::Integrator::Rk4 => {
-                integrators::rk4(&mut self.dynamics, &mut self.ws, self.t, h, &self.q, &self.v)
-            }
-            super::Integrator::Variational => {
-                integrators::variational(&mut self.dynamics, &mut self.ws, self.t, h, &self.q, &self.p)
-            }
+            super::Integrator::SemiImplicitEuler => integrators::semi_implicit_euler(
+                &mut self.dynamics,
+                &mut self.ws,
+                self.t,
+                h,
+                &self.q,
+                &self.v,
+            ),
+            super::Integrator::Rk4 => integrators::rk4(
+                &mut self.dynamics,
+                &mut self.ws,
+                self.t,
+                h,
+                &self.q,
+                &self.v,
+            ),
+            super::Integrator::Variational => integrators::variational(
+                &mut self.dynamics,
+                &mut self.ws,
+                self.t,
+                h,
+                &self.q,
+                &self.p,
+            ),
         };
         let time = self.t + h;
         match ok {
@@ -304,10 +335,18 @@ impl<C: Control> Simulator<C> {
     ///
     /// # Errors
     /// An unknown joint or a non-finite wrench.
-    pub fn set_external_wrench(&mut self, joint: JointId, w: Wrench) -> Result<(), SimulationError> {
+    pub fn set_external_wrench(
+        &mut self,
+        joint: JointId,
+        w: Wrench,
+    ) -> Result<(), SimulationError> {
         let d = &mut self.dynamics;
         if joint.0 >= d.fext.len() {
-            return Err(MultibodyError::OutOfRange { what: "joint", index: joint.0 }.into());
+            return Err(MultibodyError::OutOfRange {
+                what: "joint",
+                index: joint.0,
+            }
+            .into());
         }
         if !w.to_vector().iter().all(|x| x.is_finite()) {
             return Err(SimulationError::Invalid(format!(
@@ -362,7 +401,8 @@ impl<C: Control> Simulator<C> {
         forward_kinematics_qv(&d.model, &mut d.data, &self.q, &self.v)?;
         let mut h = Wrench::zero();
         for i in 0..d.model.njoints() {
-            h += d.data.placements[i].act_wrench(&d.model.inertias[i].momentum(&d.data.velocities[i]));
+            h += d.data.placements[i]
+                .act_wrench(&d.model.inertias[i].momentum(&d.data.velocities[i]));
         }
         Ok(h)
     }
@@ -376,6 +416,11 @@ impl<C: Control> Simulator<C> {
 }
 
 /// Lengths of a row-major block of states.
-pub(crate) fn check_rows(what: &'static str, per: usize, n: usize, len: usize) -> Result<(), SimulationError> {
+pub(crate) fn check_rows(
+    what: &'static str,
+    per: usize,
+    n: usize,
+    len: usize,
+) -> Result<(), SimulationError> {
     DimensionError::check(what, n * per, len).map_err(|e| MultibodyError::from(e).into())
 }

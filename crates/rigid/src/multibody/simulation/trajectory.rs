@@ -181,7 +181,10 @@ mod tests {
                 let (sp, dsp, _) = sc.eval(t + h, T);
                 let (sm, dsm, _) = sc.eval(t - h, T);
                 assert!(((sp - sm) / (2.0 * h) - ds).abs() < 1e-6, "{sc:?} ṡ at {t}");
-                assert!(((dsp - dsm) / (2.0 * h) - dds).abs() < 1e-4, "{sc:?} s̈ at {t}");
+                assert!(
+                    ((dsp - dsm) / (2.0 * h) - dds).abs() < 1e-4,
+                    "{sc:?} s̈ at {t}"
+                );
                 assert!((0.0..=1.0).contains(&s));
             }
         }
