@@ -3,13 +3,13 @@
 
 use crate::load::load_model;
 use clap::Args;
+use rigid::io::cases::{parse_cases, Case};
 use rigid::multibody::{
     aba, center_of_mass, crba, forward_kinematics_q, gravity_torques, kinetic_energy,
     nonlinear_effects, potential_energy, rnea, Data, Model,
 };
 use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
-use serde_json::Value;
 use std::path::PathBuf;
 
 /// Arguments of `rigid eval`.
@@ -26,14 +26,6 @@ pub struct EvalArgs {
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     pub json: bool,
-}
-
-/// One state to evaluate.
-struct Case {
-    q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    tau: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -145,54 +137,6 @@ fn model_info(model: &Model) -> ModelInfo {
     }
 }
 
-/// Reads `{"cases": [...]}`, checking every field's type and length against the model.
-fn parse_cases(text: &str, model: &Model) -> Result<Vec<Case>, String> {
-    let root: Value = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
-    let list = root
-        .get("cases")
-        .ok_or("expected an object with a \"cases\" array")?
-        .as_array()
-        .ok_or("\"cases\" is not an array")?;
-    let mut cases = Vec::with_capacity(list.len());
-    for (i, c) in list.iter().enumerate() {
-        if !c.is_object() {
-            return Err(format!("case {i}: not an object"));
-        }
-        let field = |name: &str, len: usize, dim: &str, required: bool| {
-            vector(c.get(name), len, required)
-                .map_err(|e| format!("case {i}: \"{name}\" {e} (expected {dim} = {len})"))
-        };
-        cases.push(Case {
-            q: field("q", model.nq(), "nq", true)?,
-            v: field("v", model.nv(), "nv", false)?,
-            a: field("a", model.nv(), "nv", false)?,
-            tau: field("tau", model.nv(), "nv", false)?,
-        });
-    }
-    Ok(cases)
-}
-
-/// A vector of `len` numbers, or zeros if absent and not required.
-fn vector(value: Option<&Value>, len: usize, required: bool) -> Result<Vec<f64>, String> {
-    let Some(value) = value else {
-        return if required {
-            Err("is missing".into())
-        } else {
-            Ok(vec![0.0; len])
-        };
-    };
-    let arr = value.as_array().ok_or("is not an array of numbers")?;
-    let out = arr
-        .iter()
-        .enumerate()
-        .map(|(k, x)| x.as_f64().ok_or(format!("[{k}] is not a number")))
-        .collect::<Result<Vec<f64>, _>>()?;
-    if out.len() != len {
-        return Err(format!("has {} entries", out.len()));
-    }
-    Ok(out)
-}
-
 /// Case files of at least this many cases are evaluated on every core.
 const PARALLEL_CASES: usize = 64;
 
@@ -220,7 +164,7 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
     let rnea = rnea(model, data, &c.q, &c.v, &c.a).map_err(e("rnea"))?;
     let rnea = rnea.as_slice().to_vec();
     let m = crba(model, data, &c.q).map_err(e("mass_matrix"))?;
-    let mass_matrix = (0..m.nrows())
+    let mass_matrix: Vec<Vec<f64>> = (0..m.nrows())
         .map(|r| (0..m.ncols()).map(|k| m[(r, k)]).collect())
         .collect();
     let nle = nonlinear_effects(model, data, &c.q, &c.v).map_err(e("nonlinear_effects"))?;
@@ -246,6 +190,23 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
             (j.name.clone(), p)
         })
         .collect();
+    // A result that overflowed (huge masses, huge velocities) is an error, not a JSON `null`.
+    let finite = |what: &'static str, x: &[f64]| {
+        if x.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} is not finite: the numbers overflow (check the masses and the state)"
+            ))
+        }
+    };
+    finite("rnea", &rnea)?;
+    finite("mass_matrix", &mass_matrix.concat())?;
+    finite("nonlinear_effects", &nle)?;
+    finite("gravity_torques", &g)?;
+    finite("aba", &ddq)?;
+    finite("kinetic_energy", &[kinetic_energy, potential_energy])?;
+    finite("com", &[com.x, com.y, com.z])?;
     // `+ 0.0` turns an empty sum's `-0.0` into `0.0`.
     Ok(CaseResult {
         rnea,

@@ -55,6 +55,18 @@ fn report(result: Result<(), String>) -> ExitCode {
     }
 }
 
+/// A command-line error of clap on one line: its message without the `error:` prefix, the usage
+/// and the tips, the remaining lines joined by `; `.
+fn one_line(text: &str) -> String {
+    text.lines()
+        .map(str::trim)
+        .take_while(|l| !l.starts_with("Usage:"))
+        .filter(|l| !l.is_empty() && !l.starts_with("tip:") && !l.starts_with("For more"))
+        .map(|l| l.trim_start_matches("error:").trim())
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
 /// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so that an
 /// output is never left half-written.
 ///
@@ -144,7 +156,16 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    match Cli::parse().command {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help and --version print as clap does
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            eprintln!("error: {}", one_line(&e.to_string()));
+            return ExitCode::from(2);
+        }
+    };
+    match cli.command {
         Command::Bench(args) => report(bench::run(&args)),
         Command::Doctor(args) => report(doctor::run(&args)),
         Command::Mass(args) => mass::run(&args),

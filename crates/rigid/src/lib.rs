@@ -19,6 +19,8 @@
 
 pub mod body;
 pub mod error;
+#[doc(hidden)]
+pub mod fuzzing;
 pub mod io;
 pub mod mass;
 pub mod multibody;

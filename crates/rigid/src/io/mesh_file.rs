@@ -58,7 +58,14 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshFileError> {
 /// # Errors
 /// [`MeshFileError::Io`] if the file cannot be opened, [`MeshFileError::Stl`] if it is not STL.
 pub fn read_stl(path: &Path) -> Result<TriMesh, MeshFileError> {
-    let mut bytes = std::fs::read(path)?;
+    parse_stl(std::fs::read(path)?)
+}
+
+/// As [`read_stl`], from the file's bytes.
+///
+/// # Errors
+/// [`MeshFileError::Stl`] if the bytes are not STL.
+pub fn parse_stl(mut bytes: Vec<u8>) -> Result<TriMesh, MeshFileError> {
     let binary = bytes.len() >= 84 && {
         let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
         n.checked_mul(50).and_then(|b| b.checked_add(84)) == Some(bytes.len())
@@ -87,7 +94,14 @@ pub fn read_stl(path: &Path) -> Result<TriMesh, MeshFileError> {
 /// # Errors
 /// [`MeshFileError::Io`] if the file cannot be opened, [`MeshFileError::Obj`] if it is not OBJ.
 pub fn read_obj(path: &Path) -> Result<TriMesh, MeshFileError> {
-    let mut reader = BufReader::new(File::open(path)?);
+    parse_obj(&mut BufReader::new(File::open(path)?))
+}
+
+/// As [`read_obj`], from a reader of the file's text.
+///
+/// # Errors
+/// [`MeshFileError::Obj`] if the text is not OBJ.
+pub fn parse_obj(reader: &mut impl std::io::BufRead) -> Result<TriMesh, MeshFileError> {
     // `..Default::default()` covers the fields that tobj's optional features add.
     #[allow(clippy::needless_update)]
     let options = tobj::LoadOptions {
@@ -97,10 +111,9 @@ pub fn read_obj(path: &Path) -> Result<TriMesh, MeshFileError> {
         ignore_lines: true,
         ..Default::default()
     };
-    let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| {
-        Err(tobj::LoadError::OpenFileFailed)
-    })
-    .map_err(MeshFileError::Obj)?;
+    let (models, _materials) =
+        tobj::load_obj_buf(reader, &options, |_| Err(tobj::LoadError::OpenFileFailed))
+            .map_err(MeshFileError::Obj)?;
     let mut mesh = TriMesh::default();
     for model in &models {
         let offset = mesh.vertices.len();

@@ -338,6 +338,8 @@ impl Model {
 pub struct ModelBuilder {
     model: Model,
     inertia_check: InertiaCheck,
+    /// Joint names, and frame names by kind, for O(1) duplicate checks.
+    names: std::collections::HashSet<(Option<FrameKind>, String)>,
     /// The chain of joints from the root to the last joint added (for the depth-first check).
     stack: Vec<usize>,
 }
@@ -432,6 +434,7 @@ impl ModelBuilder {
             },
             stack: Vec::new(),
             inertia_check: InertiaCheck::Physical,
+            names: std::collections::HashSet::new(),
         }
     }
 
@@ -448,15 +451,7 @@ impl ModelBuilder {
 
     /// Joint names are unique among joints; frame names within their kind.
     fn check_name(&self, name: &str, kind: Option<FrameKind>) -> Result<(), ModelError> {
-        let taken = match kind {
-            None => self.model.joints.iter().any(|j| j.name == name),
-            Some(k) => self
-                .model
-                .frames
-                .iter()
-                .any(|f| f.name == name && f.kind == k),
-        };
-        if taken {
+        if self.names.contains(&(kind, name.to_string())) {
             Err(ModelError::DuplicateName { name: name.into() })
         } else {
             Ok(())
@@ -546,6 +541,7 @@ impl ModelBuilder {
         m.nq += nq;
         m.nv += nv;
         self.stack.push(id);
+        self.names.insert((None, name.to_string()));
         Ok(JointId(id))
     }
 
@@ -575,6 +571,7 @@ impl ModelBuilder {
             placement,
             kind: FrameKind::Body,
         });
+        self.names.insert((Some(FrameKind::Body), name.to_string()));
         Ok(FrameId(self.model.frames.len() - 1))
     }
 
@@ -613,6 +610,7 @@ impl ModelBuilder {
             placement,
             kind,
         });
+        self.names.insert((Some(kind), name.to_string()));
         Ok(FrameId(self.model.frames.len() - 1))
     }
 

@@ -7,7 +7,7 @@ use super::{
 };
 use crate::mass::RotationalInertia;
 use crate::spatial::{Transform, Vec3};
-use roxmltree::{Document, Node};
+use roxmltree::Node;
 use std::collections::HashMap;
 
 /// Children of `<robot>` that are read or knowingly skipped (anything else is a warning).
@@ -40,16 +40,43 @@ const JOINT_CHILDREN: &[&str] = &[
 ];
 
 /// Element readers that know the document (for line numbers) and collect warnings.
-pub(super) struct Parser<'a, 'input> {
-    pub doc: &'a Document<'input>,
+pub(super) struct Parser {
     pub warnings: Vec<UrdfWarning>,
     /// Top-level `<material name>` colours.
     pub materials: HashMap<String, [f64; 4]>,
+    /// Byte offset of the start of every line after the first (for line numbers in O(log n):
+    /// `Document::text_pos_at` scans from the start, quadratic over a large file).
+    pub line_starts: Vec<usize>,
 }
 
-impl Parser<'_, '_> {
+/// An attribute value as quoted in a message: at most 40 characters, and where it was cut how long
+/// it was (a 10 MB attribute must not become a 10 MB error message).
+fn shown(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        None => text.to_string(),
+        Some((cut, _)) => format!("{}… ({} bytes)", &text[..cut], text.len()),
+    }
+}
+
+/// `true` for a URDF element called `tag`: no XML namespace (so that `<drake:joint>` or
+/// `<xacro:link>` are not taken for URDF's `<joint>` and `<link>`).
+pub(super) fn is(node: &Node, tag: &str) -> bool {
+    node.is_element() && node.tag_name().name() == tag && node.tag_name().namespace().is_none()
+}
+
+impl Parser {
+    /// The line starts of `text`.
+    pub fn line_starts(text: &str) -> Vec<usize> {
+        text.bytes()
+            .enumerate()
+            .filter(|(_, b)| *b == b'\n')
+            .map(|(i, _)| i + 1)
+            .collect()
+    }
+
     pub fn line(&self, node: Node) -> u32 {
-        self.doc.text_pos_at(node.range().start).row
+        let at = node.range().start;
+        (self.line_starts.partition_point(|&s| s <= at) + 1) as u32
     }
 
     pub fn invalid(&self, node: Node, element: String, message: String) -> UrdfError {
@@ -73,7 +100,7 @@ impl Parser<'_, '_> {
     pub fn warn_unknown_children(&mut self, node: Node, what: &str, known: &[&str]) {
         for c in node.children().filter(|c| c.is_element()) {
             let tag = c.tag_name().name();
-            if !known.contains(&tag) {
+            if !known.contains(&tag) || c.tag_name().namespace().is_some() {
                 let msg = format!("unknown element <{tag}> ignored");
                 self.warn(c, what.into(), msg);
             }
@@ -100,11 +127,11 @@ impl Parser<'_, '_> {
         };
         let tag = node.tag_name().name();
         let x: f64 = text.trim().parse().map_err(|_| {
-            let msg = format!("<{tag} {name}=\"{text}\">: not a number");
+            let msg = format!("<{tag} {name}=\"{}\">: not a number", shown(text));
             self.invalid(node, what.into(), msg)
         })?;
         if !x.is_finite() {
-            let msg = format!("<{tag} {name}=\"{text}\">: non-finite value");
+            let msg = format!("<{tag} {name}=\"{}\">: non-finite value", shown(text));
             return Err(self.invalid(node, what.into(), msg));
         }
         Ok(Some(x))
@@ -131,7 +158,7 @@ impl Parser<'_, '_> {
         };
         let tag = node.tag_name().name();
         let bad = |why: &str| {
-            let msg = format!("<{tag} {name}=\"{text}\">: {why}");
+            let msg = format!("<{tag} {name}=\"{}\">: {why}", shown(text));
             self.invalid(node, what.into(), msg)
         };
         let mut out = [0.0; N];
@@ -156,7 +183,7 @@ impl Parser<'_, '_> {
 
     /// The first child element with this tag.
     pub fn child<'n, 'i>(node: Node<'n, 'i>, tag: &str) -> Option<Node<'n, 'i>> {
-        node.children().find(|n| n.has_tag_name(tag))
+        node.children().find(|n| is(n, tag))
     }
 
     /// `<origin xyz rpy>` under `node`: the transform and the `rpy` as written (identity if
@@ -204,7 +231,10 @@ impl Parser<'_, '_> {
         };
         let mut visuals = Vec::new();
         let mut collisions = Vec::new();
-        for g in node.children().filter(|c| c.is_element()) {
+        for g in node
+            .children()
+            .filter(|c| c.is_element() && c.tag_name().namespace().is_none())
+        {
             let list = match g.tag_name().name() {
                 "visual" => &mut visuals,
                 "collision" => &mut collisions,

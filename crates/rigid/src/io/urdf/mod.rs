@@ -421,7 +421,16 @@ pub enum InertiaIssueKind {
         /// The joint that moves the massless subtree.
         joint: String,
     },
+    /// A mass above [`HUGE_MASS`] (1000 t): no robot link weighs that much, and the dynamics
+    /// of such numbers may overflow. A warning.
+    HugeMass {
+        /// The mass (kg).
+        mass: f64,
+    },
 }
+
+/// The mass (kg) above which a link's mass is reported as implausible.
+pub const HUGE_MASS: f64 = 1e6;
 
 impl InertiaIssue {
     /// `true` for the findings that make [`build_model`] refuse the robot under
@@ -454,6 +463,10 @@ impl InertiaIssue {
             InertiaIssueKind::ZeroMassMovingLink { joint } => format!(
                 "moved by joint \"{joint}\" but it and its descendants have zero mass (singular \
                  mass matrix, ABA undefined)"
+            ),
+            InertiaIssueKind::HugeMass { mass } => format!(
+                "mass {mass:e} kg is implausibly large (over {HUGE_MASS:e} kg); results may \
+                 overflow"
             ),
         }
     }
@@ -494,6 +507,28 @@ impl UrdfRobot {
     #[must_use]
     pub fn link_mass(&self, link: usize) -> f64 {
         self.links[link].inertial.as_ref().map_or(0.0, |i| i.mass)
+    }
+
+    /// The total mass of every link and of everything below it, indexed like `links`
+    /// (computed leaves first, in linear time).
+    #[must_use]
+    pub fn subtree_masses(&self) -> Vec<f64> {
+        // depth-first order from the root, then accumulate in reverse
+        let mut order = Vec::with_capacity(self.links.len());
+        let mut stack = vec![self.root];
+        while let Some(l) = stack.pop() {
+            order.push(l);
+            stack.extend(self.children[l].iter().map(|&j| self.joints[j].child));
+        }
+        let mut m: Vec<f64> = (0..self.links.len()).map(|l| self.link_mass(l)).collect();
+        for &l in order.iter().rev() {
+            let below: f64 = self.children[l]
+                .iter()
+                .map(|&j| m[self.joints[j].child])
+                .sum();
+            m[l] += below;
+        }
+        m
     }
 
     /// The total mass of a link and of everything below it.
@@ -546,9 +581,17 @@ impl UrdfRobot {
                     kind: InertiaIssueKind::Invalid(e),
                 });
             }
+            if i.mass > HUGE_MASS {
+                issues.push(InertiaIssue {
+                    link: link.name.clone(),
+                    line: i.line,
+                    kind: InertiaIssueKind::HugeMass { mass: i.mass },
+                });
+            }
         }
+        let subtree = self.subtree_masses();
         for joint in &self.joints {
-            if joint.kind != UrdfJointKind::Fixed && self.subtree_mass(joint.child) == 0.0 {
+            if joint.kind != UrdfJointKind::Fixed && subtree[joint.child] == 0.0 {
                 let link = &self.links[joint.child];
                 issues.push(InertiaIssue {
                     link: link.name.clone(),

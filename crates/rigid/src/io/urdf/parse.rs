@@ -1,6 +1,6 @@
 //! URDF text to [`UrdfRobot`]: XML with `roxmltree`, then every element and the tree checked.
 
-use super::elements::{Parser, ROBOT_CHILDREN};
+use super::elements::{is, Parser, ROBOT_CHILDREN};
 use super::{UrdfError, UrdfJoint, UrdfLink, UrdfRobot};
 use roxmltree::{Document, ParsingOptions};
 use std::collections::HashMap;
@@ -90,12 +90,12 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
     )
     .map_err(|e| xml_error(&e))?;
     let mut p = Parser {
-        doc: &doc,
         warnings: Vec::new(),
         materials: HashMap::new(),
+        line_starts: Parser::line_starts(doc.input_text()),
     };
     let root = doc.root_element();
-    if !root.has_tag_name("robot") {
+    if !is(&root, "robot") {
         return Err(p.invalid(
             root,
             "document".into(),
@@ -116,13 +116,13 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
         }
     };
     p.warn_unknown_children(root, "robot", ROBOT_CHILDREN);
-    for node in root.children().filter(|n| n.has_tag_name("material")) {
+    for node in root.children().filter(|n| is(n, "material")) {
         p.material(node);
     }
 
     let mut links = Vec::new();
     let mut link_index: HashMap<String, usize> = HashMap::new();
-    for node in root.children().filter(|n| n.has_tag_name("link")) {
+    for node in root.children().filter(|n| is(n, "link")) {
         let link = p.link(node)?;
         if let Some(&first) = link_index.get(&link.name) {
             let first: &UrdfLink = &links[first];
@@ -142,7 +142,7 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
     let mut joints: Vec<UrdfJoint> = Vec::new();
     let mut joint_index: HashMap<String, usize> = HashMap::new();
     let mut parent_joint: Vec<Option<usize>> = vec![None; links.len()];
-    for node in root.children().filter(|n| n.has_tag_name("joint")) {
+    for node in root.children().filter(|n| is(n, "joint")) {
         let joint = p.joint(node, &link_index)?;
         let what = || format!("joint \"{}\"", joint.name);
         if let Some(&first) = joint_index.get(&joint.name) {
@@ -193,6 +193,32 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
                 ),
             });
             joint.mimic = None;
+        }
+    }
+
+    // A chain of mimics that comes back to itself defines no joint: refuse it.
+    for start in 0..joints.len() {
+        let mut seen = vec![start];
+        let mut cur = start;
+        while let Some(next) = joints[cur]
+            .mimic
+            .as_ref()
+            .and_then(|m| joint_index.get(&m.joint).copied())
+        {
+            if next == start {
+                let names: Vec<&str> = seen.iter().map(|&j| joints[j].name.as_str()).collect();
+                let j = &joints[start];
+                return Err(UrdfError::Invalid {
+                    line: j.line,
+                    element: format!("joint \"{}\"", j.name),
+                    message: format!("mimic loop: {} -> {}", names.join(" -> "), j.name),
+                });
+            }
+            if seen.contains(&next) {
+                break; // a loop not through `start`: reported from one of its joints
+            }
+            seen.push(next);
+            cur = next;
         }
     }
 
