@@ -73,6 +73,17 @@ fn one_line(text: &str) -> String {
 /// # Errors
 /// The file cannot be written (the message names it).
 pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), String> {
+    let tmp = temp_path(path);
+    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(format!("cannot write {}: {e}", path.display()));
+    }
+    Ok(())
+}
+
+/// The temporary file next to `path` that an atomic write goes through.
+fn temp_path(path: &std::path::Path) -> std::path::PathBuf {
     let dir = path
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
@@ -80,13 +91,7 @@ pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), String> 
     let name = path
         .file_name()
         .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(format!("cannot write {}: {e}", path.display()));
-    }
-    Ok(())
+    dir.join(format!(".{name}.{}.tmp", std::process::id()))
 }
 
 /// A file written through a temporary file in the same folder, renamed into place by
@@ -104,14 +109,7 @@ impl AtomicFile {
     /// # Errors
     /// The folder cannot be written (the message names the file).
     pub fn create(path: &std::path::Path) -> Result<Self, String> {
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(std::path::Path::new("."));
-        let name = path
-            .file_name()
-            .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-        let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+        let tmp = temp_path(path);
         let f = std::fs::File::create(&tmp)
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         Ok(Self {

@@ -329,3 +329,90 @@ fn batch_gives_the_single_runs_bit_for_bit() {
         }
     }
 }
+
+/// A pendulum with a limit spring, damping and friction, and an external wrench: the limit
+/// holds (penetration a few degrees at 5 rad/s), damping and friction only take energy out, and
+/// a pure moment on the body acts as the same joint torque.
+#[test]
+fn limits_damping_friction_and_external_wrenches_act_as_documented() {
+    use rigid::multibody::simulation::JointLimits;
+    use rigid::multibody::{JointId, JointType, ModelBuilder};
+    use rigid::spatial::{Transform, Vec3, Wrench};
+    let build = |damping: f64, friction: f64| {
+        let rod = builtin("pendulum").unwrap().inertia(JointId(0)).clone();
+        let mut b = ModelBuilder::new("p");
+        let j = b
+            .add_joint(
+                None,
+                "j",
+                JointType::Revolute { axis: Vec3::y() },
+                Transform::identity(),
+                rod,
+            )
+            .unwrap();
+        b.set_limits(j, &[-0.1], &[0.1], &[10.0], &[10.0]).unwrap();
+        b.set_joint_dynamics(j, &[damping], &[friction]).unwrap();
+        b.build().unwrap().with_gravity(Vec3::zeros())
+    };
+    let model = build(0.0, 0.0);
+    // the limit
+    for (limits, inside) in [
+        (JointLimits::default(), true),
+        (JointLimits::Ignored, false),
+    ] {
+        let opts = SimulationOptions {
+            limits,
+            ..Default::default()
+        };
+        let mut sim =
+            Simulator::new(&model, &[0.0], &[5.0], opts, Controller::none(&model)).unwrap();
+        let mut worst = 0.0f64;
+        sim.run(1000, |s| worst = worst.max(s.q()[0].abs()))
+            .unwrap();
+        eprintln!("{limits:?}: max |q| = {worst:.4}");
+        assert_eq!(worst < 0.1 + 0.1, inside, "{limits:?}: {worst}");
+    }
+    // damping and friction take energy out, monotonically
+    let model = build(0.05, 0.02);
+    let mut sim = Simulator::new(
+        &model,
+        &[0.0],
+        &[1.0],
+        SimulationOptions::conservative(1e-3, Integrator::Rk4),
+        Controller::none(&model),
+    )
+    .unwrap();
+    let opts = SimulationOptions {
+        limits: JointLimits::Ignored,
+        ..Default::default()
+    };
+    let mut damped =
+        Simulator::new(&model, &[0.0], &[1.0], opts, Controller::none(&model)).unwrap();
+    let (e0, mut last) = (sim.energy().unwrap(), f64::INFINITY);
+    for _ in 0..20 {
+        damped.run(50, |_| {}).unwrap();
+        sim.run(50, |_| {}).unwrap();
+        let e = damped.energy().unwrap();
+        assert!(e < last);
+        last = e;
+    }
+    assert!(
+        (sim.energy().unwrap() - e0).abs() < 1e-12 * e0,
+        "conservative without joint dynamics"
+    );
+    assert!(last < 0.8 * e0, "{last} vs {e0}");
+    // a pure moment of 0.3 N·m about the joint axis = a joint torque of 0.3 N·m
+    let model = build(0.0, 0.0);
+    let opts = SimulationOptions::conservative(1e-3, Integrator::Rk4);
+    let mut a = Simulator::new(&model, &[0.0], &[0.0], opts, Controller::none(&model)).unwrap();
+    a.set_external_wrench(
+        JointId(0),
+        Wrench::new(Vec3::new(0.0, 0.3, 0.0), Vec3::zeros()),
+    )
+    .unwrap();
+    let torque = |_t: f64, _q: &[f64], _v: &[f64], tau: &mut [f64]| tau[0] = 0.3;
+    let mut b = Simulator::new(&model, &[0.0], &[0.0], opts, torque).unwrap();
+    a.run(500, |_| {}).unwrap();
+    b.run(500, |_| {}).unwrap();
+    assert!((a.q()[0] - b.q()[0]).abs() < 1e-14 && a.q()[0] > 0.1);
+}

@@ -256,6 +256,15 @@ impl Model {
     /// Viscous joint damping `b` per degree of freedom (N·m·s/rad or N·s/m; `0` when none): the
     /// simulator ([`simulation`](super::simulation)) applies `τ = -b v`. The algorithms (RNEA,
     /// ABA, ...) ignore it, as Pinocchio does.
+    ///
+    /// ```
+    /// let model = rigid::io::urdf::load_urdf_str(r#"<robot name="r"><link name="a"/>
+    ///   <link name="b"><inertial><mass value="1"/>
+    ///     <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    ///   <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
+    ///     <dynamics damping="0.5" friction="0.1"/></joint></robot>"#, false).unwrap();
+    /// assert_eq!((model.damping(), model.friction()), (&[0.5][..], &[0.1][..]));
+    /// ```
     #[must_use]
     pub fn damping(&self) -> &[f64] {
         &self.damping

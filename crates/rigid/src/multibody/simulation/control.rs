@@ -79,6 +79,14 @@ impl ControlLaw {
     /// diagonal of the mass matrix at the target (so that light wrist joints get soft gains and a
     /// fixed step stays stable).
     ///
+    /// ```
+    /// use rigid::multibody::{builtin, simulation::ControlLaw};
+    /// let model = builtin("pendulum").unwrap(); // M = 1/3 kg·m²
+    /// let ControlLaw::Pd { kp, kd, .. } = ControlLaw::pd(&model, &[0.0], 10.0, 1.0)? else { panic!() };
+    /// assert!((kp[0] - 100.0 / 3.0).abs() < 1e-12 && (kd[0] - 20.0 / 3.0).abs() < 1e-12);
+    /// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+    /// ```
+    ///
     /// # Errors
     /// A bad target.
     pub fn pd(

@@ -24,6 +24,12 @@ pub enum TimeScaling {
 
 impl TimeScaling {
     /// `(s, ṡ, s̈)` at time `t` for a motion of duration `T`.
+    ///
+    /// ```
+    /// use rigid::multibody::simulation::TimeScaling;
+    /// let (s, ds, _) = TimeScaling::Trapezoidal { accel_fraction: 0.25 }.eval(1.0, 2.0);
+    /// assert!((s - 0.5).abs() < 1e-15 && (ds - 1.0 / 1.5).abs() < 1e-15); // cruising at 1/(T - t_a)
+    /// ```
     #[must_use]
     pub fn eval(&self, t: f64, T: f64) -> (f64, f64, f64) {
         if t <= 0.0 {
