@@ -339,7 +339,7 @@ fn limits_damping_friction_and_external_wrenches_act_as_documented() {
     use rigid::multibody::{JointId, JointType, ModelBuilder};
     use rigid::spatial::{Transform, Vec3, Wrench};
     let build = |damping: f64, friction: f64| {
-        let rod = builtin("pendulum").unwrap().inertia(JointId(0)).clone();
+        let rod = *builtin("pendulum").unwrap().inertia(JointId(0));
         let mut b = ModelBuilder::new("p");
         let j = b
             .add_joint(
