@@ -12,7 +12,10 @@ mod eval;
 mod load;
 mod mass;
 mod model;
+mod plotting;
+mod replay;
 mod simulate;
+mod view;
 
 /// Rigid-body dynamics from the command line.
 #[derive(Parser)]
@@ -30,12 +33,15 @@ enum Command {
     Doctor(doctor::DoctorArgs),
     /// Mass properties of a body made of parts (a TOML spec): mass, CoM, inertia, G.
     Mass(mass::MassArgs),
-    /// Simulate one rigid body (free, or on a pivot) and report energy and momentum errors.
-    Simulate(simulate::SimulateArgs),
+    /// Simulate a robot (URDF or built-in model) or one rigid body (a TOML spec): CSV, plots, a
+    /// 3D replay in the browser, and a summary.
+    Simulate(Box<simulate::SimulateArgs>),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
     /// Summarise a robot model: bodies, joints, sizes, mass and the validity of every inertia.
     Model(model::ModelArgs),
+    /// Draw a robot in one pose, as a self-contained HTML page (WebGL).
+    View(view::ViewArgs),
 }
 
 /// Exit code 2 and the message on stderr for an error.
@@ -67,6 +73,17 @@ fn one_line(text: &str) -> String {
 /// # Errors
 /// The file cannot be written (the message names it).
 pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), String> {
+    let tmp = temp_path(path);
+    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(format!("cannot write {}: {e}", path.display()));
+    }
+    Ok(())
+}
+
+/// The temporary file next to `path` that an atomic write goes through.
+fn temp_path(path: &std::path::Path) -> std::path::PathBuf {
     let dir = path
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
@@ -74,13 +91,59 @@ pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), String> 
     let name = path
         .file_name()
         .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(format!("cannot write {}: {e}", path.display()));
+    dir.join(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// A file written through a temporary file in the same folder, renamed into place by
+/// [`commit`](Self::commit) (removed if dropped before): for outputs written as they are
+/// produced (a CSV row per step).
+pub struct AtomicFile {
+    tmp: std::path::PathBuf,
+    path: std::path::PathBuf,
+    out: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl AtomicFile {
+    /// Opens the temporary file for `path`.
+    ///
+    /// # Errors
+    /// The folder cannot be written (the message names the file).
+    pub fn create(path: &std::path::Path) -> Result<Self, String> {
+        let tmp = temp_path(path);
+        let f = std::fs::File::create(&tmp)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        Ok(Self {
+            tmp,
+            path: path.to_path_buf(),
+            out: Some(std::io::BufWriter::new(f)),
+        })
     }
-    Ok(())
+
+    /// The buffered writer.
+    pub fn writer(&mut self) -> &mut std::io::BufWriter<std::fs::File> {
+        self.out.as_mut().expect("not committed")
+    }
+
+    /// Flushes and renames the file into place.
+    ///
+    /// # Errors
+    /// The file cannot be written.
+    pub fn commit(mut self) -> Result<(), String> {
+        use std::io::Write;
+        let mut out = self.out.take().expect("committed once");
+        let err = |e: std::io::Error| format!("cannot write {}: {e}", self.path.display());
+        out.flush().map_err(err)?;
+        drop(out);
+        std::fs::rename(&self.tmp, &self.path).map_err(err)
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if self.out.take().is_some() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -107,5 +170,6 @@ fn main() -> ExitCode {
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),
         Command::Model(args) => report(model::run(&args)),
+        Command::View(args) => report(view::run(&args)),
     }
 }

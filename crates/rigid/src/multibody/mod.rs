@@ -25,6 +25,7 @@
 //! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |
 //! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
 //! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`layout`] (`PinocchioLayout`) | URDF models loaded with sibling joints sorted by name |
+//! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`] | ABA; Lynch & Park ch. 9, 11 |
 //! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |
 //!
 //! No algorithm allocates after [`Data::new`] (tested with a counting allocator), and each
@@ -49,6 +50,7 @@ mod data;
 mod joint;
 pub mod layout;
 mod model;
+pub mod simulation;
 mod sincos;
 
 pub use algorithms::*;
@@ -135,6 +137,12 @@ pub enum ModelError {
     /// Negative or non-finite armature.
     #[error("joint '{joint}': armature must be finite and non-negative")]
     BadArmature {
+        /// The joint.
+        joint: String,
+    },
+    /// Negative or non-finite joint damping or friction.
+    #[error("joint '{joint}': damping and friction must be finite and non-negative")]
+    BadDynamics {
         /// The joint.
         joint: String,
     },

@@ -111,6 +111,10 @@ pub struct Model {
     pub(crate) velocity_limit: Vec<f64>,
     pub(crate) effort_limit: Vec<f64>,
     pub(crate) armature: Vec<f64>,
+    /// Viscous joint damping per degree of freedom (URDF `<dynamics damping>`).
+    pub(crate) damping: Vec<f64>,
+    /// Coulomb (dry) joint friction per degree of freedom (URDF `<dynamics friction>`).
+    pub(crate) friction: Vec<f64>,
     /// Motion subspace column per degree of freedom, in the child frame (constant).
     pub(crate) dof_S: Vec<Twist>,
     /// The joint of each degree of freedom.
@@ -248,6 +252,28 @@ impl Model {
     #[must_use]
     pub fn armature(&self) -> &[f64] {
         &self.armature
+    }
+    /// Viscous joint damping `b` per degree of freedom (N·m·s/rad or N·s/m; `0` when none): the
+    /// simulator ([`simulation`](super::simulation)) applies `τ = -b v`. The algorithms (RNEA,
+    /// ABA, ...) ignore it, as Pinocchio does.
+    ///
+    /// ```
+    /// let model = rigid::io::urdf::load_urdf_str(r#"<robot name="r"><link name="a"/>
+    ///   <link name="b"><inertial><mass value="1"/>
+    ///     <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    ///   <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
+    ///     <dynamics damping="0.5" friction="0.1"/></joint></robot>"#, false).unwrap();
+    /// assert_eq!((model.damping(), model.friction()), (&[0.5][..], &[0.1][..]));
+    /// ```
+    #[must_use]
+    pub fn damping(&self) -> &[f64] {
+        &self.damping
+    }
+    /// Coulomb joint friction `F_c` per degree of freedom (N·m or N; `0` when none): the
+    /// simulator applies a regularised `τ = -F_c tanh(v / v_s)`. The algorithms ignore it.
+    #[must_use]
+    pub fn friction(&self) -> &[f64] {
+        &self.friction
     }
     /// The motion-subspace column of degree of freedom `k`, in its body's frame.
     #[must_use]
@@ -405,6 +431,8 @@ impl ModelBuilder {
                 velocity_limit: Vec::new(),
                 effort_limit: Vec::new(),
                 armature: Vec::new(),
+                damping: Vec::new(),
+                friction: Vec::new(),
                 dof_S: Vec::new(),
                 dof_joint: Vec::new(),
                 dof_axis: Vec::new(),
@@ -517,6 +545,8 @@ impl ModelBuilder {
         m.velocity_limit.resize(m.nv + nv, f64::INFINITY);
         m.effort_limit.resize(m.nv + nv, f64::INFINITY);
         m.armature.resize(m.nv + nv, 0.0);
+        m.damping.resize(m.nv + nv, 0.0);
+        m.friction.resize(m.nv + nv, 0.0);
         m.nq += nq;
         m.nv += nv;
         self.stack.push(id);
@@ -660,6 +690,33 @@ impl ModelBuilder {
             return Err(ModelError::BadArmature { joint: j.name });
         }
         self.model.armature[j.idx_v..j.idx_v + j.nv].copy_from_slice(armature);
+        Ok(())
+    }
+
+    /// The viscous damping and Coulomb friction of one joint (`nv` entries each, finite and
+    /// `≥ 0`; URDF `<dynamics damping friction>`), used by the simulator only.
+    ///
+    /// # Errors
+    /// Unknown joint, wrong lengths, a negative or non-finite entry.
+    pub fn set_joint_dynamics(
+        &mut self,
+        joint: JointId,
+        damping: &[f64],
+        friction: &[f64],
+    ) -> Result<(), ModelError> {
+        let j = self.joint_checked(joint)?.clone();
+        for (what, x) in [("damping", damping), ("friction", friction)] {
+            DimensionError::check(what, j.nv, x.len()).map_err(|source| ModelError::Dimension {
+                joint: j.name.clone(),
+                source,
+            })?;
+            if x.iter().any(|a| !a.is_finite() || *a < 0.0) {
+                return Err(ModelError::BadDynamics { joint: j.name });
+            }
+        }
+        let r = j.idx_v..j.idx_v + j.nv;
+        self.model.damping[r.clone()].copy_from_slice(damping);
+        self.model.friction[r].copy_from_slice(friction);
         Ok(())
     }
 

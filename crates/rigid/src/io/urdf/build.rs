@@ -352,6 +352,11 @@ fn add_joints(
             b.set_limits(id, &[lower], &[upper], &[l.velocity], &[l.effort])
                 .map_err(at_joint)?;
         }
+        if joint.damping != 0.0 || joint.friction != 0.0 {
+            let n = kind.nv();
+            b.set_joint_dynamics(id, &vec![joint.damping; n], &vec![joint.friction; n])
+                .map_err(at_joint)?;
+        }
         b.add_frame_of_kind(
             Some(id),
             &child.name,

@@ -27,6 +27,9 @@
 //!   (`floating = true`), in which case it becomes the body of a free-flyer joint named
 //!   [`ROOT_JOINT_NAME`] (Pinocchio's name). Links welded to the world take no part in the
 //!   dynamics (total mass, CoM and potential energy leave them out).
+//! - `<dynamics damping friction>` become the joint's [`Model::damping`](crate::multibody::Model::damping)
+//!   and [`Model::friction`](crate::multibody::Model::friction) (every dof of the joint), used
+//!   by the simulator only.
 //! - `mimic` joints are imported as independent joints, as Pinocchio's default (`mimic=False`)
 //!   does; the mimic data is kept in [`UrdfJoint::mimic`].
 //!
