@@ -29,7 +29,9 @@ fn every_fuzz_corpus_and_regression_file_runs_without_a_panic() {
             };
             for entry in entries.flatten() {
                 let path = entry.path();
-                let data = std::fs::read(&path).unwrap();
+                let Ok(data) = std::fs::read(&path) else {
+                    continue; // removed by a running fuzzer
+                };
                 if std::panic::catch_unwind(|| target(&data)).is_err() {
                     failures.push(path.display().to_string());
                 }

@@ -42,6 +42,7 @@
 
 pub mod algorithms;
 pub mod batch;
+mod builder;
 mod builders;
 mod builtins;
 mod configuration;
@@ -52,14 +53,13 @@ pub mod simulation;
 mod sincos;
 
 pub use algorithms::*;
+pub use builder::{InertiaCheck, ModelBuilder};
 pub use builders::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 pub use builtins::{builtin, builtin_names, double_pendulum, pendulum, puma560, Puma560Options};
 pub use configuration::{difference, integrate, neutral, normalize, random_configuration, Rng};
 pub use data::Data;
 pub use joint::JointType;
-pub use model::{
-    Frame, FrameId, FrameKind, FrameLookupError, InertiaCheck, Joint, JointId, Model, ModelBuilder,
-};
+pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 
 use crate::error::{DimensionError, InertiaError};
 use thiserror::Error;

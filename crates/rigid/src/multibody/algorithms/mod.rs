@@ -2,6 +2,7 @@
 //! (lengths, finiteness, unit quaternions) and write into `data`.
 
 mod aba;
+mod cholesky;
 mod coriolis;
 mod crba;
 mod energy;
@@ -10,7 +11,8 @@ mod kinematics;
 mod minverse;
 mod rnea;
 
-pub use aba::{aba, aba_with_external, forward_dynamics_cholesky};
+pub use aba::{aba, aba_with_external};
+pub use cholesky::forward_dynamics_cholesky;
 pub use coriolis::coriolis_matrix;
 pub use crba::crba;
 pub use energy::{center_of_mass, kinetic_energy, potential_energy};
