@@ -336,3 +336,54 @@ fn derivatives_equal_finite_differences_on_example_robot_data() {
         assert_small("aba_derivatives", &model, &e);
     }
 }
+
+/// The batch entry points give the single calls' matrices (row-major) bit for bit, in order, on
+/// 1 and 2 threads.
+#[test]
+fn batch_derivatives_equal_single_calls_bit_for_bit() {
+    let model = random_tree(6, 7, true);
+    let (nq, nv, n) = (model.nq(), model.nv(), 13);
+    let nn = nv * nv;
+    let mut rng = Rng::new(26);
+    let (mut qs, mut vs, mut xs) = (vec![], vec![], vec![]);
+    for _ in 0..n {
+        let (q, v, x) = state(&model, &mut rng);
+        qs.extend(q);
+        vs.extend(v);
+        xs.extend(x);
+    }
+    let mut data = Data::new(&model);
+    let row_major = |m: &DMatrix<f64>| m.transpose().as_slice().to_vec();
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut out: Vec<Vec<f64>> = (0..5).map(|_| vec![0.0; n * nn]).collect();
+        pool.install(|| {
+            let [a, b, c, d, e] = &mut out[..] else {
+                unreachable!()
+            };
+            batch::rnea_derivatives_batch(&model, &qs, &vs, &xs, a, b).unwrap();
+            batch::aba_derivatives_batch(&model, &qs, &vs, &xs, c, d, e).unwrap();
+        });
+        for k in 0..n {
+            let (q, v, x) = (
+                &qs[k * nq..][..nq],
+                &vs[k * nv..][..nv],
+                &xs[k * nv..][..nv],
+            );
+            let r = rnea_derivatives(&model, &mut data, q, v, x).unwrap();
+            assert_eq!(row_major(r.dtau_dq), &out[0][k * nn..][..nn]);
+            assert_eq!(row_major(r.dtau_dv), &out[1][k * nn..][..nn]);
+            let f = aba_derivatives(&model, &mut data, q, v, x).unwrap();
+            assert_eq!(row_major(f.dqdd_dq), &out[2][k * nn..][..nn]);
+            assert_eq!(row_major(f.dqdd_dv), &out[3][k * nn..][..nn]);
+            assert_eq!(row_major(f.dqdd_dtau), &out[4][k * nn..][..nn]);
+        }
+    }
+    let mut short = vec![0.0; nn];
+    let e = batch::rnea_derivatives_batch(&model, &qs, &vs, &xs, &mut short.clone(), &mut short)
+        .unwrap_err();
+    assert!(e.to_string().contains("out"), "{e}");
+}
