@@ -74,6 +74,16 @@ pub fn compute_minverse<'a>(
         &mut data.dof_J,
         &mut data.world_inertias,
     );
+    minverse_from_root_frame(model, data)?;
+    Ok(&data.minv)
+}
+
+/// The passes of [`compute_minverse`] after its first one (`root_frame_bodies` into
+/// `data.dof_J` and `data.world_inertias`): fills `data.minv`.
+pub(crate) fn minverse_from_root_frame(
+    model: &Model,
+    data: &mut Data,
+) -> Result<(), MultibodyError> {
     let n = model.joints.len();
     let nv = model.nv;
     for i in 0..n {
@@ -147,7 +157,7 @@ pub fn compute_minverse<'a>(
             minv[c * nv + k] = minv[k * nv + c];
         }
     }
-    Ok(&data.minv)
+    Ok(())
 }
 
 /// One joint of the backward pass (the borrowed slices of `Data`).

@@ -29,6 +29,7 @@ pub use kinematics::{
     forward_kinematics, forward_kinematics_q, forward_kinematics_qv, update_frame_placements,
 };
 pub use minverse::compute_minverse;
+pub(crate) use minverse::minverse_from_root_frame;
 pub(crate) use rnea::check_fext;
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 

@@ -1,9 +1,10 @@
 //! The derivatives of forward dynamics, `∂q̈/∂q`, `∂q̈/∂v`, `∂q̈/∂τ = M⁻¹`, from those of
 //! inverse dynamics at `a = q̈` (Carpentier & Mansard 2018, §V).
 
-use super::rnea::derivatives_unchecked;
-use crate::multibody::algorithms::{aba, aba_with_external, check_fext, compute_minverse};
-use crate::multibody::{Data, Model, MultibodyError};
+use super::passes::{backward, bias_torques, forward_acceleration, forward_velocity, Output};
+use super::product::{neg_minv_times, Pattern};
+use crate::multibody::algorithms::{check_fext, minverse_from_root_frame, root_frame_bodies};
+use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::Wrench;
 use nalgebra::DMatrix;
 
@@ -24,15 +25,19 @@ pub struct AbaDerivatives<'a> {
 /// `∂q̈/∂τ = M⁻¹` (Carpentier & Mansard, "Analytical derivatives of rigid body dynamics
 /// algorithms", RSS 2018, §V; Pinocchio's `computeABADerivatives`).
 ///
-/// Steps: `q̈` by [`aba`]; the passes of [`rnea_derivatives`](super::rnea_derivatives) at
-/// `(q, v, q̈)`; `M⁻¹` by [`compute_minverse`]; the two products with `-M⁻¹`, which skip the
-/// zeros of `∂τ/∂q` and `∂τ/∂v` (column k is non-zero only on the dofs of k's ancestors and
-/// subtree). `∂q` is along `q ⊕ δ` (see the [module docs](super)). Also leaves `q̈` in
-/// `data.ddq`, `∂τ/∂q`, `∂τ/∂v` at `a = q̈` in `data.derivatives` and `M` in
-/// `data.mass_matrix`. Nothing is allocated.
+/// Steps, sharing one first pass (every body in its tree's root frame, as
+/// [`crba`](crate::multibody::crba)): `M⁻¹` by the passes of [`compute_minverse`]; the velocity
+/// terms of the [`rnea_derivatives`](super::rnea_derivatives) forward pass and their bias
+/// torques `b = c + g - Jᵀ F^ext`; `q̈ = M⁻¹ (τ - b)`; the acceleration terms at `q̈` and the
+/// backward pass, giving `∂τ/∂q` and `∂τ/∂v` at `(q, v, q̈)`; the two products with `-M⁻¹`,
+/// which skip the zeros of `∂τ/∂q` and `∂τ/∂v` (column k is non-zero only on the dofs of k's
+/// ancestors and subtree). `∂q` is along `q ⊕ δ` (see the [module docs](super)). Also leaves
+/// `q̈` in `data.ddq` and `∂τ/∂q`, `∂τ/∂v` at `a = q̈` in `data.derivatives`. Nothing is
+/// allocated.
 ///
 /// # Errors
-/// As [`aba`] (wrong lengths, non-finite entries, a non-unit quaternion, a singular `M`).
+/// As [`aba`](crate::multibody::aba): wrong lengths, non-finite entries, a non-unit quaternion,
+/// or [`MultibodyError::NotPositiveDefinite`] for a singular `M`.
 ///
 /// ```
 /// use rigid::multibody::{aba_derivatives, pendulum, Data};
@@ -50,12 +55,12 @@ pub fn aba_derivatives<'a>(
     v: &[f64],
     tau: &[f64],
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
-    aba(model, data, q, v, tau)?;
-    finish(model, data, q, v, None)
+    check_inputs(model, data, q, v, tau)?;
+    aba_derivatives_unchecked(model, data, q, v, tau, None)
 }
 
 /// [`aba_derivatives`] with an external wrench `fext[i]` on each body, in body i's frame (as
-/// [`aba_with_external`]).
+/// [`aba_with_external`](crate::multibody::aba_with_external)).
 ///
 /// # Errors
 /// As [`aba_derivatives`], and `fext.len() != njoints` or a non-finite wrench.
@@ -78,63 +83,77 @@ pub fn aba_derivatives_with_external<'a>(
     tau: &[f64],
     fext: &[Wrench],
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
+    check_inputs(model, data, q, v, tau)?;
     check_fext(model, fext)?;
-    aba_with_external(model, data, q, v, tau, fext)?;
-    finish(model, data, q, v, Some(fext))
+    aba_derivatives_unchecked(model, data, q, v, tau, Some(fext))
 }
 
-/// After `q̈` is in `data.ddq` (inputs checked): the RNEA derivatives at `q̈`, `M⁻¹`, products.
-fn finish<'a>(
+fn check_inputs(
+    model: &Model,
+    data: &Data,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+) -> Result<(), MultibodyError> {
+    check_q(model, q)?;
+    check_data(model, data)?;
+    check_v(model, "v", v)?;
+    check_v(model, "tau", tau)
+}
+
+fn aba_derivatives_unchecked<'a>(
     model: &Model,
     data: &'a mut Data,
     q: &[f64],
     v: &[f64],
+    tau: &[f64],
     fext: Option<&[Wrench]>,
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
+    root_frame_bodies(
+        model,
+        q,
+        &mut data.root_placements,
+        &mut data.dof_J,
+        &mut data.world_inertias,
+    );
+    minverse_from_root_frame(model, data)?;
+    data.composite_inertias
+        .copy_from_slice(&data.world_inertias);
+    forward_velocity(model, data, q, Some(v), fext);
+    bias_torques(model, data);
+    // q̈ = M⁻¹ (τ - b)
+    let nv = model.nv;
+    let d = &mut data.derivatives;
+    for ((r, t), b) in d.rhs.iter_mut().zip(tau).zip(&d.tau_bias) {
+        *r = t - b;
+    }
+    for (x, col) in data
+        .ddq
+        .iter_mut()
+        .zip(data.minv.as_slice().chunks_exact(nv))
+    {
+        *x = col.iter().zip(&d.rhs).map(|(m, r)| m * r).sum();
+    }
     // q̈ is an input of the passes that also write into `data`: lend it out (no allocation)
     let ddq = std::mem::take(&mut data.ddq);
-    derivatives_unchecked(model, data, q, Some((v, ddq.as_slice())), fext);
+    forward_acceleration(model, data, Some(ddq.as_slice()));
+    backward(model, data, Some(ddq.as_slice()), Output::Aba);
     data.ddq = ddq;
-    compute_minverse(model, data, q)?;
     let d = &mut data.derivatives;
-    let (parent, end) = (&d.dof_parent, &d.dof_end);
-    neg_minv_times(&data.minv, &d.dtau_dq, &mut d.dqdd_dq, parent, end);
-    neg_minv_times(&data.minv, &d.dtau_dv, &mut d.dqdd_dv, parent, end);
+    let pattern = Pattern {
+        parent: &d.dof_parent,
+        end: &d.dof_end,
+    };
+    neg_minv_times(
+        &data.minv,
+        (&d.dtau_dq, &d.dtau_dv),
+        (&mut d.dqdd_dq, &mut d.dqdd_dv),
+        &pattern,
+        &mut d.minv_padded,
+    );
     Ok(AbaDerivatives {
         dqdd_dq: &data.derivatives.dqdd_dq,
         dqdd_dv: &data.derivatives.dqdd_dv,
         dqdd_dtau: &data.minv,
     })
-}
-
-/// `out = -M⁻¹ X` for an `X` whose column `c` is non-zero only on the rows of `c`'s ancestor
-/// dofs (the chain `λ(c), λ(λ(c)), …`) and of its subtree `c..end[c]`: column by column, a sum
-/// of the columns of `M⁻¹` over those rows.
-fn neg_minv_times(
-    minv: &DMatrix<f64>,
-    x: &DMatrix<f64>,
-    out: &mut DMatrix<f64>,
-    parent: &[usize],
-    end: &[usize],
-) {
-    let nv = minv.nrows();
-    let (minv, x) = (minv.as_slice(), x.as_slice());
-    for (c, oc) in out.as_mut_slice().chunks_exact_mut(nv).enumerate() {
-        let xc = &x[c * nv..(c + 1) * nv];
-        oc.fill(0.0);
-        let mut axpy = |r: usize| {
-            let s = -xc[r];
-            for (o, m) in oc.iter_mut().zip(&minv[r * nv..(r + 1) * nv]) {
-                *o += s * m;
-            }
-        };
-        for r in c..end[c] {
-            axpy(r);
-        }
-        let mut r = parent[c];
-        while r != usize::MAX {
-            axpy(r);
-            r = parent[r];
-        }
-    }
 }

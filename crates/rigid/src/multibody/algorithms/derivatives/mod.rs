@@ -41,6 +41,8 @@
 mod aba;
 mod configuration;
 mod kinematics;
+mod passes;
+mod product;
 mod rnea;
 
 pub use aba::{aba_derivatives, aba_derivatives_with_external, AbaDerivatives};
@@ -81,10 +83,16 @@ pub struct Derivatives {
     /// `∂A/∂a = J` (6 x nv).
     pub acceleration_da: DMatrix<f64>,
     // --- per joint, in the frame {r} of its tree's root body (see `rnea.rs`) ---
-    /// `V_i`, `A_i` (gravity included) and the composite force `F_i` of each subtree.
+    /// `V_i`, `A_i` (gravity included), its bias part `A⁰_i` (at `a = 0`) and the rest `A_i - A⁰_i`,
+    /// the force `f_i` (then the composite `F_i` of each subtree), the bias forces' composites.
     pub(crate) vel: Vec<Twist>,
     pub(crate) acc: Vec<Twist>,
+    pub(crate) acc0: Vec<Twist>,
+    pub(crate) acc_a: Vec<Twist>,
     pub(crate) force: Vec<Wrench>,
+    pub(crate) bias: Vec<Wrench>,
+    /// At a root: `g' = -Rᵀ g`, gravity as the world's acceleration `(0, g')` in its tree's frame.
+    pub(crate) gravity: Vec<Vec3>,
     /// Composite momentum `Σ G_j V_j` of each subtree.
     pub(crate) momentum: Vec<Wrench>,
     /// Composite symmetric part of the angular block of `B` (6 numbers, `xx yy zz xy xz yz`).
@@ -98,6 +106,11 @@ pub struct Derivatives {
     pub(crate) bj: Vec<Vec3>,
     pub(crate) df_dq: Vec<Wrench>,
     pub(crate) df_dv: Vec<Wrench>,
+    /// `J_kᵀ` of the bias forces (`c + g - Jᵀ F^ext`), and `τ` minus it.
+    pub(crate) tau_bias: Vec<f64>,
+    pub(crate) rhs: Vec<f64>,
+    /// `M⁻¹` in blocks of 8 rows, its columns padded with zeros (`product.rs`).
+    pub(crate) minv_padded: Vec<[f64; 8]>,
     /// The ancestor dof `λ(k)` of each dof (`usize::MAX` at a root) and one past the last dof of
     /// its subtree: column `k` of `∂τ/∂q` is non-zero only on `k`'s ancestors and its subtree.
     pub(crate) dof_parent: Vec<usize>,
@@ -140,7 +153,11 @@ impl Derivatives {
             acceleration_da: six(),
             vel: vec![Twist::zero(); n],
             acc: vec![Twist::zero(); n],
+            acc0: vec![Twist::zero(); n],
+            acc_a: vec![Twist::zero(); n],
             force: vec![Wrench::zero(); n],
+            bias: vec![Wrench::zero(); n],
+            gravity: vec![Vec3::zeros(); n],
             momentum: vec![Wrench::zero(); n],
             sym: vec![[0.0; 6]; n],
             dv_dq: vec![Twist::zero(); nv],
@@ -150,6 +167,9 @@ impl Derivatives {
             bj: vec![Vec3::zeros(); nv],
             df_dq: vec![Wrench::zero(); nv],
             df_dv: vec![Wrench::zero(); nv],
+            tau_bias: vec![0.0; nv],
+            rhs: vec![0.0; nv],
+            minv_padded: vec![[0.0; 8]; product::blocks(nv) * nv],
             dof_parent,
             dof_end,
         }

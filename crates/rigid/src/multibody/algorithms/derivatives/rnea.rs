@@ -3,12 +3,11 @@
 //! derivatives of rigid body dynamics algorithms", RSS 2018, Alg. 1), with every quantity in one
 //! frame per tree (its root body's, as [`crba`](crate::multibody::crba)).
 
-use super::Derivatives;
-use crate::mass::SpatialInertia;
-use crate::multibody::algorithms::{parent_placement, root_frame_bodies};
+use super::passes::{backward, forward_acceleration, forward_velocity, Output};
+use crate::multibody::algorithms::root_frame_bodies;
 use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
-use crate::spatial::{mat3_tr_vec, Twist, Vec3, Wrench};
-use nalgebra::{DMatrix, DVector};
+use crate::spatial::Wrench;
+use nalgebra::DMatrix;
 
 /// The three partial derivatives of `τ = ID(q, v, a)`, borrowed from `data`.
 #[derive(Clone, Copy, Debug)]
@@ -19,15 +18,6 @@ pub struct RneaDerivatives<'a> {
     pub dtau_dv: &'a DMatrix<f64>,
     /// `∂τ/∂a = M(q)`, armature on the diagonal, full symmetric: `data.mass_matrix`.
     pub dtau_da: &'a DMatrix<f64>,
-}
-
-/// Which derivatives a pass computes.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Pass {
-    /// `∂τ/∂q`, `∂τ/∂v` and `M` at `(q, v, a)`: into `dtau_dq`, `dtau_dv`, `mass_matrix`, `tau`.
-    Full,
-    /// `∂g/∂q` at `v = a = 0`: into `dg_dq` and `g`.
-    Gravity,
 }
 
 /// The partial derivatives of inverse dynamics `τ = M(q) a + c(q, v) + g(q) - Σ J_iᵀ F_i^ext`:
@@ -116,7 +106,7 @@ pub fn rnea_derivatives_with_external<'a>(
     q: &[f64],
     v: &[f64],
     a: &[f64],
-    fext: &[crate::spatial::Wrench],
+    fext: &[Wrench],
 ) -> Result<RneaDerivatives<'a>, MultibodyError> {
     check_q(model, q)?;
     check_data(model, data)?;
@@ -162,25 +152,7 @@ pub fn gravity_derivatives<'a>(
 }
 
 /// Both passes on checked inputs: `va = None` is the gravity pass.
-pub(crate) fn derivatives_unchecked(
-    model: &Model,
-    data: &mut Data,
-    q: &[f64],
-    va: Option<(&[f64], &[f64])>,
-    fext: Option<&[Wrench]>,
-) {
-    forward(model, data, q, va, fext);
-    let pass = if va.is_some() {
-        Pass::Full
-    } else {
-        Pass::Gravity
-    };
-    backward(model, data, va.map(|(_, a)| a), pass);
-}
-
-/// The forward pass: root-frame placements, columns and inertias, then twists, accelerations,
-/// forces and the per-dof variations.
-fn forward(
+fn derivatives_unchecked(
     model: &Model,
     data: &mut Data,
     q: &[f64],
@@ -194,199 +166,13 @@ fn forward(
         &mut data.dof_J,
         &mut data.composite_inertias,
     );
-    let d = &mut data.derivatives;
-    let J = &data.dof_J;
-    let mut a_g = Twist::zero();
-    for i in 0..model.joints.len() {
-        let j = &model.joints[i];
-        let (Vp, Ap) = match j.parent {
-            Some(p) => (d.vel[p.0], d.acc[p.0]),
-            None => {
-                // the tree's frame {r}: its root body at q, where gravity is -Rᵀ g
-                let oMr = parent_placement(model, i, q);
-                a_g = Twist::new(Vec3::zeros(), -mat3_tr_vec(&oMr.rotation, &model.gravity));
-                (Twist::zero(), a_g)
-            }
-        };
-        let G = &data.composite_inertias[i];
-        let dofs = j.idx_v..j.idx_v + j.nv;
-        let Some((v, a)) = va else {
-            // gravity only: V = 0, A = a_g
-            d.vel[i] = Twist::zero();
-            d.acc[i] = a_g;
-            d.force[i] = G.momentum(&a_g);
-            for k in dofs {
-                d.da_dq[k] = a_g.cross(&J[k]);
-            }
-            continue;
-        };
-        let (mut vJ, mut aJ) = (Twist::zero(), Twist::zero());
-        for k in dofs.clone() {
-            vJ += J[k] * v[k];
-            aJ += J[k] * a[k];
-        }
-        let V = Vp + vJ;
-        let A = Ap + aJ + V.cross(&vJ);
-        let h = G.momentum(&V);
-        let mut f = G.momentum(&A) - V.ad_transpose(&h);
-        if let Some(fext) = fext {
-            f -= data.root_placements[i].act_wrench(&fext[i]);
-        }
-        d.vel[i] = V;
-        d.acc[i] = A;
-        d.force[i] = f;
-        d.momentum[i] = h;
-        d.sym[i] = variation_sym(G, &V);
-        let W = V + Vp;
-        for k in dofs {
-            let Jk = J[k];
-            let dv = Vp.cross(&Jk);
-            d.dv_dq[k] = dv;
-            d.da_dq[k] = Ap.cross(&Jk) + Vp.cross(&dv);
-            d.da_dv[k] = W.cross(&Jk);
-        }
-    }
-}
-
-/// The symmetric part of the angular block of `B` for a body of inertia `G = (m, c, I)` (about
-/// the frame origin, `c = m·com`) moving with `V = (ω, v)`:
-/// `[ω]I - I[ω] - [c][v] - [v][c] = K + Kᵀ - c vᵀ - v cᵀ + 2 (c·v) 1` with `K = [ω] I` (the
-/// columns of `I` crossed with `ω`; `I[ω] = -([ω]I)ᵀ`), stored `xx yy zz xy xz yz`.
-#[inline]
-fn variation_sym(G: &SpatialInertia, V: &Twist) -> [f64; 6] {
-    let I = G.inertia_origin_matrix();
-    let (c, w, v) = (G.first_moment(), V.w, V.v);
-    let k0 = w.cross(&I.column(0).into_owned());
-    let k1 = w.cross(&I.column(1).into_owned());
-    let k2 = w.cross(&I.column(2).into_owned());
-    let cv2 = 2.0 * c.dot(&v);
-    [
-        2.0 * (k0.x - c.x * v.x) + cv2,
-        2.0 * (k1.y - c.y * v.y) + cv2,
-        2.0 * (k2.z - c.z * v.z) + cv2,
-        k1.x + k0.y - c.x * v.y - v.x * c.y,
-        k2.x + k0.z - c.x * v.z - v.x * c.z,
-        k2.y + k1.z - c.y * v.z - v.y * c.z,
-    ]
-}
-
-/// `S x` for a symmetric 3x3 stored `xx yy zz xy xz yz`.
-#[inline(always)]
-fn sym_mul(s: &[f64; 6], x: &Vec3) -> Vec3 {
-    Vec3::new(
-        s[0] * x.x + s[3] * x.y + s[4] * x.z,
-        s[3] * x.x + s[1] * x.y + s[5] * x.z,
-        s[4] * x.x + s[5] * x.y + s[2] * x.z,
-    )
-}
-
-/// `Bc x = ((S - [L]) x_ω, -2 p × x_ω)` for the composite `S`, momentum `(L, p)` (`x_v` does not
-/// enter).
-#[inline(always)]
-fn b_times(s: &[f64; 6], h: &Wrench, xw: &Vec3) -> Wrench {
-    Wrench::new(sym_mul(s, xw) - h.m.cross(xw), -2.0 * h.f.cross(xw))
-}
-
-/// The backward pass: composite sums, then the rows and columns of each joint's dofs.
-fn backward(model: &Model, data: &mut Data, a: Option<&[f64]>, pass: Pass) {
-    let nv = model.nv;
-    let Data {
-        derivatives: d,
-        dof_J: J,
-        composite_inertias: Ic,
-        mass_matrix,
-        tau,
-        g,
-        ..
-    } = data;
-    let Derivatives {
-        dtau_dq,
-        dtau_dv,
-        dg_dq,
-        force,
-        momentum,
-        sym,
-        dv_dq,
-        da_dq,
-        da_dv,
-        yj,
-        bj,
-        df_dq,
-        df_dv,
-        dof_end,
-        ..
-    } = d;
-    let full = pass == Pass::Full;
-    let (dq, tau): (&mut [f64], &mut DVector<f64>) = if full {
-        (dtau_dq.as_mut_slice(), tau)
+    let (v, a) = (va.map(|x| x.0), va.map(|x| x.1));
+    forward_velocity(model, data, q, v, fext);
+    forward_acceleration(model, data, a);
+    let out = if va.is_some() {
+        Output::Full
     } else {
-        (dg_dq.as_mut_slice(), g)
+        Output::Gravity
     };
-    let dv = dtau_dv.as_mut_slice();
-    let M = mass_matrix.as_mut_slice();
-    // column-major: entry (row r, column c) at c * nv + r
-    for i in (0..model.joints.len()).rev() {
-        let j = &model.joints[i];
-        let (Y, F) = (Ic[i], force[i]);
-        let (iv, own) = (j.idx_v, j.idx_v + j.nv);
-        let end = dof_end[iv];
-        let (S, H) = (sym[i], momentum[i]);
-        for k in iv..own {
-            let Jk = J[k];
-            tau[k] = Jk.dot(&F) + a.map_or(0.0, |a| model.armature[k] * a[k]);
-            if full {
-                yj[k] = Y.momentum(&Jk);
-                bj[k] = sym_mul(&S, &Jk.w) + H.m.cross(&Jk.w) + 2.0 * H.f.cross(&Jk.v);
-                df_dq[k] = Y.momentum(&da_dq[k]) + b_times(&S, &H, &dv_dq[k].w);
-                df_dv[k] = Y.momentum(&da_dv[k]) + b_times(&S, &H, &Jk.w);
-            } else {
-                df_dq[k] = Y.momentum(&da_dq[k]);
-                yj[k] = Y.momentum(&Jk);
-            }
-        }
-        // rows of the joint's dofs, columns of its subtree
-        for k in iv..own {
-            let Jk = J[k];
-            for c in iv..end {
-                dq[c * nv + k] = Jk.dot(&df_dq[c]);
-            }
-            if full {
-                for c in iv..end {
-                    dv[c * nv + k] = Jk.dot(&df_dv[c]);
-                    M[c * nv + k] = Jk.dot(&yj[c]);
-                }
-                M[k * nv + k] += model.armature[k];
-            }
-        }
-        // columns of the joint's dofs, rows of its strict subtree
-        for k in iv..own {
-            let col = k * nv;
-            for c in own..end {
-                dq[col + c] = da_dq[k].dot(&yj[c]);
-            }
-            if full {
-                let (dvq, dav, Jw) = (dv_dq[k].w, da_dv[k], J[k].w);
-                for c in own..end {
-                    dq[col + c] += bj[c].dot(&dvq);
-                    dv[col + c] = dav.dot(&yj[c]) + bj[c].dot(&Jw);
-                    M[col + c] = M[c * nv + k];
-                }
-            }
-        }
-        // J_k ×* F for the ancestors' rows (it cancels the turning of J_k in the own block)
-        for k in iv..own {
-            df_dq[k] -= J[k].ad_transpose(&F);
-        }
-        if let Some(p) = j.parent {
-            Ic[p.0] += Y;
-            force[p.0] += F;
-            if full {
-                momentum[p.0] += H;
-                let sp = &mut sym[p.0];
-                for (x, y) in sp.iter_mut().zip(S) {
-                    *x += y;
-                }
-            }
-        }
-    }
+    backward(model, data, a, out);
 }
