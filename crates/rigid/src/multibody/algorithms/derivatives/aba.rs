@@ -150,6 +150,7 @@ fn aba_derivatives_unchecked<'a>(
         (&mut d.dqdd_dq, &mut d.dqdd_dv),
         &pattern,
         &mut d.minv_padded,
+        &mut d.column,
     );
     Ok(AbaDerivatives {
         dqdd_dq: &data.derivatives.dqdd_dq,

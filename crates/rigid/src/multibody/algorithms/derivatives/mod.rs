@@ -111,6 +111,8 @@ pub struct Derivatives {
     pub(crate) rhs: Vec<f64>,
     /// `M⁻¹` in blocks of 8 rows, its columns padded with zeros (`product.rs`).
     pub(crate) minv_padded: Vec<[f64; 8]>,
+    /// The non-zero rows of one column of `∂τ/∂q`, `∂τ/∂v` (`product.rs`).
+    pub(crate) column: Vec<product::Entry>,
     /// The ancestor dof `λ(k)` of each dof (`usize::MAX` at a root) and one past the last dof of
     /// its subtree: column `k` of `∂τ/∂q` is non-zero only on `k`'s ancestors and its subtree.
     pub(crate) dof_parent: Vec<usize>,
@@ -170,6 +172,7 @@ impl Derivatives {
             tau_bias: vec![0.0; nv],
             rhs: vec![0.0; nv],
             minv_padded: vec![[0.0; 8]; product::blocks(nv) * nv],
+            column: vec![product::Entry::default(); nv],
             dof_parent,
             dof_end,
         }
