@@ -26,7 +26,8 @@ pub struct AbaDerivatives<'a> {
 /// algorithms", RSS 2018, §V; Pinocchio's `computeABADerivatives`).
 ///
 /// Steps, sharing one first pass (every body in its tree's root frame, as
-/// [`crba`](crate::multibody::crba)): `M⁻¹` by the passes of [`compute_minverse`]; the velocity
+/// [`crba`](crate::multibody::crba)): `M⁻¹` by the passes of
+/// [`compute_minverse`](crate::multibody::compute_minverse); the velocity
 /// terms of the [`rnea_derivatives`](super::rnea_derivatives) forward pass and their bias
 /// torques `b = c + g - Jᵀ F^ext`; `q̈ = M⁻¹ (τ - b)`; the acceleration terms at `q̈` and the
 /// backward pass, giving `∂τ/∂q` and `∂τ/∂v` at `(q, v, q̈)`; the two products with `-M⁻¹`,
