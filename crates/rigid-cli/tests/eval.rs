@@ -131,13 +131,9 @@ fn eval_json_has_the_contract_keys_and_the_pendulum_values() {
     assert!((num(&r["kinetic_energy"]) - 0.5 * (m * l * l + i) * 1.5 * 1.5).abs() < 1e-12);
 }
 
-#[test]
-fn eval_floating_adds_a_free_flyer_root() {
-    let cases = temp_file(
-        "floating.json",
-        r#"{"cases": [{"q": [0, 0, 0, 0, 0, 0, 1, 0.3]}]}"#,
-    );
-    // A 1 kg base, so that the free-flying system has a regular mass matrix.
+/// The pendulum fixture with a 1 kg base (so that, on a free-flyer, the mass matrix is regular),
+/// written to a temporary file `tag`.
+fn pendulum_with_base(tag: &str) -> String {
     let urdf = std::fs::read_to_string(fixture("pendulum.urdf"))
         .unwrap()
         .replace(
@@ -145,7 +141,20 @@ fn eval_floating_adds_a_free_flyer_root() {
             r#"<link name="base"><inertial><mass value="1"/>
              <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#,
         );
-    let out = eval_json(&temp_file("floating.urdf", &urdf), &cases, &["--floating"]);
+    temp_file(tag, &urdf)
+}
+
+#[test]
+fn eval_floating_adds_a_free_flyer_root() {
+    let cases = temp_file(
+        "floating.json",
+        r#"{"cases": [{"q": [0, 0, 0, 0, 0, 0, 1, 0.3]}]}"#,
+    );
+    let out = eval_json(
+        &pendulum_with_base("floating.urdf"),
+        &cases,
+        &["--floating"],
+    );
     assert_eq!(
         (out["model"]["nq"].as_u64(), out["model"]["nv"].as_u64()),
         (Some(8), Some(7))
@@ -337,15 +346,7 @@ fn eval_derivatives_are_nv_by_nv_on_a_floating_base() {
         "floating_derivatives.json",
         &format!(r#"{{"cases": [{{"q": {q}, "v": [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7]}}]}}"#),
     );
-    // a 1 kg base, so that the free-flying system has a regular mass matrix
-    let urdf = std::fs::read_to_string(fixture("pendulum.urdf"))
-        .unwrap()
-        .replace(
-            r#"<link name="base"/>"#,
-            r#"<link name="base"><inertial><mass value="1"/>
-             <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#,
-        );
-    let urdf = temp_file("floating_derivatives.urdf", &urdf);
+    let urdf = pendulum_with_base("floating_derivatives.urdf");
     let out = eval_json(&urdf, &cases, &["--floating", "--derivatives"]);
     let r = &out["results"][0];
     for (group, key) in [

@@ -238,6 +238,16 @@ fn diff(model: &Model, a: &[f64], b: &[f64]) -> DVector<f64> {
     DVector::from_vec(out)
 }
 
+/// `x` agrees with the finite differences `fd` to `FD_TOLERANCE`.
+fn close(model: &Model, scale: f64, what: &str, x: &DMatrix<f64>, fd: &DMatrix<f64>) {
+    let e = rel(x, fd);
+    assert!(
+        e < FD_TOLERANCE,
+        "{} ×{scale}: {what} {e:.2e}",
+        model.name()
+    );
+}
+
 #[test]
 fn integrate_and_difference_jacobians_equal_finite_differences() {
     let mut rng = Rng::new(31);
@@ -264,18 +274,8 @@ fn integrate_and_difference_jacobians_equal_finite_differences() {
                 w[k] += h;
                 diff(&model, &q1, &step(&model, &q, &w, dt))
             });
-            assert!(
-                rel(&dq, &fd_dq) < FD_TOLERANCE,
-                "{} ×{scale}: ∂/∂q {:.2e}",
-                model.name(),
-                rel(&dq, &fd_dq)
-            );
-            assert!(
-                rel(&dv, &fd_dv) < FD_TOLERANCE,
-                "{} ×{scale}: ∂/∂v {:.2e}",
-                model.name(),
-                rel(&dv, &fd_dv)
-            );
+            close(&model, scale, "∂/∂q", &dq, &fd_dq);
+            close(&model, scale, "∂/∂v", &dv, &fd_dv);
 
             let (q0, _, _) = state(&model, &mut rng);
             let q1 = step(&model, &q0, &v, 1.0);
@@ -286,18 +286,8 @@ fn integrate_and_difference_jacobians_equal_finite_differences() {
             let fd_d1 = fd(nv, |k, h| {
                 diff(&model, &q0, &step(&model, &q1, &unit(nv, k), h))
             });
-            assert!(
-                rel(&d0, &fd_d0) < FD_TOLERANCE,
-                "{} ×{scale}: ∂/∂q0 {:.2e}",
-                model.name(),
-                rel(&d0, &fd_d0)
-            );
-            assert!(
-                rel(&d1, &fd_d1) < FD_TOLERANCE,
-                "{} ×{scale}: ∂/∂q1 {:.2e}",
-                model.name(),
-                rel(&d1, &fd_d1)
-            );
+            close(&model, scale, "∂/∂q0", &d0, &fd_d0);
+            close(&model, scale, "∂/∂q1", &d1, &fd_d1);
             // (q0 ⊕ v) ⊖ q0 = v (while no rotation exceeds π, where log wraps): by the chain rule
             // ∂/∂q1 of the difference inverts ∂/∂v of integrate
             if (diff(&model, &q0, &q1) - DVector::from_column_slice(&v)).amax() < 1e-9 {

@@ -134,15 +134,9 @@ impl Batch {
         out: &mut [f64],
     ) -> Result<(), MultibodyError> {
         count(model, qs, &[vs, xs], out.len(), model.nv)?;
-        let (nq, nv) = (model.nq, model.nv);
-        for_each_state(&mut self.datas, out, nv, |data, k, out| {
-            let r = f(
-                model,
-                data,
-                &qs[k * nq..(k + 1) * nq],
-                &vs[k * nv..(k + 1) * nv],
-                &xs[k * nv..(k + 1) * nv],
-            )?;
+        for_each_state(&mut self.datas, out, model.nv, |data, k, out| {
+            let (q, v, x) = state(model, k, qs, vs, xs);
+            let r = f(model, data, q, v, x)?;
             out.copy_from_slice(r.as_slice());
             Ok(())
         })
@@ -184,13 +178,13 @@ impl Batch {
         dtau_dq: &mut [f64],
         dtau_dv: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        let (nq, nv, nn) = (model.nq, model.nv, model.nv * model.nv);
+        let nn = model.nv * model.nv;
         let n = count(model, qs, &[vs, as_], dtau_dq.len(), nn)?;
         DimensionError::check("dtau_dv", n * nn, dtau_dv.len())?;
         if n * nn == 0 {
             return Ok(());
         }
-        let per_task = n.div_ceil(self.datas.len().clamp(1, n));
+        let per_task = per_task(n, self.datas.len());
         let blocks = dtau_dq
             .par_chunks_mut(per_task * nn)
             .zip(dtau_dv.par_chunks_mut(per_task * nn));
@@ -199,12 +193,7 @@ impl Batch {
             .enumerate()
             .map(|(c, ((bq, bv), data))| {
                 for (j, (oq, ov)) in bq.chunks_mut(nn).zip(bv.chunks_mut(nn)).enumerate() {
-                    let k = c * per_task + j;
-                    let (q, v, a) = (
-                        &qs[k * nq..][..nq],
-                        &vs[k * nv..][..nv],
-                        &as_[k * nv..][..nv],
-                    );
+                    let (q, v, a) = state(model, c * per_task + j, qs, vs, as_);
                     let d = super::rnea_derivatives(model, data, q, v, a)?;
                     row_major(d.dtau_dq, oq);
                     row_major(d.dtau_dv, ov);
@@ -230,14 +219,14 @@ impl Batch {
         dqdd_dv: &mut [f64],
         dqdd_dtau: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        let (nq, nv, nn) = (model.nq, model.nv, model.nv * model.nv);
+        let nn = model.nv * model.nv;
         let n = count(model, qs, &[vs, taus], dqdd_dq.len(), nn)?;
         DimensionError::check("dqdd_dv", n * nn, dqdd_dv.len())?;
         DimensionError::check("dqdd_dtau", n * nn, dqdd_dtau.len())?;
         if n * nn == 0 {
             return Ok(());
         }
-        let per_task = n.div_ceil(self.datas.len().clamp(1, n));
+        let per_task = per_task(n, self.datas.len());
         let blocks = dqdd_dq
             .par_chunks_mut(per_task * nn)
             .zip(dqdd_dv.par_chunks_mut(per_task * nn))
@@ -251,12 +240,7 @@ impl Batch {
                     .zip(bv.chunks_mut(nn))
                     .zip(bt.chunks_mut(nn));
                 for (j, ((oq, ov), ot)) in outs.enumerate() {
-                    let k = c * per_task + j;
-                    let (q, v, t) = (
-                        &qs[k * nq..][..nq],
-                        &vs[k * nv..][..nv],
-                        &taus[k * nv..][..nv],
-                    );
+                    let (q, v, t) = state(model, c * per_task + j, qs, vs, taus);
                     let d = super::aba_derivatives(model, data, q, v, t)?;
                     row_major(d.dqdd_dq, oq);
                     row_major(d.dqdd_dv, ov);
@@ -266,6 +250,27 @@ impl Batch {
             })
             .collect()
     }
+}
+
+/// States per task when `n ≥ 1` states are cut into at most `tasks` contiguous blocks.
+fn per_task(n: usize, tasks: usize) -> usize {
+    n.div_ceil(tasks.clamp(1, n))
+}
+
+/// State `k`'s `(q, v, x)` from row-major inputs.
+fn state<'a>(
+    model: &Model,
+    k: usize,
+    qs: &'a [f64],
+    vs: &'a [f64],
+    xs: &'a [f64],
+) -> (&'a [f64], &'a [f64], &'a [f64]) {
+    let (nq, nv) = (model.nq, model.nv);
+    (
+        &qs[k * nq..][..nq],
+        &vs[k * nv..][..nv],
+        &xs[k * nv..][..nv],
+    )
 }
 
 /// `m` (column-major) into `out`, row-major.
@@ -294,7 +299,7 @@ where
     if n == 0 {
         return Ok(());
     }
-    let per_task = n.div_ceil(datas.len().clamp(1, n));
+    let per_task = per_task(n, datas.len());
     out.par_chunks_mut(per_task * out_per)
         .zip(datas.par_iter_mut())
         .enumerate()

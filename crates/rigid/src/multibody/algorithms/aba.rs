@@ -315,8 +315,8 @@ pub fn aba_with_external<'a>(
     Ok(&data.ddq)
 }
 
-/// The argument checks shared by [`aba`] and [`aba_with_external`].
-fn check_inputs(
+/// The argument checks shared by [`aba`], [`aba_with_external`] and the ABA derivatives.
+pub(crate) fn check_inputs(
     model: &Model,
     data: &Data,
     q: &[f64],

@@ -67,6 +67,17 @@ pub fn compute_minverse<'a>(
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_q(model, q)?;
     check_data(model, data)?;
+    minverse_unchecked(model, data, q)?;
+    Ok(&data.minv)
+}
+
+/// [`compute_minverse`] on checked inputs: fills `data.minv`, and `data.root_placements`,
+/// `data.dof_J`, `data.world_inertias` (every body in its tree's root frame).
+pub(crate) fn minverse_unchecked(
+    model: &Model,
+    data: &mut Data,
+    q: &[f64],
+) -> Result<(), MultibodyError> {
     root_frame_bodies(
         model,
         q,
@@ -74,16 +85,6 @@ pub fn compute_minverse<'a>(
         &mut data.dof_J,
         &mut data.world_inertias,
     );
-    minverse_from_root_frame(model, data)?;
-    Ok(&data.minv)
-}
-
-/// The passes of [`compute_minverse`] after its first one (`root_frame_bodies` into
-/// `data.dof_J` and `data.world_inertias`): fills `data.minv`.
-pub(crate) fn minverse_from_root_frame(
-    model: &Model,
-    data: &mut Data,
-) -> Result<(), MultibodyError> {
     let n = model.joints.len();
     let nv = model.nv;
     for i in 0..n {

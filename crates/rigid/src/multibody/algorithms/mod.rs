@@ -11,6 +11,7 @@ mod kinematics;
 mod minverse;
 mod rnea;
 
+pub(crate) use aba::check_inputs as check_aba_inputs;
 pub use aba::{aba, aba_with_external, forward_dynamics_cholesky};
 pub use coriolis::coriolis_matrix;
 pub use crba::crba;
@@ -29,7 +30,7 @@ pub use kinematics::{
     forward_kinematics, forward_kinematics_q, forward_kinematics_qv, update_frame_placements,
 };
 pub use minverse::compute_minverse;
-pub(crate) use minverse::minverse_from_root_frame;
+pub(crate) use minverse::minverse_unchecked;
 pub(crate) use rnea::check_fext;
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 

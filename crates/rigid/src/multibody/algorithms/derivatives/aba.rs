@@ -3,8 +3,8 @@
 
 use super::passes::{backward, bias_torques, forward_acceleration, forward_velocity, Output};
 use super::product::{neg_minv_times, Pattern};
-use crate::multibody::algorithms::{check_fext, minverse_from_root_frame, root_frame_bodies};
-use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
+use crate::multibody::algorithms::{check_aba_inputs, check_fext, minverse_unchecked};
+use crate::multibody::{Data, Model, MultibodyError};
 use crate::spatial::Wrench;
 use nalgebra::DMatrix;
 
@@ -56,7 +56,7 @@ pub fn aba_derivatives<'a>(
     v: &[f64],
     tau: &[f64],
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
-    check_inputs(model, data, q, v, tau)?;
+    check_aba_inputs(model, data, q, v, tau)?;
     aba_derivatives_unchecked(model, data, q, v, tau, None)
 }
 
@@ -84,22 +84,9 @@ pub fn aba_derivatives_with_external<'a>(
     tau: &[f64],
     fext: &[Wrench],
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
-    check_inputs(model, data, q, v, tau)?;
+    check_aba_inputs(model, data, q, v, tau)?;
     check_fext(model, fext)?;
     aba_derivatives_unchecked(model, data, q, v, tau, Some(fext))
-}
-
-fn check_inputs(
-    model: &Model,
-    data: &Data,
-    q: &[f64],
-    v: &[f64],
-    tau: &[f64],
-) -> Result<(), MultibodyError> {
-    check_q(model, q)?;
-    check_data(model, data)?;
-    check_v(model, "v", v)?;
-    check_v(model, "tau", tau)
 }
 
 fn aba_derivatives_unchecked<'a>(
@@ -110,14 +97,7 @@ fn aba_derivatives_unchecked<'a>(
     tau: &[f64],
     fext: Option<&[Wrench]>,
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
-    root_frame_bodies(
-        model,
-        q,
-        &mut data.root_placements,
-        &mut data.dof_J,
-        &mut data.world_inertias,
-    );
-    minverse_from_root_frame(model, data)?;
+    minverse_unchecked(model, data, q)?;
     data.composite_inertias
         .copy_from_slice(&data.world_inertias);
     forward_velocity(model, data, q, Some(v), fext);
