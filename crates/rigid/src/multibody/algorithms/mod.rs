@@ -19,7 +19,7 @@ pub use derivatives::{
     aba_derivatives, aba_derivatives_with_external, difference_jacobians,
     frame_kinematics_derivatives, gravity_derivatives, integrate_jacobians,
     joint_kinematics_derivatives, rnea_derivatives, rnea_derivatives_with_external, AbaDerivatives,
-    Derivatives, RneaDerivatives,
+    Derivatives, KinematicsDerivatives, RneaDerivatives,
 };
 pub use energy::{center_of_mass, kinetic_energy, potential_energy};
 pub use jacobian::{

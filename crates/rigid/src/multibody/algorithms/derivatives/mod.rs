@@ -47,7 +47,9 @@ mod rnea;
 
 pub use aba::{aba_derivatives, aba_derivatives_with_external, AbaDerivatives};
 pub use configuration::{difference_jacobians, integrate_jacobians};
-pub use kinematics::{frame_kinematics_derivatives, joint_kinematics_derivatives};
+pub use kinematics::{
+    frame_kinematics_derivatives, joint_kinematics_derivatives, KinematicsDerivatives,
+};
 pub use rnea::{
     gravity_derivatives, rnea_derivatives, rnea_derivatives_with_external, RneaDerivatives,
 };

@@ -31,7 +31,7 @@ pub(crate) fn forward_velocity(
     data: &mut Data,
     q: &[f64],
     v: Option<&[f64]>,
-    fext: Option<&[crate::spatial::Wrench]>,
+    fext: Option<&[Wrench]>,
 ) {
     let d = &mut data.derivatives;
     let J = &data.dof_J;
