@@ -387,3 +387,22 @@ fn batch_derivatives_equal_single_calls_bit_for_bit() {
         .unwrap_err();
     assert!(e.to_string().contains("out"), "{e}");
 }
+
+#[test]
+fn derivatives_of_a_model_without_joints_are_empty() {
+    let model = ModelBuilder::new("empty").build().unwrap();
+    let mut data = Data::new(&model);
+    let d = rnea_derivatives(&model, &mut data, &[], &[], &[]).unwrap();
+    assert_eq!(d.dtau_dq.shape(), (0, 0));
+    let d = aba_derivatives(&model, &mut data, &[], &[], &[]).unwrap();
+    assert_eq!(d.dqdd_dtau.shape(), (0, 0));
+    assert_eq!(
+        gravity_derivatives(&model, &mut data, &[]).unwrap().shape(),
+        (0, 0)
+    );
+    let (mut a, mut b) = (DMatrix::zeros(0, 0), DMatrix::zeros(0, 0));
+    integrate_jacobians(&model, &[], &[], 1.0, &mut a, &mut b).unwrap();
+    difference_jacobians(&model, &[], &[], &mut a, &mut b).unwrap();
+    let (mut x, mut y) = (vec![], vec![]);
+    batch::rnea_derivatives_batch(&model, &[], &[], &[], &mut x, &mut y).unwrap();
+}

@@ -111,7 +111,7 @@ fn aba_derivatives_unchecked<'a>(
     for (x, col) in data
         .ddq
         .iter_mut()
-        .zip(data.minv.as_slice().chunks_exact(nv))
+        .zip(data.minv.as_slice().chunks_exact(nv.max(1)))
     {
         *x = col.iter().zip(&d.rhs).map(|(m, r)| m * r).sum();
     }

@@ -35,6 +35,9 @@ pub(crate) fn neg_minv_times(
     list: &mut [Entry],
 ) {
     let nv = minv.nrows();
+    if nv == 0 {
+        return;
+    }
     let nb = blocks(nv);
     for (dst, src) in pad
         .chunks_exact_mut(nb)
