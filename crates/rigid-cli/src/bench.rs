@@ -38,9 +38,8 @@ use std::time::Instant;
 pub struct BenchArgs {
     /// A URDF file or a built-in model name (`puma560`, …).
     model: String,
-    /// Add a free-flyer root joint (URDF models).
-    #[arg(long)]
-    floating: bool,
+    #[command(flatten)]
+    load: crate::load::LoadArgs,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
@@ -189,7 +188,7 @@ pub fn time_algorithms(
 /// # Errors
 /// An unknown model, or an algorithm error.
 pub fn run(args: &BenchArgs) -> Result<(), String> {
-    let model = crate::load::load_model(&args.model, args.floating)?;
+    let model = crate::load::load_model(&args.model, &args.load)?;
     let states = States::new(&model, args.states.max(1), args.seed);
     if args.batch {
         return run_batch(args, &model, &states);

@@ -3,13 +3,13 @@
 
 use crate::load::load_model;
 use clap::Args;
+use rigid::io::cases::{parse_cases, Case};
 use rigid::multibody::{
     aba, aba_derivatives, center_of_mass, crba, forward_kinematics_q, gravity_torques,
     kinetic_energy, nonlinear_effects, potential_energy, rnea, rnea_derivatives, Data, Model,
 };
 use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
-use serde_json::Value;
 use std::path::PathBuf;
 
 /// Arguments of `rigid eval`.
@@ -21,9 +21,8 @@ pub struct EvalArgs {
     /// and `tau` default to zero.
     #[arg(long)]
     pub cases: PathBuf,
-    /// Add a free-flyer root joint carrying the URDF's root link.
-    #[arg(long)]
-    pub floating: bool,
+    #[command(flatten)]
+    pub load: crate::load::LoadArgs,
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     pub json: bool,
@@ -32,14 +31,6 @@ pub struct EvalArgs {
     /// nv x nv row-major, derivatives in `q` along the tangent `q ⊕ δ`.
     #[arg(long)]
     pub derivatives: bool,
-}
-
-/// One state to evaluate.
-struct Case {
-    q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    tau: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -132,7 +123,7 @@ impl Serialize for Placements {
 /// # Errors
 /// A message naming the model, the case and the field, or the joint.
 pub fn run(args: &EvalArgs) -> Result<(), String> {
-    let model = load_model(&args.model, args.floating)?;
+    let model = load_model(&args.model, &args.load)?;
     let path = args.cases.display();
     let text = std::fs::read_to_string(&args.cases)
         .map_err(|e| format!("cannot read cases file {path}: {e}"))?;
@@ -175,54 +166,6 @@ fn model_info(model: &Model) -> ModelInfo {
             .collect(),
         gravity: [g.x, g.y, g.z],
     }
-}
-
-/// Reads `{"cases": [...]}`, checking every field's type and length against the model.
-fn parse_cases(text: &str, model: &Model) -> Result<Vec<Case>, String> {
-    let root: Value = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
-    let list = root
-        .get("cases")
-        .ok_or("expected an object with a \"cases\" array")?
-        .as_array()
-        .ok_or("\"cases\" is not an array")?;
-    let mut cases = Vec::with_capacity(list.len());
-    for (i, c) in list.iter().enumerate() {
-        if !c.is_object() {
-            return Err(format!("case {i}: not an object"));
-        }
-        let field = |name: &str, len: usize, dim: &str, required: bool| {
-            vector(c.get(name), len, required)
-                .map_err(|e| format!("case {i}: \"{name}\" {e} (expected {dim} = {len})"))
-        };
-        cases.push(Case {
-            q: field("q", model.nq(), "nq", true)?,
-            v: field("v", model.nv(), "nv", false)?,
-            a: field("a", model.nv(), "nv", false)?,
-            tau: field("tau", model.nv(), "nv", false)?,
-        });
-    }
-    Ok(cases)
-}
-
-/// A vector of `len` numbers, or zeros if absent and not required.
-fn vector(value: Option<&Value>, len: usize, required: bool) -> Result<Vec<f64>, String> {
-    let Some(value) = value else {
-        return if required {
-            Err("is missing".into())
-        } else {
-            Ok(vec![0.0; len])
-        };
-    };
-    let arr = value.as_array().ok_or("is not an array of numbers")?;
-    let out = arr
-        .iter()
-        .enumerate()
-        .map(|(k, x)| x.as_f64().ok_or(format!("[{k}] is not a number")))
-        .collect::<Result<Vec<f64>, _>>()?;
-    if out.len() != len {
-        return Err(format!("has {} entries", out.len()));
-    }
-    Ok(out)
 }
 
 /// Case files of at least this many cases are evaluated on every core.
@@ -287,6 +230,23 @@ fn evaluate(
             (j.name.clone(), p)
         })
         .collect();
+    // A result that overflowed (huge masses, huge velocities) is an error, not a JSON `null`.
+    let finite = |what: &'static str, x: &[f64]| {
+        if x.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} is not finite: the numbers overflow (check the masses and the state)"
+            ))
+        }
+    };
+    finite("rnea", &rnea)?;
+    finite("mass_matrix", &mass_matrix.concat())?;
+    finite("nonlinear_effects", &nle)?;
+    finite("gravity_torques", &g)?;
+    finite("aba", &ddq)?;
+    finite("kinetic_energy", &[kinetic_energy, potential_energy])?;
+    finite("com", &[com.x, com.y, com.z])?;
     let (rnea_derivatives, aba_derivatives) = if derivatives {
         let d = rnea_derivatives(model, data, &c.q, &c.v, &c.a).map_err(e("rnea_derivatives"))?;
         let r = RneaDerivatives {
@@ -299,6 +259,12 @@ fn evaluate(
             dqdd_dv: rows(d.dqdd_dv),
             dqdd_dtau: rows(d.dqdd_dtau),
         };
+        finite(
+            "rnea_derivatives",
+            &[r.dtau_dq.concat(), r.dtau_dv.concat()].concat(),
+        )?;
+        let all = [f.dqdd_dq.concat(), f.dqdd_dv.concat(), f.dqdd_dtau.concat()].concat();
+        finite("aba_derivatives", &all)?;
         (Some(r), Some(f))
     } else {
         (None, None)

@@ -268,7 +268,7 @@ fn model_summary_and_inertia_report() {
         "{text}"
     );
     assert!(
-        text.contains("nq = 1, nv = 1") && text.contains("inertias of the 2 links: all physical"),
+        text.contains("nq = 1, nv = 1") && text.contains("inertia policy: warn; 0 warning(s)"),
         "{text}"
     );
 
@@ -284,12 +284,23 @@ fn model_summary_and_inertia_report() {
         "bad_inertia.urdf",
         &urdf.replace("ixx=\"0.01\"", "ixx=\"-0.01\""),
     );
+    // Loaded as written under the default policy, with a warning; refused by --inertia strict.
     let out = rigid(&["model", &bad]);
-    assert!(!out.status.success());
+    assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
-        text.contains("link \"bob\"") && text.contains("positive semi-definite"),
+        text.contains("warning") && text.contains("link \"bob\"") && text.contains("as written"),
         "{text}"
+    );
+    let out = rigid(&["model", &bad, "--inertia", "strict"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.starts_with("error:")
+            && err.contains("link \"bob\"")
+            && err.contains("line ")
+            && err.contains("positive semi-definite"),
+        "{err}"
     );
 
     let massless = urdf

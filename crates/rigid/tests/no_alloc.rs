@@ -1,6 +1,7 @@
 //! After `Data::new`, forward kinematics, Jacobians, RNEA (and gravity, nle, external wrenches),
 //! CRBA, `M⁻¹`, ABA, Cholesky forward dynamics, the Coriolis matrix, the energies and the analytical
-//! derivatives (RNEA, ABA, gravity, frame kinematics, `integrate`/`difference` Jacobians) allocate nothing:
+//! derivatives (RNEA, ABA, gravity, frame kinematics, `integrate`/`difference` Jacobians) allocate
+//! nothing, and so does a step of the simulator (every integrator, control law, an external wrench):
 //! a counting global allocator proves it.
 
 mod common;
@@ -103,5 +104,51 @@ fn algorithms_allocate_nothing_after_data_new() {
             difference_jacobians(model, &q, &q, &mut j0, &mut j1).unwrap();
         });
         assert_eq!(n, 0, "{}: {n} allocations", model.name());
+        // a simulation step, with every integrator, control law and an external wrench
+        let target = q.clone();
+        let q1 = random_configuration(model, &mut rng);
+        let trajectory =
+            simulation::JointTrajectory::new(model, &q, &q1, 1.0, simulation::TimeScaling::Quintic)
+                .unwrap();
+        let laws = [
+            simulation::ControlLaw::GravityCompensation,
+            simulation::ControlLaw::pd(model, &target, 10.0, 1.0).unwrap(),
+            simulation::ControlLaw::ComputedTorque {
+                trajectory,
+                kp: 100.0,
+                kd: 20.0,
+            },
+        ];
+        for (integrator, law) in [
+            simulation::Integrator::SemiImplicitEuler,
+            simulation::Integrator::Rk4,
+            simulation::Integrator::Variational,
+        ]
+        .into_iter()
+        .zip(laws)
+        {
+            let opts = simulation::SimulationOptions {
+                integrator,
+                ..Default::default()
+            };
+            let ctrl = simulation::Controller::new(model, law).unwrap();
+            let small: Vec<f64> = v.iter().map(|x| 0.1 * x).collect();
+            let mut sim = simulation::Simulator::new(model, &q, &small, opts, ctrl).unwrap();
+            sim.set_external_wrench(
+                JointId(0),
+                Wrench::from_slice(&[0.1, 0.0, 0.2, 1.0, 0.0, 0.0]),
+            )
+            .unwrap();
+            sim.step().unwrap(); // warm-up
+            let n = allocations(|| {
+                for _ in 0..3 {
+                    sim.step().unwrap();
+                }
+                sim.torques().unwrap();
+                sim.energy().unwrap();
+                sim.momentum().unwrap();
+            });
+            assert_eq!(n, 0, "{}: {integrator}: {n} allocations", model.name());
+        }
     }
 }

@@ -39,13 +39,49 @@ pub struct Joint {
     pub subtree_end: usize,
 }
 
-/// What a named frame stands for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What a named frame stands for. Frame names are unique within a kind, and joint names among the
+/// joints; a URDF link and a joint may share a name (links and joints are two namespaces in URDF,
+/// as in Pinocchio, whose frames carry their type too).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum FrameKind {
-    /// A body welded to its parent by a fixed joint (its inertia was merged into the parent).
-    FixedBody,
+    /// A body's own frame (a URDF link): the link moved by a joint, or a link welded to its parent
+    /// by a fixed joint (its inertia merged into the parent's).
+    Body,
+    /// The frame of a fixed joint (a URDF `fixed` joint, at its child link's frame).
+    FixedJoint,
     /// An operational frame (a tool point, a sensor).
     Operational,
+}
+
+impl FrameKind {
+    /// Lower-case name: `body`, `fixed joint`, `operational`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Body => "body",
+            Self::FixedJoint => "fixed joint",
+            Self::Operational => "operational",
+        }
+    }
+}
+
+/// Why [`Model::frame_id`] found no single frame.
+#[derive(Clone, Debug, thiserror::Error, PartialEq, Eq)]
+pub enum FrameLookupError {
+    /// No frame has this name.
+    #[error("no frame named \"{name}\"")]
+    NotFound {
+        /// The name looked up.
+        name: String,
+    },
+    /// Several frames of different kinds have this name.
+    #[error("frame name \"{name}\" is ambiguous: there is a {} frame of that name; ask for one kind (Model::frame_id_of_kind)", kinds.iter().map(|k| k.as_str()).collect::<Vec<_>>().join(" and a "))]
+    Ambiguous {
+        /// The name looked up.
+        name: String,
+        /// The kinds of the frames with that name.
+        kinds: Vec<FrameKind>,
+    },
 }
 
 /// A named frame fixed in a moving body (or in the world).
@@ -75,6 +111,10 @@ pub struct Model {
     pub(crate) velocity_limit: Vec<f64>,
     pub(crate) effort_limit: Vec<f64>,
     pub(crate) armature: Vec<f64>,
+    /// Viscous joint damping per degree of freedom (URDF `<dynamics damping>`).
+    pub(crate) damping: Vec<f64>,
+    /// Coulomb (dry) joint friction per degree of freedom (URDF `<dynamics friction>`).
+    pub(crate) friction: Vec<f64>,
     /// Motion subspace column per degree of freedom, in the child frame (constant).
     pub(crate) dof_S: Vec<Twist>,
     /// The joint of each degree of freedom.
@@ -148,10 +188,39 @@ impl Model {
     pub fn frames(&self) -> &[Frame] {
         &self.frames
     }
-    /// The frame called `name`.
+    /// The frame called `name`, whatever its kind.
+    ///
+    /// # Errors
+    /// [`FrameLookupError::NotFound`], or [`FrameLookupError::Ambiguous`] when frames of several
+    /// kinds have this name (a URDF link and a fixed joint of the same name): then use
+    /// [`frame_id_of_kind`](Self::frame_id_of_kind).
+    pub fn frame_id(&self, name: &str) -> Result<FrameId, FrameLookupError> {
+        let mut hits = self
+            .frames
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| f.name == name);
+        match (hits.next(), hits.next()) {
+            (Some((i, _)), None) => Ok(FrameId(i)),
+            (None, _) => Err(FrameLookupError::NotFound { name: name.into() }),
+            (Some(_), Some(_)) => Err(FrameLookupError::Ambiguous {
+                name: name.into(),
+                kinds: self
+                    .frames
+                    .iter()
+                    .filter(|f| f.name == name)
+                    .map(|f| f.kind)
+                    .collect(),
+            }),
+        }
+    }
+    /// The frame of kind `kind` called `name` (names are unique within a kind).
     #[must_use]
-    pub fn frame_id(&self, name: &str) -> Option<FrameId> {
-        self.frames.iter().position(|f| f.name == name).map(FrameId)
+    pub fn frame_id_of_kind(&self, name: &str, kind: FrameKind) -> Option<FrameId> {
+        self.frames
+            .iter()
+            .position(|f| f.name == name && f.kind == kind)
+            .map(FrameId)
     }
     /// The total mass of the moving bodies (welded-to-world links excluded).
     #[must_use]
@@ -183,6 +252,28 @@ impl Model {
     #[must_use]
     pub fn armature(&self) -> &[f64] {
         &self.armature
+    }
+    /// Viscous joint damping `b` per degree of freedom (N·m·s/rad or N·s/m; `0` when none): the
+    /// simulator ([`simulation`](super::simulation)) applies `τ = -b v`. The algorithms (RNEA,
+    /// ABA, ...) ignore it, as Pinocchio does.
+    ///
+    /// ```
+    /// let model = rigid::io::urdf::load_urdf_str(r#"<robot name="r"><link name="a"/>
+    ///   <link name="b"><inertial><mass value="1"/>
+    ///     <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    ///   <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
+    ///     <dynamics damping="0.5" friction="0.1"/></joint></robot>"#, false).unwrap();
+    /// assert_eq!((model.damping(), model.friction()), (&[0.5][..], &[0.1][..]));
+    /// ```
+    #[must_use]
+    pub fn damping(&self) -> &[f64] {
+        &self.damping
+    }
+    /// Coulomb joint friction `F_c` per degree of freedom (N·m or N; `0` when none): the
+    /// simulator applies a regularised `τ = -F_c tanh(v / v_s)`. The algorithms ignore it.
+    #[must_use]
+    pub fn friction(&self) -> &[f64] {
+        &self.friction
     }
     /// The motion-subspace column of degree of freedom `k`, in its body's frame.
     #[must_use]
@@ -255,6 +346,9 @@ impl Model {
 #[derive(Clone, Debug)]
 pub struct ModelBuilder {
     model: Model,
+    inertia_check: InertiaCheck,
+    /// Joint names, and frame names by kind, for O(1) duplicate checks.
+    names: std::collections::HashSet<(Option<FrameKind>, String)>,
     /// The chain of joints from the root to the last joint added (for the depth-first check).
     stack: Vec<usize>,
 }
@@ -271,7 +365,21 @@ fn check_placement(name: &str, t: &Transform) -> Result<(), ModelError> {
     Ok(())
 }
 
-fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
+/// What [`ModelBuilder`] accepts as a body inertia.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum InertiaCheck {
+    /// Finite, mass `≥ 0`, and an inertia about the CoM positive semi-definite to
+    /// `max(10⁻⁶ λ3, round-off)` (the rounding of published values; round-off as in
+    /// [`SpatialInertia::round_off`]). The triangle inequality is not enforced: published models
+    /// violate it (the PUMA 560's link 3); [`Model::inertia_issues`] reports it.
+    #[default]
+    Physical,
+    /// Finite and mass `≥ 0` only: the inertia is kept as written, even when no mass
+    /// distribution has it (a URDF loaded with the `warn` inertia policy, as other tools do).
+    AsWritten,
+}
+
+fn check_inertia(name: &str, g: &SpatialInertia, check: InertiaCheck) -> Result<(), ModelError> {
     let bad = |source| ModelError::BadInertia {
         name: name.into(),
         source,
@@ -285,12 +393,11 @@ fn check_inertia(name: &str, g: &SpatialInertia) -> Result<(), ModelError> {
     if g.mass() < 0.0 {
         return Err(bad(crate::error::InertiaError::BadMass { mass: g.mass() }));
     }
-    // Positive semi-definite rotational inertia about the CoM (to 1e-6 of the largest principal
-    // moment, for the rounding of published values). The triangle inequality is not
-    // enforced: published models violate it (the PUMA 560's link 3), so it is reported by
-    // `Model::inertia_issues` instead.
+    if check == InertiaCheck::AsWritten {
+        return Ok(());
+    }
     let l = g.inertia_com().principal_moments();
-    if l[0] < -1e-6 * l[2].abs().max(1e-12) {
+    if l[0] < -(1e-6 * l[2].abs()).max(g.round_off()).max(1e-300) {
         return Err(bad(crate::error::InertiaError::NotPositiveSemiDefinite {
             moment: l[0],
         }));
@@ -324,6 +431,8 @@ impl ModelBuilder {
                 velocity_limit: Vec::new(),
                 effort_limit: Vec::new(),
                 armature: Vec::new(),
+                damping: Vec::new(),
+                friction: Vec::new(),
                 dof_S: Vec::new(),
                 dof_joint: Vec::new(),
                 dof_axis: Vec::new(),
@@ -333,7 +442,15 @@ impl ModelBuilder {
                 nv: 0,
             },
             stack: Vec::new(),
+            inertia_check: InertiaCheck::Physical,
+            names: std::collections::HashSet::new(),
         }
+    }
+
+    /// What the following `add_*` calls accept as a body inertia (default
+    /// [`InertiaCheck::Physical`]).
+    pub fn set_inertia_check(&mut self, check: InertiaCheck) {
+        self.inertia_check = check;
     }
 
     /// Set gravity in the world frame (m/s²).
@@ -341,10 +458,9 @@ impl ModelBuilder {
         self.model.gravity = g;
     }
 
-    fn check_name(&self, name: &str) -> Result<(), ModelError> {
-        let taken = self.model.joints.iter().any(|j| j.name == name)
-            || self.model.frames.iter().any(|f| f.name == name);
-        if taken {
+    /// Joint names are unique among joints; frame names within their kind.
+    fn check_name(&self, name: &str, kind: Option<FrameKind>) -> Result<(), ModelError> {
+        if self.names.contains(&(kind, name.to_string())) {
             Err(ModelError::DuplicateName { name: name.into() })
         } else {
             Ok(())
@@ -379,13 +495,13 @@ impl ModelBuilder {
         placement: Transform,
         inertia: SpatialInertia,
     ) -> Result<JointId, ModelError> {
-        self.check_name(name)?;
+        self.check_name(name, None)?;
         self.check_parent(name, parent)?;
         let kind = joint
             .normalized_axis()
             .ok_or_else(|| ModelError::BadAxis { name: name.into() })?;
         check_placement(name, &placement)?;
-        check_inertia(name, &inertia)?;
+        check_inertia(name, &inertia, self.inertia_check)?;
         // depth-first: pop the stack down to the parent
         match parent {
             None => self.stack.clear(),
@@ -429,9 +545,12 @@ impl ModelBuilder {
         m.velocity_limit.resize(m.nv + nv, f64::INFINITY);
         m.effort_limit.resize(m.nv + nv, f64::INFINITY);
         m.armature.resize(m.nv + nv, 0.0);
+        m.damping.resize(m.nv + nv, 0.0);
+        m.friction.resize(m.nv + nv, 0.0);
         m.nq += nq;
         m.nv += nv;
         self.stack.push(id);
+        self.names.insert((None, name.to_string()));
         Ok(JointId(id))
     }
 
@@ -448,10 +567,10 @@ impl ModelBuilder {
         placement: Transform,
         inertia: SpatialInertia,
     ) -> Result<FrameId, ModelError> {
-        self.check_name(name)?;
+        self.check_name(name, Some(FrameKind::Body))?;
         self.check_parent(name, parent)?;
         check_placement(name, &placement)?;
-        check_inertia(name, &inertia)?;
+        check_inertia(name, &inertia, self.inertia_check)?;
         if let Some(p) = parent {
             self.model.inertias[p.0] += inertia.transformed(&placement);
         }
@@ -459,8 +578,9 @@ impl ModelBuilder {
             name: name.into(),
             parent,
             placement,
-            kind: FrameKind::FixedBody,
+            kind: FrameKind::Body,
         });
+        self.names.insert((Some(FrameKind::Body), name.to_string()));
         Ok(FrameId(self.model.frames.len() - 1))
     }
 
@@ -474,15 +594,32 @@ impl ModelBuilder {
         name: &str,
         placement: Transform,
     ) -> Result<FrameId, ModelError> {
-        self.check_name(name)?;
+        self.add_frame_of_kind(parent, name, placement, FrameKind::Operational)
+    }
+
+    /// A named frame of kind `kind` fixed in `parent` (or the world) at `placement`, carrying no
+    /// inertia (for a body frame with an inertia, use [`add_fixed_body`](Self::add_fixed_body)).
+    ///
+    /// # Errors
+    /// Unknown parent, a frame of the same kind and name, or a placement that is not a rigid
+    /// transform.
+    pub fn add_frame_of_kind(
+        &mut self,
+        parent: Option<JointId>,
+        name: &str,
+        placement: Transform,
+        kind: FrameKind,
+    ) -> Result<FrameId, ModelError> {
+        self.check_name(name, Some(kind))?;
         self.check_parent(name, parent)?;
         check_placement(name, &placement)?;
         self.model.frames.push(Frame {
             name: name.into(),
             parent,
             placement,
-            kind: FrameKind::Operational,
+            kind,
         });
+        self.names.insert((Some(kind), name.to_string()));
         Ok(FrameId(self.model.frames.len() - 1))
     }
 
@@ -553,6 +690,33 @@ impl ModelBuilder {
             return Err(ModelError::BadArmature { joint: j.name });
         }
         self.model.armature[j.idx_v..j.idx_v + j.nv].copy_from_slice(armature);
+        Ok(())
+    }
+
+    /// The viscous damping and Coulomb friction of one joint (`nv` entries each, finite and
+    /// `≥ 0`; URDF `<dynamics damping friction>`), used by the simulator only.
+    ///
+    /// # Errors
+    /// Unknown joint, wrong lengths, a negative or non-finite entry.
+    pub fn set_joint_dynamics(
+        &mut self,
+        joint: JointId,
+        damping: &[f64],
+        friction: &[f64],
+    ) -> Result<(), ModelError> {
+        let j = self.joint_checked(joint)?.clone();
+        for (what, x) in [("damping", damping), ("friction", friction)] {
+            DimensionError::check(what, j.nv, x.len()).map_err(|source| ModelError::Dimension {
+                joint: j.name.clone(),
+                source,
+            })?;
+            if x.iter().any(|a| !a.is_finite() || *a < 0.0) {
+                return Err(ModelError::BadDynamics { joint: j.name });
+            }
+        }
+        let r = j.idx_v..j.idx_v + j.nv;
+        self.model.damping[r.clone()].copy_from_slice(damping);
+        self.model.friction[r].copy_from_slice(friction);
         Ok(())
     }
 

@@ -85,7 +85,8 @@ def joint_layout(model):
         short = j.shortname()
         if short == "JointModelFreeFlyer":
             kind, nq, nv = "free_flyer", 7, 6
-        elif "RevoluteUnbounded" in short:
+        elif j.nq == 2 and j.nv == 1:
+            # RevoluteUnbounded (shortnames JointModelRUBX/Y/Z, ...Unaligned): (cos t, sin t)
             kind, nq, nv = "continuous", 1, 1
         elif short == "JointModelPlanar":
             kind, nq, nv = "planar", 3, 3
