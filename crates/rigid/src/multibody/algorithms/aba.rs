@@ -351,8 +351,8 @@ fn cholesky_fallback<'a>(
     super::cholesky::ltl_solve(model, data, tau)
 }
 
-/// The argument checks shared by [`aba`] and [`aba_with_external`].
-fn check_inputs(
+/// The argument checks shared by [`aba`], [`aba_with_external`] and the ABA derivatives.
+pub(crate) fn check_inputs(
     model: &Model,
     data: &Data,
     q: &[f64],
