@@ -3,7 +3,7 @@
 #
 #   bash scripts/fuzz.sh [SECONDS] [TARGET...]     (default: 60 s each, every target)
 #
-# Targets (fuzz/fuzz_targets/, entry points in crates/rigid/src/fuzzing.rs): urdf, spec, stl, obj,
+# Built optimised with debug assertions (overflow checks). Targets (fuzz/fuzz_targets/, entry points in crates/rigid/src/fuzzing.rs): urdf, spec, stl, obj,
 # dae, cases. Needs `cargo install cargo-fuzz` (a C++ compiler builds libFuzzer). The corpus grows
 # in fuzz/corpus/TARGET/ (commit what is worth keeping after `cargo fuzz cmin`); a crash is saved
 # in fuzz/artifacts/TARGET/: copy it to fuzz/regressions/TARGET/, fix the bug, and the test suite
@@ -20,7 +20,7 @@ for t in "${targets[@]}"; do
     mkdir -p "corpus/$t" "artifacts/$t"
     log=$(mktemp)
     status=0
-    cargo fuzz run --sanitizer none -O "$t" "corpus/$t" -- \
+    cargo fuzz run --sanitizer none -O --debug-assertions "$t" "corpus/$t" -- \
         -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -max_len=65536 \
         -print_final_stats=1 >"$log" 2>&1 || status=$?
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)

@@ -1,4 +1,4 @@
-//! `rigid eval MODEL --cases CASES.json [--floating] [--json]`: the dynamics of a model at given
+//! `rigid eval MODEL --cases CASES.json [--floating] [--json] [--derivatives]`: the dynamics of a model at given
 //! states, for scripts and cross-checks (the contract is in `CONVENTIONS.md`).
 
 use crate::load::load_model;
@@ -7,8 +7,8 @@ use rigid::io::cases::{parse_cases_with, Case};
 use rigid::io::urdf::SiblingOrder;
 use rigid::multibody::layout::PinocchioLayout;
 use rigid::multibody::{
-    aba, center_of_mass, crba, forward_kinematics_q, gravity_torques, kinetic_energy,
-    nonlinear_effects, potential_energy, rnea, Data, Model,
+    aba, aba_derivatives, center_of_mass, crba, forward_kinematics_q, gravity_torques,
+    kinetic_energy, nonlinear_effects, potential_energy, rnea, rnea_derivatives, Data, Model,
 };
 use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
@@ -28,11 +28,16 @@ pub struct EvalArgs {
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     pub json: bool,
-    /// `pinocchio`: read and write `q`, `v`, `a`, `τ` and `M` in Pinocchio's layout (sibling
-    /// joints sorted by name, `(cos θ, sin θ)` for continuous and planar angles, free-flyer
-    /// velocities linear first), so that they pass to and from Pinocchio unchanged.
+    /// `pinocchio`: read and write `q`, `v`, `a`, `τ`, `M` and the derivatives in Pinocchio's
+    /// layout (sibling joints sorted by name, `(cos θ, sin θ)` for continuous and planar angles,
+    /// free-flyer velocities linear first), so that they pass to and from Pinocchio unchanged.
     #[arg(long, value_enum, default_value = "rigid")]
     pub layout: Layout,
+    /// Add the analytical derivatives to each result: `rnea_derivatives` (`dtau_dq`, `dtau_dv` at
+    /// `(q, v, a)`) and `aba_derivatives` (`dqdd_dq`, `dqdd_dv`, `dqdd_dtau` at `(q, v, tau)`),
+    /// nv x nv row-major, derivatives in `q` along the tangent `q ⊕ δ`.
+    #[arg(long)]
+    pub derivatives: bool,
 }
 
 /// The layout of the vectors of `rigid eval` (see `rigid::multibody::layout`).
@@ -84,6 +89,32 @@ struct CaseResult {
     com: [f64; 3],
     total_mass: f64,
     placements: Placements,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rnea_derivatives: Option<RneaDerivatives>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    aba_derivatives: Option<AbaDerivatives>,
+}
+
+/// `∂τ/∂q`, `∂τ/∂v` (row-major).
+#[derive(Serialize)]
+struct RneaDerivatives {
+    dtau_dq: Vec<Vec<f64>>,
+    dtau_dv: Vec<Vec<f64>>,
+}
+
+/// `∂q̈/∂q`, `∂q̈/∂v`, `∂q̈/∂τ` (row-major).
+#[derive(Serialize)]
+struct AbaDerivatives {
+    dqdd_dq: Vec<Vec<f64>>,
+    dqdd_dv: Vec<Vec<f64>>,
+    dqdd_dtau: Vec<Vec<f64>>,
+}
+
+/// A matrix as row-major nested arrays.
+fn rows(m: &nalgebra::DMatrix<f64>) -> Vec<Vec<f64>> {
+    (0..m.nrows())
+        .map(|r| (0..m.ncols()).map(|k| m[(r, k)]).collect())
+        .collect()
 }
 
 #[derive(Serialize)]
@@ -126,7 +157,7 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             case_from_pinocchio(l, model.nq(), c).map_err(|e| format!("{path}: case {i}: {e}"))?;
         }
     }
-    let mut results = evaluate_all(&model, &cases)
+    let mut results = evaluate_all(&model, &cases, args.derivatives)
         .into_iter()
         .enumerate()
         .map(|(i, r)| r.map_err(|e| format!("{path}: case {i}: {e}")))
@@ -161,7 +192,9 @@ fn case_from_pinocchio(l: &PinocchioLayout, nq: usize, c: &mut Case) -> Result<(
     Ok(())
 }
 
-/// A result in Pinocchio's layout (placements, energies and the CoM are the same in both).
+/// A result in Pinocchio's layout (placements, energies and the CoM are the same in both): the
+/// vectors and the rows and columns of `M` and of the derivatives (Pinocchio's tangent `q ⊕ δ`
+/// is linear first for a free-flyer, as its velocity) permuted.
 fn result_to_pinocchio(l: &PinocchioLayout, r: &mut CaseResult) {
     for x in [
         &mut r.rnea,
@@ -173,11 +206,22 @@ fn result_to_pinocchio(l: &PinocchioLayout, r: &mut CaseResult) {
         l.permute_v(x, &mut y);
         *x = y;
     }
-    let m = &r.mass_matrix;
-    let n = m.len();
-    r.mass_matrix = (0..n)
-        .map(|i| (0..n).map(|k| m[l.v_index(i)][l.v_index(k)]).collect())
-        .collect();
+    let permute = |m: &mut Vec<Vec<f64>>| {
+        let n = m.len();
+        *m = (0..n)
+            .map(|i| (0..n).map(|k| m[l.v_index(i)][l.v_index(k)]).collect())
+            .collect();
+    };
+    permute(&mut r.mass_matrix);
+    if let Some(d) = &mut r.rnea_derivatives {
+        permute(&mut d.dtau_dq);
+        permute(&mut d.dtau_dv);
+    }
+    if let Some(f) = &mut r.aba_derivatives {
+        permute(&mut f.dqdd_dq);
+        permute(&mut f.dqdd_dv);
+        permute(&mut f.dqdd_dtau);
+    }
 }
 
 fn model_info(model: &Model, layout: Option<&PinocchioLayout>) -> ModelInfo {
@@ -217,30 +261,39 @@ const PARALLEL_CASES: usize = 64;
 /// Every case's result, in order: one loop for small files; for large ones a rayon parallel
 /// iterator with one [`Data`] per worker (`map_init`), as `rigid::multibody::batch` does. Each
 /// case is evaluated alone, so the results are the same bit for bit either way.
-fn evaluate_all(model: &Model, cases: &[Case]) -> Vec<Result<CaseResult, String>> {
+fn evaluate_all(
+    model: &Model,
+    cases: &[Case],
+    derivatives: bool,
+) -> Vec<Result<CaseResult, String>> {
     use rayon::prelude::*;
     if cases.len() < PARALLEL_CASES {
         let mut data = Data::new(model);
         return cases
             .iter()
-            .map(|c| evaluate(model, &mut data, c))
+            .map(|c| evaluate(model, &mut data, c, derivatives))
             .collect();
     }
     cases
         .par_iter()
-        .map_init(|| Data::new(model), |data, c| evaluate(model, data, c))
+        .map_init(
+            || Data::new(model),
+            |data, c| evaluate(model, data, c, derivatives),
+        )
         .collect()
 }
 
-fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, String> {
+fn evaluate(
+    model: &Model,
+    data: &mut Data,
+    c: &Case,
+    derivatives: bool,
+) -> Result<CaseResult, String> {
     use rigid::multibody::MultibodyError;
     let e = |what: &'static str| move |e: MultibodyError| format!("{what}: {e}");
     let rnea = rnea(model, data, &c.q, &c.v, &c.a).map_err(e("rnea"))?;
     let rnea = rnea.as_slice().to_vec();
-    let m = crba(model, data, &c.q).map_err(e("mass_matrix"))?;
-    let mass_matrix: Vec<Vec<f64>> = (0..m.nrows())
-        .map(|r| (0..m.ncols()).map(|k| m[(r, k)]).collect())
-        .collect();
+    let mass_matrix = rows(crba(model, data, &c.q).map_err(e("mass_matrix"))?);
     let nle = nonlinear_effects(model, data, &c.q, &c.v).map_err(e("nonlinear_effects"))?;
     let nle = nle.as_slice().to_vec();
     let g = gravity_torques(model, data, &c.q).map_err(e("gravity_torques"))?;
@@ -281,6 +334,28 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
     finite("aba", &ddq)?;
     finite("kinetic_energy", &[kinetic_energy, potential_energy])?;
     finite("com", &[com.x, com.y, com.z])?;
+    let (rnea_derivatives, aba_derivatives) = if derivatives {
+        let d = rnea_derivatives(model, data, &c.q, &c.v, &c.a).map_err(e("rnea_derivatives"))?;
+        let r = RneaDerivatives {
+            dtau_dq: rows(d.dtau_dq),
+            dtau_dv: rows(d.dtau_dv),
+        };
+        let d = aba_derivatives(model, data, &c.q, &c.v, &c.tau).map_err(e("aba_derivatives"))?;
+        let f = AbaDerivatives {
+            dqdd_dq: rows(d.dqdd_dq),
+            dqdd_dv: rows(d.dqdd_dv),
+            dqdd_dtau: rows(d.dqdd_dtau),
+        };
+        finite(
+            "rnea_derivatives",
+            &[r.dtau_dq.concat(), r.dtau_dv.concat()].concat(),
+        )?;
+        let all = [f.dqdd_dq.concat(), f.dqdd_dv.concat(), f.dqdd_dtau.concat()].concat();
+        finite("aba_derivatives", &all)?;
+        (Some(r), Some(f))
+    } else {
+        (None, None)
+    };
     // `+ 0.0` turns an empty sum's `-0.0` into `0.0`.
     Ok(CaseResult {
         rnea,
@@ -293,6 +368,8 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
         com: [com.x + 0.0, com.y + 0.0, com.z + 0.0],
         total_mass: model.total_mass() + 0.0,
         placements: Placements(placements),
+        rnea_derivatives,
+        aba_derivatives,
     })
 }
 
@@ -324,9 +401,21 @@ fn print_summary(out: &Output) {
             fmt_vec(&r.com),
             r.total_mass
         );
-        println!("  mass matrix");
-        for row in &r.mass_matrix {
-            println!("    {}", fmt_vec(row));
+        let mut matrices = vec![("mass matrix", &r.mass_matrix)];
+        if let (Some(d), Some(f)) = (&r.rnea_derivatives, &r.aba_derivatives) {
+            matrices.extend([
+                ("rnea derivatives dtau/dq", &d.dtau_dq),
+                ("rnea derivatives dtau/dv", &d.dtau_dv),
+                ("aba derivatives dqdd/dq", &f.dqdd_dq),
+                ("aba derivatives dqdd/dv", &f.dqdd_dv),
+                ("aba derivatives dqdd/dtau", &f.dqdd_dtau),
+            ]);
+        }
+        for (name, m) in matrices {
+            println!("  {name}");
+            for row in m {
+                println!("    {}", fmt_vec(row));
+            }
         }
     }
 }

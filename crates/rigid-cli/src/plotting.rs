@@ -138,6 +138,24 @@ where
     Ok(())
 }
 
+/// `Ok` for a path ending in `.svg` or `.png` (case-insensitive), the formats the figures are written in.
+///
+/// # Errors
+/// Any other extension, naming the path.
+pub fn check_format(path: &std::path::Path) -> Result<(), String> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("svg" | "png") => Ok(()),
+        _ => Err(format!(
+            "--plot {}: the figure is written as SVG or PNG, by the extension (.svg or .png)",
+            path.display()
+        )),
+    }
+}
+
 /// Draw `panels` against `t` into `path`: SVG, or PNG for a `.png` name. Written atomically.
 ///
 /// # Errors

@@ -134,7 +134,40 @@ fn step_count(args: &SimulateArgs) -> Result<u64, String> {
 
 /// Runs `rigid simulate`: a `.toml` input is a body spec, anything else a robot.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
-    if args.model.to_ascii_lowercase().ends_with(".toml") {
+    if let Some(plot) = &args.plot {
+        crate::plotting::check_format(plot)?;
+    }
+    let body = args.model.to_ascii_lowercase().ends_with(".toml");
+    // a flag of the other kind of simulation is a mistake, not something to ignore
+    let zero = Vec3::zeros();
+    let misplaced: &[(&str, bool)] = if body {
+        &[
+            ("--q0", args.q0.is_some()),
+            ("--v0", args.v0.is_some()),
+            ("--controller", args.controller != "none"),
+            ("--target", args.target.is_some()),
+            ("--move-time", args.move_time.is_some()),
+            ("--profile", args.profile != "quintic"),
+            ("--limits", args.limits != "spring"),
+            ("--no-joint-dynamics", args.no_joint_dynamics),
+            ("--floating", args.load.floating),
+        ]
+    } else {
+        &[
+            ("--omega", args.omega != zero),
+            ("--velocity", args.velocity != zero),
+            ("--pivot", args.pivot.is_some()),
+        ]
+    };
+    if let Some((flag, _)) = misplaced.iter().find(|(_, given)| *given) {
+        let what = if body {
+            "a robot (URDF or model name)"
+        } else {
+            "a body spec (.toml)"
+        };
+        return Err(format!("{flag} applies to {what}, not to {}", args.model));
+    }
+    if body {
         body::run(args)
     } else {
         robot::run(args)

@@ -250,7 +250,7 @@ def test_cli_eval_layout_pinocchio_reads_and_writes_pinocchio_arrays(name, tmp_p
              for q, v, a, t in p.states]
     f = tmp_path / "cases.json"
     f.write_text(json.dumps(dict(cases=cases)))
-    args = ["eval", p.path, "--cases", str(f), "--layout", "pinocchio"]
+    args = ["eval", p.path, "--cases", str(f), "--layout", "pinocchio", "--derivatives"]
     out = cli(*(args + (["--floating"] if p.floating else [])))
     info = out["model"]
     assert (info["layout"], info["nq"], info["nv"]) == ("pinocchio", pm.nq, pm.nv)
@@ -261,3 +261,10 @@ def test_cli_eval_layout_pinocchio_reads_and_writes_pinocchio_arrays(name, tmp_p
         assert_close(r["mass_matrix"], symmetric(pin.crba(pm, pd, q)), "eval mass_matrix")
         assert_close(r["aba"], pin.aba(pm, pd, q, v, tau), "eval aba")
         assert_close(r["nonlinear_effects"], pin.nonLinearEffects(pm, pd, q, v), "eval nle")
+        dq, dv, _ = pin.computeRNEADerivatives(pm, pd, q, v, a)
+        assert_close(r["rnea_derivatives"]["dtau_dq"], dq, "eval dtau_dq")
+        assert_close(r["rnea_derivatives"]["dtau_dv"], dv, "eval dtau_dv")
+        dq, dv, dtau = pin.computeABADerivatives(pm, pd, q, v, tau)
+        assert_close(r["aba_derivatives"]["dqdd_dq"], dq, "eval dqdd_dq")
+        assert_close(r["aba_derivatives"]["dqdd_dv"], dv, "eval dqdd_dv")
+        assert_close(r["aba_derivatives"]["dqdd_dtau"], symmetric(dtau), "eval dqdd_dtau")

@@ -12,7 +12,7 @@
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G`, pseudo-inertia and physical consistency |
 //! | [`io`] | reading files: triangle meshes (STL, OBJ, COLLADA), `rigid mass` body specs (TOML) |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, simulator on SE(3), Lagrange by autodiff |
-//! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis matrix, energies, DH and Modern Robotics builders, built-in robots |
+//! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis matrix, energies, analytical derivatives of the dynamics, DH and Modern Robotics builders, built-in robots |
 //! | [`io`] | URDF import into a multibody `Model` (inertia policy, warnings); `rigid doctor` ([`io::urdf::doctor`]) |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]

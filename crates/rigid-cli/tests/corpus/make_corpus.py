@@ -426,6 +426,28 @@ cli("bench_floating_builtin", "bench puma560 --floating", "error", "--floating",
 cli("doctor_missing_file", "doctor no_such_robot.urdf", "error", "no_such_robot.urdf")
 cli("doctor_fix_to_missing_folder", "doctor {dir}/../../fixtures/pendulum.urdf --fix /no/such/dir/x.urdf",
     "error", "/no/such/dir/x.urdf")
+ROBOT = "{dir}/../../fixtures/pendulum.urdf"
+cli("robot_dt_zero", f"simulate {ROBOT} --dt 0 --csv {{out}}", "error", "--dt")
+cli("robot_duration_negative", f"simulate {ROBOT} --duration -2 --html {{out}}", "error",
+    "--duration")
+cli("robot_q0_wrong_length", f"simulate {ROBOT} --q0 0.1,0.2 --duration 0.01", "error", "--q0",
+    "1")
+cli("robot_q0_nan", f"simulate {ROBOT} --q0 nan --duration 0.01 --csv {{out}}", "error", "--q0")
+cli("robot_v0_words", f"simulate {ROBOT} --v0 fast --duration 0.01", "error", "--v0")
+cli("robot_unknown_controller", f"simulate {ROBOT} --controller magic", "error", "magic")
+cli("robot_pd_without_target", f"simulate {ROBOT} --controller pd --duration 0.01 --csv {{out}}",
+    "error", "--target")
+cli("robot_target_wrong_length", f"simulate {ROBOT} --controller track --target 1,2 --duration 0.01",
+    "error", "--target")
+cli("robot_unknown_integrator", f"simulate {ROBOT} --integrator euler --duration 0.01", "error",
+    "euler")
+cli("robot_plot_unknown_format", f"simulate {ROBOT} --duration 0.01 --plot {{out}}.gif", "error",
+    "gif")
+cli("robot_body_only_flag", f"simulate {ROBOT} --pivot 0,0,0 --duration 0.01", "error", "--pivot")
+cli("robot_unknown_model", "simulate no_such_robot --duration 0.01", "error", "no_such_robot")
+cli("robot_output_folder_missing", f"simulate {ROBOT} --duration 0.01 --csv /no/such/dir/x.csv",
+    "error", "/no/such/dir/x.csv")
+cli("view_q_wrong_length", f"view {ROBOT} --q 1,2,3 --html {{out}}", "error", "--q")
 cli("unknown_command", "fly puma560", "error", "fly")
 cli("inertia_policy_unknown", "model puma560 --inertia lenient", "error", "lenient")
 

@@ -243,11 +243,17 @@ fn read_mesh(mesh: Node, by_id: &HashMap<&str, Node>) -> Result<TriMesh, MeshFil
             .children()
             .filter(|c| c.has_tag_name("input"))
             .collect();
-        let stride = inputs
+        let max_offset = inputs
             .iter()
             .filter_map(|i| i.attribute("offset").and_then(|o| o.parse::<usize>().ok()))
             .max()
-            .map_or(1, |m| m + 1);
+            .unwrap_or(0);
+        if max_offset > 64 {
+            return Err(err(format!(
+                "<{tag}> input offset {max_offset} is too large"
+            )));
+        }
+        let stride = max_offset + 1;
         let vertex_offset = inputs
             .iter()
             .find(|i| i.attribute("semantic") == Some("VERTEX"))
@@ -286,7 +292,10 @@ fn read_mesh(mesh: Node, by_id: &HashMap<&str, Node>) -> Result<TriMesh, MeshFil
                     .unwrap_or_default();
                 let mut at = 0;
                 for c in counts.unwrap_or_default() {
-                    let end = at + c * stride;
+                    let end = c
+                        .checked_mul(stride)
+                        .and_then(|n| n.checked_add(at))
+                        .unwrap_or(usize::MAX);
                     let poly = p
                         .get(at..end)
                         .ok_or_else(|| err("<polylist> <p> shorter than <vcount> says"))?;

@@ -25,6 +25,7 @@
 //! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |
 //! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
 //! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`layout`] (`PinocchioLayout`) | URDF models loaded with sibling joints sorted by name |
+//! | `∂τ/∂(q, v)`, `∂q̈/∂(q, v, τ)`, `∂g/∂q`, frame kinematics, `∂(q ⊕ v)`, `∂(q₁ ⊖ q₀)` | [`derivatives`] ([`rnea_derivatives`], [`aba_derivatives`], …; `q` along `q ⊕ δ`) | Carpentier & Mansard, RSS 2018 |
 //! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`] | ABA; Lynch & Park ch. 9, 11 |
 //! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |
 //!
@@ -43,6 +44,7 @@
 
 pub mod algorithms;
 pub mod batch;
+mod builder;
 mod builders;
 mod builtins;
 mod configuration;
@@ -54,14 +56,13 @@ pub mod simulation;
 mod sincos;
 
 pub use algorithms::*;
+pub use builder::{InertiaCheck, ModelBuilder};
 pub use builders::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 pub use builtins::{builtin, builtin_names, double_pendulum, pendulum, puma560, Puma560Options};
 pub use configuration::{difference, integrate, neutral, normalize, random_configuration, Rng};
 pub use data::Data;
 pub use joint::JointType;
-pub use model::{
-    Frame, FrameId, FrameKind, FrameLookupError, InertiaCheck, Joint, JointId, Model, ModelBuilder,
-};
+pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 
 use crate::error::{DimensionError, InertiaError};
 use thiserror::Error;

@@ -117,7 +117,7 @@ impl FromStr for Integrator {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
-            "semi-implicit" | "euler" => Ok(Self::SemiImplicitEuler),
+            "semi-implicit" => Ok(Self::SemiImplicitEuler),
             "rk4" => Ok(Self::Rk4),
             "variational" => Ok(Self::Variational),
             _ => Err(format!(
