@@ -8,6 +8,7 @@ use std::process::ExitCode;
 mod bench;
 mod bench_batch;
 mod eval;
+mod explicit;
 mod load;
 mod mass;
 mod model;
@@ -31,6 +32,8 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
+    /// The explicit dynamic model: M(q), Coriolis, centrifugal and gravity terms as abbreviated tables or code.
+    Explicit(explicit::ExplicitArgs),
     /// Summarise a robot model: bodies, joints, sizes, mass and the validity of every inertia.
     Model(model::ModelArgs),
 }
@@ -53,5 +56,6 @@ fn main() -> ExitCode {
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),
         Command::Model(args) => report(model::run(&args)),
+        Command::Explicit(args) => report(explicit::run(&args)),
     }
 }

@@ -32,7 +32,7 @@ pub(crate) fn var_range(var: &Var, ranges: &[Option<(f64, f64)>]) -> Option<(f64
 
 /// `sup |cos^c x sin^s x|` over `[lo, hi]` (`None`: all x).
 pub(crate) fn trig_sup(c: u8, s: u8, range: Option<(f64, f64)>) -> f64 {
-    let f = |x: f64| (x.cos().abs().powi(i32::from(c)) * x.sin().abs().powi(i32::from(s)));
+    let f = |x: f64| x.cos().abs().powi(i32::from(c)) * x.sin().abs().powi(i32::from(s));
     let (c_f, s_f) = (f64::from(c), f64::from(s));
     // stationary points in [0, π): where the maximum over a period is
     let stationary: Vec<f64> = match (c, s) {

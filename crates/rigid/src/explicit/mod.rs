@@ -2,14 +2,18 @@
 
 mod bound;
 mod chain;
+mod codegen;
 mod expr;
 mod lagrange;
+mod langs;
 mod lock;
 mod paper;
 mod params;
 mod sym;
 mod tables;
+mod text;
 
+pub use codegen::Lang;
 pub use expr::{Expr, Freq, Mono, Space, Term, MAX_DEGREE, MAX_JOINTS};
 pub use lock::lock_joints;
 pub use paper::{Monomial, ParamPoly, Power, Var};
@@ -101,6 +105,12 @@ impl ExplicitModel {
     #[must_use]
     pub fn n(&self) -> usize {
         self.chain.n()
+    }
+
+    /// Whether joint `j` (0-based) is prismatic.
+    #[must_use]
+    pub fn is_prismatic(&self, j: usize) -> bool {
+        self.chain.space.is_prismatic(j)
     }
 
     /// The symbols.
