@@ -196,3 +196,27 @@ fn panda_generated_code_equals_crba_nle_gravity() {
     assert!(tables.to_code(Lang::C, "x").contains("COEF["));
     check("panda", &m);
 }
+
+/// The generated files of the benchmark (`benches/explicit/`) are what `rigid explicit` writes
+/// today.
+#[test]
+fn explicit_bench_files_are_up_to_date() {
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches/explicit");
+    for (name, file, command) in [
+        ("puma560", "puma560.rs", "rigid explicit puma560 --lang rust"),
+        ("ur5", "ur5.rs", "rigid explicit ur5_robot.urdf --lang rust"),
+    ] {
+        let code = ExplicitModel::derive(&model(name))
+            .unwrap()
+            .tables(&TableOptions::default())
+            .to_code(Lang::Rust, command);
+        let committed = std::fs::read_to_string(dir.join(file)).unwrap_or_default();
+        assert!(
+            code == committed,
+            "benches/explicit/{file} is out of date: regenerate it with `cargo run --release -p \
+             rigid-cli -- {} --out crates/rigid/benches/explicit/{file}` (the UR5 from \
+             example-robot-data's ur_description/urdf/ur5_robot.urdf)",
+            command.trim_start_matches("rigid ")
+        );
+    }
+}
