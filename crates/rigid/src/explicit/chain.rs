@@ -240,15 +240,4 @@ impl Chain {
             (a, [0.0; 3])
         }
     }
-
-    /// The children of every joint.
-    pub fn children(&self) -> Vec<Vec<usize>> {
-        let mut ch = vec![Vec::new(); self.n()];
-        for (j, cj) in self.joints.iter().enumerate() {
-            if let Some(p) = cj.parent {
-                ch[p].push(j);
-            }
-        }
-        ch
-    }
 }

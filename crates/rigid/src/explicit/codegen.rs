@@ -131,8 +131,11 @@ impl Emitter<'_> {
         }
         let longest = need.iter().map(|x| x.0.len()).max().unwrap_or(0);
         for len in (2..=longest).rev() {
-            let heads: Vec<Vec<(usize, i8)>> =
-                need.iter().filter(|x| x.0.len() == len).map(|x| x.0.clone()).collect();
+            let heads: Vec<Vec<(usize, i8)>> = need
+                .iter()
+                .filter(|x| x.0.len() == len)
+                .map(|x| x.0.clone())
+                .collect();
             for p in heads {
                 let (head, last) = (p[..len - 1].to_vec(), p[len - 1]);
                 for sin in [true, false] {
@@ -143,23 +146,37 @@ impl Emitter<'_> {
         }
         let name = |joints: &[(usize, i8)], sin: bool| var_name(joints, false, sin);
         for len in 1..=longest {
-            let angles: BTreeSet<Vec<(usize, i8)>> =
-                need.iter().filter(|x| x.0.len() == len).map(|x| x.0.clone()).collect();
+            let angles: BTreeSet<Vec<(usize, i8)>> = need
+                .iter()
+                .filter(|x| x.0.len() == len)
+                .map(|x| x.0.clone())
+                .collect();
             for p in angles {
-                let (want_s, want_c) = (need.contains(&(p.clone(), true)), need.contains(&(p.clone(), false)));
+                let (want_s, want_c) = (
+                    need.contains(&(p.clone(), true)),
+                    need.contains(&(p.clone(), false)),
+                );
                 let (s, c) = (name(&p, true), name(&p, false));
                 if len == 1 {
                     let j = p[0].0;
                     let o = self.t.options.offsets.get(j).copied().unwrap_or(0.0);
-                    let angle = if o == 0.0 { format!("q[{j}]") } else { format!("(q[{j}] + {})", literal(o)) };
+                    let angle = if o == 0.0 {
+                        format!("q[{j}]")
+                    } else {
+                        format!("(q[{j}] + {})", literal(o))
+                    };
                     let stmt = match (self.lang, want_s, want_c) {
                         (Lang::Rust, true, true) => format!("let ({s}, {c}) = {angle}.sin_cos()"),
                         (Lang::Rust, true, false) => format!("let {s} = {angle}.sin()"),
                         (Lang::Rust, _, _) => format!("let {c} = {angle}.cos()"),
-                        (Lang::C, true, true) => format!("const double {s} = sin({angle}), {c} = cos({angle})"),
+                        (Lang::C, true, true) => {
+                            format!("const double {s} = sin({angle}), {c} = cos({angle})")
+                        }
                         (Lang::C, true, false) => format!("const double {s} = sin({angle})"),
                         (Lang::C, _, _) => format!("const double {c} = cos({angle})"),
-                        (Lang::Python, true, true) => format!("{s}, {c} = math.sin({angle}), math.cos({angle})"),
+                        (Lang::Python, true, true) => {
+                            format!("{s}, {c} = math.sin({angle}), math.cos({angle})")
+                        }
                         (Lang::Python, true, false) => format!("{s} = math.sin({angle})"),
                         (Lang::Python, _, _) => format!("{c} = math.cos({angle})"),
                     };
@@ -231,7 +248,12 @@ impl Emitter<'_> {
     }
 
     /// The terms of an entry as strings `± 2.0 * I_5 * m3` (first without a leading `+`).
-    fn terms(&self, kind: EntryKind, monos: &BTreeMap<Monomial, usize>, nodes: &[Node]) -> Vec<String> {
+    fn terms(
+        &self,
+        kind: EntryKind,
+        monos: &BTreeMap<Monomial, usize>,
+        nodes: &[Node],
+    ) -> Vec<String> {
         let e = self.t.entry(kind).expect("every entry exists");
         e.terms
             .iter()
@@ -291,7 +313,10 @@ impl Emitter<'_> {
         let mut monos = BTreeSet::new();
         for &k in kinds {
             let terms = &self.t.entry(k).expect("exists").terms;
-            for t in terms.iter().filter(|t| self.t.constants[t.constant].value != 0.0) {
+            for t in terms
+                .iter()
+                .filter(|t| self.t.constants[t.constant].value != 0.0)
+            {
                 monos.insert(t.monomial.clone());
             }
         }
@@ -372,7 +397,9 @@ impl Emitter<'_> {
         for &k in &kinds {
             let terms = self.terms(k, &index, &nodes);
             match k {
-                EntryKind::Mass(i, j) => self.sum(&format!("{}[{i}][{j}]", self.mass_name()), &terms, false),
+                EntryKind::Mass(i, j) => {
+                    self.sum(&format!("{}[{i}][{j}]", self.mass_name()), &terms, false)
+                }
                 EntryKind::Gravity(i) => self.sum(&format!("g[{i}]"), &terms, false),
                 EntryKind::Coriolis(i, j, l) => {
                     let name = temp_name(k);
@@ -399,19 +426,38 @@ impl Emitter<'_> {
 
     /// Tables and loops: `mono[k] = mono[parent] · atom`, then per entry
     /// `x = Σ coef_t · mono[index_t]` and its store.
-    fn table_body(&mut self, out: Output, kinds: &[EntryKind], nodes: &[Node], index: &BTreeMap<Monomial, usize>) {
+    fn table_body(
+        &mut self,
+        out: Output,
+        kinds: &[EntryKind],
+        nodes: &[Node],
+        index: &BTreeMap<Monomial, usize>,
+    ) {
         let mut atoms: Vec<Atom> = nodes.iter().map(|n| n.atom).collect();
         atoms.sort_unstable();
         atoms.dedup();
         let atom_index = |a: Atom| atoms.binary_search(&a).expect("listed");
         // mono[0] = 1; node k is mono[k + 1]
-        let parents: Vec<usize> = nodes.iter().map(|n| n.parent.map_or(0, |p| p + 1)).collect();
+        let parents: Vec<usize> = nodes
+            .iter()
+            .map(|n| n.parent.map_or(0, |p| p + 1))
+            .collect();
         let which: Vec<usize> = nodes.iter().map(|n| atom_index(n.atom)).collect();
-        let (mut coef, mut idx, mut start, mut ti, mut tj, mut tk) =
-            (Vec::new(), Vec::new(), vec![0usize], Vec::new(), Vec::new(), Vec::new());
+        let (mut coef, mut idx, mut start, mut ti, mut tj, mut tk) = (
+            Vec::new(),
+            Vec::new(),
+            vec![0usize],
+            Vec::new(),
+            Vec::new(),
+            Vec::new(),
+        );
         for &k in kinds {
             let e = self.t.entry(k).expect("exists");
-            for t in e.terms.iter().filter(|t| self.t.constants[t.constant].value != 0.0) {
+            for t in e
+                .terms
+                .iter()
+                .filter(|t| self.t.constants[t.constant].value != 0.0)
+            {
                 coef.push(t.factor * self.t.constants[t.constant].value);
                 idx.push(index.get(&t.monomial).map_or(0, |&m| m + 1));
             }
@@ -427,24 +473,52 @@ impl Emitter<'_> {
         }
         let names: Vec<String> = atoms.iter().map(|&a| self.atom_name(a)).collect();
         let (nm, na, nt, ne) = (nodes.len() + 1, atoms.len(), coef.len(), kinds.len());
-        let ints = |v: &[usize]| v.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ");
-        let floats = coef.iter().map(|&x| literal(x)).collect::<Vec<_>>().join(", ");
+        let ints = |v: &[usize]| {
+            v.iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let floats = coef
+            .iter()
+            .map(|&x| literal(x))
+            .collect::<Vec<_>>()
+            .join(", ");
         let store = match (out, self.lang) {
             (Output::Mass, Lang::C) => "M[TI[e]][TJ[e]] = x",
             (Output::Mass, _) => "m[TI[e] as usize][TJ[e] as usize] = x",
             (Output::Gravity, Lang::C) => "g[TI[e]] = x",
             (Output::Gravity, _) => "g[TI[e] as usize] = x",
             (Output::Coriolis, Lang::C) => "c[TI[e]] += x * v[TJ[e]] * v[TK[e]]",
-            (Output::Coriolis, _) => "c[TI[e] as usize] += x * v[TJ[e] as usize] * v[TK[e] as usize]",
+            (Output::Coriolis, _) => {
+                "c[TI[e] as usize] += x * v[TJ[e] as usize] * v[TK[e] as usize]"
+            }
         };
         let w = &mut self.out;
         match self.lang {
             Lang::C => {
-                let _ = writeln!(w, "    static const unsigned PARENT[{nm}] = {{{}}};", ints(&[&[0], &parents[..]].concat()));
-                let _ = writeln!(w, "    static const unsigned ATOM[{nm}] = {{{}}};", ints(&[&[0], &which[..]].concat()));
+                let _ = writeln!(
+                    w,
+                    "    static const unsigned PARENT[{nm}] = {{{}}};",
+                    ints(&[&[0], &parents[..]].concat())
+                );
+                let _ = writeln!(
+                    w,
+                    "    static const unsigned ATOM[{nm}] = {{{}}};",
+                    ints(&[&[0], &which[..]].concat())
+                );
                 let _ = writeln!(w, "    static const double COEF[{nt}] = {{{floats}}};");
-                let _ = writeln!(w, "    static const unsigned INDEX[{nt}] = {{{}}};", ints(&idx));
-                let _ = writeln!(w, "    static const unsigned START[{}] = {{{}}};", ne + 1, ints(&start));
+                let _ = writeln!(
+                    w,
+                    "    static const unsigned INDEX[{nt}] = {{{}}};",
+                    ints(&idx)
+                );
+                let _ = writeln!(
+                    w,
+                    "    static const unsigned START[{}] = {{{}}};",
+                    ne + 1,
+                    ints(&start)
+                );
                 let _ = writeln!(w, "    static const unsigned TI[{ne}] = {{{}}};", ints(&ti));
                 if out != Output::Gravity {
                     let _ = writeln!(w, "    static const unsigned TJ[{ne}] = {{{}}};", ints(&tj));
@@ -458,11 +532,24 @@ impl Emitter<'_> {
                 let _ = writeln!(w, "    for (unsigned e = 0; e < {ne}; ++e) {{\n        double x = 0.0;\n        for (unsigned t = START[e]; t < START[e + 1]; ++t) x += COEF[t] * mono[INDEX[t]];\n        {store};\n    }}");
             }
             _ => {
-                let _ = writeln!(w, "    const PARENT: [u32; {nm}] = [{}];", ints(&[&[0], &parents[..]].concat()));
-                let _ = writeln!(w, "    const ATOM: [u32; {nm}] = [{}];", ints(&[&[0], &which[..]].concat()));
+                let _ = writeln!(
+                    w,
+                    "    const PARENT: [u32; {nm}] = [{}];",
+                    ints(&[&[0], &parents[..]].concat())
+                );
+                let _ = writeln!(
+                    w,
+                    "    const ATOM: [u32; {nm}] = [{}];",
+                    ints(&[&[0], &which[..]].concat())
+                );
                 let _ = writeln!(w, "    const COEF: [f64; {nt}] = [{floats}];");
                 let _ = writeln!(w, "    const INDEX: [u32; {nt}] = [{}];", ints(&idx));
-                let _ = writeln!(w, "    const START: [u32; {}] = [{}];", ne + 1, ints(&start));
+                let _ = writeln!(
+                    w,
+                    "    const START: [u32; {}] = [{}];",
+                    ne + 1,
+                    ints(&start)
+                );
                 let _ = writeln!(w, "    const TI: [u32; {ne}] = [{}];", ints(&ti));
                 if out != Output::Gravity {
                     let _ = writeln!(w, "    const TJ: [u32; {ne}] = [{}];", ints(&tj));

@@ -63,54 +63,83 @@ pub(crate) fn write(e: &mut Emitter, command: &str) {
         .iter()
         .map(|l| format!("{comment}{l}").trim_end().to_string())
         .collect();
-    let constants: Vec<(String, f64, String)> = e
-        .t
-        .constants
-        .iter()
-        .enumerate()
-        .map(|(k, c)| {
-            let def = e.t.poly_text(&c.definition, Style::Text);
-            (e.t.constants[k].name.clone(), c.value, def)
-        })
-        .collect();
+    let constants: Vec<(String, f64, String)> =
+        e.t.constants
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let def = e.t.poly_text(&c.definition, Style::Text);
+                (e.t.constants[k].name.clone(), c.value, def)
+            })
+            .collect();
     let (no_m, no_c, no_g) = (
         e.is_empty(Output::Mass),
         e.is_empty(Output::Coriolis),
         e.is_empty(Output::Gravity),
     );
-    let unused = |empty: bool, name: &str| if empty { format!("_{name}") } else { name.to_string() };
+    let unused = |empty: bool, name: &str| {
+        if empty {
+            format!("_{name}")
+        } else {
+            name.to_string()
+        }
+    };
     match lang {
         Lang::Rust => {
             let _ = writeln!(e.out, "{}", head.join("\n"));
             e.out.push_str("#![allow(dead_code, non_upper_case_globals, clippy::excessive_precision, clippy::unreadable_literal, clippy::needless_range_loop)]\n\n");
             let _ = writeln!(e.out, "/// Number of joints.\npub const N: usize = {n};\n");
             for (name, v, def) in &constants {
-                let _ = writeln!(e.out, "/// `{name} = {def}`\npub const {name}: f64 = {};", literal(*v));
+                let _ = writeln!(
+                    e.out,
+                    "/// `{name} = {def}`\npub const {name}: f64 = {};",
+                    literal(*v)
+                );
             }
-            let _ = writeln!(e.out, "\n/// The constants by name.\npub const CONSTANTS: [(&str, f64); {}] = [", constants.len());
+            let _ = writeln!(
+                e.out,
+                "\n/// The constants by name.\npub const CONSTANTS: [(&str, f64); {}] = [",
+                constants.len()
+            );
             for (name, _, _) in &constants {
                 let _ = writeln!(e.out, "    (\"{name}\", {name}),");
             }
             e.out.push_str("];\n\n");
             let q = unused(!e.uses_q(Output::Mass), "q");
             let _ = writeln!(e.out, "/// The mass matrix `M(q)` (the kinetic-energy matrix `a_ij`).\n#[must_use]\npub fn mass_matrix({q}: &[f64; N]) -> [[f64; N]; N] {{");
-            e.line(if no_m { "let m = [[0.0; N]; N]" } else { "let mut m = [[0.0; N]; N]" });
+            e.line(if no_m {
+                "let m = [[0.0; N]; N]"
+            } else {
+                "let mut m = [[0.0; N]; N]"
+            });
             e.function_body(Output::Mass);
             mirror(e, n);
             e.out.push_str("    m\n}\n\n");
             let _ = writeln!(e.out, "/// The Coriolis and centrifugal terms `c(q, v) = Σ b_ijk v_j v_k + Σ c_ij v_j²`.\n#[must_use]\npub fn coriolis_centrifugal({}: &[f64; N], {}: &[f64; N]) -> [f64; N] {{", unused(!e.uses_q(Output::Coriolis), "q"), unused(no_c, "v"));
-            e.line(if no_c { "let c = [0.0; N]" } else { "let mut c = [0.0; N]" });
+            e.line(if no_c {
+                "let c = [0.0; N]"
+            } else {
+                "let mut c = [0.0; N]"
+            });
             e.function_body(Output::Coriolis);
             e.out.push_str("    c\n}\n\n");
             let _ = writeln!(e.out, "/// The gravity terms `g(q)`.\n#[must_use]\npub fn gravity({}: &[f64; N]) -> [f64; N] {{", unused(!e.uses_q(Output::Gravity), "q"));
-            e.line(if no_g { "let g = [0.0; N]" } else { "let mut g = [0.0; N]" });
+            e.line(if no_g {
+                "let g = [0.0; N]"
+            } else {
+                "let mut g = [0.0; N]"
+            });
             e.function_body(Output::Gravity);
             e.out.push_str("    g\n}\n");
         }
         Lang::C => {
             let _ = writeln!(e.out, "/*\n{}\n *\n * void mass_matrix(const double q[{n}], double M[{n}][{n}]);\n * void coriolis_centrifugal(const double q[{n}], const double v[{n}], double c[{n}]);\n * void gravity(const double q[{n}], double g[{n}]);\n */\n#include <math.h>\n", head.join("\n"));
             for (name, v, def) in &constants {
-                let _ = writeln!(e.out, "static const double {name} = {}; /* {def} */", literal(*v));
+                let _ = writeln!(
+                    e.out,
+                    "static const double {name} = {}; /* {def} */",
+                    literal(*v)
+                );
             }
             let _ = writeln!(e.out, "\n/* The mass matrix M(q) (the kinetic-energy matrix a_ij). */\nvoid mass_matrix(const double q[{n}], double M[{n}][{n}]) {{");
             e.line("(void)q");
@@ -157,7 +186,8 @@ pub(crate) fn write(e: &mut Emitter, command: &str) {
             e.line("c = [0.0] * N");
             e.function_body(Output::Coriolis);
             e.out.push_str("    return c\n\n\n");
-            e.out.push_str("def gravity(q):\n    \"\"\"The gravity terms g(q).\"\"\"\n");
+            e.out
+                .push_str("def gravity(q):\n    \"\"\"The gravity terms g(q).\"\"\"\n");
             e.line("g = [0.0] * N");
             e.function_body(Output::Gravity);
             e.out.push_str("    return g\n");

@@ -9,6 +9,7 @@ mod langs;
 mod lock;
 mod paper;
 mod params;
+mod rnea;
 mod sym;
 mod tables;
 mod text;
@@ -18,6 +19,7 @@ pub use expr::{Expr, Freq, Mono, Space, Term, MAX_DEGREE, MAX_JOINTS};
 pub use lock::lock_joints;
 pub use paper::{Monomial, ParamPoly, Power, Var};
 pub use params::{ParamKind, Parameter, Parameters};
+pub use rnea::symbolic_rnea;
 pub use tables::{Constant, Entry, EntryKind, TableOptions, TableTerm, Tables};
 
 use crate::multibody::Model;

@@ -8,11 +8,6 @@ pub(crate) type V3 = [Expr; 3];
 /// A 3x3 matrix of expressions, `m[row][col]`.
 pub(crate) type M3 = [[Expr; 3]; 3];
 
-/// A numeric 3-vector as expressions.
-pub(crate) fn num_vec(space: Space, a: [f64; 3]) -> V3 {
-    a.map(|x| Expr::constant(space, x))
-}
-
 /// The zero vector.
 pub(crate) fn zero_vec(space: Space) -> V3 {
     std::array::from_fn(|_| Expr::zero(space))

@@ -233,7 +233,8 @@ impl Tables {
                 .fold(0.0, f64::max);
             let cut = options.tolerance * largest;
             // with a tolerance, terms that vanish at the parameters' values go too
-            let keep = |t: &TableTerm| t.bound >= cut && (options.tolerance == 0.0 || t.bound > 0.0);
+            let keep =
+                |t: &TableTerm| t.bound >= cut && (options.tolerance == 0.0 || t.bound > 0.0);
             let (kept, dropped): (Vec<_>, Vec<_>) = terms.into_iter().partition(keep);
             let error_bound = dropped.iter().map(|t| t.bound).sum::<f64>() * (1.0 + 1e-12);
             entries.push(Entry {

@@ -79,7 +79,10 @@ impl Tables {
     pub(crate) fn monomial_text(&self, m: &Monomial, style: Style) -> String {
         let factor = |name: &str, label: &str, power: usize| match style {
             Style::Text => format!("{name}{label}{}", superscript(power, style)),
-            Style::Latex => format!("\\mathrm{{{name}}}_{{{label}}}{}", superscript(power, style)),
+            Style::Latex => format!(
+                "\\mathrm{{{name}}}_{{{label}}}{}",
+                superscript(power, style)
+            ),
         };
         let parts: Vec<String> = m
             .iter()
@@ -171,10 +174,20 @@ impl Tables {
             }
         }
         let sections: [(&str, fn(&EntryKind) -> bool); 4] = [
-            ("The kinetic-energy matrix a_ij = M_ij (i ≤ j; a_ji = a_ij)", |k| matches!(k, EntryKind::Mass(..))),
-            ("The Coriolis terms b_ijk (j < k): c_i(q, q̇) = Σ b_ijk q̇_j q̇_k + Σ c_ij q̇_j²", |k| matches!(k, EntryKind::Coriolis(..))),
-            ("The centrifugal terms c_ij", |k| matches!(k, EntryKind::Centrifugal(..))),
-            ("The gravity terms g_i", |k| matches!(k, EntryKind::Gravity(..))),
+            (
+                "The kinetic-energy matrix a_ij = M_ij (i ≤ j; a_ji = a_ij)",
+                |k| matches!(k, EntryKind::Mass(..)),
+            ),
+            (
+                "The Coriolis terms b_ijk (j < k): c_i(q, q̇) = Σ b_ijk q̇_j q̇_k + Σ c_ij q̇_j²",
+                |k| matches!(k, EntryKind::Coriolis(..)),
+            ),
+            ("The centrifugal terms c_ij", |k| {
+                matches!(k, EntryKind::Centrifugal(..))
+            }),
+            ("The gravity terms g_i", |k| {
+                matches!(k, EntryKind::Gravity(..))
+            }),
         ];
         for (t, (title, select)) in sections.iter().enumerate() {
             self.write_section(&mut o, style, t + 1, title, *select);
@@ -257,7 +270,11 @@ impl Tables {
                 signed_body(&mut sym, t.factor < 0.0, &body_sym, i == 0);
                 let value = t.factor * self.constants[t.constant].value;
                 let n = number(value.abs(), 3, style);
-                let body_num = if mono.is_empty() { n } else { format!("{n}{sep}{mono}") };
+                let body_num = if mono.is_empty() {
+                    n
+                } else {
+                    format!("{n}{sep}{mono}")
+                };
                 signed_body(&mut num, value < 0.0, &body_num, i == 0);
                 if latex && i % 5 == 4 && i + 1 < e.terms.len() {
                     sym.push_str(" \\\\\n  &\\quad ");
@@ -285,7 +302,11 @@ impl Tables {
             } else {
                 let _ = writeln!(o, "{label} = {sym};");
                 let pad = " ".repeat(label.chars().count());
-                let _ = writeln!(o, "{pad} ≈ {num}{}{bound}", if bound.is_empty() { "" } else { "      " });
+                let _ = writeln!(
+                    o,
+                    "{pad} ≈ {num}{}{bound}",
+                    if bound.is_empty() { "" } else { "      " }
+                );
             }
         }
         if latex {
@@ -302,7 +323,11 @@ impl Tables {
         let title = "The abbreviated constants, in order of first use (definition = value)";
         let latex = style == Style::Latex;
         if latex {
-            let _ = writeln!(o, "\\section*{{Table {number_}. {}}}\n\\begin{{align*}}", latex_escape(title));
+            let _ = writeln!(
+                o,
+                "\\section*{{Table {number_}. {}}}\n\\begin{{align*}}",
+                latex_escape(title)
+            );
         } else {
             let _ = writeln!(o, "\nTable {number_}. {title}");
         }
@@ -318,13 +343,27 @@ impl Tables {
         }
         if latex {
             o.push_str("\\end{align*}\n");
-            let _ = writeln!(o, "\\section*{{Table {}. The parameters}}\n\\begin{{align*}}", number_ + 1);
+            let _ = writeln!(
+                o,
+                "\\section*{{Table {}. The parameters}}\n\\begin{{align*}}",
+                number_ + 1
+            );
         } else {
-            let _ = writeln!(o, "\nTable {}. The parameters (zero ones are not symbols)", number_ + 1);
+            let _ = writeln!(
+                o,
+                "\nTable {}. The parameters (zero ones are not symbols)",
+                number_ + 1
+            );
         }
         for p in self.parameters.list() {
             if latex {
-                let _ = writeln!(o, "\\mathit{{{}}} &= {} \\ \\mathrm{{{}}} \\\\", p.name, p.value, latex_escape(p.unit()));
+                let _ = writeln!(
+                    o,
+                    "\\mathit{{{}}} &= {} \\ \\mathrm{{{}}} \\\\",
+                    p.name,
+                    p.value,
+                    latex_escape(p.unit())
+                );
             } else {
                 let _ = writeln!(o, "{} = {} {}", p.name, p.value, p.unit());
             }
