@@ -75,6 +75,12 @@ impl Tables {
         self.write(Style::Latex)
     }
 
+    /// A monomial as the text tables write it: `C2·S23`, `SS5`, `SC4` (empty for `1`).
+    #[must_use]
+    pub fn monomial_label(&self, m: &Monomial) -> String {
+        self.monomial_text(m, Style::Text)
+    }
+
     /// A monomial: `C2·S23`, `SS5`, `SC4`, `S5^3`, `q7²` (LaTeX `\mathrm{C}_{2} \mathrm{S}_{23}`).
     pub(crate) fn monomial_text(&self, m: &Monomial, style: Style) -> String {
         let factor = |name: &str, label: &str, power: usize| match style {
