@@ -131,13 +131,18 @@ pub fn run(args: &ExplicitArgs) -> Result<(), String> {
         let j = match joint.trim().parse::<usize>() {
             Ok(k) if (1..=n).contains(&k) => k - 1,
             Ok(k) => return Err(format!("--offset {o}: joint {k} is not in 1..={n}")),
-            Err(_) => model
-                .joint_id(joint.trim())
-                .ok_or_else(|| format!("--offset {o}: no joint named '{joint}'"))?
-                .0,
+            Err(_) => {
+                model
+                    .joint_id(joint.trim())
+                    .ok_or_else(|| format!("--offset {o}: no joint named '{joint}'"))?
+                    .0
+            }
         };
         if explicit.is_prismatic(j) {
-            return Err(format!("--offset {o}: joint {} is prismatic (offsets are for angles)", j + 1));
+            return Err(format!(
+                "--offset {o}: joint {} is prismatic (offsets are for angles)",
+                j + 1
+            ));
         }
         offsets[j] = parse_angle(angle)?;
     }

@@ -18,10 +18,10 @@ use std::hint::black_box;
 
 #[path = "explicit/puma560.rs"]
 mod puma560;
-#[path = "explicit/ur5.rs"]
-mod ur5;
 #[path = "../tests/explicit_support/mod.rs"]
 mod support;
+#[path = "explicit/ur5.rs"]
+mod ur5;
 
 const STATES: usize = 1000;
 
@@ -58,7 +58,9 @@ fn bench_model<const N: usize>(c: &mut Criterion, name: &str, model: &Model, gen
     g.bench_function("gravity_torques", |b| {
         b.iter(|| black_box(gravity_torques(model, &mut data, &next().0).unwrap()[0]))
     });
-    g.bench_function("gravity", |b| b.iter(|| black_box((gen.gravity)(&next().0))));
+    g.bench_function("gravity", |b| {
+        b.iter(|| black_box((gen.gravity)(&next().0)))
+    });
     g.bench_function("nonlinear_effects", |b| {
         b.iter(|| {
             let (q, v, _) = next();
@@ -81,7 +83,11 @@ fn bench_model<const N: usize>(c: &mut Criterion, name: &str, model: &Model, gen
     g.bench_function("inverse_dynamics", |b| {
         b.iter(|| {
             let (q, v, a) = next();
-            let (m, cc, gg) = ((gen.mass_matrix)(q), (gen.coriolis_centrifugal)(q, v), (gen.gravity)(q));
+            let (m, cc, gg) = (
+                (gen.mass_matrix)(q),
+                (gen.coriolis_centrifugal)(q, v),
+                (gen.gravity)(q),
+            );
             black_box(std::array::from_fn::<f64, N, _>(|k| {
                 (0..N).map(|j| m[k][j] * a[j]).sum::<f64>() + cc[k] + gg[k]
             }))

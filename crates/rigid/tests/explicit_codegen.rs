@@ -80,9 +80,17 @@ fn outputs(name: &str, lang: Lang, code: &str, n: usize, input: &str) -> Vec<Vec
             std::fs::write(dir.join("main.rs"), RUST_DRIVER).unwrap();
             let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
             run(
-                Command::new(rustc)
-                    .current_dir(&dir)
-                    .args(["--edition", "2021", "-C", "opt-level=1", "-D", "warnings", "main.rs", "-o", "prog"]),
+                Command::new(rustc).current_dir(&dir).args([
+                    "--edition",
+                    "2021",
+                    "-C",
+                    "opt-level=1",
+                    "-D",
+                    "warnings",
+                    "main.rs",
+                    "-o",
+                    "prog",
+                ]),
                 None,
             );
             run(&mut Command::new(dir.join("prog")), Some(input))
@@ -92,9 +100,9 @@ fn outputs(name: &str, lang: Lang, code: &str, n: usize, input: &str) -> Vec<Vec
             std::fs::write(dir.join("main.c"), format!("#define N {n}\n{C_DRIVER}")).unwrap();
             let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
             run(
-                Command::new(cc)
-                    .current_dir(&dir)
-                    .args(["-std=c99", "-O1", "-Wall", "-Werror", "main.c", "-o", "prog", "-lm"]),
+                Command::new(cc).current_dir(&dir).args([
+                    "-std=c99", "-O1", "-Wall", "-Werror", "main.c", "-o", "prog", "-lm",
+                ]),
                 None,
             );
             run(&mut Command::new(dir.join("prog")), Some(input))
@@ -103,7 +111,9 @@ fn outputs(name: &str, lang: Lang, code: &str, n: usize, input: &str) -> Vec<Vec
             std::fs::write(dir.join("model.py"), code).unwrap();
             std::fs::write(dir.join("main.py"), PYTHON_DRIVER).unwrap();
             run(
-                Command::new("python3").current_dir(&dir).args(["main.py", "model.py"]),
+                Command::new("python3")
+                    .current_dir(&dir)
+                    .args(["main.py", "model.py"]),
                 Some(input),
             )
         }
@@ -129,8 +139,14 @@ fn check(name: &str, model: &Model) {
         .map(|(q, v)| {
             let m = crba(model, &mut data, q).unwrap();
             let m: Vec<f64> = (0..n * n).map(|k| m[(k / n, k % n)]).collect();
-            let nle = nonlinear_effects(model, &mut data, q, v).unwrap().as_slice().to_vec();
-            let g = gravity_torques(model, &mut data, q).unwrap().as_slice().to_vec();
+            let nle = nonlinear_effects(model, &mut data, q, v)
+                .unwrap()
+                .as_slice()
+                .to_vec();
+            let g = gravity_torques(model, &mut data, q)
+                .unwrap()
+                .as_slice()
+                .to_vec();
             (m, nle, g)
         })
         .collect();
@@ -203,7 +219,11 @@ fn panda_generated_code_equals_crba_nle_gravity() {
 fn explicit_bench_files_are_up_to_date() {
     let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches/explicit");
     for (name, file, command) in [
-        ("puma560", "puma560.rs", "rigid explicit puma560 --lang rust"),
+        (
+            "puma560",
+            "puma560.rs",
+            "rigid explicit puma560 --lang rust",
+        ),
         ("ur5", "ur5.rs", "rigid explicit ur5_robot.urdf --lang rust"),
     ] {
         let code = ExplicitModel::derive(&model(name))

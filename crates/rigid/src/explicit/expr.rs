@@ -38,7 +38,7 @@ impl Mono {
 
     /// The monomial of one parameter (index `p`, at most 254).
     #[must_use]
-    pub fn param(p: usize) -> Mono {
+    pub(crate) fn param(p: usize) -> Mono {
         let mut m = [0; MAX_DEGREE];
         m[0] = u8::try_from(p + 1).expect("at most 254 parameters");
         Mono(m)
@@ -60,7 +60,7 @@ impl Mono {
 
     /// The product, or `None` above [`MAX_DEGREE`].
     #[must_use]
-    pub fn mul(self, o: Mono) -> Option<Mono> {
+    pub(crate) fn mul(self, o: Mono) -> Option<Mono> {
         if o.0[0] == 0 {
             return Some(self);
         }
@@ -132,6 +132,20 @@ pub struct Overflow;
 
 /// A trigonometric polynomial with parameter-polynomial coefficients, in canonical form
 /// (see the module documentation).
+///
+/// ```
+/// use rigid::explicit::ExplicitModel;
+/// use rigid::multibody::pendulum;
+/// // the pendulum's gravity torque: one term, g·MX1-like constant times sin q
+/// let ex = ExplicitModel::derive(&pendulum())?;
+/// let g = ex.gravity(0);
+/// let values = ex.parameters().values();
+/// assert_eq!(g.len(), 1);
+/// assert!(g.terms()[0].sin && g.terms()[0].freq[0] == 1);
+/// assert!((g.eval(&[0.5], &values) - 4.905 * 0.5f64.sin()).abs() < 1e-12);
+/// assert!(g.sub(g).is_zero());
+/// # Ok::<(), rigid::explicit::ExplicitError>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Expr {
     space: Space,
@@ -160,7 +174,7 @@ fn trig_free(space: Space, k: &Freq) -> bool {
 impl Expr {
     /// The zero expression.
     #[must_use]
-    pub fn zero(space: Space) -> Self {
+    pub(crate) fn zero(space: Space) -> Self {
         Self {
             space,
             terms: Vec::new(),
@@ -169,7 +183,7 @@ impl Expr {
 
     /// The constant `c`.
     #[must_use]
-    pub fn constant(space: Space, c: f64) -> Self {
+    pub(crate) fn constant(space: Space, c: f64) -> Self {
         Self::from_terms(
             space,
             vec![Term {
@@ -183,7 +197,7 @@ impl Expr {
 
     /// `c · π_p`, a parameter times a number.
     #[must_use]
-    pub fn param(space: Space, p: usize, c: f64) -> Self {
+    pub(crate) fn param(space: Space, p: usize, c: f64) -> Self {
         Self::from_terms(
             space,
             vec![Term {
@@ -198,7 +212,7 @@ impl Expr {
     /// `c · cos q_j` (`sin` false) or `c · sin q_j` (true) of a revolute joint, or `c · q_j` of a
     /// prismatic one (`sin` ignored).
     #[must_use]
-    pub fn joint(space: Space, j: usize, sin: bool, c: f64) -> Self {
+    pub(crate) fn joint(space: Space, j: usize, sin: bool, c: f64) -> Self {
         let mut freq = [0; MAX_JOINTS];
         freq[j] = 1;
         Self::from_terms(
@@ -214,7 +228,7 @@ impl Expr {
 
     /// An expression from any terms: canonicalises signs, sorts, merges, drops zeros.
     #[must_use]
-    pub fn from_terms(space: Space, mut terms: Vec<Term>) -> Self {
+    pub(crate) fn from_terms(space: Space, mut terms: Vec<Term>) -> Self {
         for t in &mut terms {
             canonical_sign(space, t);
         }
@@ -239,7 +253,7 @@ impl Expr {
 
     /// The joint space.
     #[must_use]
-    pub fn space(&self) -> Space {
+    pub(crate) fn space(&self) -> Space {
         self.space
     }
 
@@ -269,7 +283,7 @@ impl Expr {
 
     /// `self + s · o`, by a merge of the two sorted term lists.
     #[must_use]
-    pub fn add_scaled(&self, o: &Expr, s: f64) -> Expr {
+    pub(crate) fn add_scaled(&self, o: &Expr, s: f64) -> Expr {
         let (a, b) = (&self.terms, &o.terms);
         let mut out = Vec::with_capacity(a.len() + b.len());
         let (mut i, mut j) = (0, 0);
@@ -310,7 +324,7 @@ impl Expr {
 
     /// `s · self`.
     #[must_use]
-    pub fn scale(&self, s: f64) -> Expr {
+    pub(crate) fn scale(&self, s: f64) -> Expr {
         if s == 0.0 {
             return Expr::zero(self.space);
         }
@@ -327,7 +341,7 @@ impl Expr {
     ///
     /// # Errors
     /// A parameter monomial above [`MAX_DEGREE`] or a frequency beyond ±127.
-    pub fn mul(&self, o: &Expr) -> Result<Expr, Overflow> {
+    pub(crate) fn mul(&self, o: &Expr) -> Result<Expr, Overflow> {
         let space = self.space;
         let mut out = Vec::with_capacity(2 * self.len() * o.len());
         for a in &self.terms {
@@ -374,7 +388,7 @@ impl Expr {
     /// `∂/∂q_j`: `-k_j sin(k·q)` from `cos(k·q)`, `k_j cos(k·q)` from `sin(k·q)`, and
     /// `p q^{p-1}` for a prismatic joint.
     #[must_use]
-    pub fn derivative(&self, j: usize) -> Expr {
+    pub(crate) fn derivative(&self, j: usize) -> Expr {
         let prismatic = self.space.is_prismatic(j);
         let terms = self
             .terms
@@ -419,7 +433,7 @@ impl Expr {
     /// with `φ = k·o` (`cos φ`, `sin φ` exact at multiples of π/2). Offsets of prismatic joints
     /// must be zero.
     #[must_use]
-    pub fn shifted(&self, offsets: &[f64]) -> Expr {
+    pub(crate) fn shifted(&self, offsets: &[f64]) -> Expr {
         let mut out = Vec::with_capacity(2 * self.len());
         for t in &self.terms {
             let phi: f64 = (0..self.space.n)
@@ -447,7 +461,7 @@ impl Expr {
 
     /// The joints the expression depends on, as a bit set.
     #[must_use]
-    pub fn joints(&self) -> u16 {
+    pub(crate) fn joints(&self) -> u16 {
         self.terms.iter().fold(0, |acc, t| {
             (0..self.space.n)
                 .filter(|&j| t.freq[j] != 0)

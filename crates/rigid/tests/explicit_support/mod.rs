@@ -27,14 +27,21 @@ pub fn robots_dir() -> PathBuf {
 
 /// The UR5 of example-robot-data.
 pub fn ur5() -> Model {
-    load_urdf(robots_dir().join("ur_description/urdf/ur5_robot.urdf"), false).expect("ur5 loads")
+    load_urdf(
+        robots_dir().join("ur_description/urdf/ur5_robot.urdf"),
+        false,
+    )
+    .expect("ur5 loads")
 }
 
 /// The Panda of example-robot-data with its two prismatic finger joints locked at 0 (their
 /// bodies merged into the 7th link): the 7-joint arm.
 pub fn panda_arm() -> Model {
-    let panda = load_urdf(robots_dir().join("panda_description/urdf/panda.urdf"), false)
-        .expect("panda loads");
+    let panda = load_urdf(
+        robots_dir().join("panda_description/urdf/panda.urdf"),
+        false,
+    )
+    .expect("panda loads");
     let locks = [
         ("panda_finger_joint1".to_string(), 0.0),
         ("panda_finger_joint2".to_string(), 0.0),
@@ -67,7 +74,11 @@ pub fn states(model: &Model, count: usize, seed: u64) -> Vec<(Vec<f64>, Vec<f64>
 
 /// `‖x - y‖∞ / ‖y‖∞` (with a floor of 1e-300).
 pub fn rel(x: &[f64], y: &[f64]) -> f64 {
-    let d = x.iter().zip(y).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    let d = x
+        .iter()
+        .zip(y)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
     d / y.iter().map(|a| a.abs()).fold(1e-300, f64::max)
 }
 
