@@ -22,7 +22,8 @@ mod explicit_support;
 
 fn puma_paper() -> Model {
     let mut m = puma560(Puma560Options::default());
-    m.set_armature(&[1.14, 4.71, 0.83, 0.20, 0.18, 0.19]).unwrap();
+    m.set_armature(&[1.14, 4.71, 0.83, 0.20, 0.18, 0.19])
+        .unwrap();
     m
 }
 
@@ -84,7 +85,10 @@ fn pruned_entries_stay_within_their_printed_bounds() {
 fn fit(rows: &[Vec<f64>], y: &[f64]) -> Vec<f64> {
     let a = DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j]);
     let b = DVector::from_column_slice(y);
-    let x = (a.transpose() * &a).cholesky().unwrap().solve(&(a.transpose() * b));
+    let x = (a.transpose() * &a)
+        .cholesky()
+        .unwrap()
+        .solve(&(a.transpose() * b));
     x.iter().copied().collect()
 }
 
@@ -151,7 +155,10 @@ fn pruned_gravity_and_inertia_terms_have_the_structure_and_values_of_the_1986_ta
         let coefs = fit(&rows[k], &ys[k]);
         for (label, c) in labels.iter().zip(&coefs) {
             let ours = got.iter().find(|(m, _)| m == label).unwrap().1;
-            eprintln!("{} {label:>4}: pruned model {ours:+.5}, least squares {c:+.5}", kind.label());
+            eprintln!(
+                "{} {label:>4}: pruned model {ours:+.5}, least squares {c:+.5}",
+                kind.label()
+            );
             assert!(
                 (ours - c).abs() <= 0.01 * c.abs(),
                 "{} {label}: {ours} vs fit {c}",
@@ -171,9 +178,19 @@ fn the_text_tables_print_each_entry_its_approximation_and_bound() {
     let (_, tables) = pruned(&puma_paper());
     let text = tables.to_text();
     assert!(text.contains("θ2 = q2 + π, θ3 = q3 + π"), "{text}");
-    let g2 = text.lines().skip_while(|l| !l.starts_with("g2 = ")).take(2).collect::<Vec<_>>();
-    assert!(g2[0].contains("·C2") && g2[0].contains("·S23") && g2[0].contains("·S2;"), "{g2:?}");
-    assert!(g2[1].contains("≈ -37.2·C2 - 8.74·S23 + 1.02·S2") && g2[1].contains("|error| ≤"), "{g2:?}");
+    let g2 = text
+        .lines()
+        .skip_while(|l| !l.starts_with("g2 = "))
+        .take(2)
+        .collect::<Vec<_>>();
+    assert!(
+        g2[0].contains("·C2") && g2[0].contains("·S23") && g2[0].contains("·S2;"),
+        "{g2:?}"
+    );
+    assert!(
+        g2[1].contains("≈ -37.2·C2 - 8.74·S23 + 1.02·S2") && g2[1].contains("|error| ≤"),
+        "{g2:?}"
+    );
     assert!(text.contains("Table 5. The abbreviated constants"));
     let latex = tables.to_latex();
     assert!(latex.starts_with("\\documentclass") && latex.contains("g_{2} &="));
