@@ -43,9 +43,10 @@ pub struct ExplicitArgs {
     /// their parents' (e.g. the Panda's fingers: --lock panda_finger_joint1,panda_finger_joint2).
     #[arg(long, value_delimiter = ',')]
     lock: Vec<String>,
-    /// Write the tables in the angles θ_j = q_j + ANGLE: JOINT=ANGLE, JOINT a joint number (from
-    /// 1) or name, ANGLE a number or a multiple of pi (`pi`, `-pi/2`), comma separated. The 1986
-    /// PUMA 560 tables' angles: --offset 2=pi,3=pi. The code still takes q.
+    /// Write the tables in the angles θ_j = q_j + ANGLE: JOINT=ANGLE, where JOINT is a joint
+    /// number counted from one or a joint name, and ANGLE a number or a multiple of pi (`pi`,
+    /// `-pi/2`), comma separated. The 1986 PUMA 560 tables' angles: --offset 2=pi,3=pi. The code
+    /// still takes q.
     #[arg(long, value_delimiter = ',')]
     offset: Vec<String>,
     /// Print the derivation's time and size on standard error.

@@ -214,7 +214,7 @@ fn panda_generated_code_equals_crba_nle_gravity() {
 }
 
 /// The generated files of the benchmark (`benches/explicit/`) are what `rigid explicit` writes
-/// today.
+/// today, formatted by `rustfmt` (as `cargo fmt --all` leaves them).
 #[test]
 fn explicit_bench_files_are_up_to_date() {
     let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches/explicit");
@@ -230,12 +230,16 @@ fn explicit_bench_files_are_up_to_date() {
             .unwrap()
             .tables(&TableOptions::default())
             .to_code(Lang::Rust, command);
+        let code = run(
+            Command::new("rustfmt").args(["--edition", "2021", "--emit", "stdout"]),
+            Some(&code),
+        );
         let committed = std::fs::read_to_string(dir.join(file)).unwrap_or_default();
         assert!(
             code == committed,
             "benches/explicit/{file} is out of date: regenerate it with `cargo run --release -p \
              rigid-cli -- {} --out crates/rigid/benches/explicit/{file}` (the UR5 from \
-             example-robot-data's ur_description/urdf/ur5_robot.urdf)",
+             example-robot-data's ur_description/urdf/ur5_robot.urdf), then `cargo fmt --all`",
             command.trim_start_matches("rigid ")
         );
     }

@@ -90,8 +90,8 @@ fn rnea_agrees_with_lagrange(model: &Model) {
         .fold(0.0, f64::max);
     let mut worst: f64 = 0.0;
     let g = symbolic_rnea(model, &z, &z, true).unwrap();
-    for i in 0..n {
-        worst = worst.max(difference(&g[i], ex.gravity(i), &values));
+    for (i, gi) in g.iter().enumerate() {
+        worst = worst.max(difference(gi, ex.gravity(i), &values));
     }
     for k in 0..n {
         let col = symbolic_rnea(model, &z, &e(k), false).unwrap();
@@ -105,8 +105,8 @@ fn rnea_agrees_with_lagrange(model: &Model) {
                 .map(|i| f64::from(u8::from(i == k || i == l)))
                 .collect();
             let both = symbolic_rnea(model, &v, &z, false).unwrap();
-            for i in 0..n {
-                let b = both[i].sub(ex.centrifugal(i, k)).sub(ex.centrifugal(i, l));
+            for (i, bi) in both.iter().enumerate() {
+                let b = bi.sub(ex.centrifugal(i, k)).sub(ex.centrifugal(i, l));
                 worst = worst.max(difference(&b, ex.coriolis(i, k, l), &values));
             }
         }
@@ -139,7 +139,7 @@ fn equals_crba(model: &Model) {
         let nle = nonlinear_effects(model, &mut data, &q, &v).unwrap().clone();
         let g = gravity_torques(model, &mut data, &q).unwrap().clone();
         let (mut me, mut mt, mut ce, mut ge) = (vec![], vec![], vec![0.0; n], vec![]);
-        for i in 0..n {
+        for (i, ci) in ce.iter_mut().enumerate() {
             for j in 0..n {
                 me.push(ex.mass(i, j).eval(&q, &values));
                 let entry = tables.entry(rigid::explicit::EntryKind::Mass(i.min(j), i.max(j)));
@@ -148,7 +148,7 @@ fn equals_crba(model: &Model) {
                 let b: f64 = (j + 1..n)
                     .map(|k| ex.coriolis(i, j, k).eval(&q, &values) * v[j] * v[k])
                     .sum();
-                ce[i] += c + b;
+                *ci += c + b;
             }
             ge.push(ex.gravity(i).eval(&q, &values));
         }

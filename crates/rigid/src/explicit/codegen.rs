@@ -27,16 +27,16 @@ pub enum Lang {
 
 /// One factor of a monomial: `c_v`, `s_v` or a prismatic `q_j`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-enum Atom {
+pub(crate) enum Atom {
     Cos(usize),
     Sin(usize),
 }
 
 /// A node of the monomial trie: `parent · atom` (or the atom alone).
-struct Node {
-    parent: Option<usize>,
-    atom: Atom,
-    name: String,
+pub(crate) struct Node {
+    pub parent: Option<usize>,
+    pub atom: Atom,
+    pub name: String,
 }
 
 /// Which function a body computes.
@@ -102,7 +102,7 @@ impl Emitter<'_> {
         self.line(&s);
     }
 
-    fn atom_name(&self, a: Atom) -> String {
+    pub(crate) fn atom_name(&self, a: Atom) -> String {
         let (v, sin) = match a {
             Atom::Cos(v) => (v, false),
             Atom::Sin(v) => (v, true),
@@ -421,147 +421,6 @@ impl Emitter<'_> {
             "M"
         } else {
             "m"
-        }
-    }
-
-    /// Tables and loops: `mono[k] = mono[parent] · atom`, then per entry
-    /// `x = Σ coef_t · mono[index_t]` and its store.
-    fn table_body(
-        &mut self,
-        out: Output,
-        kinds: &[EntryKind],
-        nodes: &[Node],
-        index: &BTreeMap<Monomial, usize>,
-    ) {
-        let mut atoms: Vec<Atom> = nodes.iter().map(|n| n.atom).collect();
-        atoms.sort_unstable();
-        atoms.dedup();
-        let atom_index = |a: Atom| atoms.binary_search(&a).expect("listed");
-        // mono[0] = 1; node k is mono[k + 1]
-        let parents: Vec<usize> = nodes
-            .iter()
-            .map(|n| n.parent.map_or(0, |p| p + 1))
-            .collect();
-        let which: Vec<usize> = nodes.iter().map(|n| atom_index(n.atom)).collect();
-        let (mut coef, mut idx, mut start, mut ti, mut tj, mut tk) = (
-            Vec::new(),
-            Vec::new(),
-            vec![0usize],
-            Vec::new(),
-            Vec::new(),
-            Vec::new(),
-        );
-        for &k in kinds {
-            let e = self.t.entry(k).expect("exists");
-            for t in e
-                .terms
-                .iter()
-                .filter(|t| self.t.constants[t.constant].value != 0.0)
-            {
-                coef.push(t.factor * self.t.constants[t.constant].value);
-                idx.push(index.get(&t.monomial).map_or(0, |&m| m + 1));
-            }
-            start.push(coef.len());
-            let (i, j, l) = match k {
-                EntryKind::Mass(i, j) | EntryKind::Centrifugal(i, j) => (i, j, j),
-                EntryKind::Coriolis(i, j, l) => (i, j, l),
-                EntryKind::Gravity(i) => (i, 0, 0),
-            };
-            ti.push(i);
-            tj.push(j);
-            tk.push(l);
-        }
-        let names: Vec<String> = atoms.iter().map(|&a| self.atom_name(a)).collect();
-        let (nm, na, nt, ne) = (nodes.len() + 1, atoms.len(), coef.len(), kinds.len());
-        let ints = |v: &[usize]| {
-            v.iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        let floats = coef
-            .iter()
-            .map(|&x| literal(x))
-            .collect::<Vec<_>>()
-            .join(", ");
-        let store = match (out, self.lang) {
-            (Output::Mass, Lang::C) => "M[TI[e]][TJ[e]] = x",
-            (Output::Mass, _) => "m[TI[e] as usize][TJ[e] as usize] = x",
-            (Output::Gravity, Lang::C) => "g[TI[e]] = x",
-            (Output::Gravity, _) => "g[TI[e] as usize] = x",
-            (Output::Coriolis, Lang::C) => "c[TI[e]] += x * v[TJ[e]] * v[TK[e]]",
-            (Output::Coriolis, _) => {
-                "c[TI[e] as usize] += x * v[TJ[e] as usize] * v[TK[e] as usize]"
-            }
-        };
-        let w = &mut self.out;
-        match self.lang {
-            Lang::C => {
-                let _ = writeln!(
-                    w,
-                    "    static const unsigned PARENT[{nm}] = {{{}}};",
-                    ints(&[&[0], &parents[..]].concat())
-                );
-                let _ = writeln!(
-                    w,
-                    "    static const unsigned ATOM[{nm}] = {{{}}};",
-                    ints(&[&[0], &which[..]].concat())
-                );
-                let _ = writeln!(w, "    static const double COEF[{nt}] = {{{floats}}};");
-                let _ = writeln!(
-                    w,
-                    "    static const unsigned INDEX[{nt}] = {{{}}};",
-                    ints(&idx)
-                );
-                let _ = writeln!(
-                    w,
-                    "    static const unsigned START[{}] = {{{}}};",
-                    ne + 1,
-                    ints(&start)
-                );
-                let _ = writeln!(w, "    static const unsigned TI[{ne}] = {{{}}};", ints(&ti));
-                if out != Output::Gravity {
-                    let _ = writeln!(w, "    static const unsigned TJ[{ne}] = {{{}}};", ints(&tj));
-                }
-                if out == Output::Coriolis {
-                    let _ = writeln!(w, "    static const unsigned TK[{ne}] = {{{}}};", ints(&tk));
-                }
-                let _ = writeln!(w, "    const double atom[{na}] = {{{}}};", names.join(", "));
-                let _ = writeln!(w, "    double mono[{nm}];\n    mono[0] = 1.0;");
-                let _ = writeln!(w, "    for (unsigned k = 1; k < {nm}; ++k) mono[k] = mono[PARENT[k]] * atom[ATOM[k]];");
-                let _ = writeln!(w, "    for (unsigned e = 0; e < {ne}; ++e) {{\n        double x = 0.0;\n        for (unsigned t = START[e]; t < START[e + 1]; ++t) x += COEF[t] * mono[INDEX[t]];\n        {store};\n    }}");
-            }
-            _ => {
-                let _ = writeln!(
-                    w,
-                    "    const PARENT: [u32; {nm}] = [{}];",
-                    ints(&[&[0], &parents[..]].concat())
-                );
-                let _ = writeln!(
-                    w,
-                    "    const ATOM: [u32; {nm}] = [{}];",
-                    ints(&[&[0], &which[..]].concat())
-                );
-                let _ = writeln!(w, "    const COEF: [f64; {nt}] = [{floats}];");
-                let _ = writeln!(w, "    const INDEX: [u32; {nt}] = [{}];", ints(&idx));
-                let _ = writeln!(
-                    w,
-                    "    const START: [u32; {}] = [{}];",
-                    ne + 1,
-                    ints(&start)
-                );
-                let _ = writeln!(w, "    const TI: [u32; {ne}] = [{}];", ints(&ti));
-                if out != Output::Gravity {
-                    let _ = writeln!(w, "    const TJ: [u32; {ne}] = [{}];", ints(&tj));
-                }
-                if out == Output::Coriolis {
-                    let _ = writeln!(w, "    const TK: [u32; {ne}] = [{}];", ints(&tk));
-                }
-                let _ = writeln!(w, "    let atom = [{}];", names.join(", "));
-                let _ = writeln!(w, "    let mut mono = [1.0f64; {nm}];");
-                let _ = writeln!(w, "    for k in 1..{nm} {{\n        mono[k] = mono[PARENT[k] as usize] * atom[ATOM[k] as usize];\n    }}");
-                let _ = writeln!(w, "    for e in 0..{ne} {{\n        let mut x = 0.0;\n        for t in START[e] as usize..START[e + 1] as usize {{\n            x += COEF[t] * mono[INDEX[t] as usize];\n        }}\n        {store};\n    }}");
-            }
         }
     }
 

@@ -143,7 +143,7 @@ pub struct Overflow;
 /// assert_eq!(g.len(), 1);
 /// assert!(g.terms()[0].sin && g.terms()[0].freq[0] == 1);
 /// assert!((g.eval(&[0.5], &values) - 4.905 * 0.5f64.sin()).abs() < 1e-12);
-/// assert!(g.sub(g).is_zero());
+/// assert!(g.sub(g).is_empty());
 /// # Ok::<(), rigid::explicit::ExplicitError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
@@ -263,9 +263,9 @@ impl Expr {
         self.terms.len()
     }
 
-    /// Whether this is the zero expression.
+    /// Whether this is the zero expression (no terms).
     #[must_use]
-    pub fn is_zero(&self) -> bool {
+    pub fn is_empty(&self) -> bool {
         self.terms.is_empty()
     }
 
@@ -474,11 +474,11 @@ impl Expr {
 fn harmonic(space: Space, t: &Term, q: &[f64]) -> f64 {
     let mut angle = 0.0;
     let mut power = 1.0;
-    for j in 0..space.n {
+    for (j, (&k, &x)) in t.freq.iter().zip(q).enumerate().take(space.n) {
         if space.is_prismatic(j) {
-            power *= q[j].powi(i32::from(t.freq[j]));
-        } else if t.freq[j] != 0 {
-            angle += f64::from(t.freq[j]) * q[j];
+            power *= x.powi(i32::from(k));
+        } else if k != 0 {
+            angle += f64::from(k) * x;
         }
     }
     power * if t.sin { angle.sin() } else { angle.cos() }

@@ -120,8 +120,11 @@ pub type ParamPoly = Vec<(Mono, f64)>;
 /// One variable's part of a monomial, packed: `c << 5 | s` (prismatic: the power).
 type Slots = [u8; MAX_JOINTS];
 
+/// A polynomial in one variable's `C` and `S`: `(exponents, coefficient)`.
+type Univariate = Vec<(Power, f64)>;
+
 /// `cos aφ` and `sin aφ` (`a ≥ 0`) in the basis `S^n`, `C S^n`, as `(c, s) → coefficient`.
-fn chebyshev(a: u8) -> (Vec<(Power, f64)>, Vec<(Power, f64)>) {
+fn chebyshev(a: u8) -> (Univariate, Univariate) {
     let mut cos = vec![((0u8, 0u8), 1.0)];
     let mut sin: Vec<(Power, f64)> = Vec::new();
     // times C: C^1 S^n -> S^n - S^(n+2); times S: n + 1
@@ -152,7 +155,7 @@ fn chebyshev(a: u8) -> (Vec<(Power, f64)>, Vec<(Power, f64)>) {
 }
 
 fn merge<K: Ord + Copy>(mut v: Vec<(K, f64)>) -> Vec<(K, f64)> {
-    v.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+    v.sort_unstable_by_key(|a| a.0);
     let mut out: Vec<(K, f64)> = Vec::with_capacity(v.len());
     for (k, x) in v {
         match out.last_mut() {
@@ -237,7 +240,7 @@ pub(crate) fn expand(
             let e0 = m[0].1;
             let eps = |l: usize| if l < m.len() { m[l].1 * e0 } else { 1 };
             let k = |l: usize| if l < m.len() { t.freq[m[l].0] } else { 0 };
-            for l in 0..m.len() {
+            for (l, &v) in block_slots[h].iter().enumerate() {
                 let a = i16::from(eps(l)) * i16::from(k(l))
                     - i16::from(eps(l + 1)) * i16::from(k(l + 1));
                 if a == 0 {
@@ -245,7 +248,6 @@ pub(crate) fn expand(
                 }
                 let (c, s) = &cheb[a.unsigned_abs() as usize];
                 let sg = if a < 0 { -1.0 } else { 1.0 };
-                let v = block_slots[h][l];
                 // cos(x + y) = cos x cos y - sin x sin y, sin(x + y) = sin x cos y + cos x sin y
                 let mut c2 = product(&cp, c, v, 1.0);
                 c2.extend(product(&sp, s, v, -sg));
@@ -264,7 +266,7 @@ pub(crate) fn expand(
         start = end;
     }
     let mut acc: Vec<((Slots, Mono), f64)> = acc.into_iter().filter(|x| x.1 != 0.0).collect();
-    acc.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+    acc.sort_unstable_by_key(|a| a.0);
     // group by monomial, map the slots to registry variables
     let ids: Vec<usize> = vars.into_iter().map(|v| registry.id(v)).collect();
     let mut out: Vec<(Monomial, ParamPoly)> = Vec::new();

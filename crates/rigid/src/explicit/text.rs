@@ -179,7 +179,8 @@ impl Tables {
                 let _ = writeln!(o, "{line}");
             }
         }
-        let sections: [(&str, fn(&EntryKind) -> bool); 4] = [
+        type Select = fn(&EntryKind) -> bool;
+        let sections: [(&str, Select); 4] = [
             (
                 "The kinetic-energy matrix a_ij = M_ij (i ≤ j; a_ji = a_ij)",
                 |k| matches!(k, EntryKind::Mass(..)),
