@@ -118,11 +118,43 @@ pub struct Term {
 }
 
 impl Term {
+    /// The key `(freq, sin, mono)` as one integer with the same order: the frequencies as
+    /// biased bytes in bits 127..32, `sin` in bit 24, the monomial in bits 23..0.
+    fn pack(&self) -> u128 {
+        let mut k: u128 = 0;
+        for &f in &self.freq {
+            k = k << 8 | u128::from((f as u8) ^ 0x80);
+        }
+        k = k << 8 | u128::from(self.sin);
+        for &m in &self.mono.0 {
+            k = k << 8 | u128::from(m);
+        }
+        k
+    }
+
+    fn unpack(mut k: u128, coef: f64) -> Term {
+        let mut mono = [0u8; MAX_DEGREE];
+        for m in mono.iter_mut().rev() {
+            *m = (k & 0xff) as u8;
+            k >>= 8;
+        }
+        let sin = k & 1 == 1;
+        k >>= 8;
+        let mut freq = [0i8; MAX_JOINTS];
+        for f in freq.iter_mut().rev() {
+            *f = ((k & 0xff) as u8 ^ 0x80) as i8;
+            k >>= 8;
+        }
+        Term {
+            freq,
+            sin,
+            mono: Mono(mono),
+            coef,
+        }
+    }
+
     fn key_cmp(&self, o: &Term) -> Ordering {
         (self.freq, self.sin, self.mono).cmp(&(o.freq, o.sin, o.mono))
-    }
-    fn same_key(&self, o: &Term) -> bool {
-        self.freq == o.freq && self.sin == o.sin && self.mono == o.mono
     }
 }
 
@@ -232,17 +264,26 @@ impl Expr {
         for t in &mut terms {
             canonical_sign(space, t);
         }
-        terms.retain(|t| t.coef != 0.0);
-        terms.sort_unstable_by(Term::key_cmp);
-        let mut out: Vec<Term> = Vec::with_capacity(terms.len());
-        for t in terms {
+        // sort on one packed integer per term (the canonical order), then merge equal keys
+        let mut packed: Vec<(u128, f64)> = terms
+            .iter()
+            .filter(|t| t.coef != 0.0)
+            .map(|t| (t.pack(), t.coef))
+            .collect();
+        packed.sort_unstable_by_key(|x| x.0);
+        let mut out: Vec<(u128, f64)> = Vec::with_capacity(packed.len());
+        for (k, c) in packed {
             match out.last_mut() {
-                Some(last) if last.same_key(&t) => last.coef += t.coef,
-                _ => out.push(t),
+                Some(last) if last.0 == k => last.1 += c,
+                _ => out.push((k, c)),
             }
         }
-        out.retain(|t| t.coef != 0.0);
-        Self { space, terms: out }
+        let terms = out
+            .into_iter()
+            .filter(|x| x.1 != 0.0)
+            .map(|(k, c)| Term::unpack(k, c))
+            .collect();
+        Self { space, terms }
     }
 
     /// The terms, in canonical order.

@@ -67,9 +67,21 @@ pub(crate) fn energies(chain: &Chain) -> Result<Energies, ExplicitError> {
         i: std::array::from_fn(|_| super::sym::zero_vec(space)),
     };
     for j in (0..n).rev() {
+        let Some(p) = chain.joints[j].parent else {
+            // in the world only the first moment is needed (for U)
+            let h = composite[j]
+                .transformed_first_moment(&transforms[j])
+                .map_err(overflow("the first moment"))?;
+            world.h = super::sym::add(&world.h, &h);
+            continue;
+        };
         let moved = composite[j]
             .transformed(&transforms[j])
             .map_err(overflow("a composite inertia"))?;
+        if std::env::var("EXPLICIT_DEBUG").is_ok() {
+            let big = moved.i.iter().flatten().map(Expr::len).max().unwrap_or(0);
+            eprintln!("composite {j}: largest entry {big} terms");
+        }
         for e in moved.i.iter().flatten().chain(moved.h.iter()) {
             if e.len() > SWELL_LIMIT {
                 return Err(ExplicitError::Swell {
@@ -78,13 +90,10 @@ pub(crate) fn energies(chain: &Chain) -> Result<Energies, ExplicitError> {
                 });
             }
         }
-        match chain.joints[j].parent {
-            Some(p) => composite[p] = composite[p].add(&moved),
-            None => {
-                // only the first moment is needed in the world (for U)
-                world.h = super::sym::add(&world.h, &moved.h);
-            }
-        }
+        composite[p] = composite[p].add(&moved);
+    }
+    if std::env::var("EXPLICIT_DEBUG").is_ok() {
+        eprintln!("composites done");
     }
     let mut mass = vec![Expr::zero(space); n * n];
     for j in 0..n {

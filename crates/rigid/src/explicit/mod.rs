@@ -185,8 +185,15 @@ impl ExplicitModel {
     /// swell.
     pub fn derive(model: &Model) -> Result<Self, ExplicitError> {
         let chain = chain::Chain::new(model)?;
+        let t = std::time::Instant::now();
         let e = lagrange::energies(&chain)?;
+        if std::env::var("EXPLICIT_DEBUG").is_ok() {
+            eprintln!("energies {:?}", t.elapsed());
+        }
         let (coriolis, centrifugal) = lagrange::christoffel(&e.mass, chain.n());
+        if std::env::var("EXPLICIT_DEBUG").is_ok() {
+            eprintln!("christoffel {:?}", t.elapsed());
+        }
         Ok(Self {
             chain,
             mass: e.mass,

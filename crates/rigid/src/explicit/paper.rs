@@ -17,6 +17,7 @@
 use super::chain::Chain;
 use super::expr::{Expr, Mono, MAX_JOINTS};
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// A variable of the tables: the angle `Σ ε_l θ_{j_l}` of consecutive parallel revolute joints
 /// (one joint: `θ_j`), or the displacement `q_j` of a prismatic joint.
@@ -167,21 +168,70 @@ fn merge<K: Ord + Copy>(mut v: Vec<(K, f64)>) -> Vec<(K, f64)> {
     out
 }
 
-/// `Σ a ⊗ b` where `b`'s powers go to slot `v`.
-fn product(a: &[(Slots, f64)], b: &[(Power, f64)], v: usize, sign: f64) -> Vec<(Slots, f64)> {
-    let mut out = Vec::with_capacity(a.len() * b.len());
-    for (sa, xa) in a {
-        for &((c, s), xb) in b {
-            let mut k = *sa;
-            k[v] = c << 5 | s;
-            out.push((k, sign * xa * xb));
+/// `(slots, monomial)` as one integer, in their order.
+fn pack(slots: &Slots, mono: Mono) -> u128 {
+    let mut k = 0u128;
+    for &b in slots.iter().chain(&mono.0) {
+        k = k << 8 | u128::from(b);
+    }
+    k
+}
+
+fn unpack(mut k: u128) -> (Slots, Mono) {
+    let mut mono = [0u8; super::expr::MAX_DEGREE];
+    for m in mono.iter_mut().rev() {
+        *m = (k & 0xff) as u8;
+        k >>= 8;
+    }
+    let mut slots = [0u8; MAX_JOINTS];
+    for b in slots.iter_mut().rev() {
+        *b = (k & 0xff) as u8;
+        k >>= 8;
+    }
+    (slots, Mono(mono))
+}
+
+/// A multiply-fold hash for packed keys (the standard SipHash is several times slower here and
+/// its protection against adversarial keys is not needed).
+#[derive(Default)]
+struct PackedHasher(u64);
+
+impl Hasher for PackedHasher {
+    fn finish(&self) -> u64 {
+        self.0 ^ (self.0 >> 31)
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
         }
     }
-    out
+    fn write_u128(&mut self, x: u128) {
+        let h = (x as u64) ^ ((x >> 64) as u64).rotate_left(29);
+        self.0 = h.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
+
+/// A complex coefficient `(re, im)`.
+type Complex = (f64, f64);
+
+type Accumulator = HashMap<u128, Complex, BuildHasherDefault<PackedHasher>>;
+
+fn accumulate(acc: &mut Accumulator, key: u128, z: Complex) {
+    let e = acc.entry(key).or_insert((0.0, 0.0));
+    e.0 += z.0;
+    e.1 += z.1;
 }
 
 /// `expr` in the tables' form: `(monomial, parameter polynomial)` pairs, monomials in the
 /// registry's variables.
+///
+/// Method: each harmonic is the real part of an exponential, `cos θ = Re e^{iθ}`,
+/// `sin θ = Re(-i e^{iθ})` (`θ = Σ_v a_v φ_v` in this entry's variables), and
+/// `e^{iθ} = Π_v e^{i a_v φ_v}` is a tensor product: the change of basis
+/// `e^{i a φ} = cos aφ + i sin aφ` → `C^c S^s` acts on one variable at a time, merging like terms
+/// after each, so the work grows with the sizes of the expressions rather than with
+/// `2^(number of variables)` per harmonic. The monomials being real, the real parts of the
+/// final coefficients are the answer.
 pub(crate) fn expand(
     expr: &Expr,
     chain: &Chain,
@@ -192,12 +242,11 @@ pub(crate) fn expand(
     let present = expr.joints();
     // this entry's variables: per block, the cumulative angles of its present joints
     let mut vars: Vec<Var> = Vec::new();
-    // per joint: (variable slot, ε) of the joint within its block's list of present joints
+    // per block head: the present joints of the block and their signs
     let mut members: Vec<Vec<(usize, i8)>> = vec![Vec::new(); space.n];
     for j in (0..space.n).filter(|&j| present >> j & 1 == 1) {
         members[blocks.head[j]].push((j, blocks.sign[j]));
     }
-    // slot of each (block head, m)
     let mut block_slots: Vec<Vec<usize>> = vec![Vec::new(); space.n];
     for h in 0..space.n {
         let m = &members[h];
@@ -210,20 +259,10 @@ pub(crate) fn expand(
             });
         }
     }
-    let cheb: Vec<_> = (0..=8).map(chebyshev).collect();
-    let mut acc: HashMap<(Slots, Mono), f64> = HashMap::new();
-    let terms = expr.terms();
-    let mut start = 0;
-    while start < terms.len() {
-        // the terms of one harmonic (consecutive in canonical order) share its expansion
-        let t = terms[start];
-        let end = start
-            + terms[start..]
-                .iter()
-                .take_while(|u| u.freq == t.freq && u.sin == t.sin)
-                .count();
-        let mut cp: Vec<(Slots, f64)> = vec![([0; MAX_JOINTS], 1.0)];
-        let mut sp: Vec<(Slots, f64)> = Vec::new();
+    // 1. the exponential form: slots hold a_v + 128 (revolute) or the power (prismatic)
+    let mut acc = Accumulator::default();
+    for t in expr.terms() {
+        let mut plus = [0u8; MAX_JOINTS];
         for h in 0..space.n {
             let m = &members[h];
             if m.is_empty() {
@@ -231,47 +270,60 @@ pub(crate) fn expand(
             }
             if chain.joints[m[0].0].prismatic {
                 let v = block_slots[h][0];
-                let p = t.freq[m[0].0] as u8;
-                for x in cp.iter_mut().chain(sp.iter_mut()) {
-                    x.0[v] = p;
-                }
+                plus[v] = t.freq[m[0].0] as u8;
                 continue;
             }
             let e0 = m[0].1;
             let eps = |l: usize| if l < m.len() { m[l].1 * e0 } else { 1 };
             let k = |l: usize| if l < m.len() { t.freq[m[l].0] } else { 0 };
             for (l, &v) in block_slots[h].iter().enumerate() {
+                // a_m = ε_m k_{j_m} - ε_{m+1} k_{j_{m+1}}
                 let a = i16::from(eps(l)) * i16::from(k(l))
                     - i16::from(eps(l + 1)) * i16::from(k(l + 1));
-                if a == 0 {
-                    continue;
-                }
-                let (c, s) = &cheb[a.unsigned_abs() as usize];
-                let sg = if a < 0 { -1.0 } else { 1.0 };
-                // cos(x + y) = cos x cos y - sin x sin y, sin(x + y) = sin x cos y + cos x sin y
-                let mut c2 = product(&cp, c, v, 1.0);
-                c2.extend(product(&sp, s, v, -sg));
-                let mut s2 = product(&sp, c, v, 1.0);
-                s2.extend(product(&cp, s, v, sg));
-                cp = c2;
-                sp = s2;
+                plus[v] = (a + 128) as u8;
             }
         }
-        let part = if t.sin { sp } else { cp };
-        for u in &terms[start..end] {
-            for &(k, x) in &part {
-                *acc.entry((k, u.mono)).or_insert(0.0) += x * u.coef;
-            }
-        }
-        start = end;
+        let z = if t.sin { (0.0, -t.coef) } else { (t.coef, 0.0) };
+        accumulate(&mut acc, pack(&plus, t.mono), z);
     }
-    let mut acc: Vec<((Slots, Mono), f64)> = acc.into_iter().filter(|x| x.1 != 0.0).collect();
+    // 2. one revolute variable at a time: e^{i a φ} = cos aφ + i sin aφ in C^c S^s
+    let cheb: Vec<_> = (0..=16).map(chebyshev).collect();
+    for (v, var) in vars.iter().enumerate() {
+        if var.prismatic {
+            continue;
+        }
+        let shift = 8 * (MAX_JOINTS - 1 - v) + 8 * super::expr::MAX_DEGREE;
+        let mut next = Accumulator::default();
+        next.reserve(acc.len());
+        for (key, z) in acc {
+            let code = ((key >> shift) & 0xff) as i16 - 128;
+            let base = key & !(0xffu128 << shift);
+            let (c, s) = &cheb[code.unsigned_abs() as usize];
+            let sg = if code < 0 { -1.0 } else { 1.0 };
+            for &((pc, ps), w) in c {
+                let k = base | u128::from(pc << 5 | ps) << shift;
+                accumulate(&mut next, k, (z.0 * w, z.1 * w));
+            }
+            for &((pc, ps), w) in s {
+                // times i sg w
+                let k = base | u128::from(pc << 5 | ps) << shift;
+                accumulate(&mut next, k, (-z.1 * sg * w, z.0 * sg * w));
+            }
+        }
+        acc = next;
+    }
+    // 3. the real parts, grouped by monomial, the slots mapped to registry variables
+    let mut acc: Vec<(u128, f64)> = acc
+        .into_iter()
+        .filter(|x| x.1 .0 != 0.0)
+        .map(|(k, z)| (k, z.0))
+        .collect();
     acc.sort_unstable_by_key(|a| a.0);
-    // group by monomial, map the slots to registry variables
     let ids: Vec<usize> = vars.into_iter().map(|v| registry.id(v)).collect();
     let mut out: Vec<(Monomial, ParamPoly)> = Vec::new();
     let mut last: Option<Slots> = None;
-    for ((slots, mono), x) in acc {
+    for (key, x) in acc {
+        let (slots, mono) = unpack(key);
         if last != Some(slots) {
             let mut m: Monomial = (0..ids.len())
                 .filter(|&v| slots[v] != 0)

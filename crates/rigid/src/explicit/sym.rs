@@ -157,6 +157,11 @@ impl SymInertia {
         })
     }
 
+    /// The first moment `h' = R h + m p` of [`transformed`](Self::transformed) alone.
+    pub fn transformed_first_moment(&self, t: &SymTransform) -> Result<V3, Overflow> {
+        Ok(add(&mat_vec(&t.r, &self.h)?, &scale(&self.m, &t.p)?))
+    }
+
     /// The momentum `G S = (I_O ω + h × v, m v - h × ω)` of a constant twist `S = (ω, v)`.
     pub fn momentum(&self, w: [f64; 3], v: [f64; 3]) -> (V3, V3) {
         // h × v = -(v × h); m v - h × ω = m v + ω × h
