@@ -21,8 +21,10 @@ use super::expr::{Expr, Overflow};
 use super::sym::{dot_num, wrench_to_parent, SymInertia, SymTransform};
 use super::ExplicitError;
 
-/// Largest number of terms of one expression before the derivation gives up.
-pub(crate) const SWELL_LIMIT: usize = 5_000_000;
+/// Largest number of terms of one expression before the derivation gives up (a fully generic
+/// 7-joint chain, every axis and inertia rotated at random, reaches 450 000 terms in 10 s; an
+/// 8-joint one would reach 2.3 million; the Panda stays below 30 000).
+pub(crate) const SWELL_LIMIT: usize = 1_000_000;
 
 /// An error if `e` has grown beyond [`SWELL_LIMIT`] terms.
 pub(crate) fn guard(e: Expr, what: &str) -> Result<Expr, ExplicitError> {
@@ -61,39 +63,39 @@ pub(crate) fn energies(chain: &Chain) -> Result<Energies, ExplicitError> {
     let transforms: Vec<SymTransform> = (0..n).map(|j| chain.transform(j)).collect();
     // composite inertias, leaves first (children come after their parent)
     let mut composite: Vec<SymInertia> = (0..n).map(|j| chain.body_inertia(j)).collect();
-    let mut world = SymInertia {
-        m: Expr::zero(space),
-        h: super::sym::zero_vec(space),
-        i: std::array::from_fn(|_| super::sym::zero_vec(space)),
-    };
+    // the whole tree's first moment in the world
+    let mut world_h = super::sym::zero_vec(space);
     for j in (0..n).rev() {
         let Some(p) = chain.joints[j].parent else {
             // in the world only the first moment is needed (for U)
             let h = composite[j]
                 .transformed_first_moment(&transforms[j])
                 .map_err(overflow("the first moment"))?;
-            world.h = super::sym::add(&world.h, &h);
+            world_h = super::sym::add(&world_h, &h);
             continue;
         };
         let moved = composite[j]
             .transformed(&transforms[j])
             .map_err(overflow("a composite inertia"))?;
-        if std::env::var("EXPLICIT_DEBUG").is_ok() {
-            let big = moved.i.iter().flatten().map(Expr::len).max().unwrap_or(0);
-            eprintln!("composite {j}: largest entry {big} terms");
-        }
-        for e in moved.i.iter().flatten().chain(moved.h.iter()) {
-            if e.len() > SWELL_LIMIT {
-                return Err(ExplicitError::Swell {
-                    what: format!("the composite inertia of joint '{}'", chain.joints[j].name),
-                    terms: e.len(),
-                });
-            }
+        let size = |g: &SymInertia| g.i.iter().flatten().map(Expr::len).max().unwrap_or(0);
+        let (before, after) = (size(&composite[j]).max(1), size(&moved));
+        // each joint above multiplies the size again: stop early if the next would be too large
+        let next = if chain.joints[p].parent.is_some() {
+            after.saturating_mul(after.div_ceil(before))
+        } else {
+            after
+        };
+        if after > SWELL_LIMIT || next > SWELL_LIMIT {
+            return Err(ExplicitError::Swell {
+                what: format!(
+                    "the composite inertia seen from joint '{}' ({after} terms, growing {}x per joint)",
+                    chain.joints[p].name,
+                    after.div_ceil(before)
+                ),
+                terms: next,
+            });
         }
         composite[p] = composite[p].add(&moved);
-    }
-    if std::env::var("EXPLICIT_DEBUG").is_ok() {
-        eprintln!("composites done");
     }
     let mut mass = vec![Expr::zero(space); n * n];
     for j in 0..n {
@@ -117,7 +119,7 @@ pub(crate) fn energies(chain: &Chain) -> Result<Energies, ExplicitError> {
         None => vec![Expr::zero(space); n],
         Some(g) => {
             // U = -g (ĝ · H)
-            let u = dot_num(chain.gravity_dir, &world.h)
+            let u = dot_num(chain.gravity_dir, &world_h)
                 .mul(&Expr::param(space, g, -1.0))
                 .map_err(overflow("the potential energy"))?;
             (0..n).map(|i| u.derivative(i)).collect()
