@@ -202,6 +202,13 @@ fn ur5_generated_code_equals_crba_nle_gravity() {
     check("ur5", &model("ur5"));
 }
 
+/// A random tree of five joints on random axes, one of them prismatic (its displacement `q_j`
+/// appears in the code), with armature.
+#[test]
+fn random_tree_with_prismatic_joints_generated_code_equals_crba_nle_gravity() {
+    check("random_tree", &explicit_support::random_model(41, 5, true));
+}
+
 #[test]
 fn panda_generated_code_equals_crba_nle_gravity() {
     let m = model("panda");

@@ -4,7 +4,11 @@
 
 use rigid::explicit::lock_joints;
 use rigid::io::urdf::load_urdf;
-use rigid::multibody::{builtin, random_configuration, Model, Rng};
+use rigid::mass::{RotationalInertia, SpatialInertia};
+use rigid::multibody::{
+    builtin, random_configuration, JointId, JointType, Model, ModelBuilder, Rng,
+};
+use rigid::spatial::{so3, Transform, Vec3};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -111,4 +115,62 @@ pub fn run(cmd: &mut Command, stdin: Option<&str>) -> String {
         String::from_utf8_lossy(&out.stderr)
     );
     String::from_utf8(out.stdout).unwrap()
+}
+
+pub fn unit(rng: &mut Rng) -> Vec3 {
+    Vec3::new(rng.normal(), rng.normal(), rng.normal()).normalize()
+}
+
+/// A random model: `n` joints, revolute or (every third) prismatic on random axes, random
+/// placements and inertias (with products of inertia), random armature; `tree`: random
+/// depth-first parents.
+pub fn random_model(seed: u64, n: usize, tree: bool) -> Model {
+    let mut rng = Rng::new(seed);
+    let mut b = ModelBuilder::new(&format!("random_{seed}"));
+    b.set_gravity(Vec3::new(0.5, -0.3, -9.81));
+    let mut stack: Vec<JointId> = Vec::new();
+    for k in 0..n {
+        let parent = if tree && !stack.is_empty() {
+            let cut = 1 + (rng.next_u64() as usize) % stack.len();
+            stack.truncate(cut);
+            stack.last().copied()
+        } else {
+            stack.last().copied()
+        };
+        let axis = unit(&mut rng);
+        let kind = if k % 3 == 2 {
+            JointType::Prismatic { axis }
+        } else {
+            JointType::Revolute { axis }
+        };
+        let placement = Transform::new(
+            so3::exp(&(unit(&mut rng) * rng.uniform(-2.0, 2.0))),
+            Vec3::new(
+                rng.uniform(-0.4, 0.4),
+                rng.uniform(-0.4, 0.4),
+                rng.uniform(-0.4, 0.4),
+            ),
+        );
+        let (a, bb) = (rng.uniform(0.01, 0.1), rng.uniform(0.01, 0.1));
+        let c = rng.uniform((a - bb).abs() + 0.001, a + bb);
+        let r = so3::exp(&(unit(&mut rng) * rng.uniform(-3.0, 3.0)));
+        let inertia = SpatialInertia::from_com(
+            rng.uniform(0.5, 2.0),
+            Vec3::new(
+                rng.uniform(-0.2, 0.2),
+                rng.uniform(-0.2, 0.2),
+                rng.uniform(-0.2, 0.2),
+            ),
+            RotationalInertia::diagonal(a, bb, c).in_rotated_frame(&r),
+        );
+        let id = b
+            .add_joint(parent, &format!("j{k}"), kind, placement, inertia)
+            .unwrap();
+        b.set_armature(id, &[rng.uniform(0.0, 0.3)]).unwrap();
+        if kind.nq() == 1 && matches!(kind, JointType::Prismatic { .. }) {
+            b.set_limits(id, &[-0.3], &[0.4], &[1.0], &[10.0]).unwrap();
+        }
+        stack.push(id);
+    }
+    b.build().unwrap()
 }
