@@ -39,16 +39,22 @@ struct Generated<const N: usize> {
     gravity: fn(&[f64; N]) -> [f64; N],
 }
 
-fn bench_model<const N: usize>(c: &mut Criterion, name: &str, model: &Model, gen: &Generated<N>) {
+/// `STATES` pre-drawn random states `(q, v, a)`: `q` within the joint limits, `v`, `a` uniform in
+/// `[-1, 1]`.
+fn states<const N: usize>(model: &Model) -> Vec<([f64; N], [f64; N], [f64; N])> {
     let mut rng = Rng::new(7);
-    let states: Vec<([f64; N], [f64; N], [f64; N])> = (0..STATES)
+    (0..STATES)
         .map(|_| {
             let q = random_configuration(model, &mut rng);
             let v: [f64; N] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
             let a: [f64; N] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
             (q.try_into().expect("N joints"), v, a)
         })
-        .collect();
+        .collect()
+}
+
+fn bench_model<const N: usize>(c: &mut Criterion, name: &str, model: &Model, gen: &Generated<N>) {
+    let states = states::<N>(model);
     let mut data = Data::new(model);
     let mut g = c.benchmark_group(format!("explicit/{name}"));
     let mut i = 0usize;
@@ -122,15 +128,7 @@ fn bench(c: &mut Criterion) {
 /// the algorithms taking turns pass by pass, after one warm-up pass each.
 fn json_timing<const N: usize>(name: &str, model: &Model, gen: &Generated<N>) {
     const REPS: usize = 21;
-    let mut rng = Rng::new(7);
-    let states: Vec<([f64; N], [f64; N], [f64; N])> = (0..STATES)
-        .map(|_| {
-            let q = random_configuration(model, &mut rng);
-            let v: [f64; N] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
-            let a: [f64; N] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
-            (q.try_into().expect("N joints"), v, a)
-        })
-        .collect();
+    let states = states::<N>(model);
     let mut data = Data::new(model);
     type Pass<'a, const N: usize> = Box<dyn FnMut(&([f64; N], [f64; N], [f64; N]), &mut Data) + 'a>;
     let mut algos: Vec<(&str, Pass<N>)> = vec![

@@ -206,20 +206,22 @@ impl Tables {
         o
     }
 
+    /// `θ2 = q2 + π`, one per non-zero angle offset (`theta` names the angle).
+    pub(crate) fn offsets_text(&self, theta: &str, angle: fn(f64) -> String) -> Vec<String> {
+        let offsets = self.options.offsets.iter().enumerate();
+        offsets
+            .filter(|(_, &o)| o != 0.0)
+            .map(|(j, &o)| format!("{theta}{} = q{} + {}", j + 1, j + 1, angle(o)))
+            .collect()
+    }
+
     fn preamble(&self) -> Vec<String> {
         let mut lines = vec![format!(
             "Explicit dynamic model of \"{}\" ({} joints), derived by rigid explicit.",
             self.model_name,
             self.n()
         )];
-        let offsets: Vec<String> = self
-            .options
-            .offsets
-            .iter()
-            .enumerate()
-            .filter(|(_, &o)| o != 0.0)
-            .map(|(j, &o)| format!("θ{} = q{} + {}", j + 1, j + 1, angle_text(o)))
-            .collect();
+        let offsets = self.offsets_text("θ", angle_text);
         let angles = if offsets.is_empty() {
             "Angles θj = qj (the model's joint coordinates)".to_string()
         } else {
