@@ -43,8 +43,10 @@ ROOT = os.path.dirname(HERE)
 PIN_DIR = os.path.join(HERE, "pinocchio")
 PIN_BUILD = os.path.join(PIN_DIR, "build")
 
-# the schema both sides print; extra keys are shown in the raw tables only
-ALGOS = ["forward_kinematics", "jacobians", "rnea", "gravity", "nonlinear_effects", "crba", "aba", "minverse"]
+# the schema both sides print; extra keys are shown in the raw tables only. rnea_derivatives and
+# aba_derivatives: computeRNEADerivatives / computeABADerivatives (bench/pinocchio/timings-deriv.cpp).
+ALGOS = ["forward_kinematics", "jacobians", "rnea", "gravity", "nonlinear_effects", "crba", "aba", "minverse",
+         "rnea_derivatives", "aba_derivatives"]
 SHORT = {
     "forward_kinematics": "FK",
     "jacobians": "Jac",
@@ -54,9 +56,14 @@ SHORT = {
     "crba": "CRBA",
     "aba": "ABA",
     "minverse": "M⁻¹",
+    "rnea_derivatives": "∂RNEA",
+    "aba_derivatives": "∂ABA",
 }
-# issue 5's bars: ratio rigid / Pinocchio at most this
-TARGET = {"rnea": 1.0, "crba": 1.0, "aba": 1.0, "forward_kinematics": 1.2, "jacobians": 1.2}
+# issue 5's bars: ratio rigid / Pinocchio at most this (issue 12: the derivatives too)
+TARGET = {"rnea": 1.0, "crba": 1.0, "aba": 1.0, "forward_kinematics": 1.2, "jacobians": 1.2,
+          "rnea_derivatives": 1.0, "aba_derivatives": 1.0}
+# issue 12's other bar: rigid's derivatives at most this many times its own RNEA / ABA (on Talos)
+OWN = {"rnea_derivatives": ("rnea", 4.0), "aba_derivatives": ("aba", 4.0)}
 
 
 def log(*a):
@@ -362,7 +369,7 @@ def main():
     hdr = "| model | nq | nv | " + " | ".join(SHORT[k] for k in ALGOS) + " |"
     sep = "|---|---:|---:|" + "---:|" * len(ALGOS)
     if have_rigid:
-        out.append("### Ratio rigid / Pinocchio (lower is better for rigid; bars: RNEA, CRBA, ABA ≤ 1.0, "
+        out.append("### Ratio rigid / Pinocchio (lower is better for rigid; bars: RNEA, CRBA, ABA, ∂RNEA, ∂ABA ≤ 1.0, "
                    "FK, Jac ≤ 1.2)\n")
         out.append(hdr)
         out.append(sep)
@@ -395,6 +402,27 @@ def main():
                 cells.append("%.2f–%.2f" % (min(r), max(r)) if r else "–")
             out.append("| %s | %s |" % (n, " | ".join(cells)))
         out.append("")
+        out.append("rigid's derivatives over its own algorithm (median over rounds of the ratio within each "
+                   "run; bar ≤ %.0f on talos):\n" % max(b for _, b in OWN.values()))
+        out.append("| model | " + " | ".join("%s / %s" % (SHORT[k], SHORT[base]) for k, (base, _) in OWN.items())
+                   + " |")
+        out.append("|---|" + "---:|" * len(OWN))
+        for m in models:
+            n = m["name"]
+            cells = []
+            for k, (base, bar) in OWN.items():
+                r = [ns(run, k) / ns(run, base) for run in rigid_runs[n] if ns(run, k) and ns(run, base)]
+                if not r:
+                    cells.append("–")
+                    continue
+                x = statistics.median(r)
+                bad = n == "talos" and x > bar
+                if bad:
+                    misses.append("%s %s/%s %.2f" % (n, SHORT[k], SHORT[base], x))
+                cells.append(("**%.2f**" if bad else "%.2f") % x)
+            out.append("| %s | %s |" % (n, " | ".join(cells)))
+        out.append("")
+        out.append("Bars missed, all (bold): " + (", ".join(misses) if misses else "none") + "\n")
         out.append("### rigid, ns per call\n")
         out.append(hdr)
         out.append(sep)

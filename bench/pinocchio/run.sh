@@ -82,8 +82,8 @@ ldflags_for() { # link flags of a variant (rpath to the wheel's libraries)
   esac
 }
 for v in $VARIANTS; do cflags_for "$v" >/dev/null; done
-# Four translation units per variant (timings.cpp: loading, states, output; timings-kin.cpp,
-# timings-crba.cpp, timings-aba.cpp: the algorithms), compiled in parallel on every core; each object is cached by
+# Five translation units per variant (timings.cpp: loading, states, output; timings-kin.cpp,
+# timings-crba.cpp, timings-aba.cpp, timings-deriv.cpp: the algorithms), compiled in parallel on every core; each object is cached by
 # a hash of its source, the shared header, the flags, Pinocchio's version and the compiler.
 CXXID="$("$CXX" --version | head -1)"
 compile_obj() { # variant unit
@@ -109,7 +109,7 @@ export COMMON_STR="${COMMON[*]}"
 T0=$(date +%s)
 JOBS="$(nproc 2>/dev/null || echo 2)"
 # the heaviest units first, so that the cores stay busy to the end
-for u in timings-aba timings-crba timings-kin timings; do for v in $VARIANTS; do echo "$v $u"; done; done |
+for u in timings-deriv timings-aba timings-crba timings-kin timings; do for v in $VARIANTS; do echo "$v $u"; done; done |
   xargs -P "$JOBS" -L 1 bash -c 'COMMON=($COMMON_STR); compile_obj "$0" "$1"' || {
   log "build failed"
   exit 1
@@ -117,7 +117,7 @@ for u in timings-aba timings-crba timings-kin timings; do for v in $VARIANTS; do
 for v in $VARIANTS; do
   # shellcheck disable=SC2046
   "$CXX" -o "$BUILD/timings-$v" "$BUILD/obj-$v/timings.o" "$BUILD/obj-$v/timings-kin.o" \
-    "$BUILD/obj-$v/timings-crba.o" "$BUILD/obj-$v/timings-aba.o" $(ldflags_for "$v")
+    "$BUILD/obj-$v/timings-crba.o" "$BUILD/obj-$v/timings-aba.o" "$BUILD/obj-$v/timings-deriv.o" $(ldflags_for "$v")
 done
 log "builds ($VARIANTS) ready in $(($(date +%s) - T0)) s: $BUILD/timings-{${VARIANTS// /,}}"
 

@@ -191,6 +191,8 @@ int main(int argc, char ** argv)
         return bench::run_kinematics(k, model, data, s, nstates);
       if (k == 6 || k == 7 || k == 11)
         return bench::run_crba(k, model, data, s, nstates);
+      if (k >= 12)
+        return bench::run_derivatives(k, model, data, s, nstates);
       return bench::run_aba(k, model, data, s, nstates);
     };
     std::vector<std::vector<double>> samples(nalgos);

@@ -42,13 +42,16 @@ namespace bench
   double run_kinematics(size_t k, const Model & model, Data & data, const States & s, int nstates);
   double run_crba(size_t k, const Model & model, Data & data, const States & s, int nstates);
   double run_aba(size_t k, const Model & model, Data & data, const States & s, int nstates);
+  double run_derivatives(size_t k, const Model & model, Data & data, const States & s, int nstates);
   // RNEA once (for the load check)
   Vec rnea_once(const Model & model, const Vec & q, const Vec & v, const Vec & a);
 
   constexpr const char * ALGO_KEYS[] = {
     "forward_kinematics", "forward_kinematics_qva", "jacobians", "rnea",
     "gravity", "nonlinear_effects", "crba_local", "crba_world",
-    "aba_local", "aba_world", "minverse", "cholesky_fd"};
-  // keys 0-5 live in timings-kin.cpp, 6, 7, 11 in timings-crba.cpp, 8-10 in timings-aba.cpp
+    "aba_local", "aba_world", "minverse", "cholesky_fd",
+    "rnea_derivatives", "aba_derivatives"};
+  // keys 0-5 live in timings-kin.cpp, 6, 7, 11 in timings-crba.cpp, 8-10 in timings-aba.cpp,
+  // 12-13 in timings-deriv.cpp
   constexpr size_t N_ALGOS = sizeof(ALGO_KEYS) / sizeof(ALGO_KEYS[0]);
 } // namespace bench

@@ -20,12 +20,15 @@
 //! | `aba` | `aba` | `aba` |
 //! | `minverse` | `compute_minverse` (full symmetric `M⁻¹`) | `computeMinverse` (upper triangle only; `bench/pinocchio/timings-aba.cpp` does not symmetrise) |
 //! | `cholesky_fd` | `forward_dynamics_cholesky` (nle + CRBA + Cholesky solve) | nle + crba + `cholesky::solve` |
+//! | `rnea_derivatives` | `rnea_derivatives` (`∂τ/∂q`, `∂τ/∂v`, full symmetric `M`) | `computeRNEADerivatives` (`M` upper triangle) |
+//! | `aba_derivatives` | `aba_derivatives` (`∂q̈/∂q`, `∂q̈/∂v`, full symmetric `M⁻¹`) | `computeABADerivatives` |
 
 use clap::Args;
 use rigid::multibody::{
-    aba, compute_joint_jacobians, compute_minverse, crba, forward_dynamics_cholesky,
-    forward_kinematics, forward_kinematics_q, gravity_torques, nonlinear_effects,
-    random_configuration, rnea, Data, Model, MultibodyError, Rng,
+    aba, aba_derivatives, compute_joint_jacobians, compute_minverse, crba,
+    forward_dynamics_cholesky, forward_kinematics, forward_kinematics_q, gravity_torques,
+    nonlinear_effects, random_configuration, rnea, rnea_derivatives, Data, Model, MultibodyError,
+    Rng,
 };
 use std::hint::black_box;
 use std::time::Instant;
@@ -35,9 +38,8 @@ use std::time::Instant;
 pub struct BenchArgs {
     /// A URDF file or a built-in model name (`puma560`, …).
     model: String,
-    /// Add a free-flyer root joint (URDF models).
-    #[arg(long)]
-    floating: bool,
+    #[command(flatten)]
+    load: crate::load::LoadArgs,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
@@ -63,7 +65,7 @@ pub struct BenchArgs {
 }
 
 /// The algorithms timed, in output order (the JSON keys).
-pub const ALGORITHMS: [&str; 10] = [
+pub const ALGORITHMS: [&str; 12] = [
     "forward_kinematics",
     "forward_kinematics_qva",
     "jacobians",
@@ -74,6 +76,8 @@ pub const ALGORITHMS: [&str; 10] = [
     "aba",
     "minverse",
     "cholesky_fd",
+    "rnea_derivatives",
+    "aba_derivatives",
 ];
 
 /// Pre-drawn random states, one `Vec` per state.
@@ -122,6 +126,12 @@ fn call_of(name: &str) -> Option<Call> {
         "minverse" => |m, d, s, i| compute_minverse(m, d, &s.q[i]).map(|x| x[0]),
         "cholesky_fd" => {
             |m, d, s, i| forward_dynamics_cholesky(m, d, &s.q[i], &s.v[i], &s.tau[i]).map(|t| t[0])
+        }
+        "rnea_derivatives" => {
+            |m, d, s, i| rnea_derivatives(m, d, &s.q[i], &s.v[i], &s.a[i]).map(|x| x.dtau_dq[0])
+        }
+        "aba_derivatives" => {
+            |m, d, s, i| aba_derivatives(m, d, &s.q[i], &s.v[i], &s.tau[i]).map(|x| x.dqdd_dq[0])
         }
         _ => return None,
     };
@@ -178,7 +188,7 @@ pub fn time_algorithms(
 /// # Errors
 /// An unknown model, or an algorithm error.
 pub fn run(args: &BenchArgs) -> Result<(), String> {
-    let model = crate::load::load_model(&args.model, args.floating)?;
+    let model = crate::load::load_model(&args.model, &args.load)?;
     let states = States::new(&model, args.states.max(1), args.seed);
     if args.batch {
         return run_batch(args, &model, &states);

@@ -1,15 +1,15 @@
-//! `rigid eval MODEL --cases CASES.json [--floating] [--json]`: the dynamics of a model at given
+//! `rigid eval MODEL --cases CASES.json [--floating] [--json] [--derivatives]`: the dynamics of a model at given
 //! states, for scripts and cross-checks (the contract is in `CONVENTIONS.md`).
 
 use crate::load::load_model;
 use clap::Args;
+use rigid::io::cases::{parse_cases, Case};
 use rigid::multibody::{
-    aba, center_of_mass, crba, forward_kinematics_q, gravity_torques, kinetic_energy,
-    nonlinear_effects, potential_energy, rnea, Data, Model,
+    aba, aba_derivatives, center_of_mass, crba, forward_kinematics_q, gravity_torques,
+    kinetic_energy, nonlinear_effects, potential_energy, rnea, rnea_derivatives, Data, Model,
 };
 use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
-use serde_json::Value;
 use std::path::PathBuf;
 
 /// Arguments of `rigid eval`.
@@ -21,20 +21,16 @@ pub struct EvalArgs {
     /// and `tau` default to zero.
     #[arg(long)]
     pub cases: PathBuf,
-    /// Add a free-flyer root joint carrying the URDF's root link.
-    #[arg(long)]
-    pub floating: bool,
+    #[command(flatten)]
+    pub load: crate::load::LoadArgs,
     /// Print one JSON object instead of a readable summary.
     #[arg(long)]
     pub json: bool,
-}
-
-/// One state to evaluate.
-struct Case {
-    q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    tau: Vec<f64>,
+    /// Add the analytical derivatives to each result: `rnea_derivatives` (`dtau_dq`, `dtau_dv` at
+    /// `(q, v, a)`) and `aba_derivatives` (`dqdd_dq`, `dqdd_dv`, `dqdd_dtau` at `(q, v, tau)`),
+    /// nv x nv row-major, derivatives in `q` along the tangent `q ⊕ δ`.
+    #[arg(long)]
+    pub derivatives: bool,
 }
 
 #[derive(Serialize)]
@@ -75,6 +71,32 @@ struct CaseResult {
     com: [f64; 3],
     total_mass: f64,
     placements: Placements,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rnea_derivatives: Option<RneaDerivatives>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    aba_derivatives: Option<AbaDerivatives>,
+}
+
+/// `∂τ/∂q`, `∂τ/∂v` (row-major).
+#[derive(Serialize)]
+struct RneaDerivatives {
+    dtau_dq: Vec<Vec<f64>>,
+    dtau_dv: Vec<Vec<f64>>,
+}
+
+/// `∂q̈/∂q`, `∂q̈/∂v`, `∂q̈/∂τ` (row-major).
+#[derive(Serialize)]
+struct AbaDerivatives {
+    dqdd_dq: Vec<Vec<f64>>,
+    dqdd_dv: Vec<Vec<f64>>,
+    dqdd_dtau: Vec<Vec<f64>>,
+}
+
+/// A matrix as row-major nested arrays.
+fn rows(m: &nalgebra::DMatrix<f64>) -> Vec<Vec<f64>> {
+    (0..m.nrows())
+        .map(|r| (0..m.ncols()).map(|k| m[(r, k)]).collect())
+        .collect()
 }
 
 #[derive(Serialize)]
@@ -101,12 +123,12 @@ impl Serialize for Placements {
 /// # Errors
 /// A message naming the model, the case and the field, or the joint.
 pub fn run(args: &EvalArgs) -> Result<(), String> {
-    let model = load_model(&args.model, args.floating)?;
+    let model = load_model(&args.model, &args.load)?;
     let path = args.cases.display();
     let text = std::fs::read_to_string(&args.cases)
         .map_err(|e| format!("cannot read cases file {path}: {e}"))?;
     let cases = parse_cases(&text, &model).map_err(|e| format!("{path}: {e}"))?;
-    let results = evaluate_all(&model, &cases)
+    let results = evaluate_all(&model, &cases, args.derivatives)
         .into_iter()
         .enumerate()
         .map(|(i, r)| r.map_err(|e| format!("{path}: case {i}: {e}")))
@@ -146,84 +168,45 @@ fn model_info(model: &Model) -> ModelInfo {
     }
 }
 
-/// Reads `{"cases": [...]}`, checking every field's type and length against the model.
-fn parse_cases(text: &str, model: &Model) -> Result<Vec<Case>, String> {
-    let root: Value = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
-    let list = root
-        .get("cases")
-        .ok_or("expected an object with a \"cases\" array")?
-        .as_array()
-        .ok_or("\"cases\" is not an array")?;
-    let mut cases = Vec::with_capacity(list.len());
-    for (i, c) in list.iter().enumerate() {
-        if !c.is_object() {
-            return Err(format!("case {i}: not an object"));
-        }
-        let field = |name: &str, len: usize, dim: &str, required: bool| {
-            vector(c.get(name), len, required)
-                .map_err(|e| format!("case {i}: \"{name}\" {e} (expected {dim} = {len})"))
-        };
-        cases.push(Case {
-            q: field("q", model.nq(), "nq", true)?,
-            v: field("v", model.nv(), "nv", false)?,
-            a: field("a", model.nv(), "nv", false)?,
-            tau: field("tau", model.nv(), "nv", false)?,
-        });
-    }
-    Ok(cases)
-}
-
-/// A vector of `len` numbers, or zeros if absent and not required.
-fn vector(value: Option<&Value>, len: usize, required: bool) -> Result<Vec<f64>, String> {
-    let Some(value) = value else {
-        return if required {
-            Err("is missing".into())
-        } else {
-            Ok(vec![0.0; len])
-        };
-    };
-    let arr = value.as_array().ok_or("is not an array of numbers")?;
-    let out = arr
-        .iter()
-        .enumerate()
-        .map(|(k, x)| x.as_f64().ok_or(format!("[{k}] is not a number")))
-        .collect::<Result<Vec<f64>, _>>()?;
-    if out.len() != len {
-        return Err(format!("has {} entries", out.len()));
-    }
-    Ok(out)
-}
-
 /// Case files of at least this many cases are evaluated on every core.
 const PARALLEL_CASES: usize = 64;
 
 /// Every case's result, in order: one loop for small files; for large ones a rayon parallel
 /// iterator with one [`Data`] per worker (`map_init`), as `rigid::multibody::batch` does. Each
 /// case is evaluated alone, so the results are the same bit for bit either way.
-fn evaluate_all(model: &Model, cases: &[Case]) -> Vec<Result<CaseResult, String>> {
+fn evaluate_all(
+    model: &Model,
+    cases: &[Case],
+    derivatives: bool,
+) -> Vec<Result<CaseResult, String>> {
     use rayon::prelude::*;
     if cases.len() < PARALLEL_CASES {
         let mut data = Data::new(model);
         return cases
             .iter()
-            .map(|c| evaluate(model, &mut data, c))
+            .map(|c| evaluate(model, &mut data, c, derivatives))
             .collect();
     }
     cases
         .par_iter()
-        .map_init(|| Data::new(model), |data, c| evaluate(model, data, c))
+        .map_init(
+            || Data::new(model),
+            |data, c| evaluate(model, data, c, derivatives),
+        )
         .collect()
 }
 
-fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, String> {
+fn evaluate(
+    model: &Model,
+    data: &mut Data,
+    c: &Case,
+    derivatives: bool,
+) -> Result<CaseResult, String> {
     use rigid::multibody::MultibodyError;
     let e = |what: &'static str| move |e: MultibodyError| format!("{what}: {e}");
     let rnea = rnea(model, data, &c.q, &c.v, &c.a).map_err(e("rnea"))?;
     let rnea = rnea.as_slice().to_vec();
-    let m = crba(model, data, &c.q).map_err(e("mass_matrix"))?;
-    let mass_matrix = (0..m.nrows())
-        .map(|r| (0..m.ncols()).map(|k| m[(r, k)]).collect())
-        .collect();
+    let mass_matrix = rows(crba(model, data, &c.q).map_err(e("mass_matrix"))?);
     let nle = nonlinear_effects(model, data, &c.q, &c.v).map_err(e("nonlinear_effects"))?;
     let nle = nle.as_slice().to_vec();
     let g = gravity_torques(model, data, &c.q).map_err(e("gravity_torques"))?;
@@ -247,6 +230,45 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
             (j.name.clone(), p)
         })
         .collect();
+    // A result that overflowed (huge masses, huge velocities) is an error, not a JSON `null`.
+    let finite = |what: &'static str, x: &[f64]| {
+        if x.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} is not finite: the numbers overflow (check the masses and the state)"
+            ))
+        }
+    };
+    finite("rnea", &rnea)?;
+    finite("mass_matrix", &mass_matrix.concat())?;
+    finite("nonlinear_effects", &nle)?;
+    finite("gravity_torques", &g)?;
+    finite("aba", &ddq)?;
+    finite("kinetic_energy", &[kinetic_energy, potential_energy])?;
+    finite("com", &[com.x, com.y, com.z])?;
+    let (rnea_derivatives, aba_derivatives) = if derivatives {
+        let d = rnea_derivatives(model, data, &c.q, &c.v, &c.a).map_err(e("rnea_derivatives"))?;
+        let r = RneaDerivatives {
+            dtau_dq: rows(d.dtau_dq),
+            dtau_dv: rows(d.dtau_dv),
+        };
+        let d = aba_derivatives(model, data, &c.q, &c.v, &c.tau).map_err(e("aba_derivatives"))?;
+        let f = AbaDerivatives {
+            dqdd_dq: rows(d.dqdd_dq),
+            dqdd_dv: rows(d.dqdd_dv),
+            dqdd_dtau: rows(d.dqdd_dtau),
+        };
+        finite(
+            "rnea_derivatives",
+            &[r.dtau_dq.concat(), r.dtau_dv.concat()].concat(),
+        )?;
+        let all = [f.dqdd_dq.concat(), f.dqdd_dv.concat(), f.dqdd_dtau.concat()].concat();
+        finite("aba_derivatives", &all)?;
+        (Some(r), Some(f))
+    } else {
+        (None, None)
+    };
     // `+ 0.0` turns an empty sum's `-0.0` into `0.0`.
     Ok(CaseResult {
         rnea,
@@ -259,6 +281,8 @@ fn evaluate(model: &Model, data: &mut Data, c: &Case) -> Result<CaseResult, Stri
         com: [com.x + 0.0, com.y + 0.0, com.z + 0.0],
         total_mass: model.total_mass() + 0.0,
         placements: Placements(placements),
+        rnea_derivatives,
+        aba_derivatives,
     })
 }
 
@@ -290,9 +314,21 @@ fn print_summary(out: &Output) {
             fmt_vec(&r.com),
             r.total_mass
         );
-        println!("  mass matrix");
-        for row in &r.mass_matrix {
-            println!("    {}", fmt_vec(row));
+        let mut matrices = vec![("mass matrix", &r.mass_matrix)];
+        if let (Some(d), Some(f)) = (&r.rnea_derivatives, &r.aba_derivatives) {
+            matrices.extend([
+                ("rnea derivatives dtau/dq", &d.dtau_dq),
+                ("rnea derivatives dtau/dv", &d.dtau_dv),
+                ("aba derivatives dqdd/dq", &f.dqdd_dq),
+                ("aba derivatives dqdd/dv", &f.dqdd_dv),
+                ("aba derivatives dqdd/dtau", &f.dqdd_dtau),
+            ]);
+        }
+        for (name, m) in matrices {
+            println!("  {name}");
+            for row in m {
+                println!("    {}", fmt_vec(row));
+            }
         }
     }
 }

@@ -27,8 +27,11 @@ pub enum Format {
 /// Arguments of `rigid explicit`.
 #[derive(Args)]
 pub struct ExplicitArgs {
-    /// A URDF file or a built-in model name (`puma560`, `pendulum`, `double_pendulum`, …).
+    /// A URDF file, a built-in model (`puma560`, `pendulum`, `double_pendulum`, …) or a robot
+    /// of example-robot-data by name (`ur5`, `panda`).
     model: String,
+    #[command(flatten)]
+    load: crate::load::LoadArgs,
     /// Drop each term whose largest magnitude over the joint ranges is below T times the largest
     /// term of its entry, and print the proven bound on each entry's error (0: exact).
     #[arg(long, default_value_t = 0.0)]
@@ -108,7 +111,7 @@ pub fn run(args: &ExplicitArgs) -> Result<(), String> {
     if !(args.tolerance >= 0.0 && args.tolerance < 1.0) {
         return Err(format!("--tolerance {} must be in [0, 1)", args.tolerance));
     }
-    let mut model = load_model(&args.model, false)?;
+    let mut model = load_model(&args.model, &args.load)?;
     if !args.lock.is_empty() {
         let mut locks = Vec::new();
         for l in &args.lock {

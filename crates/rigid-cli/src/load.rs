@@ -1,8 +1,33 @@
-//! Finding a model from the command line: a URDF file or a built-in model name.
+//! Finding a model from the command line: a URDF file or a built-in model name, with the
+//! loading options every model command shares (`--floating`, `--inertia`).
 
-use rigid::io::urdf;
+use clap::Args;
+use rigid::io::urdf::{self, InertiaPolicy, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, Model};
 use std::path::Path;
+
+/// How to load a URDF: shared by the commands that take a model.
+#[derive(Args, Clone, Copy, Debug)]
+pub struct LoadArgs {
+    /// Add a free-flyer root joint carrying the URDF's root link.
+    #[arg(long)]
+    pub floating: bool,
+    /// Non-physical inertias in a URDF: `strict` refuses them, `warn` loads them as written
+    /// with a warning, `repair` loads the doctor's repair (see `rigid doctor`).
+    #[arg(long, default_value = "warn", value_name = "strict|warn|repair")]
+    pub inertia: InertiaPolicy,
+}
+
+impl LoadArgs {
+    /// The URDF options these arguments ask for.
+    pub fn urdf_options(&self) -> UrdfOptions {
+        UrdfOptions {
+            floating: self.floating,
+            inertia: self.inertia,
+            ..UrdfOptions::default()
+        }
+    }
+}
 
 /// True when `spec` names a file (or looks like a URDF path) rather than a built-in model.
 pub fn is_file(spec: &str) -> bool {
@@ -10,26 +35,116 @@ pub fn is_file(spec: &str) -> bool {
     p.exists() || spec.ends_with(".urdf") || spec.ends_with(".xml") || spec.contains('/')
 }
 
-/// The model named by `spec`: a URDF file, loaded with a free-flyer root if `floating`, or a
-/// built-in model.
+/// Warnings printed on stderr by the commands that are not about the model itself.
+const SHOWN_WARNINGS: usize = 5;
+
+/// The model named by `spec`: a URDF file loaded under `args`, or a built-in model. The URDF's
+/// warnings go to stderr (the first few, then a count).
 ///
 /// # Errors
 /// The URDF error (with its file, link or joint and line), an unknown built-in name, or
 /// `--floating` asked of a built-in model.
-pub fn load_model(spec: &str, floating: bool) -> Result<Model, String> {
-    if is_file(spec) {
-        return urdf::load_urdf(spec, floating).map_err(|e| format!("{spec}: {e}"));
+pub fn load_model(spec: &str, args: &LoadArgs) -> Result<Model, String> {
+    let (model, warnings) = load_model_with_warnings(spec, args)?;
+    for w in warnings.iter().take(SHOWN_WARNINGS) {
+        eprintln!("warning: {spec}: {w}");
+    }
+    if warnings.len() > SHOWN_WARNINGS {
+        eprintln!(
+            "warning: {spec}: {} more warnings (`rigid model {spec}` lists them all)",
+            warnings.len() - SHOWN_WARNINGS
+        );
+    }
+    Ok(model)
+}
+
+/// As [`load_model`], returning the warnings instead of printing them.
+///
+/// # Errors
+/// As [`load_model`].
+pub fn load_model_with_warnings(
+    spec: &str,
+    args: &LoadArgs,
+) -> Result<(Model, Vec<String>), String> {
+    if let Some(path) = urdf_path(spec) {
+        let (model, warnings) = urdf::load_urdf_with(&path, &args.urdf_options())
+            .map_err(|e| format!("{spec}: {e}"))?;
+        return Ok((model, warnings.iter().map(ToString::to_string).collect()));
     }
     let model = builtin(spec).ok_or_else(|| {
+        let erd = if ROBOTS.iter().any(|(n, _)| *n == spec) {
+            " (it is a robot of example-robot-data, which was not found: `pip install \
+             example-robot-data`, or set EXAMPLE_ROBOT_DATA to its robots/ folder)"
+        } else {
+            ""
+        };
         format!(
-            "unknown model \"{spec}\": not a file, and not a built-in model ({})",
-            builtin_names().join(", ")
+            "unknown model \"{spec}\": not a file, and not a built-in model ({}, or {} with \
+             example-robot-data){erd}",
+            builtin_names().join(", "),
+            ROBOTS.iter().map(|r| r.0).collect::<Vec<_>>().join(", ")
         )
     })?;
-    if floating {
+    if args.floating {
         return Err(format!(
             "--floating applies to URDF models; the built-in model \"{spec}\" has a fixed base"
         ));
     }
-    Ok(model)
+    Ok((model, Vec::new()))
+}
+
+/// Robots of example-robot-data known by name: `(name, URDF path under its robots/ folder)`.
+pub const ROBOTS: &[(&str, &str)] = &[
+    ("ur5", "ur_description/urdf/ur5_robot.urdf"),
+    ("ur10", "ur_description/urdf/ur10_robot.urdf"),
+    ("panda", "panda_description/urdf/panda.urdf"),
+    ("talos", "talos_data/robots/talos_reduced.urdf"),
+    ("talos_full", "talos_data/robots/talos_full_v2.urdf"),
+    ("solo12", "solo_description/robots/solo12.urdf"),
+    ("anymal", "anymal_b_simple_description/robots/anymal.urdf"),
+    ("tiago", "tiago_description/robots/tiago.urdf"),
+];
+
+/// example-robot-data's `robots/` folder: `EXAMPLE_ROBOT_DATA`, else `share/example-robot-data/
+/// robots` under `AMENT_PREFIX_PATH` or `CMAKE_PREFIX_PATH`, else under the `cmeel.prefix` of
+/// Python's site-packages (where `pip install example-robot-data` puts it).
+fn example_robot_data() -> Option<std::path::PathBuf> {
+    if let Some(p) = std::env::var_os("EXAMPLE_ROBOT_DATA") {
+        return Some(p.into());
+    }
+    let share = |prefix: &Path| prefix.join("share/example-robot-data/robots");
+    for var in ["AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH"] {
+        if let Some(paths) = std::env::var_os(var) {
+            if let Some(p) = std::env::split_paths(&paths)
+                .map(|p| share(&p))
+                .find(|p| p.is_dir())
+            {
+                return Some(p);
+            }
+        }
+    }
+    let out = std::process::Command::new("python3")
+        .args([
+            "-c",
+            "import sysconfig; print(sysconfig.get_paths()['purelib'])",
+        ])
+        .output()
+        .ok()?;
+    let site = String::from_utf8(out.stdout).ok()?;
+    let p = share(&Path::new(site.trim()).join("cmeel.prefix"));
+    p.is_dir().then_some(p)
+}
+
+/// The URDF file `spec` names: itself if it is a file (or looks like a path), the file of a
+/// robot of example-robot-data known by name ([`ROBOTS`]), else `None` (a built-in model).
+pub fn urdf_path(spec: &str) -> Option<std::path::PathBuf> {
+    if is_file(spec) {
+        return Some(spec.into());
+    }
+    if builtin(spec).is_some() {
+        return None;
+    }
+    let rel = ROBOTS.iter().find(|(n, _)| *n == spec)?.1;
+    let p = example_robot_data()?.join(rel);
+    p.is_file().then_some(p)
 }

@@ -7,12 +7,16 @@ use std::process::ExitCode;
 
 mod bench;
 mod bench_batch;
+mod doctor;
 mod eval;
 mod explicit;
 mod load;
 mod mass;
 mod model;
+mod plotting;
+mod replay;
 mod simulate;
+mod view;
 
 /// Rigid-body dynamics from the command line.
 #[derive(Parser)]
@@ -26,16 +30,21 @@ struct Cli {
 enum Command {
     /// Time the multibody algorithms on a model (median ns per call over random states).
     Bench(bench::BenchArgs),
+    /// Check a URDF's inertial data: what is wrong, the likely cause, the nearest valid value.
+    Doctor(doctor::DoctorArgs),
     /// Mass properties of a body made of parts (a TOML spec): mass, CoM, inertia, G.
     Mass(mass::MassArgs),
-    /// Simulate one rigid body (free, or on a pivot) and report energy and momentum errors.
-    Simulate(simulate::SimulateArgs),
+    /// Simulate a robot (URDF or built-in model) or one rigid body (a TOML spec): CSV, plots, a
+    /// 3D replay in the browser, and a summary.
+    Simulate(Box<simulate::SimulateArgs>),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
     /// The explicit dynamic model: M(q), Coriolis, centrifugal and gravity terms as abbreviated tables or code.
     Explicit(explicit::ExplicitArgs),
     /// Summarise a robot model: bodies, joints, sizes, mass and the validity of every inertia.
     Model(model::ModelArgs),
+    /// Draw a robot in one pose, as a self-contained HTML page (WebGL).
+    View(view::ViewArgs),
 }
 
 /// Exit code 2 and the message on stderr for an error.
@@ -49,13 +58,122 @@ fn report(result: Result<(), String>) -> ExitCode {
     }
 }
 
+/// A command-line error of clap on one line: its message without the `error:` prefix, the usage
+/// and the tips, the remaining lines joined by `; `.
+fn one_line(text: &str) -> String {
+    text.lines()
+        .map(str::trim)
+        .take_while(|l| !l.starts_with("Usage:"))
+        .filter(|l| !l.is_empty() && !l.starts_with("tip:") && !l.starts_with("For more"))
+        .map(|l| l.trim_start_matches("error:").trim())
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so that an
+/// output is never left half-written.
+///
+/// # Errors
+/// The file cannot be written (the message names it).
+pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), String> {
+    let tmp = temp_path(path);
+    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(format!("cannot write {}: {e}", path.display()));
+    }
+    Ok(())
+}
+
+/// The temporary file next to `path` that an atomic write goes through.
+fn temp_path(path: &std::path::Path) -> std::path::PathBuf {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    dir.join(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// A file written through a temporary file in the same folder, renamed into place by
+/// [`commit`](Self::commit) (removed if dropped before): for outputs written as they are
+/// produced (a CSV row per step).
+pub struct AtomicFile {
+    tmp: std::path::PathBuf,
+    path: std::path::PathBuf,
+    out: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl AtomicFile {
+    /// Opens the temporary file for `path`.
+    ///
+    /// # Errors
+    /// The folder cannot be written (the message names the file).
+    pub fn create(path: &std::path::Path) -> Result<Self, String> {
+        let tmp = temp_path(path);
+        let f = std::fs::File::create(&tmp)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        Ok(Self {
+            tmp,
+            path: path.to_path_buf(),
+            out: Some(std::io::BufWriter::new(f)),
+        })
+    }
+
+    /// The buffered writer.
+    pub fn writer(&mut self) -> &mut std::io::BufWriter<std::fs::File> {
+        self.out.as_mut().expect("not committed")
+    }
+
+    /// Flushes and renames the file into place.
+    ///
+    /// # Errors
+    /// The file cannot be written.
+    pub fn commit(mut self) -> Result<(), String> {
+        use std::io::Write;
+        let mut out = self.out.take().expect("committed once");
+        let err = |e: std::io::Error| format!("cannot write {}: {e}", self.path.display());
+        out.flush().map_err(err)?;
+        drop(out);
+        std::fs::rename(&self.tmp, &self.path).map_err(err)
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if self.out.take().is_some() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
 fn main() -> ExitCode {
-    match Cli::parse().command {
+    // Rust ignores SIGPIPE, so a closed stdout (`rigid doctor x.urdf | head`) would make every
+    // `println!` panic; restore the default: the process ends quietly, as other tools do.
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to its default before any thread is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help and --version print as clap does
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            eprintln!("error: {}", one_line(&e.to_string()));
+            return ExitCode::from(2);
+        }
+    };
+    match cli.command {
         Command::Bench(args) => report(bench::run(&args)),
+        Command::Doctor(args) => report(doctor::run(&args)),
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),
         Command::Model(args) => report(model::run(&args)),
         Command::Explicit(args) => report(explicit::run(&args)),
+        Command::View(args) => report(view::run(&args)),
     }
 }

@@ -1,9 +1,10 @@
-//! `rigid model MODEL [--floating]`: a readable summary of a model (bodies, joints, sizes, total
-//! mass) and a validity report of every inertia.
+//! `rigid model MODEL [--floating] [--inertia strict|warn|repair]`: a readable summary of a model
+//! (bodies, joints, sizes, total mass), the warnings of its file and a validity report of every
+//! inertia.
 
-use crate::load::{is_file, load_model};
+use crate::load::{is_file, load_model, LoadArgs};
 use clap::Args;
-use rigid::io::urdf::{self, build_model, InertiaIssue};
+use rigid::io::urdf::{self, build_model_with};
 use rigid::multibody::{FrameKind, Model};
 
 /// Arguments of `rigid model`.
@@ -11,19 +12,18 @@ use rigid::multibody::{FrameKind, Model};
 pub struct ModelArgs {
     /// A URDF file, or a built-in model name (`puma560`, `pendulum`, `double_pendulum`).
     pub model: String,
-    /// Add a free-flyer root joint carrying the URDF's root link.
-    #[arg(long)]
-    pub floating: bool,
+    #[command(flatten)]
+    pub load: LoadArgs,
 }
 
 /// Runs `rigid model`.
 ///
 /// # Errors
-/// A model that cannot be read or built (after printing the inertia report, if the file could be
+/// A model that cannot be read or built (after printing what was found, if the file could be
 /// parsed).
 pub fn run(args: &ModelArgs) -> Result<(), String> {
     if !is_file(&args.model) {
-        let model = load_model(&args.model, args.floating)?;
+        let model = load_model(&args.model, &args.load)?;
         print_model(&model);
         let mut issues = body_report(&model);
         issues.extend(massless_subtrees(&model));
@@ -32,39 +32,37 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
     }
     let spec = &args.model;
     let robot = urdf::parse_urdf_file(spec).map_err(|e| format!("{spec}: {e}"))?;
-    let issues: Vec<String> = robot
-        .inertia_report()
-        .iter()
-        .map(|i: &InertiaIssue| {
-            let tag = if i.is_error() { "error" } else { "warning" };
-            format!("{tag}: {i}")
-        })
-        .collect();
-    match build_model(&robot, args.floating) {
-        Ok(model) => {
-            println!(
-                "URDF {spec}: {} links, {} joints ({} fixed)",
-                robot.links.len(),
-                robot.joints.len(),
-                robot
-                    .joints
-                    .iter()
-                    .filter(|j| j.kind == urdf::UrdfJointKind::Fixed)
-                    .count()
-            );
+    println!(
+        "URDF {spec}: robot \"{}\", {} links, {} joints ({} fixed)",
+        robot.name,
+        robot.links.len(),
+        robot.joints.len(),
+        robot
+            .joints
+            .iter()
+            .filter(|j| j.kind == urdf::UrdfJointKind::Fixed)
+            .count()
+    );
+    match build_model_with(&robot, &args.load.urdf_options()) {
+        Ok((model, warnings)) => {
             print_model(&model);
-            print_report(&issues, robot.links.len(), "links");
+            let warnings: Vec<String> = warnings.iter().map(|w| format!("warning: {w}")).collect();
+            println!(
+                "inertia policy: {}; {} warning(s){}",
+                args.load.inertia.as_str(),
+                warnings.len(),
+                if warnings.is_empty() { "" } else { ":" }
+            );
+            for w in &warnings {
+                println!("  {w}");
+            }
             print_report(&body_report(&model), model.joints().len(), "moving bodies");
             Ok(())
         }
         Err(e) => {
-            println!(
-                "URDF {spec}: robot \"{}\", {} links, {} joints",
-                robot.name,
-                robot.links.len(),
-                robot.joints.len()
-            );
-            print_report(&issues, robot.links.len(), "links");
+            for w in &robot.warnings {
+                println!("  warning: {w}");
+            }
             Err(format!("{spec}: {e}"))
         }
     }
@@ -106,11 +104,12 @@ fn print_model(model: &Model) {
     }
     let frames = model.frames();
     if !frames.is_empty() {
-        println!("frames (links and fixed bodies, named frames):");
+        println!("frames (links, fixed joints, named frames):");
         for f in frames {
             let on = f.parent.map_or("(world)", |p| joints[p.0].name.as_str());
             let kind = match f.kind {
-                FrameKind::FixedBody => "fixed body",
+                FrameKind::Body => "link",
+                FrameKind::FixedJoint => "fixed joint",
                 FrameKind::Operational => "frame",
             };
             println!("  {:<10} {:<40} on {}", kind, f.name, on);

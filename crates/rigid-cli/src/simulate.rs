@@ -1,45 +1,66 @@
-//! `rigid simulate SPEC.toml`: one rigid body, free or on a pivot, integrated on SE(3).
+//! `rigid simulate MODEL`: a robot (a URDF file or a built-in model, [`robot`]) or one rigid body
+//! (a `rigid mass` TOML spec, [`body`]), chosen by the input.
 
+mod body;
 mod plot;
+mod robot;
+mod robot_plot;
 
+use crate::load::LoadArgs;
 use clap::Args;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rigid::body::{BodyError, Integrator, RigidBody, Simulator, State};
-use rigid::mass::{RotationalInertia, SpatialInertia};
-use rigid::spatial::{so3, Transform, Twist, Vec3};
-use std::fs::File;
-use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use rigid::spatial::Vec3;
+use std::path::PathBuf;
 
-/// The CSV header: pose in the world of the frame at the CoM with the axes of the spec frame
-/// (position, quaternion x-y-z-w), and that frame's body twist, angular first.
-pub const CSV_HEADER: &str = "t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz";
-
-/// Most points drawn per curve in the plot.
-const PLOT_POINTS: usize = 2000;
+/// Most points drawn per curve in a plot.
+pub const PLOT_POINTS: usize = 2000;
 
 /// Most steps a run may take.
-const MAX_STEPS: f64 = 1e9;
+pub const MAX_STEPS: f64 = 1e9;
 
 /// Options of `rigid simulate`.
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
-    /// The body: a `rigid mass` spec (TOML with `[[part]]` tables).
-    pub spec: PathBuf,
-    /// Initial body angular velocity `wx,wy,wz` (rad/s, axes of the spec frame).
+    /// What to simulate: a URDF file or a built-in model (`ur5`, `panda`, `talos` and the other
+    /// robots of example-robot-data when it is installed; `puma560`, `double_pendulum`, …), or
+    /// one rigid body as a `rigid mass` spec (`.toml`).
+    pub model: String,
+    #[command(flatten)]
+    pub load: LoadArgs,
+    /// Robot: initial configuration, `nq` comma-separated numbers (default: the neutral one).
+    #[arg(long, value_parser = parse_list, allow_hyphen_values = true)]
+    pub q0: Option<Numbers>,
+    /// Robot: initial velocity, `nv` comma-separated numbers (default: zero).
+    #[arg(long, value_parser = parse_list, allow_hyphen_values = true)]
+    pub v0: Option<Numbers>,
+    /// Robot: `none`, `gravity` (compensation), `pd` (to --target, with gravity compensation) or
+    /// `track` (computed torque along a quintic from q0 to --target in --move-time).
+    #[arg(long, default_value = "none", value_name = "none|gravity|pd|track")]
+    pub controller: String,
+    /// Robot: the target configuration of `pd` and `track` (`nq` numbers).
+    #[arg(long, value_parser = parse_list, allow_hyphen_values = true)]
+    pub target: Option<Numbers>,
+    /// Robot: duration of the `track` motion (s; default half of --duration).
+    #[arg(long)]
+    pub move_time: Option<f64>,
+    /// Robot: time scaling of the `track` motion: `quintic` or `trapezoidal`.
+    #[arg(long, default_value = "quintic", value_name = "quintic|trapezoidal")]
+    pub profile: String,
+    /// Robot: joint position limits: `spring` (a stiff spring-damper past a limit) or `ignored`.
+    #[arg(long, default_value = "spring", value_name = "spring|ignored")]
+    pub limits: String,
+    /// Robot: leave out the URDF's joint damping and friction (`<dynamics>`).
+    #[arg(long)]
+    pub no_joint_dynamics: bool,
+    /// Body: initial body angular velocity `wx,wy,wz` (rad/s, axes of the spec frame).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0,0,0")]
     pub omega: Vec3,
-    /// Initial linear velocity of the CoM `vx,vy,vz` (m/s, axes of the spec frame); a free body
-    /// only.
+    /// Body: initial linear velocity of the CoM `vx,vy,vz` (m/s, spec axes); a free body only.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0,0,0")]
     pub velocity: Vec3,
-    /// Gravity `gx,gy,gz` in the world (m/s²); none by default. The world axes start aligned
-    /// with the spec frame.
+    /// Gravity `gx,gy,gz` in the world (m/s²). Body: none by default; robot: the model's.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub gravity: Option<Vec3>,
-    /// A point `x,y,z` of the spec frame fixed in the world (a spherical pivot), placed at the
-    /// world origin.
+    /// Body: a point `x,y,z` of the spec frame fixed in the world (a spherical pivot).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub pivot: Option<Vec3>,
     /// Simulated time (s).
@@ -48,89 +69,51 @@ pub struct SimulateArgs {
     /// Time step (s).
     #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
     pub dt: f64,
-    /// `rk4` (explicit Lie-group Runge-Kutta-Munthe-Kaas, 4th order) or `variational` (Lie-group
-    /// variational integrator: symplectic, momentum to round-off, bounded energy error).
-    #[arg(long, default_value = "variational")]
-    pub integrator: Integrator,
-    /// Write one row per step to this CSV file (header `t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz`).
+    /// Robot: `semi-implicit`, `rk4` (default) or `variational`. Body: `rk4` or `variational`
+    /// (default).
+    #[arg(long)]
+    pub integrator: Option<String>,
+    /// Write one row per step to this CSV file (robot: `t`, then q, v and τ with joint-named
+    /// columns; body: `t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz`).
     #[arg(long)]
     pub csv: Option<PathBuf>,
-    /// Draw body angular velocity, energy error and momentum error against time to this SVG file.
+    /// Draw a figure to this SVG or PNG file (robot: joint angles, velocities, torques and total
+    /// energy; body: angular velocity, energy and momentum errors).
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Write a 3D replay to this self-contained HTML file (opens offline in a browser).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
 }
+
+/// Comma-separated numbers from the command line.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Numbers(pub Vec<f64>);
 
 /// Parses `x,y,z` into three finite numbers.
 fn parse_vec3(s: &str) -> Result<Vec3, String> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    if parts.len() != 3 {
+    let v = parse_list(s)?.0;
+    if v.len() != 3 {
         return Err(format!("expected three numbers x,y,z, got {s:?}"));
     }
-    let mut v = Vec3::zeros();
-    for (i, p) in parts.iter().enumerate() {
-        let x: f64 = p.parse().map_err(|_| format!("{p:?} is not a number"))?;
-        if !x.is_finite() {
-            return Err(format!("{p:?} is not a finite number"));
-        }
-        v[i] = x;
-    }
-    Ok(v)
+    Ok(Vec3::new(v[0], v[1], v[2]))
 }
 
-/// Mass, CoM (spec frame) and inertia about the CoM (spec-frame axes) of the body in `path`.
-fn load_body(path: &Path) -> Result<(f64, Vec3, RotationalInertia), String> {
-    let p = crate::mass::load_mass_properties(path)?;
-    Ok((p.mass, p.com, p.inertia_com))
+/// Parses comma-separated finite numbers.
+pub fn parse_list(s: &str) -> Result<Numbers, String> {
+    s.split(',')
+        .map(str::trim)
+        .map(|p| match p.parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            Ok(_) => Err(format!("{p:?} is not a finite number")),
+            Err(_) => Err(format!("{p:?} is not a number")),
+        })
+        .collect::<Result<_, _>>()
+        .map(Numbers)
 }
 
-/// The body and its initial state, in the frame {b} the simulator integrates: at the CoM (free)
-/// or at the pivot, with the axes of the spec frame. Also returns `r`: the CoM in {b}.
-fn setup(args: &SimulateArgs) -> Result<(RigidBody, State, Vec3), String> {
-    let (mass, com, inertia_com) = load_body(&args.spec)?;
-    let err = |e: BodyError| e.to_string();
-    let (body, r, v_b) = match args.pivot {
-        None => {
-            let g = SpatialInertia::from_com(mass, Vec3::zeros(), inertia_com);
-            (
-                RigidBody::free(g).map_err(err)?,
-                Vec3::zeros(),
-                args.velocity,
-            )
-        }
-        Some(p) => {
-            if args.velocity != Vec3::zeros() {
-                return Err(
-                    "--velocity cannot be used with --pivot: the pivot point is fixed".into(),
-                );
-            }
-            let r = com - p;
-            let g = SpatialInertia::from_com(mass, r, inertia_com);
-            (RigidBody::pivot(g).map_err(err)?, r, Vec3::zeros())
-        }
-    };
-    let body = body
-        .with_gravity(args.gravity.unwrap_or_default())
-        .map_err(err)?;
-    let x0 = State::new(Transform::identity(), Twist::new(args.omega, v_b));
-    Ok((body, x0, r))
-}
-
-/// One CSV row: the CoM frame `T_sc = T_sb (I, r)` and its body twist `V_c = [Ad_{T_cb}] V_b`.
-fn write_row(out: &mut impl Write, t: f64, x: &State, r: &Vec3) -> std::io::Result<()> {
-    let t_bc = Transform::from_translation(*r);
-    let pose = x.pose * t_bc;
-    let v = t_bc.inv_act_twist(&x.twist);
-    let p = pose.translation;
-    let [qx, qy, qz, qw] = so3::to_quaternion(&pose.rotation);
-    writeln!(
-        out,
-        "{t},{},{},{},{qx},{qy},{qz},{qw},{},{},{},{},{},{}",
-        p.x, p.y, p.z, v.w.x, v.w.y, v.w.z, v.v.x, v.v.y, v.v.z
-    )
-}
-
-/// Runs `rigid simulate`.
-pub fn run(args: &SimulateArgs) -> Result<(), String> {
+/// The number of steps for `--duration` and `--dt`, checked.
+fn step_count(args: &SimulateArgs) -> Result<u64, String> {
     if !(args.dt.is_finite() && args.dt > 0.0) {
         return Err(format!("--dt must be positive and finite, got {}", args.dt));
     }
@@ -146,82 +129,89 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             "{steps:.0} steps is too many (at most {MAX_STEPS:.0}): raise --dt"
         ));
     }
-    let steps = steps as u64;
-    let (body, x0, r) = setup(args)?;
-    let mut sim = Simulator::new(body, x0, args.integrator, args.dt).map_err(|e| e.to_string())?;
+    Ok(steps as u64)
+}
 
-    let mut csv = match &args.csv {
-        Some(path) => {
-            let f =
-                File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            let mut w = BufWriter::new(f);
-            writeln!(w, "{CSV_HEADER}").map_err(|e| e.to_string())?;
-            write_row(&mut w, 0.0, &x0, &r).map_err(|e| e.to_string())?;
-            Some(w)
-        }
-        None => None,
+/// Runs `rigid simulate`: a `.toml` input is a body spec, anything else a robot.
+pub fn run(args: &SimulateArgs) -> Result<(), String> {
+    if let Some(plot) = &args.plot {
+        crate::plotting::check_format(plot)?;
+    }
+    let body = args.model.to_ascii_lowercase().ends_with(".toml");
+    // a flag of the other kind of simulation is a mistake, not something to ignore
+    let zero = Vec3::zeros();
+    let misplaced: &[(&str, bool)] = if body {
+        &[
+            ("--q0", args.q0.is_some()),
+            ("--v0", args.v0.is_some()),
+            ("--controller", args.controller != "none"),
+            ("--target", args.target.is_some()),
+            ("--move-time", args.move_time.is_some()),
+            ("--profile", args.profile != "quintic"),
+            ("--limits", args.limits != "spring"),
+            ("--no-joint-dynamics", args.no_joint_dynamics),
+            ("--floating", args.load.floating),
+        ]
+    } else {
+        &[
+            ("--omega", args.omega != zero),
+            ("--velocity", args.velocity != zero),
+            ("--pivot", args.pivot.is_some()),
+        ]
     };
-    let stride = (steps as usize).div_ceil(PLOT_POINTS).max(1) as u64;
-    let mut samples = plot::Samples::default();
-    if args.plot.is_some() {
-        samples.push(0.0, sim.state(), &sim.summary());
+    if let Some((flag, _)) = misplaced.iter().find(|(_, given)| *given) {
+        let what = if body {
+            "a robot (URDF or model name)"
+        } else {
+            "a body spec (.toml)"
+        };
+        return Err(format!("{flag} applies to {what}, not to {}", args.model));
+    }
+    if body {
+        body::run(args)
+    } else {
+        robot::run(args)
+    }
+}
+
+/// A progress bar on stderr that appears only once a run has taken more than a second.
+pub struct Progress {
+    bar: indicatif::ProgressBar,
+    start: std::time::Instant,
+    shown: bool,
+}
+
+impl Progress {
+    /// A hidden bar for `steps` steps.
+    pub fn new(steps: u64) -> Result<Self, String> {
+        use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+        let bar = ProgressBar::with_draw_target(Some(steps), ProgressDrawTarget::hidden());
+        bar.set_style(
+            ProgressStyle::with_template("{bar:40} {pos}/{len} steps, {eta} left")
+                .map_err(|e| e.to_string())?,
+        );
+        Ok(Self {
+            bar,
+            start: std::time::Instant::now(),
+            shown: false,
+        })
     }
 
-    let bar = ProgressBar::with_draw_target(Some(steps), ProgressDrawTarget::hidden());
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} steps, {eta} left")
-            .map_err(|e| e.to_string())?,
-    );
-    let start = Instant::now();
-    let mut shown = false;
-    let mut failure = None;
-    for k in 1..=steps {
-        if let Err(e) = sim.step() {
-            failure = Some(format!("step {k} (t = {:.6} s): {e}", sim.time()));
-            break;
-        }
-        if let Some(w) = csv.as_mut() {
-            write_row(w, sim.time(), sim.state(), &r).map_err(|e| e.to_string())?;
-        }
-        if args.plot.is_some() && (k.is_multiple_of(stride) || k == steps) {
-            samples.push(sim.time(), sim.state(), &sim.summary());
-        }
+    /// After step `k`.
+    pub fn tick(&mut self, k: u64) {
         if k.is_multiple_of(1024) {
-            if !shown && start.elapsed() > Duration::from_secs(1) {
-                bar.set_draw_target(ProgressDrawTarget::stderr());
-                shown = true;
+            if !self.shown && self.start.elapsed() > std::time::Duration::from_secs(1) {
+                self.bar
+                    .set_draw_target(indicatif::ProgressDrawTarget::stderr());
+                self.shown = true;
             }
-            bar.set_position(k);
+            self.bar.set_position(k);
         }
     }
-    bar.finish_and_clear();
-    let wall = start.elapsed().as_secs_f64();
-    if let Some(mut w) = csv {
-        w.flush().map_err(|e| e.to_string())?;
+
+    /// Clears the bar; returns the wall time (s).
+    pub fn finish(self) -> f64 {
+        self.bar.finish_and_clear();
+        self.start.elapsed().as_secs_f64()
     }
-    if let Some(path) = &args.plot {
-        plot::draw(path, &samples).map_err(|e| format!("cannot draw {}: {e}", path.display()))?;
-    }
-    if let Some(e) = failure {
-        return Err(e);
-    }
-    let s = sim.summary();
-    let about = match (args.pivot, s.conserved_axis) {
-        (None, _) => "about the CoM",
-        (Some(_), None) => "about the pivot",
-        (Some(_), Some(_)) => "about the pivot, along gravity",
-    };
-    println!("integrator: {}", args.integrator);
-    println!("steps: {}", s.steps);
-    println!("simulated time: {} s", s.time);
-    println!(
-        "wall time: {wall:.3} s ({:.0} steps/s)",
-        s.steps as f64 / wall.max(1e-9)
-    );
-    println!("relative energy error: {:.3e}", s.relative_energy_error());
-    println!(
-        "relative angular momentum error ({about}): {:.3e}",
-        s.relative_momentum_error()
-    );
-    Ok(())
 }

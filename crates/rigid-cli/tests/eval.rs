@@ -131,13 +131,9 @@ fn eval_json_has_the_contract_keys_and_the_pendulum_values() {
     assert!((num(&r["kinetic_energy"]) - 0.5 * (m * l * l + i) * 1.5 * 1.5).abs() < 1e-12);
 }
 
-#[test]
-fn eval_floating_adds_a_free_flyer_root() {
-    let cases = temp_file(
-        "floating.json",
-        r#"{"cases": [{"q": [0, 0, 0, 0, 0, 0, 1, 0.3]}]}"#,
-    );
-    // A 1 kg base, so that the free-flying system has a regular mass matrix.
+/// The pendulum fixture with a 1 kg base (so that, on a free-flyer, the mass matrix is regular),
+/// written to a temporary file `tag`.
+fn pendulum_with_base(tag: &str) -> String {
     let urdf = std::fs::read_to_string(fixture("pendulum.urdf"))
         .unwrap()
         .replace(
@@ -145,7 +141,20 @@ fn eval_floating_adds_a_free_flyer_root() {
             r#"<link name="base"><inertial><mass value="1"/>
              <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#,
         );
-    let out = eval_json(&temp_file("floating.urdf", &urdf), &cases, &["--floating"]);
+    temp_file(tag, &urdf)
+}
+
+#[test]
+fn eval_floating_adds_a_free_flyer_root() {
+    let cases = temp_file(
+        "floating.json",
+        r#"{"cases": [{"q": [0, 0, 0, 0, 0, 0, 1, 0.3]}]}"#,
+    );
+    let out = eval_json(
+        &pendulum_with_base("floating.urdf"),
+        &cases,
+        &["--floating"],
+    );
     assert_eq!(
         (out["model"]["nq"].as_u64(), out["model"]["nv"].as_u64()),
         (Some(8), Some(7))
@@ -259,7 +268,7 @@ fn model_summary_and_inertia_report() {
         "{text}"
     );
     assert!(
-        text.contains("nq = 1, nv = 1") && text.contains("inertias of the 2 links: all physical"),
+        text.contains("nq = 1, nv = 1") && text.contains("inertia policy: warn; 0 warning(s)"),
         "{text}"
     );
 
@@ -275,12 +284,23 @@ fn model_summary_and_inertia_report() {
         "bad_inertia.urdf",
         &urdf.replace("ixx=\"0.01\"", "ixx=\"-0.01\""),
     );
+    // Loaded as written under the default policy, with a warning; refused by --inertia strict.
     let out = rigid(&["model", &bad]);
-    assert!(!out.status.success());
+    assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
-        text.contains("link \"bob\"") && text.contains("positive semi-definite"),
+        text.contains("warning") && text.contains("link \"bob\"") && text.contains("as written"),
         "{text}"
+    );
+    let out = rigid(&["model", &bad, "--inertia", "strict"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.starts_with("error:")
+            && err.contains("link \"bob\"")
+            && err.contains("line ")
+            && err.contains("positive semi-definite"),
+        "{err}"
     );
 
     let massless = urdf
@@ -294,4 +314,77 @@ fn model_summary_and_inertia_report() {
         text.contains("warning") && text.contains("zero mass") && text.contains("\"hinge\""),
         "{text}"
     );
+}
+
+#[test]
+fn eval_derivatives_adds_the_rnea_and_aba_derivatives_of_the_pendulum() {
+    let q: f64 = 0.7;
+    let cases = temp_file(
+        "pendulum_derivatives.json",
+        &format!(r#"{{"cases": [{{"q": [{q}], "v": [1.5], "a": [0.3], "tau": [1.0]}}]}}"#),
+    );
+    let out = eval_json(&fixture("pendulum.urdf"), &cases, &["--derivatives"]);
+    let r = &out["results"][0];
+    assert!(keys(r).is_superset(&set(&[
+        "rnea",
+        "aba",
+        "rnea_derivatives",
+        "aba_derivatives"
+    ])));
+    assert_eq!(keys(&r["rnea_derivatives"]), set(&["dtau_dq", "dtau_dv"]));
+    assert_eq!(
+        keys(&r["aba_derivatives"]),
+        set(&["dqdd_dq", "dqdd_dv", "dqdd_dtau"])
+    );
+    // τ = M q̈ + m g l sin q with M = m l² + I: ∂τ/∂q = m g l cos q, ∂τ/∂v = 0,
+    // ∂q̈/∂q = -m g l cos q / M, ∂q̈/∂v = 0, ∂q̈/∂τ = 1/M (1 x 1, row-major nested arrays)
+    let (m, g, l, i) = (2.0, 9.81, 0.5, 0.01);
+    let big_m = m * l * l + i;
+    let num = |v: &Value| v.as_f64().unwrap();
+    let d = &r["rnea_derivatives"];
+    assert!((num(&d["dtau_dq"][0][0]) - m * g * l * q.cos()).abs() < 1e-12);
+    assert_eq!(num(&d["dtau_dv"][0][0]), 0.0);
+    let d = &r["aba_derivatives"];
+    assert!((num(&d["dqdd_dq"][0][0]) + m * g * l * q.cos() / big_m).abs() < 1e-12);
+    assert_eq!(num(&d["dqdd_dv"][0][0]), 0.0);
+    assert!((num(&d["dqdd_dtau"][0][0]) - 1.0 / big_m).abs() < 1e-12);
+}
+
+#[test]
+fn eval_derivatives_are_nv_by_nv_on_a_floating_base() {
+    let q = r#"[0.1, -0.2, 0.3, 0.0, 0.0, 0.0, 1.0, 0.4]"#;
+    let cases = temp_file(
+        "floating_derivatives.json",
+        &format!(r#"{{"cases": [{{"q": {q}, "v": [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7]}}]}}"#),
+    );
+    let urdf = pendulum_with_base("floating_derivatives.urdf");
+    let out = eval_json(&urdf, &cases, &["--floating", "--derivatives"]);
+    let r = &out["results"][0];
+    for (group, key) in [
+        ("rnea_derivatives", "dtau_dq"),
+        ("rnea_derivatives", "dtau_dv"),
+        ("aba_derivatives", "dqdd_dq"),
+        ("aba_derivatives", "dqdd_dv"),
+        ("aba_derivatives", "dqdd_dtau"),
+    ] {
+        let m = r[group][key].as_array().unwrap();
+        assert_eq!(m.len(), 7, "{key}");
+        assert!(
+            m.iter().all(|row| row.as_array().unwrap().len() == 7),
+            "{key}"
+        );
+    }
+    // ∂q̈/∂τ = M⁻¹: times M (the contract's mass_matrix) is the identity
+    let (minv, mm) = (&r["aba_derivatives"]["dqdd_dtau"], &r["mass_matrix"]);
+    for i in 0..7 {
+        for j in 0..7 {
+            let x: f64 = (0..7)
+                .map(|k| mm[i][k].as_f64().unwrap() * minv[k][j].as_f64().unwrap())
+                .sum();
+            assert!(
+                (x - if i == j { 1.0 } else { 0.0 }).abs() < 1e-9,
+                "({i}, {j}): {x}"
+            );
+        }
+    }
 }

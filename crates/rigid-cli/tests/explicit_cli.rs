@@ -80,4 +80,11 @@ fn bad_options_and_models_say_what_is_wrong() {
     assert!(!ok && err.contains("--tolerance"), "{err}");
     let (ok, _, err) = rigid(&["explicit", "puma560", "--offset", "2=half"]);
     assert!(!ok && err.contains("bad angle 'half'"), "{err}");
+    // a free-flyer root has no explicit form
+    let urdf = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../rigid/tests/pinocchio/all_joints.urdf"
+    );
+    let (ok, _, err) = rigid(&["explicit", urdf, "--floating"]);
+    assert!(!ok && err.contains("is a free-flyer"), "{err}");
 }

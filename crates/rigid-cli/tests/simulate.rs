@@ -202,3 +202,112 @@ fn bad_inputs_fail_cleanly() {
     );
     fails_cleanly(&["simulate", &garbage], "error");
 }
+
+#[test]
+fn robot_csv_has_joint_named_columns_and_one_row_per_step() {
+    let dir = scratch("robot-csv");
+    let csv = dir.join("dp.csv");
+    let svg = dir.join("dp.svg");
+    let out = rigid(&[
+        "simulate",
+        "double_pendulum",
+        "--q0",
+        "0.5,-0.2",
+        "--duration",
+        "0.01",
+        "--controller",
+        "gravity",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--plot",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(
+        text.lines().next().unwrap(),
+        "t,q_joint1,q_joint2,v_joint1,v_joint2,tau_joint1,tau_joint2"
+    );
+    let r = rows(&text);
+    assert_eq!(r.len(), 11, "t = 0 and 10 steps");
+    // gravity compensation holds the arm: q stays, τ = g(q) ≠ 0
+    for row in &r {
+        assert!((row[1] - 0.5).abs() < 1e-12 && (row[2] + 0.2).abs() < 1e-12);
+        assert!(row[5].abs() > 1.0);
+    }
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    assert!(svg.contains("joint velocities") && svg.contains("total energy"));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for key in [
+        "relative drift",
+        "max joint speed",
+        "final q: joint1=0.500000",
+    ] {
+        assert!(stdout.contains(key), "{key} missing from:\n{stdout}");
+    }
+    // no temporary file left behind
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left.len(), 2, "{left:?}");
+}
+
+#[test]
+fn robot_bad_inputs_fail_cleanly() {
+    for (args, expected) in [
+        (
+            &["simulate", "double_pendulum", "--q0", "1,2,3"][..],
+            "--q0 has 3 numbers",
+        ),
+        (
+            &["simulate", "double_pendulum", "--controller", "pd"][..],
+            "needs --target",
+        ),
+        (
+            &["simulate", "double_pendulum", "--controller", "fly"][..],
+            "expected none, gravity, pd or track",
+        ),
+        (
+            &["simulate", "double_pendulum", "--integrator", "leapfrog"][..],
+            "unknown integrator",
+        ),
+        (&["simulate", "no_such_robot"][..], "unknown model"),
+        (
+            &["view", "pendulum", "--q", "1,2", "--html", "x.html"][..],
+            "--q has 2 numbers",
+        ),
+    ] {
+        let out = rigid(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(expected), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn view_writes_a_self_contained_page() {
+    let dir = scratch("view");
+    let html = dir.join("p.html");
+    let out = rigid(&[
+        "view",
+        "puma560",
+        "--q",
+        "0,0.5,-0.5,0,0.3,0",
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let page = std::fs::read_to_string(&html).unwrap();
+    assert!(page.contains("<canvas") && page.contains("Content-Security-Policy"));
+    // nothing to fetch: no external URL in a src or href
+    assert!(!page.contains("src=\"http") && !page.contains("href=\"http"));
+}

@@ -146,6 +146,22 @@ fn bench(c: &mut Criterion) {
                 black_box(forward_dynamics_cholesky(&model, &mut data, q, v, a).unwrap()[0])
             })
         });
+        g.bench_function("rnea_derivatives", |b| {
+            b.iter(|| {
+                let (q, v, a) = next();
+                black_box(
+                    rnea_derivatives(&model, &mut data, q, v, a)
+                        .unwrap()
+                        .dtau_dq[0],
+                )
+            })
+        });
+        g.bench_function("aba_derivatives", |b| {
+            b.iter(|| {
+                let (q, v, a) = next();
+                black_box(aba_derivatives(&model, &mut data, q, v, a).unwrap().dqdd_dq[0])
+            })
+        });
         g.finish();
     }
 }

@@ -231,7 +231,7 @@ fn explicit_bench_files_are_up_to_date() {
             "puma560.rs",
             "rigid explicit puma560 --lang rust",
         ),
-        ("ur5", "ur5.rs", "rigid explicit ur5_robot.urdf --lang rust"),
+        ("ur5", "ur5.rs", "rigid explicit ur5 --lang rust"),
     ] {
         let code = ExplicitModel::derive(&model(name))
             .unwrap()
@@ -245,8 +245,7 @@ fn explicit_bench_files_are_up_to_date() {
         assert!(
             code == committed,
             "benches/explicit/{file} is out of date: regenerate it with `cargo run --release -p \
-             rigid-cli -- {} --out crates/rigid/benches/explicit/{file}` (the UR5 from \
-             example-robot-data's ur_description/urdf/ur5_robot.urdf), then `cargo fmt --all`",
+             rigid-cli -- {} --out crates/rigid/benches/explicit/{file}`, then `cargo fmt --all`",
             command.trim_start_matches("rigid ")
         );
     }

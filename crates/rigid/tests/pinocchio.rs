@@ -51,7 +51,13 @@ fn reference(robot: &str) -> Option<Value> {
     let out = Command::new(python())
         .arg(&script)
         .arg(robot)
-        .args(["--states", &STATES.to_string(), "--seed", "7"])
+        .args([
+            "--states",
+            &STATES.to_string(),
+            "--seed",
+            "7",
+            "--derivatives",
+        ])
         .output()
         .unwrap_or_else(|e| {
             panic!(
@@ -272,4 +278,112 @@ fn every_urdf_joint_type_agrees_with_pinocchio() {
 #[test]
 fn every_urdf_joint_type_on_a_free_flyer_agrees_with_pinocchio() {
     compare("all_joints_floating");
+}
+
+// --- analytical derivatives (issue 12) ---
+
+/// A matrix of rigid's layout, row by row in the reference's layout (`pv` maps the reference's
+/// velocity indices to rigid's).
+fn flat_in_reference_layout(m: &DMatrix<f64>, pv: &[usize]) -> Vec<f64> {
+    pv.iter()
+        .flat_map(|&r| pv.iter().map(move |&c| m[(r, c)]))
+        .collect()
+}
+
+/// Pinocchio's `computeRNEADerivatives` (with random external wrenches in the joint frames) and
+/// `computeABADerivatives` against [`rnea_derivatives_with_external`] and [`aba_derivatives`],
+/// on the states of [`compare`]: every matrix to 1e-9 relative (`rel`). Pinocchio's
+/// derivatives are along its `integrate` (`q * exp(v)`, a free-flyer's `v` linear first, a
+/// continuous joint's tangent the angle), rigid's along `q ⊕ δ`: the same columns once the
+/// free-flyer halves are swapped, which `reference.py` does.
+fn compare_derivatives(robot: &str) {
+    use rigid::multibody::{aba_derivatives, rnea_derivatives_with_external};
+    use rigid::spatial::Wrench;
+    let Some(r) = reference(robot) else { return };
+    let model = load_urdf(
+        r["urdf"].as_str().unwrap(),
+        r["floating"].as_bool().unwrap(),
+    )
+    .unwrap_or_else(|e| panic!("{robot}: {e}"));
+    let mut data = Data::new(&model);
+    let joints = r["joints"].as_array().unwrap();
+    let (pq, pv) = index_maps(&model, joints);
+    let mut err = Errors::default();
+    for s in r["states"].as_array().unwrap() {
+        let q = to_rigid(&vec_of(&s["q"]), &pq);
+        let v = to_rigid(&vec_of(&s["v"]), &pv);
+        let a = to_rigid(&vec_of(&s["a"]), &pv);
+        let tau = to_rigid(&vec_of(&s["tau"]), &pv);
+        let d = &s["derivatives"];
+        let mut fext = vec![Wrench::zero(); model.njoints()];
+        for (rj, f) in joints.iter().zip(d["fext"].as_array().unwrap()) {
+            let id = model.joint_id(rj["name"].as_str().unwrap()).unwrap();
+            fext[id.0] = Wrench::from_slice(&vec_of(f));
+        }
+        let reference = |key: &str| mat_of(&d[key]).concat();
+        let x = rnea_derivatives_with_external(&model, &mut data, &q, &v, &a, &fext).unwrap();
+        err.record(
+            "dtau_dq",
+            rel(
+                &flat_in_reference_layout(x.dtau_dq, &pv),
+                &reference("dtau_dq"),
+            ),
+        );
+        err.record(
+            "dtau_dv",
+            rel(
+                &flat_in_reference_layout(x.dtau_dv, &pv),
+                &reference("dtau_dv"),
+            ),
+        );
+        let x = aba_derivatives(&model, &mut data, &q, &v, &tau).unwrap();
+        err.record(
+            "dqdd_dq",
+            rel(
+                &flat_in_reference_layout(x.dqdd_dq, &pv),
+                &reference("dqdd_dq"),
+            ),
+        );
+        err.record(
+            "dqdd_dv",
+            rel(
+                &flat_in_reference_layout(x.dqdd_dv, &pv),
+                &reference("dqdd_dv"),
+            ),
+        );
+        err.record(
+            "dqdd_dtau",
+            rel(
+                &flat_in_reference_layout(x.dqdd_dtau, &pv),
+                &reference("dqdd_dtau"),
+            ),
+        );
+    }
+    let line: Vec<String> = err.0.iter().map(|(w, e)| format!("{w} {e:.1e}")).collect();
+    eprintln!(
+        "{robot} derivatives: max relative error: {}",
+        line.join(", ")
+    );
+    for (what, e) in &err.0 {
+        assert!(
+            *e <= TOLERANCE,
+            "{robot}: {what} differs from Pinocchio by {e:.3e} relative (tolerance {TOLERANCE:e})"
+        );
+    }
+}
+
+#[test]
+fn derivatives_agree_with_pinocchio_on_every_robot_and_joint_type() {
+    for robot in [
+        "ur5",
+        "panda",
+        "solo12",
+        "anymal",
+        "talos",
+        "double_pendulum",
+        "all_joints",
+        "all_joints_floating",
+    ] {
+        compare_derivatives(robot);
+    }
 }

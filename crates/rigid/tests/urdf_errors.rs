@@ -1,6 +1,10 @@
 //! Bad URDF input gives an error that names the link or joint and the line, never a panic.
 
-use rigid::io::urdf::{load_urdf_str, parse_urdf_str, InertiaIssueKind, UrdfError};
+use rigid::io::urdf::{
+    build_model_with, load_urdf_str, parse_urdf_str, InertiaIssueKind, InertiaPolicy, SiblingOrder,
+    UrdfError, UrdfOptions,
+};
+use rigid::multibody::FrameKind;
 
 /// A valid two-link arm; the tests break one thing at a time.
 const GOOD: &str = r#"<?xml version="1.0"?>
@@ -138,9 +142,26 @@ fn unknown_joint_type_names_the_joint() {
 }
 
 #[test]
-fn negative_mass_names_the_link() {
+fn negative_mass_names_the_link_under_every_policy() {
     let text = GOOD.replace("<mass value=\"1\"/>", "<mass value=\"-1\"/>");
-    expect_error(&text, 13, &["link \"lower\"", "negative mass"]);
+    let robot = parse_urdf_str(&text).unwrap();
+    for inertia in [
+        InertiaPolicy::Strict,
+        InertiaPolicy::Warn,
+        InertiaPolicy::Repair,
+    ] {
+        let opts = UrdfOptions {
+            inertia,
+            ..UrdfOptions::default()
+        };
+        let err = build_model_with(&robot, &opts).unwrap_err();
+        let msg = err.to_string();
+        assert_eq!(err.line(), Some(12), "{msg}");
+        assert!(
+            msg.contains("link \"lower\"") && msg.contains("mass"),
+            "{msg}"
+        );
+    }
 }
 
 #[test]
@@ -166,17 +187,39 @@ fn duplicate_names_are_refused() {
 }
 
 #[test]
-fn unphysical_inertias_are_reported_and_refused() {
-    // Not positive semi-definite.
+fn unphysical_inertias_follow_the_policy() {
+    // Not positive semi-definite: refused by `strict`, loaded as written by `warn` (the default),
+    // replaced by a consistent inertia by `repair`; each says which link and line.
     let text = GOOD.replace("ixx=\"0.05\" iyy=\"0.05\"", "ixx=\"-0.05\" iyy=\"0.05\"");
     let r = parse_urdf_str(&text).unwrap();
     let report = r.inertia_report();
     assert_eq!(report.len(), 1);
     assert!(matches!(report[0].kind, InertiaIssueKind::Invalid(_)));
-    let err = load_urdf_str(&text, false).unwrap_err().to_string();
+    let strict = UrdfOptions {
+        inertia: InertiaPolicy::Strict,
+        ..UrdfOptions::default()
+    };
+    let err = build_model_with(&r, &strict).unwrap_err().to_string();
     assert!(err.contains("link \"lower\""), "{err}");
     assert!(err.contains("line 12"), "{err}");
     assert!(err.contains("positive semi-definite"), "{err}");
+    let (model, warnings) = build_model_with(&r, &UrdfOptions::default()).unwrap();
+    assert_eq!(warnings.len(), 1);
+    let w = warnings[0].to_string();
+    assert!(
+        w.contains("line 12") && w.contains("\"lower\"") && w.contains("as written"),
+        "{w}"
+    );
+    let as_written = r.link_inertia(r.link_index("lower").unwrap());
+    assert_eq!(model.inertias()[1], as_written);
+    let repair = UrdfOptions {
+        inertia: InertiaPolicy::Repair,
+        ..UrdfOptions::default()
+    };
+    let (model, warnings) = build_model_with(&r, &repair).unwrap();
+    assert!(warnings[0].to_string().contains("repaired"), "{warnings:?}");
+    assert!(model.inertia_issues().is_empty());
+    assert_eq!(model.inertias()[1].mass(), 1.0);
     // Triangle inequality: 0.01 + 0.01 < 0.05: a warning, the model is built (as Pinocchio does).
     let text = GOOD.replace("ixx=\"0.05\" iyy=\"0.05\"", "ixx=\"0.01\" iyy=\"0.05\"");
     let report = parse_urdf_str(&text).unwrap().inertia_report();
@@ -201,6 +244,28 @@ fn unphysical_inertias_are_reported_and_refused() {
         model.inertia_issues().is_empty(),
         "the composite body is physical"
     );
+}
+
+#[test]
+fn round_off_is_not_a_defect() {
+    // iCub's head: zeros but ixz = 2.4e-35 (eigenvalue -2.4e-35), CoM 0.11 m from the origin.
+    let text = GOOD.replace(
+        r#"<mass value="1"/>
+      <inertia ixx="0.05" iyy="0.05" izz="0.01" ixy="0" ixz="0" iyz="0"/>"#,
+        r#"<mass value="1.33687"/><origin xyz="0.0185 -0.1108 6.78454e-18"/>
+      <inertia ixx="0" ixy="0" ixz="2.40741e-35" iyy="0" iyz="0" izz="0"/>"#,
+    );
+    let r = parse_urdf_str(&text).unwrap();
+    assert!(r.inertia_report().is_empty(), "{:?}", r.inertia_report());
+    let strict = UrdfOptions {
+        inertia: InertiaPolicy::Strict,
+        ..UrdfOptions::default()
+    };
+    let (_, warnings) = build_model_with(&r, &strict).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    // The same matrix 1e30 times larger is not round-off.
+    let big = text.replace("2.40741e-35", "2.40741e-5");
+    assert!(build_model_with(&parse_urdf_str(&big).unwrap(), &strict).is_err());
 }
 
 #[test]
@@ -245,13 +310,12 @@ fn model_level_errors_name_the_joint_or_link() {
         "{err}"
     );
     assert!(err.contains("limits"), "{err}");
-    // A link named like a moving joint.
+    // A link named like a moving joint: two namespaces, as in URDF and Pinocchio.
     let text = GOOD.replace("\"lower\"", "\"elbow\"");
-    let err = load_urdf_str(&text, false).unwrap_err().to_string();
-    assert!(
-        err.contains("link \"elbow\"") && err.contains("line 11"),
-        "{err}"
-    );
+    let model = load_urdf_str(&text, false).unwrap();
+    assert_eq!(model.joint_id("elbow").unwrap().0, 1);
+    let f = model.frame_id("elbow").unwrap();
+    assert_eq!(model.frames()[f.0].kind, FrameKind::Body);
     // The free-flyer's name is taken.
     let text = GOOD.replace("\"shoulder\"", "\"root_joint\"");
     assert!(load_urdf_str(&text, false).is_ok());
@@ -270,7 +334,11 @@ fn planar_axis_and_mimic_target_are_checked() {
         "<axis xyz=\"0 2 0\"/>",
         "<axis xyz=\"0 2 0\"/><mimic joint=\"knee\" multiplier=\"2\"/>",
     );
-    expect_error(&text, 23, &["joint \"elbow\"", "mimics joint \"knee\""]);
+    // A mimic of a joint that is not defined: a warning, the mimic dropped (alex_psyonic_hands).
+    let robot = parse_urdf_str(&text).unwrap();
+    let w = robot.warnings[0].to_string();
+    assert!(w.contains("line 23") && w.contains("joint \"elbow\"") && w.contains("\"knee\""));
+    assert!(robot.joint("elbow").unwrap().mimic.is_none());
     let text = text.replace("joint=\"knee\"", "joint=\"shoulder\"");
     let robot = parse_urdf_str(&text).unwrap();
     let mimic = robot.joint("elbow").unwrap().mimic.clone().unwrap();
@@ -307,4 +375,90 @@ fn truncated_or_corrupted_files_never_panic() {
             let _ = load_urdf_str(&corrupted, k % 2 == 0);
         }
     }
+}
+
+#[test]
+fn tolerated_oddities_are_warnings_with_lines() {
+    // No robot name (ur3.urdf's header), an unknown element, an undeclared XML prefix (Drake).
+    let text = GOOD
+        .replace("<robot name=\"arm\">", "<robot>")
+        .replace(
+            "<link name=\"base\"/>",
+            "<link name=\"base\"><sparkle/></link>",
+        )
+        .replace(
+            "</robot>",
+            "<drake:collision_filter_group name=\"g\"/>\n</robot>",
+        );
+    let robot = parse_urdf_str(&text).unwrap();
+    let w: Vec<String> = robot.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(robot.name, "");
+    assert!(
+        w.iter()
+            .any(|w| w.contains("line 1") && w.contains("drake")),
+        "{w:?}"
+    );
+    assert!(
+        w.iter().any(|w| w.contains("line 2") && w.contains("name")),
+        "{w:?}"
+    );
+    assert!(
+        w.iter()
+            .any(|w| w.contains("line 3") && w.contains("<sparkle>")),
+        "{w:?}"
+    );
+    let model = load_urdf_str(&text, false).unwrap();
+    assert_eq!((model.name(), model.nv()), ("robot", 2));
+    // The inertial spans point into the text as given, whatever was declared.
+    let span = robot
+        .link("upper")
+        .unwrap()
+        .inertial
+        .as_ref()
+        .unwrap()
+        .span
+        .clone();
+    assert!(text[span].starts_with("<inertial>"));
+}
+
+#[test]
+fn siblings_in_file_order_or_by_name() {
+    // Two children of the base listed "zeta" then "alpha": file order keeps zeta first,
+    // name order (urdfdom's, Pinocchio's) puts alpha first.
+    let text = r#"<robot name="t"><link name="base"/>
+      <link name="a"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <link name="b"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <joint name="zeta" type="continuous"><parent link="base"/><child link="a"/></joint>
+      <joint name="alpha" type="continuous"><parent link="base"/><child link="b"/></joint>
+    </robot>"#;
+    let robot = parse_urdf_str(text).unwrap();
+    let names = |order| {
+        let opts = UrdfOptions {
+            sibling_order: order,
+            ..UrdfOptions::default()
+        };
+        let (m, _) = build_model_with(&robot, &opts).unwrap();
+        m.joints()
+            .iter()
+            .map(|j| j.name.clone())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(names(SiblingOrder::File), ["zeta", "alpha"]);
+    assert_eq!(names(SiblingOrder::Name), ["alpha", "zeta"]);
+}
+
+#[test]
+fn a_fixed_joint_named_like_its_child_link_is_ambiguous_by_name_only() {
+    let text = GOOD.replace(
+        "</robot>",
+        r#"<link name="tool"/><joint name="tool" type="fixed"><parent link="lower"/><child link="tool"/></joint>
+</robot>"#,
+    );
+    let model = load_urdf_str(&text, false).unwrap();
+    let err = model.frame_id("tool").unwrap_err().to_string();
+    assert!(err.contains("ambiguous") && err.contains("body") && err.contains("fixed joint"));
+    assert!(model.frame_id_of_kind("tool", FrameKind::Body).is_some());
+    assert!(model
+        .frame_id_of_kind("tool", FrameKind::FixedJoint)
+        .is_some());
 }

@@ -124,7 +124,7 @@ use thiserror::Error;
 pub enum ExplicitError {
     /// A joint type whose motion is not a polynomial in one angle's sine and cosine (or one
     /// displacement).
-    #[error("joint '{joint}' is {kind}: explicit models are derived for fixed-base trees of revolute and prismatic joints only (lock it, or use the recursive algorithms)")]
+    #[error("joint '{joint}' is {kind}: explicit models are derived for fixed-base trees of revolute and prismatic joints only; use the recursive algorithms for this model")]
     UnsupportedJoint {
         /// The joint.
         joint: String,

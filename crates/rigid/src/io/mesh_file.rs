@@ -1,5 +1,5 @@
-//! Triangle mesh files: binary and ASCII STL (through the `stl_io` crate) and Wavefront OBJ
-//! (through `tobj`), read into a [`TriMesh`] whose duplicate vertices are merged, so that the
+//! Triangle mesh files: binary and ASCII STL (through the `stl_io` crate), Wavefront OBJ
+//! (through `tobj`) and COLLADA ([`super::collada`]), read into a [`TriMesh`] whose duplicate vertices are merged, so that the
 //! facets of an STL file (which repeats every vertex once per facet) share their edges.
 
 use crate::mass::TriMesh;
@@ -15,8 +15,8 @@ pub enum MeshFileError {
     /// The file could not be opened or read.
     #[error("cannot read mesh file: {0}")]
     Io(#[from] std::io::Error),
-    /// The extension is neither `.stl` nor `.obj`.
-    #[error("unknown mesh file extension {0:?}: expected .stl or .obj")]
+    /// The extension is none of `.stl`, `.obj`, `.dae`.
+    #[error("unknown mesh file extension {0:?}: expected .stl, .obj or .dae")]
     UnknownFormat(String),
     /// The STL reader failed.
     #[error("invalid STL file: {0}")]
@@ -24,10 +24,13 @@ pub enum MeshFileError {
     /// The OBJ reader failed.
     #[error("invalid OBJ file: {0}")]
     Obj(tobj::LoadError),
+    /// The COLLADA reader failed.
+    #[error("invalid COLLADA file: {0}")]
+    Dae(String),
 }
 
-/// Reads an STL (binary or ASCII, detected from the content) or OBJ file, chosen by the
-/// extension (case-insensitive), and merges duplicate vertices. The mesh is not checked: call
+/// Reads an STL (binary or ASCII, detected from the content), OBJ or COLLADA file
+/// ([`super::collada`]), chosen by the extension (case-insensitive), and merges duplicate vertices. The mesh is not checked: call
 /// [`TriMesh::check`] or [`TriMesh::mass_properties`].
 ///
 /// # Errors
@@ -41,6 +44,7 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshFileError> {
     match ext.as_str() {
         "stl" => read_stl(path),
         "obj" => read_obj(path),
+        "dae" => super::collada::parse_dae(&std::fs::read_to_string(path)?),
         _ => Err(MeshFileError::UnknownFormat(ext)),
     }
 }
@@ -54,7 +58,14 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshFileError> {
 /// # Errors
 /// [`MeshFileError::Io`] if the file cannot be opened, [`MeshFileError::Stl`] if it is not STL.
 pub fn read_stl(path: &Path) -> Result<TriMesh, MeshFileError> {
-    let mut bytes = std::fs::read(path)?;
+    parse_stl(std::fs::read(path)?)
+}
+
+/// As [`read_stl`], from the file's bytes.
+///
+/// # Errors
+/// [`MeshFileError::Stl`] if the bytes are not STL.
+pub fn parse_stl(mut bytes: Vec<u8>) -> Result<TriMesh, MeshFileError> {
     let binary = bytes.len() >= 84 && {
         let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
         n.checked_mul(50).and_then(|b| b.checked_add(84)) == Some(bytes.len())
@@ -83,7 +94,14 @@ pub fn read_stl(path: &Path) -> Result<TriMesh, MeshFileError> {
 /// # Errors
 /// [`MeshFileError::Io`] if the file cannot be opened, [`MeshFileError::Obj`] if it is not OBJ.
 pub fn read_obj(path: &Path) -> Result<TriMesh, MeshFileError> {
-    let mut reader = BufReader::new(File::open(path)?);
+    parse_obj(&mut BufReader::new(File::open(path)?))
+}
+
+/// As [`read_obj`], from a reader of the file's text.
+///
+/// # Errors
+/// [`MeshFileError::Obj`] if the text is not OBJ.
+pub fn parse_obj(reader: &mut impl std::io::BufRead) -> Result<TriMesh, MeshFileError> {
     // `..Default::default()` covers the fields that tobj's optional features add.
     #[allow(clippy::needless_update)]
     let options = tobj::LoadOptions {
@@ -93,10 +111,9 @@ pub fn read_obj(path: &Path) -> Result<TriMesh, MeshFileError> {
         ignore_lines: true,
         ..Default::default()
     };
-    let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| {
-        Err(tobj::LoadError::OpenFileFailed)
-    })
-    .map_err(MeshFileError::Obj)?;
+    let (models, _materials) =
+        tobj::load_obj_buf(reader, &options, |_| Err(tobj::LoadError::OpenFileFailed))
+            .map_err(MeshFileError::Obj)?;
     let mut mesh = TriMesh::default();
     for model in &models {
         let offset = mesh.vertices.len();

@@ -1,8 +1,9 @@
 //! Mass properties of one rigid body: rotational inertia (point masses, primitive solids,
 //! triangle meshes, compounds of parts), principal axes, Steiner, validity, and the 6x6 spatial
-//! inertia `G`.
+//! inertia `G`, the pseudo-inertia and physical consistency.
 
 mod compound;
+mod consistency;
 mod inertia;
 mod mesh;
 mod shapes;
@@ -11,6 +12,7 @@ mod spatial_inertia;
 pub use compound::{
     Compound, CompoundError, Geometry, MassOrDensity, MassProperties, Part, PartError,
 };
+pub use consistency::{nearest_consistent, Consistency, Mat4, Verdict, ROUND_OFF_ULPS};
 pub use inertia::{RotationalInertia, DEFAULT_INERTIA_TOLERANCE};
 pub use mesh::{MeshError, MeshMassProperties, TriMesh};
 pub use shapes::{Shape, ShapeError};

@@ -1,5 +1,6 @@
 //! Batch evaluation of many states at once across the cores (rayon): inverse dynamics, forward
-//! dynamics and mass matrices for `N` states, each written to a caller-owned, row-major output.
+//! dynamics, mass matrices and the derivatives of inverse and forward dynamics for `N` states,
+//! each written to a caller-owned, row-major output.
 //!
 //! Inputs are row-major: state `k`'s configuration is `qs[k nq..(k + 1) nq]`, its velocity
 //! `vs[k nv..(k + 1) nv]`, and so on. The states are cut into a few contiguous blocks per
@@ -133,15 +134,9 @@ impl Batch {
         out: &mut [f64],
     ) -> Result<(), MultibodyError> {
         count(model, qs, &[vs, xs], out.len(), model.nv)?;
-        let (nq, nv) = (model.nq, model.nv);
-        for_each_state(&mut self.datas, out, nv, |data, k, out| {
-            let r = f(
-                model,
-                data,
-                &qs[k * nq..(k + 1) * nq],
-                &vs[k * nv..(k + 1) * nv],
-                &xs[k * nv..(k + 1) * nv],
-            )?;
+        for_each_state(&mut self.datas, out, model.nv, |data, k, out| {
+            let (q, v, x) = state(model, k, qs, vs, xs);
+            let r = f(model, data, q, v, x)?;
             out.copy_from_slice(r.as_slice());
             Ok(())
         })
@@ -168,6 +163,126 @@ impl Batch {
     }
 }
 
+/// Derivatives for many states: `nv x nv` matrices written row-major, one after the other.
+impl Batch {
+    /// `∂τ/∂q` and `∂τ/∂v` at `(q_k, v_k, a_k)` for every state k (see [`rnea_derivatives_batch`]).
+    ///
+    /// # Errors
+    /// As [`rnea_derivatives_batch`], or [`MultibodyError::DataMismatch`].
+    pub fn rnea_derivatives(
+        &mut self,
+        model: &Model,
+        qs: &[f64],
+        vs: &[f64],
+        as_: &[f64],
+        dtau_dq: &mut [f64],
+        dtau_dv: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        let nn = model.nv * model.nv;
+        let n = count(model, qs, &[vs, as_], dtau_dq.len(), nn)?;
+        DimensionError::check("dtau_dv", n * nn, dtau_dv.len())?;
+        if n * nn == 0 {
+            return Ok(());
+        }
+        let per_task = per_task(n, self.datas.len());
+        let blocks = dtau_dq
+            .par_chunks_mut(per_task * nn)
+            .zip(dtau_dv.par_chunks_mut(per_task * nn));
+        blocks
+            .zip(self.datas.par_iter_mut())
+            .enumerate()
+            .map(|(c, ((bq, bv), data))| {
+                for (j, (oq, ov)) in bq.chunks_mut(nn).zip(bv.chunks_mut(nn)).enumerate() {
+                    let (q, v, a) = state(model, c * per_task + j, qs, vs, as_);
+                    let d = super::rnea_derivatives(model, data, q, v, a)?;
+                    row_major(d.dtau_dq, oq);
+                    row_major(d.dtau_dv, ov);
+                }
+                Ok(())
+            })
+            .collect()
+    }
+
+    /// `∂q̈/∂q`, `∂q̈/∂v` and `∂q̈/∂τ = M⁻¹` at `(q_k, v_k, τ_k)` for every state k (see
+    /// [`aba_derivatives_batch`]).
+    ///
+    /// # Errors
+    /// As [`aba_derivatives_batch`], or [`MultibodyError::DataMismatch`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn aba_derivatives(
+        &mut self,
+        model: &Model,
+        qs: &[f64],
+        vs: &[f64],
+        taus: &[f64],
+        dqdd_dq: &mut [f64],
+        dqdd_dv: &mut [f64],
+        dqdd_dtau: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        let nn = model.nv * model.nv;
+        let n = count(model, qs, &[vs, taus], dqdd_dq.len(), nn)?;
+        DimensionError::check("dqdd_dv", n * nn, dqdd_dv.len())?;
+        DimensionError::check("dqdd_dtau", n * nn, dqdd_dtau.len())?;
+        if n * nn == 0 {
+            return Ok(());
+        }
+        let per_task = per_task(n, self.datas.len());
+        let blocks = dqdd_dq
+            .par_chunks_mut(per_task * nn)
+            .zip(dqdd_dv.par_chunks_mut(per_task * nn))
+            .zip(dqdd_dtau.par_chunks_mut(per_task * nn));
+        blocks
+            .zip(self.datas.par_iter_mut())
+            .enumerate()
+            .map(|(c, (((bq, bv), bt), data))| {
+                let outs = bq
+                    .chunks_mut(nn)
+                    .zip(bv.chunks_mut(nn))
+                    .zip(bt.chunks_mut(nn));
+                for (j, ((oq, ov), ot)) in outs.enumerate() {
+                    let (q, v, t) = state(model, c * per_task + j, qs, vs, taus);
+                    let d = super::aba_derivatives(model, data, q, v, t)?;
+                    row_major(d.dqdd_dq, oq);
+                    row_major(d.dqdd_dv, ov);
+                    ot.copy_from_slice(d.dqdd_dtau.as_slice()); // symmetric
+                }
+                Ok(())
+            })
+            .collect()
+    }
+}
+
+/// States per task when `n ≥ 1` states are cut into at most `tasks` contiguous blocks.
+fn per_task(n: usize, tasks: usize) -> usize {
+    n.div_ceil(tasks.clamp(1, n))
+}
+
+/// State `k`'s `(q, v, x)` from row-major inputs.
+fn state<'a>(
+    model: &Model,
+    k: usize,
+    qs: &'a [f64],
+    vs: &'a [f64],
+    xs: &'a [f64],
+) -> (&'a [f64], &'a [f64], &'a [f64]) {
+    let (nq, nv) = (model.nq, model.nv);
+    (
+        &qs[k * nq..][..nq],
+        &vs[k * nv..][..nv],
+        &xs[k * nv..][..nv],
+    )
+}
+
+/// `m` (column-major) into `out`, row-major.
+fn row_major(m: &nalgebra::DMatrix<f64>, out: &mut [f64]) {
+    let n = m.ncols();
+    for (r, row) in out.chunks_exact_mut(n).enumerate() {
+        for (c, x) in row.iter_mut().enumerate() {
+            *x = m[(r, c)];
+        }
+    }
+}
+
 /// Evaluate `f(data, k, out_k)` for every state `k`: the states are cut into one contiguous
 /// block per workspace (fewer if there are fewer states), run in parallel, each with its own
 /// `Data`.
@@ -184,7 +299,7 @@ where
     if n == 0 {
         return Ok(());
     }
-    let per_task = n.div_ceil(datas.len().clamp(1, n));
+    let per_task = per_task(n, datas.len());
     out.par_chunks_mut(per_task * out_per)
         .zip(datas.par_iter_mut())
         .enumerate()
@@ -234,4 +349,50 @@ pub fn aba_batch(
 /// A length that is not `N nq` / `N nv²`, or the first failing state's error.
 pub fn crba_batch(model: &Model, qs: &[f64], mass: &mut [f64]) -> Result<(), MultibodyError> {
     Batch::new(model).crba(model, qs, mass)
+}
+
+/// `∂τ/∂q` and `∂τ/∂v` at `(q_k, v_k, a_k)` for every state k (see
+/// [`rnea_derivatives`](super::rnea_derivatives); workspaces made for this call, see [`Batch`]),
+/// into `dtau_dq` and `dtau_dv` (each `N` matrices of `nv x nv`, row-major, one after the other).
+///
+/// # Errors
+/// Lengths that are not `N nq` / `N nv` / `N nv²`, or the first failing state's error.
+///
+/// ```
+/// use rigid::multibody::{batch, puma560, Puma560Options};
+/// let model = puma560(Puma560Options::default());
+/// let (nq, nv, n) = (model.nq(), model.nv(), 3);
+/// let (qs, zeros) = (vec![0.1; n * nq], vec![0.0; n * nv]);
+/// let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+/// batch::rnea_derivatives_batch(&model, &qs, &zeros, &zeros, &mut dq, &mut dv)?;
+/// assert!(dv.iter().all(|x| *x == 0.0)); // at rest, τ does not depend on v
+/// # Ok::<(), rigid::multibody::MultibodyError>(())
+/// ```
+pub fn rnea_derivatives_batch(
+    model: &Model,
+    qs: &[f64],
+    vs: &[f64],
+    as_: &[f64],
+    dtau_dq: &mut [f64],
+    dtau_dv: &mut [f64],
+) -> Result<(), MultibodyError> {
+    Batch::new(model).rnea_derivatives(model, qs, vs, as_, dtau_dq, dtau_dv)
+}
+
+/// `∂q̈/∂q`, `∂q̈/∂v`, `∂q̈/∂τ = M⁻¹` at `(q_k, v_k, τ_k)` for every state k (see
+/// [`aba_derivatives`](super::aba_derivatives); workspaces made for this call, see [`Batch`]),
+/// each `N` matrices of `nv x nv`, row-major, one after the other.
+///
+/// # Errors
+/// Lengths that are not `N nq` / `N nv` / `N nv²`, or the first failing state's error.
+pub fn aba_derivatives_batch(
+    model: &Model,
+    qs: &[f64],
+    vs: &[f64],
+    taus: &[f64],
+    dqdd_dq: &mut [f64],
+    dqdd_dv: &mut [f64],
+    dqdd_dtau: &mut [f64],
+) -> Result<(), MultibodyError> {
+    Batch::new(model).aba_derivatives(model, qs, vs, taus, dqdd_dq, dqdd_dv, dqdd_dtau)
 }

@@ -57,6 +57,9 @@ pub struct Data {
     pub com: Vec3,
     /// Mass of the moving bodies.
     pub mass: f64,
+    /// Outputs and buffers of the analytical derivatives ([`rnea_derivatives`](super::rnea_derivatives),
+    /// [`aba_derivatives`](super::aba_derivatives), the kinematics derivatives).
+    pub derivatives: super::Derivatives,
     // --- internal workspaces ---
     pub(crate) ia: Vec<Mat6>,
     pub(crate) pa: Vec<Wrench>,
@@ -116,6 +119,7 @@ impl Data {
             frame_jacobian_dot: DMatrix::zeros(6, nv),
             com: Vec3::zeros(),
             mass: model.total_mass(),
+            derivatives: super::Derivatives::new(model),
             ia: vec![Mat6::zeros(); n],
             pa: vec![Wrench::zero(); n],
             c_bias: vec![Twist::zero(); n],

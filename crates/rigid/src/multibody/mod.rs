@@ -24,6 +24,8 @@
 //! | `K = ½ q̇ᵀ M q̇`, `U = -Σ mᵢ gᵀ cᵢ` | [`kinetic_energy`], [`potential_energy`] | Lynch & Park §8.1 |
 //! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |
 //! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
+//! | `∂τ/∂(q, v)`, `∂q̈/∂(q, v, τ)`, `∂g/∂q`, frame kinematics, `∂(q ⊕ v)`, `∂(q₁ ⊖ q₀)` | [`derivatives`] ([`rnea_derivatives`], [`aba_derivatives`], …; `q` along `q ⊕ δ`) | Carpentier & Mansard, RSS 2018 |
+//! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`] | ABA; Lynch & Park ch. 9, 11 |
 //! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |
 //!
 //! No algorithm allocates after [`Data::new`] (tested with a counting allocator), and each
@@ -41,21 +43,24 @@
 
 pub mod algorithms;
 pub mod batch;
+mod builder;
 mod builders;
 mod builtins;
 mod configuration;
 mod data;
 mod joint;
 mod model;
+pub mod simulation;
 mod sincos;
 
 pub use algorithms::*;
+pub use builder::{InertiaCheck, ModelBuilder};
 pub use builders::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 pub use builtins::{builtin, builtin_names, double_pendulum, pendulum, puma560, Puma560Options};
 pub use configuration::{difference, integrate, neutral, normalize, random_configuration, Rng};
 pub use data::Data;
 pub use joint::JointType;
-pub use model::{Frame, FrameId, FrameKind, Joint, JointId, Model, ModelBuilder};
+pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 
 use crate::error::{DimensionError, InertiaError};
 use thiserror::Error;
@@ -66,8 +71,8 @@ pub const QUATERNION_TOLERANCE: f64 = 1e-6;
 /// An invalid model description.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum ModelError {
-    /// Two joints or frames with the same name.
-    #[error("duplicate joint or frame name '{name}'")]
+    /// Two joints, or two frames of one kind, with the same name.
+    #[error("duplicate name '{name}' (joint names are unique among joints, frame names within their kind)")]
     DuplicateName {
         /// The name.
         name: String,
@@ -131,6 +136,12 @@ pub enum ModelError {
     /// Negative or non-finite armature.
     #[error("joint '{joint}': armature must be finite and non-negative")]
     BadArmature {
+        /// The joint.
+        joint: String,
+    },
+    /// Negative or non-finite joint damping or friction.
+    #[error("joint '{joint}': damping and friction must be finite and non-negative")]
+    BadDynamics {
         /// The joint.
         joint: String,
     },

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Pinocchio reference values for rigid's cross-check (crates/rigid/tests/pinocchio.rs).
 
-Usage: python3 reference.py ROBOT [--states N] [--seed S]     (ROBOT: see ROBOTS, or "list")
+Usage: python3 reference.py ROBOT [--states N] [--seed S] [--derivatives]   (ROBOT: see ROBOTS, or "list")
 
 Loads the robot's URDF from the PyPI package example-robot-data with `pin.buildModelFromUrdf`
 (a free-flyer root for the legged robots), draws N random states with a fixed seed and prints one
@@ -15,6 +15,11 @@ Everything printed is already in rigid's conventions (shared/CONVENTIONS.md):
 - continuous joints: Pinocchio's q is (cos t, sin t), rigid's is the angle t; planar joints:
   Pinocchio's q is (x, y, cos t, sin t), rigid's (x, y, t);
 - crba and computeMinverse fill only the upper triangle: M and M⁻¹ are symmetrised.
+With --derivatives, each state also has "derivatives": random external wrenches "fext" (one per
+joint, in the joint's frame, (m, f) angular first, in the joints' order below), computeRNEADerivatives
+with them ("dtau_dq", "dtau_dv") and computeABADerivatives at (q, v, tau) ("dqdd_dq", "dqdd_dv",
+"dqdd_dtau"); rows and columns permuted like M (derivatives along Pinocchio's integrate, which for
+a free-flyer is q * exp(v) with v linear first: its halves are swapped to rigid's angular first).
 The joints stay in Pinocchio's order (urdfdom sorts siblings by joint name; rigid keeps file
 order): each joint is listed with its name and its slices in the vectors printed here, and the
 Rust test matches joints by name.
@@ -80,7 +85,8 @@ def joint_layout(model):
         short = j.shortname()
         if short == "JointModelFreeFlyer":
             kind, nq, nv = "free_flyer", 7, 6
-        elif "RevoluteUnbounded" in short:
+        elif j.nq == 2 and j.nv == 1:
+            # RevoluteUnbounded (shortnames JointModelRUBX/Y/Z, ...Unaligned): (cos t, sin t)
             kind, nq, nv = "continuous", 1, 1
         elif short == "JointModelPlanar":
             kind, nq, nv = "planar", 3, 3
@@ -122,6 +128,22 @@ def v_perm(joints, nv):
     return p
 
 
+def reference_derivatives(model, data, joints, p, rs, q, v, a, tau):
+    """computeRNEADerivatives (with random external wrenches) and computeABADerivatives."""
+    fext = [pin.Force.Zero()] + [pin.Force(rs.uniform(-5, 5, 3), rs.uniform(-5, 5, 3)) for _ in joints]
+    dq, dv, _ = pin.computeRNEADerivatives(model, data, q, v, a, fext)
+    out = dict(
+        fext=[np.concatenate([f.angular, f.linear]) for f in fext[1:]],
+        dtau_dq=dq[np.ix_(p, p)].copy(),
+        dtau_dv=dv[np.ix_(p, p)].copy(),
+    )
+    dq, dv, minv = pin.computeABADerivatives(model, data, q, v, tau)
+    minv = np.triu(minv) + np.triu(minv, 1).T
+    out.update(dqdd_dq=dq[np.ix_(p, p)].copy(), dqdd_dv=dv[np.ix_(p, p)].copy(),
+               dqdd_dtau=minv[np.ix_(p, p)].copy())
+    return out
+
+
 def main():
     args = sys.argv[1:]
     if not args or args[0] in ("-h", "--help"):
@@ -133,6 +155,7 @@ def main():
     name = args[0]
     states = int(args[args.index("--states") + 1]) if "--states" in args else 5
     seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
+    derivatives = "--derivatives" in args
     if name not in ROBOTS:
         sys.exit(f"unknown robot {name!r}; known: {', '.join(sorted(ROBOTS))}")
     rel, floating = ROBOTS[name]
@@ -154,6 +177,8 @@ def main():
 
     np.random.seed(seed)
     pin.seed(seed)
+    # the derivatives' wrenches have their own stream: the states are those without the flag
+    rs = np.random.RandomState(seed + 1)
     out_states = []
     for _ in range(states):
         q = pin.randomConfiguration(model)
@@ -179,6 +204,8 @@ def main():
             potential_energy=pin.computePotentialEnergy(model, data, q),
             com=pin.centerOfMass(model, data, q).copy(),
         )
+        if derivatives:
+            st["derivatives"] = reference_derivatives(model, data, joints, p, rs, q, v, a, tau)
         pin.forwardKinematics(model, data, q)
         st["placements"] = {
             model.names[i]: dict(

@@ -27,6 +27,9 @@
 //!   (`floating = true`), in which case it becomes the body of a free-flyer joint named
 //!   [`ROOT_JOINT_NAME`] (Pinocchio's name). Links welded to the world take no part in the
 //!   dynamics (total mass, CoM and potential energy leave them out).
+//! - `<dynamics damping friction>` become the joint's [`Model::damping`](crate::multibody::Model::damping)
+//!   and [`Model::friction`](crate::multibody::Model::friction) (every dof of the joint), used
+//!   by the simulator only.
 //! - `mimic` joints are imported as independent joints, as Pinocchio's default (`mimic=False`)
 //!   does; the mimic data is kept in [`UrdfJoint::mimic`].
 //!
@@ -43,21 +46,29 @@
 //! but its mass matrix is singular and ABA is undefined: [`UrdfRobot::inertia_report`] lists it.
 
 mod build;
+pub mod doctor;
+mod elements;
+mod mesh_path;
 mod parse;
 
-pub use build::{build_model, load_urdf, load_urdf_str, ROOT_JOINT_NAME};
+pub use build::{
+    build_model, build_model_with, load_urdf, load_urdf_str, load_urdf_with, ROOT_JOINT_NAME,
+};
+pub use mesh_path::resolve_mesh_path;
 pub use parse::{parse_urdf_file, parse_urdf_str};
 
 use crate::error::InertiaError;
-use crate::mass::{RotationalInertia, DEFAULT_INERTIA_TOLERANCE};
+use crate::mass::{Consistency, RotationalInertia, SpatialInertia, Verdict};
 use crate::spatial::{Transform, Vec3};
 use thiserror::Error;
 
 /// A robot read from a URDF file: links and joints in file order, with the tree checked.
 #[derive(Clone, Debug)]
 pub struct UrdfRobot {
-    /// `<robot name>`.
+    /// `<robot name>` (the file's stem, or `robot`, when the attribute is missing: a warning).
     pub name: String,
+    /// The file it was read from (`None` for text).
+    pub path: Option<std::path::PathBuf>,
     /// The links, in file order.
     pub links: Vec<UrdfLink>,
     /// The joints, in file order.
@@ -66,6 +77,27 @@ pub struct UrdfRobot {
     pub root: usize,
     /// For each link, the indices (in `joints`) of its child joints, in file order.
     pub children: Vec<Vec<usize>>,
+    /// What was read but ignored or tolerated: unknown elements, a mimic of an unknown joint, a
+    /// missing robot name, an `<inertial>` without `<mass>` or `<inertia>`, a geometry that
+    /// cannot be read. Each names the element and the line.
+    pub warnings: Vec<UrdfWarning>,
+}
+
+/// Something in a URDF file that was tolerated: the file loads, the user should know.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UrdfWarning {
+    /// Line (1-based).
+    pub line: u32,
+    /// The element, with its name: `joint "elbow"`, `link "base"`, `robot`.
+    pub element: String,
+    /// What was tolerated and how.
+    pub message: String,
+}
+
+impl std::fmt::Display for UrdfWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "line {}: {}: {}", self.line, self.element, self.message)
+    }
 }
 
 /// A `<link>`.
@@ -77,19 +109,93 @@ pub struct UrdfLink {
     pub line: u32,
     /// `<inertial>`, if present.
     pub inertial: Option<UrdfInertial>,
+    /// `<visual>` elements whose geometry could be read, in file order.
+    pub visuals: Vec<UrdfGeometry>,
+    /// `<collision>` elements whose geometry could be read, in file order.
+    pub collisions: Vec<UrdfGeometry>,
 }
 
 /// A link's `<inertial>` element.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct UrdfInertial {
     /// `<origin>`: the CoM frame in the link frame (the inertia is given in its axes).
     pub origin: Transform,
-    /// `<mass value>` (kg), finite and non-negative.
+    /// `<origin rpy>` as written (`[0, 0, 0]` when absent).
+    pub rpy: [f64; 3],
+    /// `<mass value>` (kg), finite (a negative mass is refused when the model is built).
     pub mass: f64,
     /// `<inertia>` about the CoM in the axes of `origin` (kg·m²), finite.
     pub inertia: RotationalInertia,
     /// Line of the `<inertial>` element.
     pub line: u32,
+    /// The numbers as written: `mass`, then `ixx, iyy, izz, ixy, ixz, iyz` (for the doctor's
+    /// typo search; empty for a missing attribute).
+    pub text: [String; 7],
+    /// Byte range of the `<inertial>` element in the file (for `rigid doctor --fix`).
+    pub span: std::ops::Range<usize>,
+}
+
+impl UrdfInertial {
+    /// The link's spatial inertia in the link frame: mass, CoM at `origin`, and the inertia
+    /// rotated from `origin`'s axes into the link's, `R I Rᵀ`.
+    #[must_use]
+    pub fn spatial_inertia(&self) -> SpatialInertia {
+        SpatialInertia::from_com(
+            self.mass,
+            self.origin.translation,
+            self.inertia.rotated_by(&self.origin.rotation),
+        )
+    }
+}
+
+/// A `<visual>` or `<collision>` element: a shape placed in the link frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrdfGeometry {
+    /// `<origin>`: the shape's frame in the link frame.
+    pub origin: Transform,
+    /// The shape.
+    pub shape: UrdfShape,
+    /// The colour `rgba` (in `[0, 1]`), from an inline `<material><color>` or a top-level
+    /// `<material>` of that name; `None` when none is given.
+    pub rgba: Option<[f64; 4]>,
+    /// Line of the `<visual>` or `<collision>` element.
+    pub line: u32,
+}
+
+/// A URDF `<geometry>`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum UrdfShape {
+    /// `<box size>`, centred on its frame.
+    Box {
+        /// Edge lengths along x, y, z (m).
+        size: Vec3,
+    },
+    /// `<cylinder radius length>`, axis along z, centred.
+    Cylinder {
+        /// Radius (m).
+        radius: f64,
+        /// Length (m).
+        length: f64,
+    },
+    /// `<sphere radius>`.
+    Sphere {
+        /// Radius (m).
+        radius: f64,
+    },
+    /// `<capsule radius length>` (urdfdom extension): a cylinder with hemispherical caps.
+    Capsule {
+        /// Radius (m).
+        radius: f64,
+        /// Length of the cylindrical part (m).
+        length: f64,
+    },
+    /// `<mesh filename scale>`: a mesh file (`package://`, `file://` or relative path).
+    Mesh {
+        /// The file name as written.
+        filename: String,
+        /// `scale` (default `1 1 1`).
+        scale: Vec3,
+    },
 }
 
 /// The `type` of a `<joint>`.
@@ -175,6 +281,70 @@ pub struct UrdfJoint {
     pub friction: f64,
 }
 
+/// How non-physical inertias are treated when a model is built from a URDF.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum InertiaPolicy {
+    /// Refuse a link whose inertia about the CoM is not positive semi-definite beyond round-off
+    /// (an error naming the link and line). A triangle-inequality violation is a warning.
+    Strict,
+    /// Load every inertia as written; each non-physical one is a warning naming the link and
+    /// line (as Pinocchio, Drake and MuJoCo load them).
+    #[default]
+    Warn,
+    /// Replace each non-physical inertia by the doctor's repair (the undone fault when a cause
+    /// is found, else the nearest physically consistent parameters) and warn what was done.
+    Repair,
+}
+
+impl InertiaPolicy {
+    /// `strict`, `warn` or `repair`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Strict => "strict",
+            Self::Warn => "warn",
+            Self::Repair => "repair",
+        }
+    }
+}
+
+impl std::str::FromStr for InertiaPolicy {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "strict" => Ok(Self::Strict),
+            "warn" => Ok(Self::Warn),
+            "repair" => Ok(Self::Repair),
+            _ => Err(format!(
+                "unknown inertia policy \"{s}\" (expected strict, warn or repair)"
+            )),
+        }
+    }
+}
+
+/// The order of sibling joints (children of one link) in the model.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SiblingOrder {
+    /// The order the file lists the joints (rigid's default).
+    #[default]
+    File,
+    /// Sorted by joint name, byte-wise, as urdfdom (and so Pinocchio) does: with it, the joint
+    /// order of a model equals Pinocchio's `buildModelFromUrdf`.
+    Name,
+}
+
+/// Options of [`load_urdf_with`] and [`build_model_with`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UrdfOptions {
+    /// Add a free-flyer root joint ([`ROOT_JOINT_NAME`]) carrying the root link; otherwise the
+    /// root link is welded to the world.
+    pub floating: bool,
+    /// What to do with non-physical inertias.
+    pub inertia: InertiaPolicy,
+    /// The order of sibling joints.
+    pub sibling_order: SiblingOrder,
+}
+
 /// Why a URDF file could not be read or turned into a model. Every variant says where.
 #[derive(Debug, Error)]
 pub enum UrdfError {
@@ -237,10 +407,12 @@ pub struct InertiaIssue {
 /// What [`InertiaIssue`] found.
 #[derive(Clone, Debug, PartialEq)]
 pub enum InertiaIssueKind {
-    /// The rotational inertia is not physical. Not positive semi-definite (or not finite): an
-    /// error, the model is refused. The triangle inequality of the principal moments fails: a
-    /// warning, as Pinocchio accepts it and real files carry such dummy inertias (ANYmal's base
-    /// link).
+    /// The inertial parameters are not physical, beyond round-off ([`crate::mass::Consistency`]):
+    /// a negative mass (an error under every policy), a zero mass with a non-zero inertia (a
+    /// warning), an inertia about the CoM that is not positive semi-definite (an error under
+    /// [`InertiaPolicy::Strict`], else a warning), or principal moments violating the triangle
+    /// inequality (a warning: Pinocchio accepts it and real files carry such dummy inertias,
+    /// ANYmal's base link).
     Invalid(InertiaError),
     /// The moving joint `joint` carries no mass at all (its child link and everything below it
     /// are massless): the mass matrix is singular and ABA is undefined (Pinocchio returns NaN).
@@ -249,32 +421,66 @@ pub enum InertiaIssueKind {
         /// The joint that moves the massless subtree.
         joint: String,
     },
+    /// A mass above [`HUGE_MASS`] (1000 t): no robot link weighs that much, and the dynamics
+    /// of such numbers may overflow. A warning.
+    HugeMass {
+        /// The mass (kg).
+        mass: f64,
+    },
+}
+
+/// The mass (kg) above which a link's mass is reported as implausible.
+pub const HUGE_MASS: f64 = 1e6;
+
+impl InertiaIssue {
+    /// `true` for the findings that make [`build_model`] refuse the robot under
+    /// [`InertiaPolicy::Strict`].
+    #[must_use]
+    pub fn is_error(&self) -> bool {
+        self.is_error_under(InertiaPolicy::Strict)
+    }
+
+    /// `true` for the findings that refuse the robot under `policy`: a negative mass always; an
+    /// inertia that is not positive semi-definite under [`InertiaPolicy::Strict`].
+    #[must_use]
+    pub fn is_error_under(&self, policy: InertiaPolicy) -> bool {
+        match &self.kind {
+            InertiaIssueKind::Invalid(InertiaError::BadMass { mass }) => *mass < 0.0,
+            InertiaIssueKind::Invalid(InertiaError::NotPositiveSemiDefinite { .. }) => {
+                policy == InertiaPolicy::Strict
+            }
+            _ => false,
+        }
+    }
 }
 
 impl InertiaIssue {
-    /// `true` for the findings that make [`build_model`] refuse the robot.
+    /// What is wrong, without the line and link.
     #[must_use]
-    pub fn is_error(&self) -> bool {
-        matches!(
-            self.kind,
-            InertiaIssueKind::Invalid(ref e) if !matches!(e, InertiaError::TriangleInequality { .. })
-        )
+    pub fn description(&self) -> String {
+        match &self.kind {
+            InertiaIssueKind::Invalid(e) => format!("inertia: {e}"),
+            InertiaIssueKind::ZeroMassMovingLink { joint } => format!(
+                "moved by joint \"{joint}\" but it and its descendants have zero mass (singular \
+                 mass matrix, ABA undefined)"
+            ),
+            InertiaIssueKind::HugeMass { mass } => format!(
+                "mass {mass:e} kg is implausibly large (over {HUGE_MASS:e} kg); results may \
+                 overflow"
+            ),
+        }
     }
 }
 
 impl std::fmt::Display for InertiaIssue {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match &self.kind {
-            InertiaIssueKind::Invalid(e) => {
-                write!(f, "line {}: link \"{}\": {e}", self.line, self.link)
-            }
-            InertiaIssueKind::ZeroMassMovingLink { joint } => write!(
-                f,
-                "line {}: link \"{}\": moved by joint \"{joint}\" but it and its descendants \
-                 have zero mass (singular mass matrix, ABA undefined)",
-                self.line, self.link
-            ),
-        }
+        write!(
+            f,
+            "line {}: link \"{}\": {}",
+            self.line,
+            self.link,
+            self.description()
+        )
     }
 }
 
@@ -283,6 +489,12 @@ impl UrdfRobot {
     #[must_use]
     pub fn link(&self, name: &str) -> Option<&UrdfLink> {
         self.links.iter().find(|l| l.name == name)
+    }
+
+    /// The index (in `links`) of the link with this name.
+    #[must_use]
+    pub fn link_index(&self, name: &str) -> Option<usize> {
+        self.links.iter().position(|l| l.name == name)
     }
 
     /// The joint with this name.
@@ -294,7 +506,29 @@ impl UrdfRobot {
     /// The mass of a link (0 without `<inertial>`).
     #[must_use]
     pub fn link_mass(&self, link: usize) -> f64 {
-        self.links[link].inertial.map_or(0.0, |i| i.mass)
+        self.links[link].inertial.as_ref().map_or(0.0, |i| i.mass)
+    }
+
+    /// The total mass of every link and of everything below it, indexed like `links`
+    /// (computed leaves first, in linear time).
+    #[must_use]
+    pub fn subtree_masses(&self) -> Vec<f64> {
+        // depth-first order from the root, then accumulate in reverse
+        let mut order = Vec::with_capacity(self.links.len());
+        let mut stack = vec![self.root];
+        while let Some(l) = stack.pop() {
+            order.push(l);
+            stack.extend(self.children[l].iter().map(|&j| self.joints[j].child));
+        }
+        let mut m: Vec<f64> = (0..self.links.len()).map(|l| self.link_mass(l)).collect();
+        for &l in order.iter().rev() {
+            let below: f64 = self.children[l]
+                .iter()
+                .map(|&j| m[self.joints[j].child])
+                .sum();
+            m[l] += below;
+        }
+        m
     }
 
     /// The total mass of a link and of everything below it.
@@ -308,25 +542,56 @@ impl UrdfRobot {
         m
     }
 
-    /// Checks every link's inertia (positive semi-definite, triangle inequality, to
-    /// [`DEFAULT_INERTIA_TOLERANCE`] relative) and finds the moving joints that carry no mass.
-    /// Links in file order; an empty list means every inertia is fine.
+    /// The spatial inertia of a link in its link frame: `<inertial>`'s mass, CoM at its origin,
+    /// and inertia `R I Rᵀ` rotated from the inertial frame's axes into the link's (zero without
+    /// `<inertial>`).
+    #[must_use]
+    pub fn link_inertia(&self, link: usize) -> SpatialInertia {
+        self.links[link]
+            .inertial
+            .as_ref()
+            .map_or_else(SpatialInertia::zero, UrdfInertial::spatial_inertia)
+    }
+
+    /// Checks every link's inertial parameters ([`crate::mass::Consistency`]: mass, positive
+    /// semi-definite inertia, triangle inequality, each beyond the round-off allowance) and finds
+    /// the moving joints that carry no mass. Links in file order; an empty list means every
+    /// inertia is fine.
     #[must_use]
     pub fn inertia_report(&self) -> Vec<InertiaIssue> {
         let mut issues = Vec::new();
-        for link in &self.links {
-            if let Some(i) = &link.inertial {
-                if let Err(e) = i.inertia.validate(DEFAULT_INERTIA_TOLERANCE) {
-                    issues.push(InertiaIssue {
-                        link: link.name.clone(),
-                        line: i.line,
-                        kind: InertiaIssueKind::Invalid(e),
-                    });
-                }
+        for (l, link) in self.links.iter().enumerate() {
+            let Some(i) = &link.inertial else { continue };
+            let c = Consistency::of(&self.link_inertia(l));
+            let error = match c.verdict() {
+                Verdict::BadMass => Some(InertiaError::BadMass { mass: i.mass }),
+                Verdict::NotPositiveSemiDefinite => Some(InertiaError::NotPositiveSemiDefinite {
+                    moment: c.principal_moments[0],
+                }),
+                Verdict::TriangleInequality => Some(InertiaError::TriangleInequality {
+                    small_sum: c.principal_moments[0] + c.principal_moments[1],
+                    largest: c.principal_moments[2],
+                }),
+                _ => None,
+            };
+            if let Some(e) = error {
+                issues.push(InertiaIssue {
+                    link: link.name.clone(),
+                    line: i.line,
+                    kind: InertiaIssueKind::Invalid(e),
+                });
+            }
+            if i.mass > HUGE_MASS {
+                issues.push(InertiaIssue {
+                    link: link.name.clone(),
+                    line: i.line,
+                    kind: InertiaIssueKind::HugeMass { mass: i.mass },
+                });
             }
         }
+        let subtree = self.subtree_masses();
         for joint in &self.joints {
-            if joint.kind != UrdfJointKind::Fixed && self.subtree_mass(joint.child) == 0.0 {
+            if joint.kind != UrdfJointKind::Fixed && subtree[joint.child] == 0.0 {
                 let link = &self.links[joint.child];
                 issues.push(InertiaIssue {
                     link: link.name.clone(),

@@ -1,15 +1,12 @@
 //! URDF text to [`UrdfRobot`]: XML with `roxmltree`, then every element and the tree checked.
 
-use super::{
-    UrdfError, UrdfInertial, UrdfJoint, UrdfJointKind, UrdfLimit, UrdfLink, UrdfMimic, UrdfRobot,
-};
-use crate::mass::RotationalInertia;
-use crate::spatial::{Transform, Vec3};
-use roxmltree::{Document, Node, ParsingOptions};
+use super::elements::{is, Parser, ROBOT_CHILDREN};
+use super::{UrdfError, UrdfJoint, UrdfLink, UrdfRobot};
+use roxmltree::{Document, ParsingOptions};
 use std::collections::HashMap;
 use std::path::Path;
 
-/// Reads and checks a URDF file.
+/// Reads and checks a URDF file. A missing `<robot name>` becomes the file's stem.
 ///
 /// # Errors
 /// [`UrdfError::Io`] if the file cannot be read, else as [`parse_urdf_str`].
@@ -19,12 +16,24 @@ pub fn parse_urdf_file(path: impl AsRef<Path>) -> Result<UrdfRobot, UrdfError> {
         path: path.display().to_string(),
         source,
     })?;
-    parse_urdf_str(&text)
+    let mut robot = parse_urdf_str(&text)?;
+    if robot.name.is_empty() {
+        robot.name = path
+            .file_stem()
+            .map_or_else(|| "robot".into(), |s| s.to_string_lossy().into_owned());
+    }
+    robot.path = Some(path.to_path_buf());
+    Ok(robot)
 }
 
 /// Parses and checks URDF text: well-formed XML, every element and attribute, the tree (one root,
 /// no cycle, one parent per link). The inertias' physical validity is checked by
 /// [`UrdfRobot::inertia_report`] and when the model is built.
+///
+/// Tolerated, with a warning in [`UrdfRobot::warnings`]: a `<robot>` without a name (the model
+/// is called `robot`), unknown elements, a mimic of a joint that is not defined (mimic joints are
+/// imported as independent joints anyway), an `<inertial>` without `<mass>` or `<inertia>`
+/// (zero), and a `<visual>` or `<collision>` whose geometry cannot be read (skipped).
 ///
 /// ```
 /// let robot = rigid::io::urdf::parse_urdf_str(
@@ -33,26 +42,60 @@ pub fn parse_urdf_file(path: impl AsRef<Path>) -> Result<UrdfRobot, UrdfError> {
 /// ).unwrap();
 /// assert_eq!(robot.links[robot.root].name, "a");
 /// assert_eq!(robot.joints[0].axis, rigid::spatial::Vec3::x());
+/// assert!(robot.warnings.is_empty());
 /// ```
 ///
 /// # Errors
 /// A [`UrdfError`] naming the link or joint and the line.
 pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
-    let opts = ParsingOptions {
-        allow_dtd: true,
-        ..ParsingOptions::default()
-    };
-    let doc = Document::parse_with_options(text, opts).map_err(|e| {
-        let pos = e.pos();
-        UrdfError::Xml {
-            line: pos.row,
-            column: pos.col,
-            message: e.to_string(),
+    // urdfdom (TinyXML) ignores XML namespaces, so files with undeclared prefixes such as
+    // Drake's `<drake:joint>` load in other tools: declare each such prefix on the root element
+    // (same line, so line numbers hold) and warn.
+    let mut owned: Option<String> = None;
+    let mut inserted = 0usize;
+    let mut undeclared: Vec<String> = Vec::new();
+    let doc = loop {
+        let src = owned.as_deref().unwrap_or(text);
+        let opts = ParsingOptions {
+            allow_dtd: true,
+            ..ParsingOptions::default()
+        };
+        match Document::parse_with_options(src, opts) {
+            Ok(_) => break src,
+            Err(roxmltree::Error::UnknownNamespace(prefix, _))
+                if undeclared.len() < 16 && !undeclared.contains(&prefix) =>
+            {
+                let Some(at) = root_tag_end(src) else {
+                    return Err(xml_error(&roxmltree::Error::UnknownNamespace(
+                        prefix,
+                        roxmltree::TextPos::new(1, 1),
+                    )));
+                };
+                let decl = format!(" xmlns:{prefix}=\"urn:rigid:undeclared:{prefix}\"");
+                let mut t = src.to_string();
+                t.insert_str(at, &decl);
+                inserted += decl.len();
+                undeclared.push(prefix);
+                owned = Some(t);
+            }
+            Err(e) => return Err(xml_error(&e)),
         }
-    })?;
-    let p = Parser { doc: &doc };
+    };
+    let doc = Document::parse_with_options(
+        doc,
+        ParsingOptions {
+            allow_dtd: true,
+            ..ParsingOptions::default()
+        },
+    )
+    .map_err(|e| xml_error(&e))?;
+    let mut p = Parser {
+        warnings: Vec::new(),
+        materials: HashMap::new(),
+        line_starts: Parser::line_starts(doc.input_text()),
+    };
     let root = doc.root_element();
-    if !root.has_tag_name("robot") {
+    if !is(&root, "robot") {
         return Err(p.invalid(
             root,
             "document".into(),
@@ -62,11 +105,24 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
             ),
         ));
     }
-    let name = p.attr(root, "robot".into(), "name")?.to_string();
+    let name = match root.attribute("name") {
+        Some(n) => n.to_string(),
+        None => {
+            let msg = "<robot> has no \"name\" attribute; the model is named after the file \
+                       (or \"robot\")"
+                .into();
+            p.warn(root, "robot".into(), msg);
+            String::new()
+        }
+    };
+    p.warn_unknown_children(root, "robot", ROBOT_CHILDREN);
+    for node in root.children().filter(|n| is(n, "material")) {
+        p.material(node);
+    }
 
     let mut links = Vec::new();
     let mut link_index: HashMap<String, usize> = HashMap::new();
-    for node in root.children().filter(|n| n.has_tag_name("link")) {
+    for node in root.children().filter(|n| is(n, "link")) {
         let link = p.link(node)?;
         if let Some(&first) = link_index.get(&link.name) {
             let first: &UrdfLink = &links[first];
@@ -84,14 +140,15 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
     }
 
     let mut joints: Vec<UrdfJoint> = Vec::new();
+    let mut joint_index: HashMap<String, usize> = HashMap::new();
     let mut parent_joint: Vec<Option<usize>> = vec![None; links.len()];
-    for node in root.children().filter(|n| n.has_tag_name("joint")) {
+    for node in root.children().filter(|n| is(n, "joint")) {
         let joint = p.joint(node, &link_index)?;
         let what = || format!("joint \"{}\"", joint.name);
-        if let Some(first) = joints.iter().find(|j| j.name == joint.name) {
+        if let Some(&first) = joint_index.get(&joint.name) {
             let msg = format!(
                 "duplicate joint name (first defined at line {})",
-                first.line
+                joints[first].line
             );
             return Err(p.invalid(node, what(), msg));
         }
@@ -111,25 +168,57 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
             return Err(p.invalid(node, what(), msg));
         }
         parent_joint[joint.child] = Some(joints.len());
+        joint_index.insert(joint.name.clone(), joints.len());
         joints.push(joint);
     }
 
-    for (j, joint) in joints.iter().enumerate() {
-        if let Some(m) = &joint.mimic {
-            if !joints.iter().any(|o| o.name == m.joint) {
+    for joint in &mut joints {
+        let Some(m) = &joint.mimic else { continue };
+        let element = format!("joint \"{}\"", joint.name);
+        if joint.name == m.joint {
+            return Err(UrdfError::Invalid {
+                line: joint.line,
+                element,
+                message: "mimics itself".into(),
+            });
+        }
+        if !joint_index.contains_key(&m.joint) {
+            p.warnings.push(super::UrdfWarning {
+                line: joint.line,
+                element,
+                message: format!(
+                    "mimics joint \"{}\", which is not defined: the mimic is ignored (mimic \
+                     joints are imported as independent joints)",
+                    m.joint
+                ),
+            });
+            joint.mimic = None;
+        }
+    }
+
+    // A chain of mimics that comes back to itself defines no joint: refuse it.
+    for start in 0..joints.len() {
+        let mut seen = vec![start];
+        let mut cur = start;
+        while let Some(next) = joints[cur]
+            .mimic
+            .as_ref()
+            .and_then(|m| joint_index.get(&m.joint).copied())
+        {
+            if next == start {
+                let names: Vec<&str> = seen.iter().map(|&j| joints[j].name.as_str()).collect();
+                let j = &joints[start];
                 return Err(UrdfError::Invalid {
-                    line: joint.line,
-                    element: format!("joint \"{}\"", joint.name),
-                    message: format!("mimics joint \"{}\", which is not defined", m.joint),
+                    line: j.line,
+                    element: format!("joint \"{}\"", j.name),
+                    message: format!("mimic loop: {} -> {}", names.join(" -> "), j.name),
                 });
             }
-            if joints[j].name == m.joint {
-                return Err(UrdfError::Invalid {
-                    line: joint.line,
-                    element: format!("joint \"{}\"", joint.name),
-                    message: "mimics itself".into(),
-                });
+            if seen.contains(&next) {
+                break; // a loop not through `start`: reported from one of its joints
             }
+            seen.push(next);
+            cur = next;
         }
     }
 
@@ -196,262 +285,64 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
         });
     }
 
+    let mut warnings = p.warnings;
+    for prefix in &undeclared {
+        warnings.push(super::UrdfWarning {
+            line: 1,
+            element: "robot".into(),
+            message: format!(
+                "XML namespace prefix \"{prefix}\" is used but not declared: its elements are \
+                 ignored, as other URDF parsers do"
+            ),
+        });
+    }
+    warnings.sort_by_key(|w| w.line);
+    // Byte spans refer to the text as given, before the declarations were inserted.
+    for link in &mut links {
+        if let Some(i) = &mut link.inertial {
+            i.span = i.span.start - inserted..i.span.end - inserted;
+        }
+    }
     Ok(UrdfRobot {
         name,
+        path: None,
         links,
         joints,
         root: root_link,
         children,
+        warnings,
     })
 }
 
-/// Element readers that know the document, for line numbers.
-struct Parser<'a, 'input> {
-    doc: &'a Document<'input>,
+/// The byte offset just after the root element's tag name (`<robot`), where attributes may be
+/// inserted.
+fn root_tag_end(text: &str) -> Option<usize> {
+    let mut rest = 0;
+    loop {
+        let i = rest + text[rest..].find('<')?;
+        let after = &text[i + 1..];
+        if after.starts_with('?') || after.starts_with('!') {
+            // declaration, comment, DOCTYPE: skip to its end
+            let end = if after.starts_with("!--") {
+                after.find("-->")? + 3
+            } else {
+                after.find('>')? + 1
+            };
+            rest = i + 1 + end;
+            continue;
+        }
+        let name_len = after
+            .find(|c: char| c.is_whitespace() || c == '>' || c == '/')
+            .unwrap_or(after.len());
+        return Some(i + 1 + name_len);
+    }
 }
 
-impl Parser<'_, '_> {
-    fn line(&self, node: Node) -> u32 {
-        self.doc.text_pos_at(node.range().start).row
-    }
-
-    fn invalid(&self, node: Node, element: String, message: String) -> UrdfError {
-        UrdfError::Invalid {
-            line: self.line(node),
-            element,
-            message,
-        }
-    }
-
-    /// A required attribute.
-    fn attr<'n>(&self, node: Node<'n, '_>, what: String, name: &str) -> Result<&'n str, UrdfError> {
-        node.attribute(name).ok_or_else(|| {
-            let msg = format!("<{}> has no \"{name}\" attribute", node.tag_name().name());
-            self.invalid(node, what, msg)
-        })
-    }
-
-    /// An optional finite number.
-    fn number(&self, node: Node, what: &str, name: &str) -> Result<Option<f64>, UrdfError> {
-        let Some(text) = node.attribute(name) else {
-            return Ok(None);
-        };
-        let tag = node.tag_name().name();
-        let x: f64 = text.trim().parse().map_err(|_| {
-            let msg = format!("<{tag} {name}=\"{text}\">: not a number");
-            self.invalid(node, what.into(), msg)
-        })?;
-        if !x.is_finite() {
-            let msg = format!("<{tag} {name}=\"{text}\">: non-finite value");
-            return Err(self.invalid(node, what.into(), msg));
-        }
-        Ok(Some(x))
-    }
-
-    /// A required finite number.
-    fn required(&self, node: Node, what: &str, name: &str) -> Result<f64, UrdfError> {
-        self.number(node, what, name)?.ok_or_else(|| {
-            let msg = format!("<{}> has no \"{name}\" attribute", node.tag_name().name());
-            self.invalid(node, what.into(), msg)
-        })
-    }
-
-    /// An optional triple of finite numbers, `default` if absent.
-    fn triple(
-        &self,
-        node: Node,
-        what: &str,
-        name: &str,
-        default: [f64; 3],
-    ) -> Result<[f64; 3], UrdfError> {
-        let Some(text) = node.attribute(name) else {
-            return Ok(default);
-        };
-        let tag = node.tag_name().name();
-        let bad = |why: &str| {
-            let msg = format!("<{tag} {name}=\"{text}\">: {why}");
-            self.invalid(node, what.into(), msg)
-        };
-        let mut out = [0.0; 3];
-        let mut count = 0;
-        for word in text.split_whitespace() {
-            let x: f64 = word
-                .parse()
-                .map_err(|_| bad("not a list of three numbers"))?;
-            if !x.is_finite() {
-                return Err(bad("non-finite value"));
-            }
-            if count < 3 {
-                out[count] = x;
-            }
-            count += 1;
-        }
-        if count != 3 {
-            return Err(bad(&format!("expected three numbers, got {count}")));
-        }
-        Ok(out)
-    }
-
-    /// The first child element with this tag.
-    fn child<'n, 'i>(node: Node<'n, 'i>, tag: &str) -> Option<Node<'n, 'i>> {
-        node.children().find(|n| n.has_tag_name(tag))
-    }
-
-    /// `<origin xyz rpy>` under `node`, identity if absent.
-    fn origin(&self, node: Node, what: &str) -> Result<Transform, UrdfError> {
-        match Self::child(node, "origin") {
-            None => Ok(Transform::identity()),
-            Some(o) => {
-                let xyz = self.triple(o, what, "xyz", [0.0; 3])?;
-                let rpy = self.triple(o, what, "rpy", [0.0; 3])?;
-                Ok(Transform::from_xyz_rpy(xyz, rpy))
-            }
-        }
-    }
-
-    fn link(&self, node: Node) -> Result<UrdfLink, UrdfError> {
-        let name = self.attr(node, "link".into(), "name")?.to_string();
-        let what = format!("link \"{name}\"");
-        let inertial = match Self::child(node, "inertial") {
-            None => None,
-            Some(inode) => {
-                let origin = self.origin(inode, &what)?;
-                let mass_node = Self::child(inode, "mass").ok_or_else(|| {
-                    self.invalid(inode, what.clone(), "<inertial> has no <mass>".into())
-                })?;
-                let mass = self.required(mass_node, &what, "value")?;
-                if mass < 0.0 {
-                    let msg = format!("negative mass {mass}");
-                    return Err(self.invalid(mass_node, what, msg));
-                }
-                let inode_i = Self::child(inode, "inertia").ok_or_else(|| {
-                    self.invalid(inode, what.clone(), "<inertial> has no <inertia>".into())
-                })?;
-                let mut e = [0.0; 6];
-                for (k, key) in ["ixx", "iyy", "izz", "ixy", "ixz", "iyz"]
-                    .iter()
-                    .enumerate()
-                {
-                    e[k] = self.required(inode_i, &what, key)?;
-                }
-                Some(UrdfInertial {
-                    origin,
-                    mass,
-                    inertia: RotationalInertia::new(e[0], e[1], e[2], e[3], e[4], e[5]),
-                    line: self.line(inode),
-                })
-            }
-        };
-        Ok(UrdfLink {
-            name,
-            line: self.line(node),
-            inertial,
-        })
-    }
-
-    fn joint(
-        &self,
-        node: Node,
-        link_index: &HashMap<String, usize>,
-    ) -> Result<UrdfJoint, UrdfError> {
-        let name = self.attr(node, "joint".into(), "name")?.to_string();
-        let what = format!("joint \"{name}\"");
-        let type_str = self.attr(node, what.clone(), "type")?;
-        let kind = match type_str {
-            "revolute" => UrdfJointKind::Revolute,
-            "continuous" => UrdfJointKind::Continuous,
-            "prismatic" => UrdfJointKind::Prismatic,
-            "fixed" => UrdfJointKind::Fixed,
-            "floating" => UrdfJointKind::Floating,
-            "planar" => UrdfJointKind::Planar,
-            other => {
-                let msg = format!(
-                    "unknown joint type \"{other}\" (expected revolute, continuous, prismatic, \
-                     fixed, floating or planar)"
-                );
-                return Err(self.invalid(node, what, msg));
-            }
-        };
-        let link_of = |tag: &str| -> Result<usize, UrdfError> {
-            let n = Self::child(node, tag)
-                .ok_or_else(|| self.invalid(node, what.clone(), format!("no <{tag}> element")))?;
-            let link = self.attr(n, what.clone(), "link")?;
-            link_index.get(link).copied().ok_or_else(|| {
-                let msg = format!("{tag} link \"{link}\" is not defined");
-                self.invalid(n, what.clone(), msg)
-            })
-        };
-        let parent = link_of("parent")?;
-        let child = link_of("child")?;
-        let origin = self.origin(node, &what)?;
-
-        let axis = match Self::child(node, "axis") {
-            None => Vec3::x(),
-            Some(a) => {
-                let xyz = Vec3::from(self.triple(a, &what, "xyz", [1.0, 0.0, 0.0])?);
-                let n = xyz.norm();
-                let uses_axis = !matches!(kind, UrdfJointKind::Fixed | UrdfJointKind::Floating);
-                if uses_axis && n == 0.0 {
-                    return Err(self.invalid(a, what, "zero joint axis".into()));
-                }
-                if n == 0.0 {
-                    Vec3::x()
-                } else {
-                    xyz / n
-                }
-            }
-        };
-        if kind == UrdfJointKind::Planar && (axis - Vec3::z()).norm() > 1e-12 {
-            let msg = format!(
-                "planar joint with axis ({}, {}, {}): only axis 0 0 1 (the x-y plane of the joint \
-                 frame) is supported",
-                axis.x, axis.y, axis.z
-            );
-            return Err(self.invalid(node, what, msg));
-        }
-
-        let limit = match Self::child(node, "limit") {
-            None => None,
-            Some(l) => {
-                let lower = self.number(l, &what, "lower")?.unwrap_or(0.0);
-                let upper = self.number(l, &what, "upper")?.unwrap_or(0.0);
-                let effort = self.number(l, &what, "effort")?.unwrap_or(f64::INFINITY);
-                let velocity = self.number(l, &what, "velocity")?.unwrap_or(f64::INFINITY);
-                Some(UrdfLimit {
-                    lower,
-                    upper,
-                    effort,
-                    velocity,
-                })
-            }
-        };
-        let mimic = match Self::child(node, "mimic") {
-            None => None,
-            Some(m) => Some(UrdfMimic {
-                joint: self.attr(m, what.clone(), "joint")?.to_string(),
-                multiplier: self.number(m, &what, "multiplier")?.unwrap_or(1.0),
-                offset: self.number(m, &what, "offset")?.unwrap_or(0.0),
-            }),
-        };
-        let (damping, friction) = match Self::child(node, "dynamics") {
-            None => (0.0, 0.0),
-            Some(d) => (
-                self.number(d, &what, "damping")?.unwrap_or(0.0),
-                self.number(d, &what, "friction")?.unwrap_or(0.0),
-            ),
-        };
-        Ok(UrdfJoint {
-            name,
-            line: self.line(node),
-            kind,
-            parent,
-            child,
-            origin,
-            axis,
-            limit,
-            mimic,
-            damping,
-            friction,
-        })
+fn xml_error(e: &roxmltree::Error) -> UrdfError {
+    let pos = e.pos();
+    UrdfError::Xml {
+        line: pos.row,
+        column: pos.col,
+        message: e.to_string(),
     }
 }

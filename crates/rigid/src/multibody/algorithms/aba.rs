@@ -270,10 +270,13 @@ fn aba_impl(
 ///   `I^A_{λ(i)} += Xᵀ I^a X`, `p^A_{λ(i)} += Xᵀ p^a` with `X = [Ad_{liMi⁻¹}]`
 /// - pass 3 (i = 1..n): `A' = X A_{λ(i)} + c_i`, `q̈_i = D_i⁻¹ (u_i - U_iᵀ A')`, `A_i = A' + S_i q̈_i`
 ///
-/// Returns `data.ddq`. O(n).
+/// Returns `data.ddq`. O(n). Should the recursion meet a joint inertia `D_i ≤ 0` while `M` is
+/// positive definite (digits lost to a light body carrying a heavy subtree), the answer comes from
+/// the sparse Cholesky factorisation of `M` instead ([`forward_dynamics_cholesky`]).
 ///
 /// # Errors
-/// Wrong lengths, non-finite entries, a non-unit quaternion, or a singular joint inertia `D_i`.
+/// Wrong lengths, non-finite entries, a non-unit quaternion, or a singular `M` (a massless
+/// subtree moved by a joint).
 ///
 /// ```
 /// use rigid::multibody::{aba, puma560, rnea, Data, Puma560Options};
@@ -293,8 +296,10 @@ pub fn aba<'a>(
     tau: &[f64],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_inputs(model, data, q, v, tau)?;
-    aba_impl(model, data, q, v, tau, None)?;
-    Ok(&data.ddq)
+    match aba_impl(model, data, q, v, tau, None) {
+        Err(MultibodyError::NotPositiveDefinite) => cholesky_fallback(model, data, q, v, tau, None),
+        r => r.map(|()| &data.ddq),
+    }
 }
 
 /// [`aba`] with an external wrench `fext[i]` on each body, in body i's frame.
@@ -311,12 +316,43 @@ pub fn aba_with_external<'a>(
 ) -> Result<&'a DVector<f64>, MultibodyError> {
     check_inputs(model, data, q, v, tau)?;
     DimensionError::check("fext", model.njoints(), fext.len())?;
-    aba_impl(model, data, q, v, tau, Some(fext))?;
-    Ok(&data.ddq)
+    match aba_impl(model, data, q, v, tau, Some(fext)) {
+        Err(MultibodyError::NotPositiveDefinite) => {
+            cholesky_fallback(model, data, q, v, tau, Some(fext))
+        }
+        r => r.map(|()| &data.ddq),
+    }
 }
 
-/// The argument checks shared by [`aba`] and [`aba_with_external`].
-fn check_inputs(
+/// When ABA meets a joint inertia `D ≤ 0`, `M` may still be positive definite: the recursion's
+/// subtraction `I^A - U D⁻¹ Uᵀ` loses every digit when a light body carries a heavy subtree (mass
+/// ratios of 1e10 and more). Solve `M q̈ = τ - b` by the sparse Cholesky factorisation of `M`
+/// instead ([`forward_dynamics_cholesky`]); a massless subtree makes `M` singular and stays an
+/// error. No allocation (`data.nle` lends its storage for the zero acceleration).
+fn cholesky_fallback<'a>(
+    model: &Model,
+    data: &'a mut Data,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+    fext: Option<&[Wrench]>,
+) -> Result<&'a DVector<f64>, MultibodyError> {
+    // b = rnea(q, v, 0) with the external wrenches: c + g - Jᵀ f
+    let mut zero = std::mem::take(&mut data.nle);
+    zero.fill(0.0);
+    let bias = match fext {
+        Some(f) => super::rnea_with_external(model, data, q, v, zero.as_slice(), f).map(|_| ()),
+        None => super::rnea(model, data, q, v, zero.as_slice()).map(|_| ()),
+    };
+    data.nle = zero;
+    bias?;
+    data.nle.copy_from(&data.tau);
+    super::crba(model, data, q)?;
+    super::cholesky::ltl_solve(model, data, tau)
+}
+
+/// The argument checks shared by [`aba`], [`aba_with_external`] and the ABA derivatives.
+pub(crate) fn check_inputs(
     model: &Model,
     data: &Data,
     q: &[f64],
@@ -327,99 +363,6 @@ fn check_inputs(
     check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "tau", tau)
-}
-
-/// The parent degree of freedom `λ(k)`: the previous dof of the same joint, else the last dof of
-/// the parent joint (`None` at the root). `M_ki ≠ 0` (i < k) only for `i` on the chain
-/// `λ(k), λ(λ(k)), …`.
-#[inline]
-fn dof_parent(model: &Model, k: usize) -> Option<usize> {
-    let j = &model.joints[model.dof_joint[k]];
-    if k > j.idx_v {
-        return Some(k - 1);
-    }
-    j.parent.map(|p| {
-        let pj = &model.joints[p.0];
-        pj.idx_v + pj.nv - 1
-    })
-}
-
-/// Forward dynamics by `M(q) q̈ = τ - nle(q, v)`: CRBA, RNEA for `nle`, then the sparse
-/// factorisation `M = Lᵀ L` that follows the tree (Featherstone 2008, §6.5, Table 6.3, "LTL":
-/// fill-in stays on each dof's chain of ancestors `λ(k)`, so it costs O(Σ_k depth(k)²) rather than
-/// O(nv³)), and the two sparse triangular solves `y = L⁻ᵀ (τ - nle)`, `q̈ = L⁻¹ y`. No
-/// allocation. A cross-check of [`aba`]. Returns `data.ddq`.
-///
-/// # Errors
-/// As [`aba`], or [`MultibodyError::NotPositiveDefinite`].
-pub fn forward_dynamics_cholesky<'a>(
-    model: &Model,
-    data: &'a mut Data,
-    q: &[f64],
-    v: &[f64],
-    tau: &[f64],
-) -> Result<&'a DVector<f64>, MultibodyError> {
-    check_v(model, "tau", tau)?;
-    super::nonlinear_effects(model, data, q, v)?;
-    super::crba(model, data, q)?;
-    let n = model.nv;
-    const NONE: usize = usize::MAX;
-    let lambda = &mut data.dof_parent;
-    for (k, l) in lambda.iter_mut().enumerate() {
-        *l = dof_parent(model, k).unwrap_or(NONE);
-    }
-    let lambda = &data.dof_parent;
-    data.chol.copy_from(&data.mass_matrix);
-    // column-major: L[(k, i)] = L[i * n + k]; LTL in the lower triangle, L[(k, i)] for i on k's chain
-    let L = data.chol.as_mut_slice();
-    for k in (0..n).rev() {
-        let d = L[k * n + k];
-        if d <= 0.0 || !d.is_finite() {
-            return Err(MultibodyError::NotPositiveDefinite);
-        }
-        let a = d.sqrt();
-        L[k * n + k] = a;
-        let mut i = lambda[k];
-        while i != NONE {
-            L[i * n + k] /= a;
-            i = lambda[i];
-        }
-        let mut i = lambda[k];
-        while i != NONE {
-            let lki = L[i * n + k];
-            let mut j = i;
-            while j != NONE {
-                L[j * n + i] -= lki * L[j * n + k];
-                j = lambda[j];
-            }
-            i = lambda[i];
-        }
-    }
-    let x = data.ddq.as_mut_slice();
-    for k in 0..n {
-        x[k] = tau[k] - data.nle[k];
-    }
-    // y = L⁻ᵀ x
-    for k in (0..n).rev() {
-        x[k] /= L[k * n + k];
-        let xk = x[k];
-        let mut j = lambda[k];
-        while j != NONE {
-            x[j] -= L[j * n + k] * xk;
-            j = lambda[j];
-        }
-    }
-    // q̈ = L⁻¹ y
-    for k in 0..n {
-        let mut s = x[k];
-        let mut j = lambda[k];
-        while j != NONE {
-            s -= L[j * n + k] * x[j];
-            j = lambda[j];
-        }
-        x[k] = s / L[k * n + k];
-    }
-    Ok(&data.ddq)
 }
 
 #[cfg(test)]

@@ -67,6 +67,17 @@ pub fn compute_minverse<'a>(
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_q(model, q)?;
     check_data(model, data)?;
+    minverse_unchecked(model, data, q)?;
+    Ok(&data.minv)
+}
+
+/// [`compute_minverse`] on checked inputs: fills `data.minv`, and `data.root_placements`,
+/// `data.dof_J`, `data.world_inertias` (every body in its tree's root frame).
+pub(crate) fn minverse_unchecked(
+    model: &Model,
+    data: &mut Data,
+    q: &[f64],
+) -> Result<(), MultibodyError> {
     root_frame_bodies(
         model,
         q,
@@ -147,7 +158,7 @@ pub fn compute_minverse<'a>(
             minv[c * nv + k] = minv[k * nv + c];
         }
     }
-    Ok(&data.minv)
+    Ok(())
 }
 
 /// One joint of the backward pass (the borrowed slices of `Data`).

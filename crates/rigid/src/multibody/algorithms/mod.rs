@@ -2,17 +2,27 @@
 //! (lengths, finiteness, unit quaternions) and write into `data`.
 
 mod aba;
+mod cholesky;
 mod coriolis;
 mod crba;
+pub mod derivatives;
 mod energy;
 mod jacobian;
 mod kinematics;
 mod minverse;
 mod rnea;
 
-pub use aba::{aba, aba_with_external, forward_dynamics_cholesky};
+pub(crate) use aba::check_inputs as check_aba_inputs;
+pub use aba::{aba, aba_with_external};
+pub use cholesky::forward_dynamics_cholesky;
 pub use coriolis::coriolis_matrix;
 pub use crba::crba;
+pub use derivatives::{
+    aba_derivatives, aba_derivatives_with_external, difference_jacobians,
+    frame_kinematics_derivatives, gravity_derivatives, integrate_jacobians,
+    joint_kinematics_derivatives, rnea_derivatives, rnea_derivatives_with_external, AbaDerivatives,
+    Derivatives, KinematicsDerivatives, RneaDerivatives,
+};
 pub use energy::{center_of_mass, kinetic_energy, potential_energy};
 pub use jacobian::{
     compute_joint_jacobians, compute_joint_jacobians_time_variation, frame_jacobian,
@@ -22,6 +32,8 @@ pub use kinematics::{
     forward_kinematics, forward_kinematics_q, forward_kinematics_qv, update_frame_placements,
 };
 pub use minverse::compute_minverse;
+pub(crate) use minverse::minverse_unchecked;
+pub(crate) use rnea::check_fext;
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 
 use super::joint::rotate_about;

@@ -132,6 +132,13 @@ pub fn rnea_with_external<'a>(
     check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "a", a)?;
+    check_fext(model, fext)?;
+    rnea_impl(model, data, q, Some(v), Some(a), Some(fext), Out::Tau);
+    Ok(&data.tau)
+}
+
+/// Check external wrenches: one per joint, finite.
+pub(crate) fn check_fext(model: &Model, fext: &[Wrench]) -> Result<(), MultibodyError> {
     DimensionError::check("fext", model.njoints(), fext.len())?;
     if let Some(index) = fext
         .iter()
@@ -142,8 +149,7 @@ pub fn rnea_with_external<'a>(
             index,
         });
     }
-    rnea_impl(model, data, q, Some(v), Some(a), Some(fext), Out::Tau);
-    Ok(&data.tau)
+    Ok(())
 }
 
 /// Nonlinear effects `nle = c(q, v) + g(q) = rnea(q, v, 0)` (Coriolis, centrifugal and gravity

@@ -1,0 +1,104 @@
+//! `rigid doctor MODEL.urdf [--json] [--fix OUT.urdf]`: the inertial data of every link checked,
+//! the likely cause of each problem, and a repair (see `rigid::io::urdf::doctor`).
+
+use clap::Args;
+use rigid::io::urdf::doctor::{fixed_urdf, BodyReport, Doctor, Status};
+use rigid::io::urdf::parse_urdf_file;
+use std::path::PathBuf;
+
+/// Arguments of `rigid doctor`.
+#[derive(Args)]
+pub struct DoctorArgs {
+    /// A URDF file.
+    pub model: PathBuf,
+    /// Print one JSON object: `{"robot", "bodies": [{"name", "line", "status", "findings":
+    /// [{"code", "message"}], "likely_cause", "explanation", "repair"}]}`.
+    #[arg(long)]
+    pub json: bool,
+    /// Write a copy of the URDF in which only the `<inertial>` blocks that needed a repair are
+    /// replaced, each with a comment saying what was done and why.
+    #[arg(long, value_name = "OUT.urdf")]
+    pub fix: Option<PathBuf>,
+}
+
+/// Runs `rigid doctor`.
+///
+/// # Errors
+/// A file that cannot be read or parsed, or an output that cannot be written.
+pub fn run(args: &DoctorArgs) -> Result<(), String> {
+    let path = &args.model;
+    let robot = parse_urdf_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let report = Doctor::new().examine(&robot);
+    if let Some(out) = &args.fix {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        crate::write_atomic(out, fixed_urdf(&text, &robot, &report).as_bytes())?;
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    let count = |s| report.bodies.iter().filter(|b| b.status == s).count();
+    println!(
+        "robot \"{}\": {} links, {} with <inertial>: {} ok, {} warning, {} invalid",
+        report.robot,
+        robot.links.len(),
+        report.bodies.len(),
+        count(Status::Ok),
+        count(Status::Warning),
+        count(Status::Invalid)
+    );
+    for b in report.bodies.iter().filter(|b| b.status != Status::Ok) {
+        print_body(b);
+    }
+    if let Some(out) = &args.fix {
+        let n = report
+            .bodies
+            .iter()
+            .filter(|b| b.repaired.is_some())
+            .count();
+        println!("wrote {} ({n} <inertial> block(s) replaced)", out.display());
+    }
+    Ok(())
+}
+
+fn print_body(b: &BodyReport) {
+    let status = match b.status {
+        Status::Ok => "ok",
+        Status::Warning => "warning",
+        Status::Invalid => "invalid",
+    };
+    let cause = b.likely_cause.map_or("-", |c| c.code());
+    println!(
+        "\nlink \"{}\" (line {}): {status}, likely cause {cause}",
+        b.name, b.line
+    );
+    for f in &b.findings {
+        println!("  - {}: {}", f.code, f.message);
+    }
+    if !b.explanation.is_empty() {
+        println!("  why: {}", b.explanation);
+    }
+    match &b.repair {
+        Some(r) => {
+            let i = r.inertia;
+            println!(
+                "  repair: mass {} kg, CoM ({}, {}, {}) m, inertia about the CoM (link axes) \
+                 ixx {:.6e} iyy {:.6e} izz {:.6e} ixy {:.6e} ixz {:.6e} iyz {:.6e} kg·m²",
+                r.mass,
+                r.com[0],
+                r.com[1],
+                r.com[2],
+                i[0][0],
+                i[1][1],
+                i[2][2],
+                i[0][1],
+                i[0][2],
+                i[1][2]
+            );
+        }
+        None => println!("  repair: none"),
+    }
+}

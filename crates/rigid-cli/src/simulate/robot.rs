@@ -1,0 +1,326 @@
+//! `rigid simulate MODEL` for a robot: a URDF file, a robot of example-robot-data by name, or a
+//! built-in model, simulated by `rigid::multibody::simulation`.
+
+use super::{robot_plot::Samples, Numbers, SimulateArgs, PLOT_POINTS};
+use crate::load::{load_model, urdf_path};
+use crate::replay::{robot_nodes, Recording};
+use rigid::multibody::simulation::{
+    ControlLaw, Controller, Integrator, JointLimits, JointTrajectory, SimulationOptions, Simulator,
+    TimeScaling,
+};
+use rigid::multibody::{neutral, Data, JointType, Model};
+use std::io::Write;
+
+/// Column suffixes of a joint's coordinates in `q` and in `v` (and `τ`).
+fn suffixes(kind: &JointType) -> (&'static [&'static str], &'static [&'static str]) {
+    match kind {
+        JointType::FreeFlyer => (
+            &["x", "y", "z", "qx", "qy", "qz", "qw"],
+            &["wx", "wy", "wz", "vx", "vy", "vz"],
+        ),
+        JointType::Spherical => (&["qx", "qy", "qz", "qw"], &["wx", "wy", "wz"]),
+        JointType::Planar => (&["x", "y", "theta"], &["vx", "vy", "wz"]),
+        _ => (&[""], &[""]),
+    }
+}
+
+/// `t`, then `q_<joint>`, `v_<joint>`, `tau_<joint>` (`_<coordinate>` for multi-dof joints).
+fn csv_header(model: &Model) -> String {
+    let mut cols = vec!["t".to_string()];
+    for (prefix, is_q) in [("q", true), ("v", false), ("tau", false)] {
+        for j in model.joints() {
+            let (sq, sv) = suffixes(&j.kind);
+            for s in if is_q { sq } else { sv } {
+                cols.push(if s.is_empty() {
+                    format!("{prefix}_{}", j.name)
+                } else {
+                    format!("{prefix}_{}_{s}", j.name)
+                });
+            }
+        }
+    }
+    cols.join(",")
+}
+
+fn write_row(
+    out: &mut impl Write,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+) -> std::io::Result<()> {
+    write!(out, "{t}")?;
+    for x in q.iter().chain(v).chain(tau) {
+        write!(out, ",{x}")?;
+    }
+    writeln!(out)
+}
+
+/// A configuration from the command line: `nq` numbers, quaternions of unit norm.
+fn configuration(model: &Model, what: &str, x: &Option<Numbers>) -> Result<Vec<f64>, String> {
+    let q = x.clone().map_or_else(|| neutral(model), |n| n.0);
+    if q.len() != model.nq() {
+        return Err(format!(
+            "--{what} has {} numbers; {} has nq = {} ({})",
+            q.len(),
+            model.name(),
+            model.nq(),
+            joint_list(model)
+        ));
+    }
+    Ok(q)
+}
+
+/// `name (nq)` for every joint.
+fn joint_list(model: &Model) -> String {
+    model
+        .joints()
+        .iter()
+        .map(|j| format!("{} ({})", j.name, j.nq))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn options(args: &SimulateArgs) -> Result<SimulationOptions, String> {
+    let integrator: Integrator = args.integrator.as_deref().unwrap_or("rk4").parse()?;
+    let limits = match args.limits.as_str() {
+        "spring" => JointLimits::default(),
+        "ignored" => JointLimits::Ignored,
+        other => return Err(format!("--limits {other:?}: expected spring or ignored")),
+    };
+    Ok(SimulationOptions {
+        dt: args.dt,
+        integrator,
+        limits,
+        joint_dynamics: !args.no_joint_dynamics,
+        ..SimulationOptions::default()
+    })
+}
+
+fn controller(args: &SimulateArgs, model: &Model, q0: &[f64]) -> Result<Controller, String> {
+    let target = || -> Result<Vec<f64>, String> {
+        match &args.target {
+            Some(_) => configuration(model, "target", &args.target),
+            None => Err(format!(
+                "--controller {} needs --target (nq = {} numbers)",
+                args.controller,
+                model.nq()
+            )),
+        }
+    };
+    let law = match args.controller.as_str() {
+        "none" => ControlLaw::None,
+        "gravity" => ControlLaw::GravityCompensation,
+        // every joint alone: 2 Hz, critically damped
+        "pd" => ControlLaw::pd(model, &target()?, 4.0 * std::f64::consts::PI, 1.0)
+            .map_err(|e| e.to_string())?,
+        "track" => {
+            let scaling = match args.profile.as_str() {
+                "quintic" => TimeScaling::Quintic,
+                "trapezoidal" => TimeScaling::Trapezoidal {
+                    accel_fraction: 0.25,
+                },
+                other => {
+                    return Err(format!(
+                        "--profile {other:?}: expected quintic or trapezoidal"
+                    ))
+                }
+            };
+            let time = args.move_time.unwrap_or(0.5 * args.duration);
+            let trajectory = JointTrajectory::new(model, q0, &target()?, time, scaling)
+                .map_err(|e| format!("--target: {e}"))?;
+            // error dynamics ë + 20 ė + 100 e = 0: critically damped at 10 rad/s
+            ControlLaw::ComputedTorque {
+                trajectory,
+                kp: 100.0,
+                kd: 20.0,
+            }
+        }
+        other => {
+            return Err(format!(
+                "--controller {other:?}: expected none, gravity, pd or track"
+            ))
+        }
+    };
+    Controller::new(model, law).map_err(|e| e.to_string())
+}
+
+/// Runs `rigid simulate` on a robot.
+pub fn run(args: &SimulateArgs) -> Result<(), String> {
+    let steps = super::step_count(args)?;
+    let mut model = load_model(&args.model, &args.load)?;
+    if let Some(g) = args.gravity {
+        model = model.with_gravity(g);
+    }
+    let q0 = configuration(&model, "q0", &args.q0)?;
+    let v0 = args
+        .v0
+        .clone()
+        .map_or_else(|| vec![0.0; model.nv()], |n| n.0);
+    if v0.len() != model.nv() {
+        return Err(format!(
+            "--v0 has {} numbers; nv = {}",
+            v0.len(),
+            model.nv()
+        ));
+    }
+    let opts = options(args)?;
+    let ctrl = controller(args, &model, &q0)?;
+    let mut sim = Simulator::new(&model, &q0, &v0, opts, ctrl).map_err(|e| e.to_string())?;
+    let (nq, nv) = (model.nq(), model.nv());
+
+    let mut csv = match &args.csv {
+        Some(path) => Some(crate::AtomicFile::create(path)?),
+        None => None,
+    };
+    let tau_row = |sim: &mut Simulator| -> Result<Vec<f64>, String> {
+        Ok(sim.torques().map_err(|e| e.to_string())?.0.to_vec())
+    };
+    if let Some(f) = csv.as_mut() {
+        writeln!(f.writer(), "{}", csv_header(&model)).map_err(|e| e.to_string())?;
+        let tau = tau_row(&mut sim)?;
+        write_row(f.writer(), 0.0, &q0, &v0, &tau).map_err(|e| e.to_string())?;
+    }
+    let mut scene = if args.html.is_some() {
+        robot_nodes(&model, urdf_path(&args.model).as_deref())
+    } else {
+        Default::default()
+    };
+    let mut rec = Recording::default();
+    let mut data = Data::new(&model);
+    if args.html.is_some() {
+        rec.record_model(&scene, &model, &mut data, 0.0, &q0, true)?;
+    }
+    let stride = (steps as usize).div_ceil(PLOT_POINTS).max(1) as u64;
+    let mut samples = Samples::new(&model);
+    let (e0, k0) = {
+        let (k, u) = sim.energies().map_err(|e| e.to_string())?;
+        (k + u, k)
+    };
+    if args.plot.is_some() {
+        let tau = tau_row(&mut sim)?;
+        samples.push(&model, 0.0, sim.q(), sim.v(), &tau, e0);
+    }
+    let mut max_speed = (0.0f64, 0usize);
+    let mut progress = super::Progress::new(steps)?;
+    let mut failure = None;
+    for k in 1..=steps {
+        if let Err(e) = sim.step() {
+            failure = Some(format!("step {k} (t = {:.6} s): {e}", sim.time()));
+            break;
+        }
+        let t = sim.time();
+        for (i, x) in sim.v().iter().enumerate() {
+            if x.abs() > max_speed.0 {
+                max_speed = (x.abs(), i);
+            }
+        }
+        let plot_now = args.plot.is_some() && (k.is_multiple_of(stride) || k == steps);
+        if csv.is_some() || plot_now {
+            let tau = tau_row(&mut sim)?;
+            if let Some(f) = csv.as_mut() {
+                write_row(f.writer(), t, sim.q(), sim.v(), &tau).map_err(|e| e.to_string())?;
+            }
+            if plot_now {
+                let e = sim.energy().map_err(|e| e.to_string())?;
+                samples.push(&model, t, sim.q(), sim.v(), &tau, e);
+            }
+        }
+        if args.html.is_some() {
+            rec.record_model(&scene, &model, &mut data, t, sim.q(), k == steps)?;
+        }
+        progress.tick(k);
+    }
+    let wall = progress.finish();
+    if let Some(f) = csv {
+        f.commit()?;
+    }
+    if let Some(path) = &args.plot {
+        samples.draw(path)?;
+    }
+    let limits = match opts.limits {
+        JointLimits::Ignored => "ignored".to_string(),
+        JointLimits::Spring {
+            time_constant,
+            damping_ratio,
+        } => {
+            format!("spring-damper past a limit (time constant {time_constant} s, damping ratio {damping_ratio})")
+        }
+    };
+    if let Some(path) = &args.html {
+        scene.title = format!("{} — {}", model.name(), args.controller);
+        scene.info = format!(
+            "{}, dt = {} s, {:.3} s simulated; limits {}",
+            opts.integrator,
+            args.dt,
+            sim.time(),
+            if opts.limits == JointLimits::Ignored {
+                "ignored"
+            } else {
+                "spring"
+            }
+        );
+        if let Some(e) = &failure {
+            scene.warnings.push(format!("stopped: {e}"));
+        }
+        scene.write_html(&rec, path)?;
+        for w in &scene.warnings {
+            eprintln!("warning: replay: {w}");
+        }
+    }
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    let (k1, u1) = sim.energies().map_err(|e| e.to_string())?;
+    let e1 = k1 + u1;
+    let scale = e0.abs().max(k0.abs());
+    let drift = if scale > 0.0 {
+        (e1 - e0).abs() / scale
+    } else {
+        (e1 - e0).abs()
+    };
+    let dof = max_speed.1;
+    let dof_name = &model.joints()[model.dof_joint(dof).0].name;
+    let passive = model
+        .damping()
+        .iter()
+        .chain(model.friction())
+        .any(|x| *x > 0.0)
+        && opts.joint_dynamics;
+    println!("model: {} (nq = {nq}, nv = {nv})", model.name());
+    println!(
+        "integrator: {}, dt = {} s, controller: {}",
+        opts.integrator, args.dt, args.controller
+    );
+    println!("joint limits: {limits}");
+    println!(
+        "joint damping and friction: {}",
+        if passive {
+            "on (URDF <dynamics>)"
+        } else {
+            "off"
+        }
+    );
+    println!("steps: {}", sim.steps());
+    println!("simulated time: {} s", sim.time());
+    println!(
+        "wall time: {wall:.3} s ({:.0} steps/s)",
+        sim.steps() as f64 / wall.max(1e-9)
+    );
+    println!("energy: {e0:.6} J -> {e1:.6} J, relative drift {drift:.3e} (exact only without control, damping, friction and limits)");
+    println!(
+        "max joint speed: {:.4} (dof {dof}, joint {dof_name})",
+        max_speed.0
+    );
+    let names: Vec<String> = model
+        .joints()
+        .iter()
+        .map(|j| {
+            let r = j.idx_q..j.idx_q + j.nq;
+            let x: Vec<String> = sim.q()[r].iter().map(|x| format!("{x:.6}")).collect();
+            format!("{}={}", j.name, x.join(","))
+        })
+        .collect();
+    println!("final q: {}", names.join(" "));
+    Ok(())
+}

@@ -1,0 +1,102 @@
+//! Entry points of the fuzz targets (`fuzz/`, run by `cargo fuzz`) and of their replay in the test
+//! suite (`tests/fuzz_replay.rs`): each takes arbitrary bytes, runs one reader of the library on
+//! them and returns, whatever the bytes. A panic, a hang or an abort is a bug. Not part of the
+//! public API.
+
+use crate::io::{cases, collada, mesh_file, spec, urdf};
+use crate::multibody::{aba, crba, rnea, Data};
+use std::path::Path;
+
+fn text(data: &[u8]) -> Option<&str> {
+    std::str::from_utf8(data).ok()
+}
+
+/// URDF text through the parser, the model builder (all three inertia policies, fixed and
+/// floating) and one `rnea`, `crba` and `aba` call at a state made from the bytes.
+pub fn urdf(data: &[u8]) {
+    let Some(t) = text(data) else { return };
+    let Ok(robot) = urdf::parse_urdf_str(t) else {
+        return;
+    };
+    for (k, inertia) in [
+        urdf::InertiaPolicy::Strict,
+        urdf::InertiaPolicy::Warn,
+        urdf::InertiaPolicy::Repair,
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let opts = urdf::UrdfOptions {
+            floating: k == 1,
+            inertia,
+            sibling_order: urdf::SiblingOrder::Name,
+        };
+        let Ok((model, _)) = urdf::build_model_with(&robot, &opts) else {
+            continue;
+        };
+        let mut d = Data::new(&model);
+        let mut q = crate::multibody::neutral(&model);
+        for (x, b) in q.iter_mut().zip(data) {
+            *x += f64::from(*b) * 1e-3;
+        }
+        let _ = crate::multibody::normalize(&model, &mut q);
+        let v: Vec<f64> = (0..model.nv()).map(|i| (i as f64).sin()).collect();
+        let _ = rnea(&model, &mut d, &q, &v, &v);
+        let _ = crba(&model, &mut d, &q);
+        let _ = aba(&model, &mut d, &q, &v, &v);
+    }
+    let _ = urdf::doctor::Doctor::new().examine(&robot);
+}
+
+/// A `rigid mass` body spec (meshes are looked up in a folder that does not exist).
+pub fn spec(data: &[u8]) {
+    let Some(t) = text(data) else { return };
+    if let Ok(body) = spec::parse_spec(t, Path::new("/nonexistent-rigid-fuzz")) {
+        let _ = body.mass_properties();
+    }
+}
+
+/// STL bytes (binary or ASCII), then the solid's mass properties.
+pub fn stl(data: &[u8]) {
+    if let Ok(m) = mesh_file::parse_stl(data.to_vec()) {
+        let _ = m.mass_properties();
+    }
+}
+
+/// OBJ text, then the solid's mass properties.
+pub fn obj(data: &[u8]) {
+    if let Ok(m) = mesh_file::parse_obj(&mut std::io::Cursor::new(data)) {
+        let _ = m.mass_properties();
+    }
+}
+
+/// COLLADA text, then the solid's mass properties.
+pub fn dae(data: &[u8]) {
+    let Some(t) = text(data) else { return };
+    if let Ok(m) = collada::parse_dae(t) {
+        let _ = m.mass_properties();
+    }
+}
+
+/// A `rigid eval` case file against the built-in PUMA 560 and a free-flyer model, then the
+/// algorithms at each case.
+pub fn cases(data: &[u8]) {
+    let Some(t) = text(data) else { return };
+    let models = [
+        crate::multibody::builtin("puma560"),
+        urdf::load_urdf_str(FREE_FLYER, true).ok(),
+    ];
+    for model in models.into_iter().flatten() {
+        let Ok(cs) = cases::parse_cases(t, &model) else {
+            continue;
+        };
+        let mut d = Data::new(&model);
+        for c in cs.iter().take(16) {
+            let _ = rnea(&model, &mut d, &c.q, &c.v, &c.a);
+            let _ = aba(&model, &mut d, &c.q, &c.v, &c.tau);
+        }
+    }
+}
+
+const FREE_FLYER: &str = r#"<robot name="b"><link name="a"><inertial><mass value="1"/>
+<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>"#;

@@ -1,0 +1,229 @@
+//! Control laws `τ = u(t, q, v)`: a closure, or a built-in [`Controller`] (none, gravity
+//! compensation, joint PD to a target, computed torque along a [`JointTrajectory`]).
+
+use super::{JointTrajectory, SimulationError};
+use crate::error::DimensionError;
+use crate::multibody::{
+    check_q, crba, difference, gravity_torques, rnea, Data, Model, MultibodyError,
+};
+
+/// A control law `τ = u(t, q, v)`, evaluated by the integrators at every stage (so it should be
+/// a function of its arguments: the RK4 stages are not in time order). Implemented by
+/// closures `FnMut(t, q, v, τ)` and by [`Controller`].
+pub trait Control {
+    /// Write the joint torques (length `nv`) for time `t` and state `(q, v)` into `tau`.
+    ///
+    /// # Errors
+    /// An algorithm's error (a bad state).
+    fn torque(
+        &mut self,
+        model: &Model,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), MultibodyError>;
+}
+
+impl<F: FnMut(f64, &[f64], &[f64], &mut [f64])> Control for F {
+    fn torque(
+        &mut self,
+        _model: &Model,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        self(t, q, v, tau);
+        Ok(())
+    }
+}
+
+/// The built-in control laws.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ControlLaw {
+    /// `τ = 0`.
+    None,
+    /// `τ = g(q)`: the generalised gravity (RNEA with `q̇ = q̈ = 0`); a robot at rest stays at
+    /// rest.
+    GravityCompensation,
+    /// Joint PD to a target with gravity compensation (Lynch & Park §11.4.1, "PD control with
+    /// gravity compensation"): `τ = g(q) + K_p (q_target ⊖ q) - K_d v`, gains per degree of
+    /// freedom (N·m/rad and N·m·s/rad).
+    Pd {
+        /// Target configuration (length `nq`).
+        target: Vec<f64>,
+        /// `K_p` per dof.
+        kp: Vec<f64>,
+        /// `K_d` per dof.
+        kd: Vec<f64>,
+    },
+    /// Computed torque (Lynch & Park §11.4.1, eq. 11.35): `τ = M(q) (q̈_d + K_p e + K_d ė) +
+    /// c(q, v) + g(q)` with `e = q_d ⊖ q`, `ė = v_d - v`, computed as one RNEA; gains in s⁻²
+    /// and s⁻¹. With the exact model the error obeys `ë + K_d ė + K_p e = 0`. The model is the
+    /// rigid-body one: joint damping and friction in the simulation, if on, are not compensated
+    /// and show as tracking error.
+    ComputedTorque {
+        /// The reference `(q_d, v_d, q̈_d)(t)`.
+        trajectory: JointTrajectory,
+        /// `K_p` (s⁻²).
+        kp: f64,
+        /// `K_d` (s⁻¹).
+        kd: f64,
+    },
+}
+
+impl ControlLaw {
+    /// PD gains that give every joint, taken alone at `target`, the natural frequency `ω`
+    /// (rad/s) and damping ratio `ζ`: `K_p,k = ω² M_kk`, `K_d,k = 2ζω M_kk` with `M_kk` the
+    /// diagonal of the mass matrix at the target (so that light wrist joints get soft gains and a
+    /// fixed step stays stable).
+    ///
+    /// ```
+    /// use rigid::multibody::{builtin, simulation::ControlLaw};
+    /// let model = builtin("pendulum").unwrap(); // M = 1/3 kg·m²
+    /// let ControlLaw::Pd { kp, kd, .. } = ControlLaw::pd(&model, &[0.0], 10.0, 1.0)? else { panic!() };
+    /// assert!((kp[0] - 100.0 / 3.0).abs() < 1e-12 && (kd[0] - 20.0 / 3.0).abs() < 1e-12);
+    /// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// A bad target.
+    pub fn pd(
+        model: &Model,
+        target: &[f64],
+        omega: f64,
+        zeta: f64,
+    ) -> Result<Self, SimulationError> {
+        let mut data = Data::new(model);
+        let m = crba(model, &mut data, target)?;
+        let d: Vec<f64> = (0..model.nv).map(|k| m[(k, k)]).collect();
+        Ok(ControlLaw::Pd {
+            target: target.to_vec(),
+            kp: d.iter().map(|m| omega * omega * m).collect(),
+            kd: d.iter().map(|m| 2.0 * zeta * omega * m).collect(),
+        })
+    }
+}
+
+/// A built-in control law with its workspace (allocated once).
+///
+/// ```
+/// use rigid::multibody::{builtin, simulation::{Control, ControlLaw, Controller}};
+/// let model = builtin("double_pendulum").unwrap();
+/// let mut c = Controller::new(&model, ControlLaw::GravityCompensation)?;
+/// let mut tau = [0.0; 2];
+/// c.torque(&model, 0.0, &[1.0, 0.0], &[0.0, 0.0], &mut tau)?;
+/// assert!(tau[0] > 0.0); // holds the arm up against gravity
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Controller {
+    law: ControlLaw,
+    data: Data,
+    qd: Vec<f64>,
+    vd: Vec<f64>,
+    ad: Vec<f64>,
+    e: Vec<f64>,
+}
+
+impl Controller {
+    /// The controller `law` for `model`.
+    ///
+    /// # Errors
+    /// Gains or a target of the wrong length, a non-finite gain, a bad target configuration.
+    pub fn new(model: &Model, law: ControlLaw) -> Result<Self, SimulationError> {
+        match &law {
+            ControlLaw::Pd { target, kp, kd } => {
+                check_q(model, target)?;
+                DimensionError::check("kp", model.nv, kp.len()).map_err(MultibodyError::from)?;
+                DimensionError::check("kd", model.nv, kd.len()).map_err(MultibodyError::from)?;
+                if kp.iter().chain(kd).any(|k| !k.is_finite()) {
+                    return Err(SimulationError::Invalid("PD gains must be finite".into()));
+                }
+            }
+            ControlLaw::ComputedTorque { trajectory, kp, kd } => {
+                if trajectory.end(model).len() != model.nq {
+                    return Err(SimulationError::Invalid(
+                        "the trajectory was made for another model".into(),
+                    ));
+                }
+                if !(kp.is_finite() && kd.is_finite()) {
+                    return Err(SimulationError::Invalid("gains must be finite".into()));
+                }
+            }
+            ControlLaw::None | ControlLaw::GravityCompensation => {}
+        }
+        Ok(Self {
+            law,
+            data: Data::new(model),
+            qd: vec![0.0; model.nq],
+            vd: vec![0.0; model.nv],
+            ad: vec![0.0; model.nv],
+            e: vec![0.0; model.nv],
+        })
+    }
+
+    /// The control law.
+    #[must_use]
+    pub fn law(&self) -> &ControlLaw {
+        &self.law
+    }
+
+    /// `τ = 0`.
+    #[must_use]
+    pub fn none(model: &Model) -> Self {
+        Self::new(model, ControlLaw::None).expect("no parameters to check")
+    }
+
+    /// The reference `(q_d, v_d)` at `t` of a computed-torque controller, or the PD target
+    /// (with `v_d = 0`); `None` for the others.
+    #[must_use]
+    pub fn reference(&mut self, model: &Model, t: f64) -> Option<(&[f64], &[f64])> {
+        match &self.law {
+            ControlLaw::ComputedTorque { trajectory, .. } => {
+                trajectory.sample(model, t, &mut self.qd, &mut self.vd, &mut self.ad);
+                Some((&self.qd, &self.vd))
+            }
+            ControlLaw::Pd { target, .. } => {
+                self.vd.fill(0.0);
+                Some((target, &self.vd))
+            }
+            _ => None,
+        }
+    }
+}
+
+impl Control for Controller {
+    fn torque(
+        &mut self,
+        model: &Model,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        match &self.law {
+            ControlLaw::None => tau.fill(0.0),
+            ControlLaw::GravityCompensation => {
+                tau.copy_from_slice(gravity_torques(model, &mut self.data, q)?.as_slice());
+            }
+            ControlLaw::Pd { target, kp, kd } => {
+                difference(model, q, target, &mut self.e)?;
+                let g = gravity_torques(model, &mut self.data, q)?;
+                for k in 0..model.nv {
+                    tau[k] = g[k] + kp[k] * self.e[k] - kd[k] * v[k];
+                }
+            }
+            ControlLaw::ComputedTorque { trajectory, kp, kd } => {
+                trajectory.sample(model, t, &mut self.qd, &mut self.vd, &mut self.ad);
+                difference(model, q, &self.qd, &mut self.e)?;
+                for k in 0..model.nv {
+                    self.ad[k] += kp * self.e[k] + kd * (self.vd[k] - v[k]);
+                }
+                tau.copy_from_slice(rnea(model, &mut self.data, q, v, &self.ad)?.as_slice());
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,231 @@
+//! Multibody simulation on the configuration manifold: a state `(q, v)` with quaternions moved
+//! by [`integrate`](super::integrate) (never renormalised by hand), forward dynamics by ABA,
+//! three fixed-step integrators, passive joint forces, control laws, external wrenches, and
+//! many initial states at once on every core ([`simulate_batch`]).
+//!
+//! | notes | code | source |
+//! | --- | --- | --- |
+//! | `q̈ = M⁻¹(τ + τ_passive + Σ Jᵢᵀ Fᵢ - c - g)` | [`Simulator::step`] | Featherstone 2008 Table 7.1 |
+//! | `v⁺ = v + h q̈(q, v)`, `q⁺ = q ⊕ h v⁺` | [`Integrator::SemiImplicitEuler`] | symplectic Euler |
+//! | RK4 on the joint groups, `Θ̇ = dexp⁻¹_{-Θ}(v)` | [`Integrator::Rk4`] | Munthe-Kaas 1999 (RKMK) |
+//! | discrete Euler-Lagrange, 4th order by composition | [`Integrator::Variational`] | Marsden & West 2001; Suzuki 1990 |
+//! | `τ = -b v - F_c tanh(v / v_s)` | [`SimulationOptions::joint_dynamics`] | URDF `<dynamics>` |
+//! | `τ = -D (e/τ_c² + 2ζ v/τ_c)` past a limit | [`JointLimits::Spring`] | MuJoCo's soft limits (`solref`) |
+//! | quintic / trapezoidal `s(t)` | [`TimeScaling`] | Lynch & Park §9.2 |
+//! | gravity compensation, PD, computed torque | [`ControlLaw`] | Lynch & Park §11.4 |
+//!
+//! ```
+//! use rigid::multibody::{builtin, simulation::{Controller, SimulationOptions, Simulator}};
+//! let model = builtin("pendulum").unwrap();
+//! let opts = SimulationOptions { dt: 1e-3, ..SimulationOptions::default() };
+//! let mut sim = Simulator::new(&model, &[1.0], &[0.0], opts, Controller::none(&model))?;
+//! let e0 = sim.energy()?;
+//! sim.run(1000, |_| {})?;
+//! assert!((sim.energy()? - e0).abs() < 1e-9 * e0.abs()); // RK4, 1 s of swinging
+//! # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+//! ```
+
+// loops over several per-dof arrays at once read better indexed
+#![allow(clippy::needless_range_loop)]
+
+mod batch;
+mod control;
+mod integrators;
+mod lie;
+mod momentum;
+mod simulator;
+mod trajectory;
+
+pub use batch::simulate_batch;
+pub use control::{Control, ControlLaw, Controller};
+pub use simulator::Simulator;
+pub use trajectory::{JointTrajectory, TimeScaling};
+
+use super::MultibodyError;
+use std::fmt;
+use std::str::FromStr;
+use thiserror::Error;
+
+/// What can go wrong in a simulation.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum SimulationError {
+    /// A bad state or input to an algorithm.
+    #[error(transparent)]
+    Multibody(#[from] MultibodyError),
+    /// A bad option or parameter (the message says which).
+    #[error("{0}")]
+    Invalid(String),
+    /// The fixed-point iteration of the variational integrator did not converge.
+    #[error("the implicit step did not converge in {iterations} iterations (change {residual:.3e}); reduce the time step")]
+    NoConvergence {
+        /// Iterations done.
+        iterations: usize,
+        /// The last change of the velocity.
+        residual: f64,
+    },
+    /// The state became NaN or infinite (an unstable step: stiff limits, friction or gains for
+    /// this time step).
+    #[error("the state is no longer finite at t = {time} s (unstable for this time step: reduce it, or soften gains, limits or friction)")]
+    Diverged {
+        /// Time of the step that failed.
+        time: f64,
+    },
+}
+
+/// The time stepper.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Integrator {
+    /// `semi-implicit`: symplectic Euler, `v⁺ = v + h q̈(q, v)`, `q⁺ = q ⊕ h v⁺`. One ABA per
+    /// step, first order, bounded energy error for conservative systems.
+    SemiImplicitEuler,
+    /// `rk4`: the classical Runge-Kutta method lifted to the joint groups
+    /// (Runge-Kutta-Munthe-Kaas): the stages are `q₀ ⊕ Θᵢ` with `Θ̇ = dexp⁻¹_{-Θ}(v)`. Four ABA
+    /// per step, 4th order.
+    #[default]
+    Rk4,
+    /// `variational`: a variational (discrete Euler-Lagrange) integrator on the joint groups, in
+    /// the state `(q, p = M(q) v)`. The base step is Störmer-Verlet built from the discrete
+    /// Lagrangian `L_d(q₀, q₁) = h L(q₀, log(q₀⁻¹q₁)/h)` and its adjoint (`h L(q₁, …)`), with
+    /// the discrete Legendre transforms `p₀ = dexp⁻ᵀ_ξ M v - h ∇_q L`, `p₁ = dexp⁻ᵀ_{-ξ} M v`
+    /// (`ξ = h v`), solved by fixed-point iteration; five base steps of
+    /// `γh, γh, (1 - 4γ)h, γh, γh` (Suzuki 1990, `γ = 1/(4 - 4^⅓)`) make it 4th order. Symplectic, and the momentum of
+    /// every symmetry of `L` is kept exactly: for a free-flyer without gravity, the world spatial
+    /// momentum `[Ad_{T⁻¹}]ᵀ p_base` is carried by `p₁ = [Ad_{exp ξ}]ᵀ p₀` at round-off. Energy
+    /// error bounded (no drift). About 100 O(n) passes per step: for accuracy, not speed.
+    Variational,
+}
+
+impl Integrator {
+    /// The command-line name: `semi-implicit`, `rk4`, `variational`.
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::SemiImplicitEuler => "semi-implicit",
+            Self::Rk4 => "rk4",
+            Self::Variational => "variational",
+        }
+    }
+}
+
+impl fmt::Display for Integrator {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Integrator {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "semi-implicit" => Ok(Self::SemiImplicitEuler),
+            "rk4" => Ok(Self::Rk4),
+            "variational" => Ok(Self::Variational),
+            _ => Err(format!(
+                "unknown integrator {s:?}: expected semi-implicit, rk4 or variational"
+            )),
+        }
+    }
+}
+
+/// What happens at a joint's position limits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum JointLimits {
+    /// The limits are ignored: joints move through them.
+    Ignored,
+    /// A spring-damper that only pushes back, active past a limit, in acceleration units (as
+    /// MuJoCo's soft limits with `solref = (τ_c, ζ)`): with `e` the penetration and `D_k` the
+    /// joint's articulated inertia at the initial state (ABA's `Sᵀ I^A S + armature`),
+    /// `τ_k = -D_k (e / τ_c² + 2ζ v_k / τ_c)`, clipped so that it never pulls the joint into the
+    /// limit. A joint that is light or heavy gets the same time constant `τ_c`; a fixed step
+    /// stays stable for `h ≲ τ_c / 4`. Only 1-dof joints have limits.
+    Spring {
+        /// `τ_c` (s); MuJoCo's default is 0.02.
+        time_constant: f64,
+        /// `ζ`; 1 is critical damping.
+        damping_ratio: f64,
+    },
+}
+
+impl Default for JointLimits {
+    fn default() -> Self {
+        Self::Spring {
+            time_constant: 0.02,
+            damping_ratio: 1.0,
+        }
+    }
+}
+
+/// Options of a [`Simulator`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SimulationOptions {
+    /// Time step `h` (s), fixed.
+    pub dt: f64,
+    /// The integrator.
+    pub integrator: Integrator,
+    /// Position limits.
+    pub limits: JointLimits,
+    /// Apply the model's joint damping `b` and Coulomb friction `F_c` (URDF `<dynamics>`):
+    /// `τ = -b v - F_c tanh(v / v_s)`.
+    pub joint_dynamics: bool,
+    /// `v_s` (rad/s or m/s), the speed below which Coulomb friction is smoothed into a viscous
+    /// law (a regularisation: an explicit step stays stable for `h < 2 D v_s / F_c`).
+    pub friction_speed: f64,
+}
+
+impl Default for SimulationOptions {
+    fn default() -> Self {
+        Self {
+            dt: 1e-3,
+            integrator: Integrator::Rk4,
+            limits: JointLimits::default(),
+            joint_dynamics: true,
+            friction_speed: 0.01,
+        }
+    }
+}
+
+impl SimulationOptions {
+    /// A conservative setting: no limits, no damping or friction (for energy checks).
+    #[must_use]
+    pub fn conservative(dt: f64, integrator: Integrator) -> Self {
+        Self {
+            dt,
+            integrator,
+            limits: JointLimits::Ignored,
+            joint_dynamics: false,
+            ..Self::default()
+        }
+    }
+
+    fn check(&self) -> Result<(), SimulationError> {
+        let bad = |m: String| Err(SimulationError::Invalid(m));
+        if !(self.dt.is_finite() && self.dt > 0.0) {
+            return bad(format!(
+                "time step must be positive and finite, got {}",
+                self.dt
+            ));
+        }
+        if !(self.friction_speed.is_finite() && self.friction_speed > 0.0) {
+            return bad(format!(
+                "friction speed must be positive and finite, got {}",
+                self.friction_speed
+            ));
+        }
+        if let JointLimits::Spring {
+            time_constant,
+            damping_ratio,
+        } = self.limits
+        {
+            let ok = time_constant.is_finite()
+                && time_constant > 0.0
+                && damping_ratio.is_finite()
+                && damping_ratio >= 0.0;
+            if !ok {
+                return bad(format!(
+                    "limit time constant must be positive and damping ratio non-negative, got {time_constant}, {damping_ratio}"
+                ));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,426 @@
+//! The simulator: a model, a state `(q, v)` (and `p = M v` for the variational integrator), a
+//! clock, a control law and the external wrenches, stepping without allocation.
+
+use super::control::Control;
+use super::integrators::{self, Workspace};
+use super::{JointLimits, SimulationError, SimulationOptions};
+use crate::error::DimensionError;
+use crate::multibody::{
+    aba, aba_with_external, check_q, check_v, forward_kinematics_qv, gravity_torques,
+    kinetic_energy, potential_energy, rnea_with_external, Data, JointId, Model, MultibodyError,
+};
+use crate::spatial::{Vec3, Wrench};
+
+/// Everything the right-hand side `q̈ = f(t, q, v)` needs.
+#[derive(Clone, Debug)]
+pub(crate) struct Dynamics<C> {
+    pub(crate) model: Model,
+    /// The same model without gravity: `aba(free, q, 0, x) = M(q)⁻¹ x`.
+    pub(crate) free: Model,
+    pub(crate) data: Data,
+    pub(crate) control: C,
+    pub(crate) options: SimulationOptions,
+    pub(crate) fext: Vec<Wrench>,
+    pub(crate) has_fext: bool,
+    /// `D_k` of each 1-dof joint at the initial state (limit springs).
+    limit_inertia: Vec<f64>,
+    /// The last control torques and passive torques.
+    pub(crate) tau_control: Vec<f64>,
+    pub(crate) tau: Vec<f64>,
+    zeros: Vec<f64>,
+}
+
+impl<C: Control> Dynamics<C> {
+    /// `τ = u(t, q, v) + τ_passive(q, v)` into `self.tau` (external wrenches excluded).
+    pub(crate) fn torques(&mut self, t: f64, q: &[f64], v: &[f64]) -> Result<(), MultibodyError> {
+        self.control
+            .torque(&self.model, t, q, v, &mut self.tau_control)?;
+        let m = &self.model;
+        let opts = &self.options;
+        for k in 0..m.nv {
+            let mut tk = self.tau_control[k];
+            if opts.joint_dynamics {
+                tk -= m.damping[k] * v[k] + m.friction[k] * (v[k] / opts.friction_speed).tanh();
+            }
+            self.tau[k] = tk;
+        }
+        if let JointLimits::Spring {
+            time_constant: tc,
+            damping_ratio: zeta,
+        } = opts.limits
+        {
+            for j in &m.joints {
+                if j.nq != 1 || j.nv != 1 {
+                    continue;
+                }
+                let (x, k) = (q[j.idx_q], j.idx_v);
+                let (lo, hi) = (m.lower[j.idx_q], m.upper[j.idx_q]);
+                let d = self.limit_inertia[k];
+                if x > hi {
+                    let f = -d * ((x - hi) / (tc * tc) + 2.0 * zeta * v[k] / tc);
+                    self.tau[k] += f.min(0.0);
+                } else if x < lo {
+                    let f = -d * ((x - lo) / (tc * tc) + 2.0 * zeta * v[k] / tc);
+                    self.tau[k] += f.max(0.0);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// `a = q̈(t, q, v)` by ABA with every force.
+    pub(crate) fn acceleration(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        a: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        self.torques(t, q, v)?;
+        let ddq = if self.has_fext {
+            aba_with_external(&self.model, &mut self.data, q, v, &self.tau, &self.fext)?
+        } else {
+            aba(&self.model, &mut self.data, q, v, &self.tau)?
+        };
+        a.copy_from_slice(ddq.as_slice());
+        Ok(())
+    }
+
+    /// `out = M(q)⁻¹ x` (ABA without gravity at rest).
+    pub(crate) fn minv(
+        &mut self,
+        q: &[f64],
+        x: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        let r = aba(&self.free, &mut self.data, q, &self.zeros, x)?;
+        out.copy_from_slice(r.as_slice());
+        Ok(())
+    }
+
+    /// `out = -g(q) + Σ Jᵢᵀ Fᵢ` (gravity and the external wrenches as generalised forces).
+    pub(crate) fn field_forces(
+        &mut self,
+        q: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        let g = gravity_torques(&self.model, &mut self.data, q)?;
+        for (o, gk) in out.iter_mut().zip(g.iter()) {
+            *o = -gk;
+        }
+        if self.has_fext {
+            // rnea without gravity, at rest, with F: τ = -Σ Jᵀ F
+            let r = rnea_with_external(
+                &self.free,
+                &mut self.data,
+                q,
+                &self.zeros,
+                &self.zeros,
+                &self.fext,
+            )?;
+            for (o, rk) in out.iter_mut().zip(r.iter()) {
+                *o -= rk;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A multibody simulation: a model, its state, the time and an integrator with a fixed step, a
+/// control law `C` ([`Controller`](super::Controller) or a closure) and constant external
+/// wrenches per body. [`step`](Self::step) allocates nothing.
+///
+/// ```
+/// use rigid::multibody::builtin;
+/// use rigid::multibody::simulation::{ControlLaw, Controller, Integrator, SimulationOptions, Simulator};
+/// let model = builtin("double_pendulum").unwrap();
+/// let ctrl = Controller::new(&model, ControlLaw::GravityCompensation)?;
+/// let opts = SimulationOptions { integrator: Integrator::SemiImplicitEuler, ..Default::default() };
+/// let mut sim = Simulator::new(&model, &[0.5, -0.3], &[0.0, 0.0], opts, ctrl)?;
+/// sim.run(500, |_| {})?;
+/// assert!((sim.q()[0] - 0.5).abs() < 1e-12); // held still
+/// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Simulator<C = super::Controller> {
+    pub(crate) dynamics: Dynamics<C>,
+    pub(crate) ws: Workspace,
+    pub(crate) t: f64,
+    pub(crate) steps: u64,
+    pub(crate) q: Vec<f64>,
+    pub(crate) v: Vec<f64>,
+    /// `p = M(q) v` (the variational integrator's state).
+    pub(crate) p: Vec<f64>,
+}
+
+impl<C: Control> Simulator<C> {
+    /// Starts at `t = 0` in `(q0, v0)`.
+    ///
+    /// # Errors
+    /// Bad options, wrong lengths, a non-finite entry, a non-unit quaternion, a singular mass
+    /// matrix at `q0`.
+    pub fn new(
+        model: &Model,
+        q0: &[f64],
+        v0: &[f64],
+        options: SimulationOptions,
+        control: C,
+    ) -> Result<Self, SimulationError> {
+        options.check()?;
+        check_q(model, q0)?;
+        check_v(model, "v0", v0)?;
+        let (nq, nv) = (model.nq, model.nv);
+        let mut data = Data::new(model);
+        // articulated inertia of each 1-dof joint at q0, for the limit springs
+        let zeros = vec![0.0; nv];
+        aba(model, &mut data, q0, &zeros, &zeros)?;
+        let limit_inertia = (0..nv)
+            .map(|k| {
+                let j = &model.joints[model.dof_joint[k]];
+                if j.nv == 1 {
+                    1.0 / data.d_inv_1[k]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let mut sim = Self {
+            dynamics: Dynamics {
+                model: model.clone(),
+                free: model.clone().with_gravity(Vec3::zeros()),
+                data,
+                control,
+                options,
+                fext: vec![Wrench::zero(); model.njoints()],
+                has_fext: false,
+                limit_inertia,
+                tau_control: vec![0.0; nv],
+                tau: vec![0.0; nv],
+                zeros,
+            },
+            ws: Workspace::new(nq, nv),
+            t: 0.0,
+            steps: 0,
+            q: q0.to_vec(),
+            v: v0.to_vec(),
+            p: vec![0.0; nv],
+        };
+        sim.sync_momentum();
+        Ok(sim)
+    }
+
+    /// `p = M(q) v` from the current `(q, v)`.
+    fn sync_momentum(&mut self) {
+        let d = &mut self.dynamics;
+        super::momentum::momentum(&d.model, &mut d.data, &self.q, &self.v, &mut self.p, None);
+    }
+
+    /// One step of `dt`. On error the state is left unchanged.
+    ///
+    /// # Errors
+    /// An algorithm's error, [`SimulationError::NoConvergence`] (variational), or
+    /// [`SimulationError::Diverged`] when the new state is not finite.
+    pub fn step(&mut self) -> Result<(), SimulationError> {
+        let h = self.dynamics.options.dt;
+        let ok = match self.dynamics.options.integrator {
+            super::Integrator::SemiImplicitEuler => integrators::semi_implicit_euler(
+                &mut self.dynamics,
+                &mut self.ws,
+                self.t,
+                h,
+                &self.q,
+                &self.v,
+            ),
+            super::Integrator::Rk4 => integrators::rk4(
+                &mut self.dynamics,
+                &mut self.ws,
+                self.t,
+                h,
+                &self.q,
+                &self.v,
+            ),
+            super::Integrator::Variational => integrators::variational(
+                &mut self.dynamics,
+                &mut self.ws,
+                self.t,
+                h,
+                &self.q,
+                &self.p,
+            ),
+        };
+        let time = self.t + h;
+        match ok {
+            Ok(()) => {}
+            Err(SimulationError::Multibody(MultibodyError::NonFinite { .. })) => {
+                return Err(SimulationError::Diverged { time })
+            }
+            Err(e) => return Err(e),
+        }
+        let ws = &self.ws;
+        if !ws.q_new.iter().chain(&ws.v_new).all(|x| x.is_finite()) {
+            return Err(SimulationError::Diverged { time });
+        }
+        self.q.copy_from_slice(&ws.q_new);
+        self.v.copy_from_slice(&ws.v_new);
+        if self.dynamics.options.integrator == super::Integrator::Variational {
+            self.p.copy_from_slice(&ws.p_new);
+        }
+        self.steps += 1;
+        self.t = self.steps as f64 * h;
+        Ok(())
+    }
+
+    /// `n` steps, calling `observe(self)` after each.
+    ///
+    /// # Errors
+    /// The first step that fails.
+    pub fn run(&mut self, n: u64, mut observe: impl FnMut(&Self)) -> Result<(), SimulationError> {
+        for _ in 0..n {
+            self.step()?;
+            observe(self);
+        }
+        Ok(())
+    }
+
+    /// The configuration.
+    #[must_use]
+    pub fn q(&self) -> &[f64] {
+        &self.q
+    }
+    /// The velocity.
+    #[must_use]
+    pub fn v(&self) -> &[f64] {
+        &self.v
+    }
+    /// The time (s).
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+    /// Steps taken.
+    #[must_use]
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// The model.
+    #[must_use]
+    pub fn model(&self) -> &Model {
+        &self.dynamics.model
+    }
+    /// The options.
+    #[must_use]
+    pub fn options(&self) -> &SimulationOptions {
+        &self.dynamics.options
+    }
+    /// The control law.
+    pub fn control_mut(&mut self) -> &mut C {
+        &mut self.dynamics.control
+    }
+
+    /// Replace the state (and restart nothing else: the time goes on).
+    ///
+    /// # Errors
+    /// Wrong lengths, non-finite entries, a non-unit quaternion.
+    pub fn set_state(&mut self, q: &[f64], v: &[f64]) -> Result<(), SimulationError> {
+        check_q(&self.dynamics.model, q)?;
+        check_v(&self.dynamics.model, "v", v)?;
+        self.q.copy_from_slice(q);
+        self.v.copy_from_slice(v);
+        self.sync_momentum();
+        Ok(())
+    }
+
+    /// Set the external wrench on the body moved by `joint`, in that body's frame, held until
+    /// changed (for a wrench that varies, set it between steps).
+    ///
+    /// # Errors
+    /// An unknown joint or a non-finite wrench.
+    pub fn set_external_wrench(
+        &mut self,
+        joint: JointId,
+        w: Wrench,
+    ) -> Result<(), SimulationError> {
+        let d = &mut self.dynamics;
+        if joint.0 >= d.fext.len() {
+            return Err(MultibodyError::OutOfRange {
+                what: "joint",
+                index: joint.0,
+            }
+            .into());
+        }
+        if !w.to_vector().iter().all(|x| x.is_finite()) {
+            return Err(SimulationError::Invalid(format!(
+                "external wrench on '{}' is not finite",
+                d.model.joints[joint.0].name
+            )));
+        }
+        d.fext[joint.0] = w;
+        d.has_fext = d.fext.iter().any(|f| *f != Wrench::zero());
+        Ok(())
+    }
+
+    /// The torques applied at the current state: the control law's, and the total with the
+    /// passive joint forces (damping, friction, limits), each of length `nv`.
+    ///
+    /// # Errors
+    /// The control law's error.
+    pub fn torques(&mut self) -> Result<(&[f64], &[f64]), SimulationError> {
+        let d = &mut self.dynamics;
+        d.torques(self.t, &self.q, &self.v)?;
+        Ok((&d.tau_control, &d.tau))
+    }
+
+    /// Total energy `K + U` (J) of the current state.
+    ///
+    /// # Errors
+    /// Only if the state is bad (it is checked at every step).
+    pub fn energy(&mut self) -> Result<f64, SimulationError> {
+        let (k, u) = self.energies()?;
+        Ok(k + u)
+    }
+
+    /// Kinetic and potential energy `(K, U)` (J).
+    ///
+    /// # Errors
+    /// As [`energy`](Self::energy).
+    pub fn energies(&mut self) -> Result<(f64, f64), SimulationError> {
+        let d = &mut self.dynamics;
+        let k = kinetic_energy(&d.model, &mut d.data, &self.q, &self.v)?;
+        let u = potential_energy(&d.model, &mut d.data, &self.q)?;
+        Ok((k, u))
+    }
+
+    /// The spatial momentum of the whole system in the world frame, about the world origin:
+    /// `Σᵢ [Ad_{oMi⁻¹}]ᵀ Gᵢ Vᵢ` (conserved for a free-flying robot without gravity, external
+    /// wrenches or control).
+    ///
+    /// # Errors
+    /// As [`energy`](Self::energy).
+    pub fn momentum(&mut self) -> Result<Wrench, SimulationError> {
+        let d = &mut self.dynamics;
+        forward_kinematics_qv(&d.model, &mut d.data, &self.q, &self.v)?;
+        let mut h = Wrench::zero();
+        for i in 0..d.model.njoints() {
+            h += d.data.placements[i]
+                .act_wrench(&d.model.inertias[i].momentum(&d.data.velocities[i]));
+        }
+        Ok(h)
+    }
+
+    /// The workspace `Data` (placements etc. of the last evaluation; use after
+    /// [`momentum`](Self::momentum) for the current placements).
+    #[must_use]
+    pub fn data(&self) -> &Data {
+        &self.dynamics.data
+    }
+}
+
+/// Lengths of a row-major block of states.
+pub(crate) fn check_rows(
+    what: &'static str,
+    per: usize,
+    n: usize,
+    len: usize,
+) -> Result<(), SimulationError> {
+    DimensionError::check(what, n * per, len).map_err(|e| MultibodyError::from(e).into())
+}

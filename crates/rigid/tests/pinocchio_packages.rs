@@ -1,0 +1,273 @@
+//! Every URDF file of whole robot-description packages, fixed and floating: what Pinocchio loads,
+//! rigid loads (default inertia policy `warn`), and RNEA, CRBA and ABA agree at random states.
+//!
+//! `tests/pinocchio/packages.py PACKAGE` walks the package's folder for `*.urdf` (no hand-picked
+//! list), loads each file with Pinocchio 4.1 (`buildModelFromUrdf`, with and without a free-flyer
+//! root) and prints, per file, random states and Pinocchio's rnea, crba and aba in rigid's
+//! conventions. This test loads the same file with [`load_urdf`], matches the joints by name
+//! (rigid keeps the file's sibling order, urdfdom sorts siblings by name) and compares with
+//! `‖x_rigid − x_pin‖∞ / max(‖x_pin‖∞, 1e-6) ≤ 1e-9`. ABA is compared where Pinocchio's `M` is
+//! invertible (a moving subtree of zero mass makes it singular and ABA undefined: rigid must then
+//! refuse, not return NaN silently).
+//!
+//! The packages are pinned in `scripts/requirements-test.txt` (installed by `scripts/test.sh`);
+//! `RIGID_SKIP_PINOCCHIO=1` skips the comparison, `RIGID_PYTHON` overrides the interpreter.
+
+use rigid::io::urdf::{load_urdf, load_urdf_with, InertiaPolicy, UrdfOptions};
+use rigid::multibody::{aba, crba, rnea, Data, Model};
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::Command;
+
+mod common;
+use common::json::vec_of;
+
+const TOLERANCE: f64 = 1e-9;
+const FLOOR: f64 = 1e-6;
+
+fn python() -> String {
+    std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into())
+}
+
+/// One JSON record per (file, floating), or `None` when skipped.
+fn references(package: &str) -> Option<Vec<Value>> {
+    if std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1") {
+        eprintln!("RIGID_SKIP_PINOCCHIO=1: not comparing {package} with Pinocchio");
+        return None;
+    }
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/pinocchio/packages.py");
+    let out = Command::new(python())
+        .arg(&script)
+        .arg(package)
+        .args(["--states", "3", "--seed", "11"])
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {} ({e}); run `bash scripts/test.sh`", python()));
+    assert!(
+        out.status.success(),
+        "{} {package} failed (run `bash scripts/test.sh`, which pip-installs the packages):\n{}",
+        script.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("UTF-8");
+    Some(
+        text.lines()
+            .map(|l| serde_json::from_str(l).expect("packages.py printed invalid JSON"))
+            .collect(),
+    )
+}
+
+fn rel(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let diff = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    let e = diff / b.iter().map(|y| y.abs()).fold(FLOOR, f64::max);
+    if e.is_nan() {
+        f64::INFINITY
+    } else {
+        e
+    }
+}
+
+/// `(pq, pv)`: index of each reference-layout coordinate in rigid's layout, joints by name.
+fn index_maps(model: &Model, joints: &[Value]) -> Result<(Vec<usize>, Vec<usize>), String> {
+    if model.joints().len() != joints.len() {
+        return Err(format!(
+            "{} moving joints in rigid, {} in Pinocchio",
+            model.joints().len(),
+            joints.len()
+        ));
+    }
+    let (mut pq, mut pv) = (vec![0; model.nq()], vec![0; model.nv()]);
+    for rj in joints {
+        let name = rj["name"].as_str().unwrap();
+        let field = |k: &str| rj[k].as_u64().unwrap() as usize;
+        let id = model
+            .joint_id(name)
+            .ok_or_else(|| format!("rigid has no joint {name}"))?;
+        let j = &model.joints()[id.0];
+        if (j.nq, j.nv) != (field("nq"), field("nv")) {
+            return Err(format!("joint {name}: nq/nv differ"));
+        }
+        for t in 0..j.nq {
+            pq[field("idx_q") + t] = j.idx_q + t;
+        }
+        for t in 0..j.nv {
+            pv[field("idx_v") + t] = j.idx_v + t;
+        }
+    }
+    Ok((pq, pv))
+}
+
+fn to_rigid(x: &[f64], map: &[usize]) -> Vec<f64> {
+    let mut out = vec![0.0; x.len()];
+    for (k, &r) in map.iter().enumerate() {
+        out[r] = x[k];
+    }
+    out
+}
+
+/// The largest relative errors of one file: `(rnea, crba, aba or None)`, or why it failed.
+fn compare_file(r: &Value) -> Result<(f64, f64, Option<f64>), String> {
+    let file = r["file"].as_str().unwrap();
+    let floating = r["floating"].as_bool().unwrap();
+    let model = load_urdf(file, floating).map_err(|e| format!("rigid refuses it: {e}"))?;
+    let (pq, pv) = index_maps(&model, r["joints"].as_array().unwrap())?;
+    let mut data = Data::new(&model);
+    let (mut e_rnea, mut e_crba, mut e_aba) = (0.0f64, 0.0f64, None::<f64>);
+    for s in r["states"].as_array().unwrap() {
+        let q = to_rigid(&vec_of(&s["q"]), &pq);
+        let v = to_rigid(&vec_of(&s["v"]), &pv);
+        let a = to_rigid(&vec_of(&s["a"]), &pv);
+        let tau = to_rigid(&vec_of(&s["tau"]), &pv);
+        let back = |x: &[f64]| pv.iter().map(|&i| x[i]).collect::<Vec<f64>>();
+        let x = rnea(&model, &mut data, &q, &v, &a).map_err(|e| format!("rnea: {e}"))?;
+        e_rnea = e_rnea.max(rel(&back(x.as_slice()), &vec_of(&s["rnea"])));
+        let m = crba(&model, &mut data, &q).map_err(|e| format!("crba: {e}"))?;
+        let flat: Vec<f64> = pv
+            .iter()
+            .flat_map(|&i| pv.iter().map(move |&k| (i, k)))
+            .map(|ik| m[ik])
+            .collect();
+        let m_ref: Vec<f64> = s["mass_matrix"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(vec_of)
+            .collect();
+        e_crba = e_crba.max(rel(&flat, &m_ref));
+        match (&s["aba"], aba(&model, &mut data, &q, &v, &tau)) {
+            (Value::Null, _) => {}
+            (x_ref, Ok(x)) => {
+                let e = rel(&back(x.as_slice()), &vec_of(x_ref));
+                e_aba = Some(e_aba.unwrap_or(0.0).max(e));
+            }
+            (_, Err(e)) => return Err(format!("aba refused where Pinocchio's is defined: {e}")),
+        }
+    }
+    Ok((e_rnea, e_crba, e_aba))
+}
+
+/// Every file under the three inertia policies: `strict` loads it or refuses it with an error
+/// naming the link or joint and the line; `repair` loads it, with no non-physical body left.
+fn policies(file: &str, tag: &str, failures: &mut Vec<String>) {
+    let with = |inertia| {
+        let opts = UrdfOptions {
+            inertia,
+            ..UrdfOptions::default()
+        };
+        load_urdf_with(file, &opts)
+    };
+    if let Err(e) = with(InertiaPolicy::Strict) {
+        let msg = e.to_string();
+        let named = msg.contains("link \"") || msg.contains("joint \"") || msg.contains("robot");
+        if e.line().is_none() || !named {
+            failures.push(format!(
+                "{tag}: strict error without a line or a name: {msg}"
+            ));
+        }
+    }
+    let pinocchio_loads = load_urdf(file, false).is_ok();
+    match with(InertiaPolicy::Repair) {
+        Ok((model, _)) => {
+            let bad: Vec<String> = model
+                .inertia_issues()
+                .iter()
+                .filter(|(_, e)| !matches!(e, rigid::error::InertiaError::BadMass { .. }))
+                .map(|(j, e)| format!("{}: {e}", model.joints()[j.0].name))
+                .collect();
+            if !bad.is_empty() {
+                failures.push(format!("{tag}: repair left {bad:?}"));
+            }
+        }
+        Err(e) if pinocchio_loads => failures.push(format!("{tag}: repair refuses it: {e}")),
+        Err(_) => {}
+    }
+}
+
+fn check_package(package: &str) {
+    let Some(records) = references(package) else {
+        return;
+    };
+    let (mut compared, mut failures) = (0, Vec::new());
+    for r in &records {
+        let file = r["file"].as_str().unwrap();
+        let floating = r["floating"].as_bool().unwrap();
+        let short = file.rsplit("/robots/").next().unwrap_or(file);
+        let tag = format!("{short}{}", if floating { " (floating)" } else { "" });
+        if !floating {
+            policies(file, &tag, &mut failures);
+        }
+        if let Some(why) = r.get("refused") {
+            // Pinocchio refuses it: rigid may load it or give a clear error; it must not panic.
+            let rigid = load_urdf(file, floating)
+                .map(|_| "loads")
+                .unwrap_or("refuses");
+            eprintln!(
+                "{tag}: Pinocchio refuses ({}); rigid {rigid}",
+                why.as_str().unwrap()
+            );
+            continue;
+        }
+        match compare_file(r) {
+            Ok((er, ec, ea)) => {
+                compared += 1;
+                let aba = ea.map_or("undefined (singular M)".into(), |e| format!("{e:.1e}"));
+                eprintln!("{tag}: rnea {er:.1e}, crba {ec:.1e}, aba {aba}");
+                if er > TOLERANCE || ec > TOLERANCE || ea.is_some_and(|e| e > TOLERANCE) {
+                    failures.push(format!("{tag}: rnea {er:.2e}, crba {ec:.2e}, aba {aba}"));
+                }
+            }
+            Err(e) => failures.push(format!("{tag}: {e}")),
+        }
+    }
+    eprintln!(
+        "{package}: {} files x (fixed, floating), {compared} compared with Pinocchio",
+        records.len() / 2
+    );
+    assert!(compared > 0, "{package}: nothing compared");
+    assert!(
+        failures.is_empty(),
+        "{package}: {} of {} disagree with Pinocchio (tolerance {TOLERANCE:e}):\n{}",
+        failures.len(),
+        records.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn every_example_robot_data_urdf_loads_and_agrees_with_pinocchio() {
+    check_package("example-robot-data");
+}
+
+#[test]
+fn every_icub_models_urdf_loads_and_agrees_with_pinocchio() {
+    check_package("icub-models");
+}
+
+#[test]
+fn every_upkie_description_urdf_loads_and_agrees_with_pinocchio() {
+    check_package("upkie-description");
+}
+
+#[test]
+fn every_jvrc_description_urdf_loads_and_agrees_with_pinocchio() {
+    check_package("jvrc-description");
+}
+
+#[test]
+fn every_gym_ignition_models_urdf_loads_and_agrees_with_pinocchio() {
+    check_package("gym-ignition-models");
+}
+
+#[test]
+fn every_airo_models_urdf_loads_and_agrees_with_pinocchio() {
+    check_package("airo-models");
+}
+
+#[test]
+fn every_cookie_description_urdf_loads_and_agrees_with_pinocchio() {
+    check_package("cookie-description");
+}
