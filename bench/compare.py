@@ -4,6 +4,7 @@
     python3 bench/compare.py                 # 5 rounds, every model of bench/models.tsv
     python3 bench/compare.py --rounds 3 --models ur5,talos
     python3 bench/compare.py --json out.json # also save every raw measurement
+    python3 bench/compare.py --explicit      # also the generated explicit model (rigid explicit)
 
 Steps:
  1. builds Pinocchio's timing program (bash bench/pinocchio/run.sh --build-only: installs pin from
@@ -20,6 +21,11 @@ Steps:
 
 If rigid's side fails (no `bench` subcommand yet, or no JSON), it says so and still prints
 Pinocchio's table.
+
+--explicit: in each round also runs the generated explicit model of the PUMA 560 and the UR5
+(`EXPLICIT_JSON=1 cargo bench -p rigid --bench explicit`, which times the generated
+`mass_matrix`, `gravity`, `c + g` and `M a + c + g` beside rigid's CRBA, gravity, nle and RNEA in
+one process) and prints their ratios to Pinocchio's CRBA, gravity, nle and RNEA of the same round.
 """
 import argparse
 import json
@@ -156,6 +162,50 @@ def run_rigid(model):
     return res[0], None
 
 
+EXPLICIT_KEYS = [("explicit_mass_matrix", "crba", "M(q) / CRBA"), ("explicit_gravity", "gravity", "g(q) / g"),
+                 ("explicit_nle", "nonlinear_effects", "c + g / nle"),
+                 ("explicit_inverse_dynamics", "rnea", "M a + c + g / RNEA")]
+
+
+def run_explicit():
+    """The generated explicit model's timings (and rigid's recursive ones, same process), by model."""
+    env = dict(os.environ, EXPLICIT_JSON="1")
+    p = subprocess.run(["cargo", "bench", "--quiet", "-p", "rigid", "--bench", "explicit"], capture_output=True,
+                       text=True, cwd=ROOT, env=env)
+    res = parse_json_lines(p.stdout)
+    if p.returncode != 0 or not res:
+        log("explicit bench failed: " + p.stderr.strip()[-500:])
+    return {r["model"]: r for r in res}
+
+
+def explicit_section(models, explicit_runs, pin_runs, variants):
+    """Markdown: the explicit model's ratios to Pinocchio and to rigid's recursive algorithms."""
+    out = ["### The explicit model (generated Rust, `rigid explicit MODEL --lang rust`): ratios\n",
+           "Per algorithm: explicit / Pinocchio (fastest build) and explicit / rigid's recursive algorithm, "
+           "each the median over rounds of the ratio within a round.\n",
+           "| model | " + " | ".join("%s vs Pinocchio | vs rigid" % label for _, _, label in EXPLICIT_KEYS) + " |",
+           "|---|" + "---:|---:|" * len(EXPLICIT_KEYS)]
+    raw = ["", "explicit, ns per call (median over rounds): ",
+           "| model | " + " | ".join(k for k, _, _ in EXPLICIT_KEYS) + " |", "|---|" + "---:|" * len(EXPLICIT_KEYS)]
+    for m in models:
+        n = m["name"]
+        runs = explicit_runs.get(n, [])
+        if not runs:
+            continue
+        cells = []
+        for key, base, _ in EXPLICIT_KEYS:
+            vs_pin = paired_ratio([{"ns_per_call": {base: r["ns_per_call"].get(key)}} for r in runs],
+                                  pin_runs[n], variants, base)
+            vs_rigid = [r["ns_per_call"][key] / r["ns_per_call"][base] for r in runs
+                        if r["ns_per_call"].get(key) and r["ns_per_call"].get(base)]
+            cells.append("%s | %s" % ("%.2f" % vs_pin if vs_pin else "–",
+                                      "%.2f" % statistics.median(vs_rigid) if vs_rigid else "–"))
+        out.append("| %s | %s |" % (n, " | ".join(cells)))
+        raw.append("| %s | %s |" % (n, " | ".join(
+            fmt_ns(statistics.median([r["ns_per_call"][k] for r in runs])) for k, _, _ in EXPLICIT_KEYS)))
+    return out + raw + [""]
+
+
 def ns(run, key):
     x = run["ns_per_call"].get(key)
     return x if isinstance(x, (int, float)) and x > 0 else None
@@ -196,6 +246,8 @@ def main():
                     help="Pinocchio builds to time (header, lib, native; default 'header lib')")
     ap.add_argument("--no-rigid", action="store_true", help="time Pinocchio only")
     ap.add_argument("--json", help="save all raw measurements to this file")
+    ap.add_argument("--explicit", action="store_true",
+                    help="also time the generated explicit model of puma560 and ur5 in each round")
     args = ap.parse_args()
     t_start = time.time()
     variants = args.variants.split()
@@ -226,8 +278,14 @@ def main():
     # 2. interleaved rounds
     pin_runs = {m["name"]: {v: [] for v in variants} for m in models}
     rigid_runs = {m["name"]: [] for m in models}
+    explicit_runs = {m["name"]: [] for m in models}
     t_run0 = time.time()
     for r in range(args.rounds):
+        if args.explicit:
+            log("[compare] round %d/%d  explicit model" % (r + 1, args.rounds))
+            for name, res in run_explicit().items():
+                if name in explicit_runs:
+                    explicit_runs[name].append(res)
         for m in models:
             log("[compare] round %d/%d  %s" % (r + 1, args.rounds, m["name"]))
             order = ["rigid", "pinocchio"] if (r % 2 == 0) else ["pinocchio", "rigid"]
@@ -373,6 +431,8 @@ def main():
             out.append("| %s | %d | %d | %s |" % (n, m["nq"], m["nv"],
                                                   " | ".join(fmt_ns(rigid_best[n].get(k)) for k in ALGOS)))
         out.append("")
+    if args.explicit:
+        out += explicit_section(models, explicit_runs, pin_runs, variants)
     out.append("### Pinocchio %s, ns per call (fastest build per algorithm)\n" % pin_version())
     out.append(hdr)
     out.append(sep)
@@ -407,7 +467,8 @@ def main():
         with open(args.json, "w") as f:
             json.dump({"machine": mach, "variants": variants, "rounds": args.rounds, "rigid_note": rigid_note,
                        "pinocchio": pin_runs, "rigid": rigid_runs, "pinocchio_best": pin_best,
-                       "pinocchio_best_from": pin_from, "rigid_median": rigid_best}, f, indent=1)
+                       "pinocchio_best_from": pin_from, "rigid_median": rigid_best,
+                       "explicit": explicit_runs}, f, indent=1)
 
 
 def pin_version():

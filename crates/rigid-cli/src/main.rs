@@ -9,6 +9,7 @@ mod bench;
 mod bench_batch;
 mod doctor;
 mod eval;
+mod explicit;
 mod load;
 mod mass;
 mod model;
@@ -38,6 +39,8 @@ enum Command {
     Simulate(Box<simulate::SimulateArgs>),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
+    /// The explicit dynamic model: M(q), Coriolis, centrifugal and gravity terms as abbreviated tables or code.
+    Explicit(explicit::ExplicitArgs),
     /// Summarise a robot model: bodies, joints, sizes, mass and the validity of every inertia.
     Model(model::ModelArgs),
     /// Draw a robot in one pose, as a self-contained HTML page (WebGL).
@@ -170,6 +173,7 @@ fn main() -> ExitCode {
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),
         Command::Model(args) => report(model::run(&args)),
+        Command::Explicit(args) => report(explicit::run(&args)),
         Command::View(args) => report(view::run(&args)),
     }
 }

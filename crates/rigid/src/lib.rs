@@ -14,11 +14,13 @@
 //! | [`body`] | one body in motion: Newton-Euler, Euler, simulator on SE(3), Lagrange by autodiff |
 //! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis matrix, energies, analytical derivatives of the dynamics, DH and Modern Robotics builders, built-in robots |
 //! | [`io`] | URDF import into a multibody `Model` (inertia policy, warnings); `rigid doctor` ([`io::urdf::doctor`]) |
+//! | [`explicit`] | the explicit dynamic model of a robot (Armstrong, Khatib & Burdick 1986): `M(q)`, Coriolis, centrifugal and gravity terms as abbreviated expressions, pruned with a proven bound, and generated code |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
 pub mod body;
 pub mod error;
+pub mod explicit;
 #[doc(hidden)]
 pub mod fuzzing;
 pub mod io;
