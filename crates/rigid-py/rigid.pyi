@@ -23,7 +23,7 @@ the line.
 """
 
 from os import PathLike
-from typing import Any, Literal, Sequence, Union
+from typing import Any, Callable, Literal, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -200,6 +200,52 @@ def integrate(model: Model, q: ArrayLike, v: ArrayLike) -> Vector:
 def difference(model: Model, q0: ArrayLike, q1: ArrayLike) -> Vector:
     """``q1 ⊖ q0``: the velocity v with ``integrate(q0, v) = q1``. Rigid's layout does not wrap
     angles (θ1 - θ0); Pinocchio's takes the shortest way round. Pinocchio: ``difference``."""
+
+def rnea_derivatives(model: Model, data: Data, q: ArrayLike, v: ArrayLike,
+                     a: ArrayLike) -> tuple[Matrix, Matrix, Matrix]:
+    """The partial derivatives of inverse dynamics ``τ = M(q) a + c(q, v) + g(q)``:
+    ``(∂τ/∂q, ∂τ/∂v, ∂τ/∂a = M)``, each (nv, nv), in one recursive pass (Carpentier & Mansard,
+    RSS 2018). ``∂/∂q`` is taken along ``q ⊕ δ = integrate(q, δ)`` (a free-flyer's ``δ`` is the
+    body twist: angular first in rigid's layout, linear first in Pinocchio's; a continuous
+    joint's is its angle). Pinocchio: ``computeRNEADerivatives``."""
+
+def aba_derivatives(model: Model, data: Data, q: ArrayLike, v: ArrayLike,
+                    tau: ArrayLike) -> tuple[Matrix, Matrix, Matrix]:
+    """The partial derivatives of forward dynamics ``q̈ = M(q)⁻¹ (τ - c(q, v) - g(q))``:
+    ``(∂q̈/∂q, ∂q̈/∂v, ∂q̈/∂τ = M⁻¹)``, each (nv, nv): ``-M⁻¹ ∂τ/∂(q, v)`` at ``a = q̈``. Pinocchio:
+    ``computeABADerivatives``."""
+
+def gravity_derivatives(model: Model, data: Data, q: ArrayLike) -> Matrix:
+    """``∂g/∂q`` (nv, nv) of the generalised gravity, along ``q ⊕ δ``. Pinocchio:
+    ``computeGeneralizedGravityDerivatives``."""
+
+computeRNEADerivatives = rnea_derivatives
+computeABADerivatives = aba_derivatives
+computeGeneralizedGravityDerivatives = gravity_derivatives
+
+def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = None,
+             duration: float = 1.0, dt: float = 1e-3, integrator: str = "rk4",
+             controller: str = "none", target: ArrayLike | None = None,
+             move_time: float | None = None, profile: str = "quintic", limits: str = "spring",
+             joint_dynamics: bool = True,
+             control: Callable[[float, Vector, Vector], ArrayLike] | None = None,
+             every: int = 1) -> dict[str, npt.NDArray[np.float64]]:
+    """Simulate the robot from ``(q0, v0)`` (default: neutral, at rest) for ``duration`` s with a
+    fixed step ``dt``: forward dynamics by ABA, ``integrator`` ``"semi-implicit"`` (symplectic
+    Euler), ``"rk4"`` (Runge-Kutta-Munthe-Kaas on the joint groups, quaternions never
+    renormalised) or ``"variational"`` (a 4th-order Lie-group variational integrator); joint
+    damping and friction from the URDF (``joint_dynamics``), limits as a stiff spring-damper
+    (``limits="spring"``) or ``"ignored"``. ``controller``: ``"none"``, ``"gravity"``
+    (compensation), ``"pd"`` (to ``target`` with gravity compensation) or ``"track"`` (computed
+    torque along a ``profile`` ``"quintic"``/``"trapezoidal"`` motion from ``q0`` to ``target``
+    in ``move_time``); or ``control(t, q, v) -> τ``, a Python function (its exceptions propagate).
+    Returns ``t`` (N,), ``q`` (N, nq), ``v`` (N, nv), ``tau`` (N, nv; the control torques) and
+    ``energy`` (N,; J), one row every ``every`` steps and the last, in the model's layout."""
+
+def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -> None:
+    """Write the 3D replay of ``traj`` (a dict or object with ``t`` (N,) and ``q`` (N, nq), such
+    as the result of ``simulate``) to one self-contained HTML file (WebGL; the URDF's visual
+    geometry, or a stick figure), 60 frames per second; it opens offline, nothing is fetched."""
 
 def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike) -> Matrix:
     """``rnea`` for every row: Q (N, nq), V and A (N, nv) → τ (N, nv), on every core with the GIL

@@ -14,7 +14,6 @@ mod load;
 mod mass;
 mod model;
 mod plotting;
-mod replay;
 mod simulate;
 mod view;
 

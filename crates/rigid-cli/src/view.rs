@@ -1,9 +1,9 @@
 //! `rigid view MODEL [--q ...] --html FILE`: a robot in one pose, as a self-contained HTML page.
 
 use crate::load::{load_model, urdf_path, LoadArgs};
-use crate::replay::{robot_nodes, Recording};
 use clap::Args;
 use rigid::multibody::{neutral, Data};
+use rigid_replay::{robot_nodes, Recording};
 use std::path::PathBuf;
 
 /// Options of `rigid view`.
@@ -39,7 +39,7 @@ pub fn run(args: &ViewArgs) -> Result<(), String> {
     let mut rec = Recording::default();
     let mut data = Data::new(&model);
     rec.record_model(&scene, &model, &mut data, 0.0, &q, true)?;
-    scene.write_html(&rec, &args.html)?;
+    crate::write_atomic(&args.html, scene.html(&rec).as_bytes())?;
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }

@@ -55,6 +55,20 @@ impl<'a> Call<'a> {
     }
 }
 
+/// Checks that `data` was made for `model` and writes `q` and the velocity-space inputs `vs`
+/// (at most two), in rigid's layout, into `data.q`, then `data.v` and `data.a` (for the verbs of
+/// the other files).
+pub(crate) fn load(
+    func: &'static str,
+    model: &Model,
+    data: &mut Data,
+    q: &Bound<'_, PyAny>,
+    vs: &[(&str, &Bound<'_, PyAny>)],
+) -> PyResult<()> {
+    let c = Call::new(func, model, data)?;
+    c.load(data, q, vs)
+}
+
 /// Inverse dynamics `τ = M(q) a + C(q, v) v + g(q)` by the recursive Newton-Euler algorithm
 /// (Featherstone 2008, Table 5.1).
 #[pyfunction]

@@ -8,21 +8,31 @@
 //! | `model.rs` | `Model`, `Data`, the layouts (rigid's, Pinocchio's) |
 //! | `dynamics.rs` | `rnea`, `crba`, `aba`, `nle`, `gravity`, `minverse`, `coriolis_matrix`, `forward_kinematics`, `jacobian`, `com`, energies |
 //! | `configuration.rs` | `neutral`, `random_configuration`, `seed`, `integrate`, `difference` |
+//! | `derivatives.rs` | `rnea_derivatives`, `aba_derivatives`, `gravity_derivatives` |
 //! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch` (all cores, GIL released) |
+//! | `simulation.rs` | `simulate` (robot simulation, built-in or Python control laws), `replay_html` |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
 
 mod batch;
 mod body;
 mod configuration;
 mod convert;
+mod derivatives;
 mod dynamics;
 mod model;
+mod simulation;
 
 use pyo3::prelude::*;
 
 /// Pinocchio's names of the verbs whose signature is the same, so that porting a script is a
 /// search-and-replace of `pin.` by `rigid.`.
-const PINOCCHIO_ALIASES: [(&str, &str); 9] = [
+const PINOCCHIO_ALIASES: [(&str, &str); 12] = [
+    ("computeRNEADerivatives", "rnea_derivatives"),
+    ("computeABADerivatives", "aba_derivatives"),
+    (
+        "computeGeneralizedGravityDerivatives",
+        "gravity_derivatives",
+    ),
     ("nonLinearEffects", "nle"),
     ("computeGeneralizedGravity", "gravity"),
     ("computeMinverse", "minverse"),
@@ -62,6 +72,11 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(configuration::random_configuration, m)?)?;
     m.add_function(wrap_pyfunction!(configuration::integrate, m)?)?;
     m.add_function(wrap_pyfunction!(configuration::difference, m)?)?;
+    m.add_function(wrap_pyfunction!(derivatives::rnea_derivatives, m)?)?;
+    m.add_function(wrap_pyfunction!(derivatives::aba_derivatives, m)?)?;
+    m.add_function(wrap_pyfunction!(derivatives::gravity_derivatives, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::replay_html, m)?)?;
     m.add_function(wrap_pyfunction!(batch::rnea_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::aba_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::crba_batch, m)?)?;

@@ -39,6 +39,8 @@ pub struct ModelCore {
     /// Unique per loaded model (kept when gravity is changed): a `Data` works with the model it
     /// was made for.
     pub id: u64,
+    /// The URDF file it was loaded from (for the replay's meshes).
+    pub source: Option<PathBuf>,
 }
 
 /// The next [`ModelCore::id`].
@@ -58,6 +60,7 @@ impl ModelCore {
             convert_v,
             warnings,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
+            source: None,
         }
     }
 
@@ -133,11 +136,7 @@ impl ModelCore {
     /// A velocity-space result as a fresh array in this model's layout.
     pub fn v_out<'py>(&self, py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
         match &self.layout {
-            Some(l) if self.convert_v => {
-                let mut out = vec![0.0; v.len()];
-                l.permute_v(v, &mut out);
-                PyArray1::from_vec(py, out)
-            }
+            Some(_) if self.convert_v => PyArray1::from_vec(py, self.v_to_layout(v)),
             _ => array1(py, v),
         }
     }
@@ -145,12 +144,32 @@ impl ModelCore {
     /// A configuration as a fresh array in this model's layout.
     pub fn q_out<'py>(&self, py: Python<'py>, q: &[f64]) -> Bound<'py, PyArray1<f64>> {
         match &self.layout {
+            Some(_) if self.convert_q => PyArray1::from_vec(py, self.q_to_layout(q)),
+            _ => array1(py, q),
+        }
+    }
+
+    /// A velocity-space vector from rigid's layout to this model's.
+    pub fn v_to_layout(&self, v: &[f64]) -> Vec<f64> {
+        match &self.layout {
+            Some(l) if self.convert_v => {
+                let mut out = vec![0.0; v.len()];
+                l.permute_v(v, &mut out);
+                out
+            }
+            _ => v.to_vec(),
+        }
+    }
+
+    /// A configuration from rigid's layout to this model's.
+    pub fn q_to_layout(&self, q: &[f64]) -> Vec<f64> {
+        match &self.layout {
             Some(l) if self.convert_q => {
                 let mut out = vec![0.0; l.nq()];
                 l.q_to_pinocchio(q, &mut out);
-                PyArray1::from_vec(py, out)
+                out
             }
-            _ => array1(py, q),
+            _ => q.to_vec(),
         }
     }
 
@@ -284,8 +303,10 @@ impl Model {
             let text = CString::new(w.replace('\0', " ")).unwrap_or_default();
             PyErr::warn(py, category.as_any(), &text, 2)?;
         }
+        let mut core = ModelCore::new(model, pinocchio, warnings);
+        core.source = Some(path);
         Ok(Self {
-            inner: Arc::new(ModelCore::new(model, pinocchio, warnings)),
+            inner: Arc::new(core),
         })
     }
 
@@ -441,6 +462,7 @@ impl Model {
             convert_v: core.convert_v,
             warnings: core.warnings.clone(),
             id: core.id,
+            source: core.source.clone(),
         });
         Ok(())
     }

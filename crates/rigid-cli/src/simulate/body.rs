@@ -1,10 +1,10 @@
 //! `rigid simulate SPEC.toml`: one rigid body, free or on a pivot, integrated on SE(3).
 
 use super::{plot, SimulateArgs};
-use crate::replay::{body_box, Recording};
 use rigid::body::{BodyError, Integrator, RigidBody, Simulator, State};
 use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::spatial::{so3, Transform, Twist, Vec3};
+use rigid_replay::{body_box, Recording};
 use std::io::Write;
 use std::path::Path;
 
@@ -141,7 +141,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             }
         );
         scene.info = format!("{integrator}, dt = {} s, {} s", args.dt, args.duration);
-        scene.write_html(&rec, path)?;
+        crate::write_atomic(path, scene.html(&rec).as_bytes())?;
     }
     if let Some(e) = failure {
         return Err(e);

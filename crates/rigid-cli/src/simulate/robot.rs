@@ -3,12 +3,12 @@
 
 use super::{robot_plot::Samples, Numbers, SimulateArgs, PLOT_POINTS};
 use crate::load::{load_model, urdf_path};
-use crate::replay::{robot_nodes, Recording};
 use rigid::multibody::simulation::{
-    ControlLaw, Controller, Integrator, JointLimits, JointTrajectory, SimulationOptions, Simulator,
+    ControlLaw, Controller, Integrator, JointLimits, SimulationError, SimulationOptions, Simulator,
     TimeScaling,
 };
 use rigid::multibody::{neutral, Data, JointType, Model};
+use rigid_replay::{robot_nodes, Recording};
 use std::io::Write;
 
 /// Column suffixes of a joint's coordinates in `q` and in `v` (and `τ`).
@@ -98,50 +98,34 @@ fn options(args: &SimulateArgs) -> Result<SimulationOptions, String> {
 }
 
 fn controller(args: &SimulateArgs, model: &Model, q0: &[f64]) -> Result<Controller, String> {
-    let target = || -> Result<Vec<f64>, String> {
-        match &args.target {
-            Some(_) => configuration(model, "target", &args.target),
-            None => Err(format!(
-                "--controller {} needs --target (nq = {} numbers)",
-                args.controller,
-                model.nq()
-            )),
-        }
+    let target = match &args.target {
+        Some(_) => Some(configuration(model, "target", &args.target)?),
+        None => None,
     };
-    let law = match args.controller.as_str() {
-        "none" => ControlLaw::None,
-        "gravity" => ControlLaw::GravityCompensation,
-        // every joint alone: 2 Hz, critically damped
-        "pd" => ControlLaw::pd(model, &target()?, 4.0 * std::f64::consts::PI, 1.0)
-            .map_err(|e| e.to_string())?,
-        "track" => {
-            let scaling = match args.profile.as_str() {
-                "quintic" => TimeScaling::Quintic,
-                "trapezoidal" => TimeScaling::Trapezoidal {
-                    accel_fraction: 0.25,
-                },
-                other => {
-                    return Err(format!(
-                        "--profile {other:?}: expected quintic or trapezoidal"
-                    ))
-                }
-            };
-            let time = args.move_time.unwrap_or(0.5 * args.duration);
-            let trajectory = JointTrajectory::new(model, q0, &target()?, time, scaling)
-                .map_err(|e| format!("--target: {e}"))?;
-            // error dynamics ë + 20 ė + 100 e = 0: critically damped at 10 rad/s
-            ControlLaw::ComputedTorque {
-                trajectory,
-                kp: 100.0,
-                kd: 20.0,
-            }
+    let scaling: TimeScaling = args
+        .profile
+        .parse()
+        .map_err(|e| format!("--profile: {e}"))?;
+    let time = args.move_time.unwrap_or(0.5 * args.duration);
+    let law = ControlLaw::named(
+        model,
+        &args.controller,
+        q0,
+        target.as_deref(),
+        time,
+        scaling,
+    )
+    .map_err(|e| match e {
+        SimulationError::Invalid(m) if m.contains("needs a target") => format!(
+            "--controller {} needs --target (nq = {} numbers)",
+            args.controller,
+            model.nq()
+        ),
+        SimulationError::Invalid(m) if m.starts_with("unknown controller") => {
+            format!("--controller: {m}")
         }
-        other => {
-            return Err(format!(
-                "--controller {other:?}: expected none, gravity, pd or track"
-            ))
-        }
-    };
+        e => format!("--target: {e}"),
+    })?;
     Controller::new(model, law).map_err(|e| e.to_string())
 }
 
@@ -263,7 +247,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         if let Some(e) = &failure {
             scene.warnings.push(format!("stopped: {e}"));
         }
-        scene.write_html(&rec, path)?;
+        crate::write_atomic(path, scene.html(&rec).as_bytes())?;
         for w in &scene.warnings {
             eprintln!("warning: replay: {w}");
         }

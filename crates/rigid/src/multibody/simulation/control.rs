@@ -1,7 +1,7 @@
 //! Control laws `τ = u(t, q, v)`: a closure, or a built-in [`Controller`] (none, gravity
 //! compensation, joint PD to a target, computed torque along a [`JointTrajectory`]).
 
-use super::{JointTrajectory, SimulationError};
+use super::{JointTrajectory, SimulationError, TimeScaling};
 use crate::error::DimensionError;
 use crate::multibody::{
     check_q, crba, difference, gravity_torques, rnea, Data, Model, MultibodyError,
@@ -74,6 +74,54 @@ pub enum ControlLaw {
 }
 
 impl ControlLaw {
+    /// The built-in laws by name, with the gains `rigid simulate` and Python's `rigid.simulate`
+    /// use: `none`; `gravity` (compensation); `pd`, joint PD with gravity compensation to
+    /// `target`, every joint alone at 2 Hz and critically damped ([`ControlLaw::pd`] with
+    /// `ω = 4π`, `ζ = 1`); `track`, computed torque along a straight joint-space motion from
+    /// `q0` to `target` in `move_time` seconds with the time scaling `scaling`, error dynamics
+    /// `ë + 20 ė + 100 e = 0` (critically damped at 10 rad/s).
+    ///
+    /// ```
+    /// use rigid::multibody::{builtin, simulation::{ControlLaw, TimeScaling}};
+    /// let model = builtin("pendulum").unwrap();
+    /// let law = ControlLaw::named(&model, "track", &[0.0], Some(&[1.0]), 2.0, TimeScaling::Quintic)?;
+    /// assert!(matches!(law, ControlLaw::ComputedTorque { kp, .. } if kp == 100.0));
+    /// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// An unknown name, `pd` or `track` without a target, a bad target or start.
+    pub fn named(
+        model: &Model,
+        name: &str,
+        q0: &[f64],
+        target: Option<&[f64]>,
+        move_time: f64,
+        scaling: TimeScaling,
+    ) -> Result<Self, SimulationError> {
+        let target = || {
+            target.ok_or_else(|| {
+                SimulationError::Invalid(format!(
+                    "controller {name} needs a target configuration (nq = {} numbers)",
+                    model.nq
+                ))
+            })
+        };
+        match name {
+            "none" => Ok(Self::None),
+            "gravity" => Ok(Self::GravityCompensation),
+            "pd" => Self::pd(model, target()?, 4.0 * std::f64::consts::PI, 1.0),
+            "track" => Ok(Self::ComputedTorque {
+                trajectory: JointTrajectory::new(model, q0, target()?, move_time, scaling)?,
+                kp: 100.0,
+                kd: 20.0,
+            }),
+            other => Err(SimulationError::Invalid(format!(
+                "unknown controller {other:?}: expected none, gravity, pd or track"
+            ))),
+        }
+    }
+
     /// PD gains that give every joint, taken alone at `target`, the natural frequency `ω`
     /// (rad/s) and damping ratio `ζ`: `K_p,k = ω² M_kk`, `K_d,k = 2ζω M_kk` with `M_kk` the
     /// diagonal of the mass matrix at the target (so that light wrist joints get soft gains and a

@@ -22,6 +22,22 @@ pub enum TimeScaling {
     },
 }
 
+impl std::str::FromStr for TimeScaling {
+    type Err = SimulationError;
+    /// `quintic`, or `trapezoidal` (accelerating for a quarter of the time at each end).
+    fn from_str(s: &str) -> Result<Self, SimulationError> {
+        match s {
+            "quintic" => Ok(Self::Quintic),
+            "trapezoidal" => Ok(Self::Trapezoidal {
+                accel_fraction: 0.25,
+            }),
+            other => Err(SimulationError::Invalid(format!(
+                "unknown time scaling {other:?}: expected quintic or trapezoidal"
+            ))),
+        }
+    }
+}
+
 impl TimeScaling {
     /// `(s, ṡ, s̈)` at time `t` for a motion of duration `T`.
     ///

@@ -1,5 +1,6 @@
-//! `--html`: a 3D replay in one self-contained HTML file (WebGL, our own ~400-line renderer in
-//! `assets/replay/`, embedded with `include_str!`; nothing is fetched when the page is viewed, a
+//! The 3D replay of `rigid simulate --html`, `rigid view` and Python's `rigid.replay_html`: one
+//! self-contained HTML file (WebGL, our own ~400-line renderer in `assets/`, embedded with
+//! `include_str!`; nothing is fetched when the page is viewed, a
 //! strict Content-Security-Policy forbids it). The scene is a list of nodes, each fixed in a
 //! body frame and carrying shapes (URDF boxes, cylinders, spheres, capsules and meshes, or a
 //! stick figure when a model has no geometry), and the world pose of every node at 60 frames per
@@ -9,6 +10,8 @@
 //! orbit camera and a slider; that is ~400 lines of plain WebGL 1, reviewed here, against
 //! ~600 kB of a vendored bundle (and a JavaScript build step) for the same picture.
 
+#![warn(missing_docs)]
+
 mod shapes;
 
 pub use shapes::{body_box, robot_nodes};
@@ -16,7 +19,6 @@ pub use shapes::{body_box, robot_nodes};
 use base64::Engine;
 use rigid::multibody::{Data, JointId, Model};
 use rigid::spatial::{so3, Transform, Vec3};
-use std::path::Path;
 
 /// Frames per second of the recorded trajectory.
 pub const FPS: f64 = 60.0;
@@ -172,9 +174,9 @@ fn escape_html(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-const HTML: &str = include_str!("../../assets/replay/replay.html");
-const CSS: &str = include_str!("../../assets/replay/replay.css");
-const JS: &str = include_str!("../../assets/replay/replay.js");
+const HTML: &str = include_str!("../assets/replay.html");
+const CSS: &str = include_str!("../assets/replay.css");
+const JS: &str = include_str!("../assets/replay.js");
 
 impl Scene {
     /// The page: the template with the style, the renderer and the scene JSON inlined.
@@ -222,13 +224,5 @@ impl Scene {
             .replace("{{CSS}}", CSS)
             .replace("{{JS}}", JS)
             .replace("{{SCENE}}", &json)
-    }
-
-    /// Write the page to `path` (atomically).
-    ///
-    /// # Errors
-    /// The file cannot be written.
-    pub fn write_html(&self, rec: &Recording, path: &Path) -> Result<(), String> {
-        crate::write_atomic(path, self.html(rec).as_bytes())
     }
 }

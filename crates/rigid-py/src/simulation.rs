@@ -1,0 +1,298 @@
+//! Robot simulation from Python: `simulate` (rigid's `multibody::simulation`, the same options
+//! and built-in controllers as `rigid simulate`, or a Python control law `u(t, q, v)`) and
+//! `replay_html` (the 3D replay page of `rigid simulate --html`).
+
+use crate::convert::{io_error, matrix, rows_array, value_error, vector};
+use crate::model::{Model, ModelCore};
+use numpy::PyArray1;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rigid::multibody::simulation::{
+    Control, ControlLaw, Controller, Integrator, JointLimits, SimulationError, SimulationOptions,
+    Simulator, TimeScaling,
+};
+use rigid::multibody::{Data, Model as RigidModel, MultibodyError};
+use std::path::PathBuf;
+
+/// A configuration argument (model layout) in rigid's layout.
+fn q_arg(core: &ModelCore, func: &str, name: &str, x: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    let v = vector(x, func, name, "nq", core.nq())?;
+    let mut out = Vec::new();
+    core.q_into(&v, &mut out, func, name)?;
+    Ok(out)
+}
+
+/// A velocity-space argument (model layout) in rigid's layout.
+fn v_arg(core: &ModelCore, func: &str, name: &str, x: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    let v = vector(x, func, name, "nv", core.nv())?;
+    let mut out = Vec::new();
+    core.v_into(&v, &mut out, func, name)?;
+    Ok(out)
+}
+
+/// The control law `τ = u(t, q, v)` of a Python callable, in the model's layout. A Python
+/// exception stops the simulation and is raised by `simulate`.
+struct PyControl<'py> {
+    f: Bound<'py, PyAny>,
+    core: &'py ModelCore,
+    error: Option<PyErr>,
+}
+
+impl Control for PyControl<'_> {
+    fn torque(
+        &mut self,
+        _model: &RigidModel,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        let py = self.f.py();
+        let stop = MultibodyError::NonFinite {
+            what: "tau",
+            index: 0,
+        };
+        let result = self
+            .f
+            .call1((t, self.core.q_out(py, q), self.core.v_out(py, v)))
+            .and_then(|r| {
+                let x = vector(&r, "simulate", "control(t, q, v)", "nv", self.core.nv())?;
+                let mut out = Vec::new();
+                self.core
+                    .v_into(&x, &mut out, "simulate", "control(t, q, v)")?;
+                Ok(out)
+            });
+        match result {
+            Ok(out) => {
+                tau.copy_from_slice(&out);
+                Ok(())
+            }
+            Err(e) => {
+                self.error.get_or_insert(e);
+                Err(stop)
+            }
+        }
+    }
+}
+
+/// The recorded run: times and, per row, `q`, `v`, `τ` (the control's) and the energy.
+#[derive(Default)]
+struct Record {
+    t: Vec<f64>,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    tau: Vec<f64>,
+    energy: Vec<f64>,
+}
+
+fn run<C: Control>(
+    sim: &mut Simulator<C>,
+    steps: u64,
+    every: u64,
+    rec: &mut Record,
+) -> Result<(), SimulationError> {
+    let push = |sim: &mut Simulator<C>, rec: &mut Record| -> Result<(), SimulationError> {
+        rec.t.push(sim.time());
+        rec.q.extend_from_slice(sim.q());
+        rec.v.extend_from_slice(sim.v());
+        let tau = sim.torques()?.0.to_vec();
+        rec.tau.extend_from_slice(&tau);
+        rec.energy.push(sim.energy()?);
+        Ok(())
+    };
+    push(sim, rec)?;
+    for k in 1..=steps {
+        sim.step()?;
+        if k % every == 0 || k == steps {
+            push(sim, rec)?;
+        }
+    }
+    Ok(())
+}
+
+/// Simulates `model` from `(q0, v0)` for `duration` seconds with a fixed step `dt` (the options
+/// and built-in controllers of `rigid simulate`; `control`, a Python function `u(t, q, v) -> τ`,
+/// replaces `controller`). Returns a dict of numpy arrays: `t` (N), `q` (N × nq), `v` (N × nv),
+/// `tau` (N × nv, the control law's torques) and `energy` (N, kinetic + potential, J), one row
+/// every `every` steps and the last; in the model's layout.
+#[pyfunction]
+#[pyo3(signature = (
+    model, q0 = None, v0 = None, duration = 1.0, dt = 1e-3, integrator = "rk4",
+    controller = "none", target = None, move_time = None, profile = "quintic",
+    limits = "spring", joint_dynamics = true, control = None, every = 1
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    q0: Option<&Bound<'py, PyAny>>,
+    v0: Option<&Bound<'py, PyAny>>,
+    duration: f64,
+    dt: f64,
+    integrator: &str,
+    controller: &str,
+    target: Option<&Bound<'py, PyAny>>,
+    move_time: Option<f64>,
+    profile: &str,
+    limits: &str,
+    joint_dynamics: bool,
+    control: Option<&Bound<'py, PyAny>>,
+    every: u64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let func = "simulate";
+    let core: &ModelCore = &model.inner;
+    let m = &core.model;
+    let err = |e: SimulationError| value_error(func, e);
+    if !(dt.is_finite() && dt > 0.0 && duration.is_finite() && duration > 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "simulate: dt and duration must be positive and finite, got dt = {dt}, duration = \
+             {duration}"
+        )));
+    }
+    let steps = (duration / dt).round().max(1.0);
+    if steps > 1e9 || every == 0 {
+        return Err(PyValueError::new_err(
+            "simulate: at most 1e9 steps, and every >= 1",
+        ));
+    }
+    let q0 = match q0 {
+        Some(x) => q_arg(core, func, "q0", x)?,
+        None => rigid::multibody::neutral(m),
+    };
+    let v0 = match v0 {
+        Some(x) => v_arg(core, func, "v0", x)?,
+        None => vec![0.0; m.nv()],
+    };
+    let target = target.map(|x| q_arg(core, func, "target", x)).transpose()?;
+    let opts = SimulationOptions {
+        dt,
+        integrator: integrator
+            .parse::<Integrator>()
+            .map_err(|e| value_error(func, e))?,
+        limits: match limits {
+            "spring" => JointLimits::default(),
+            "ignored" => JointLimits::Ignored,
+            other => {
+                return Err(value_error(
+                    func,
+                    format!("limits {other:?}: expected \"spring\" or \"ignored\""),
+                ))
+            }
+        },
+        joint_dynamics,
+        ..SimulationOptions::default()
+    };
+    let mut rec = Record::default();
+    match control {
+        Some(f) => {
+            if !f.is_callable() {
+                return Err(PyValueError::new_err(
+                    "simulate: control must be a function u(t, q, v) -> tau",
+                ));
+            }
+            let law = PyControl {
+                f: f.clone(),
+                core,
+                error: None,
+            };
+            let mut sim = Simulator::new(m, &q0, &v0, opts, law).map_err(err)?;
+            let result = run(&mut sim, steps as u64, every, &mut rec);
+            if let Some(e) = sim.control_mut().error.take() {
+                return Err(e);
+            }
+            result.map_err(err)?;
+        }
+        None => {
+            let scaling: TimeScaling = profile.parse().map_err(err)?;
+            let time = move_time.unwrap_or(0.5 * duration);
+            let law = ControlLaw::named(m, controller, &q0, target.as_deref(), time, scaling)
+                .map_err(err)?;
+            let ctrl = Controller::new(m, law).map_err(err)?;
+            let mut sim = Simulator::new(m, &q0, &v0, opts, ctrl).map_err(err)?;
+            py.detach(|| run(&mut sim, steps as u64, every, &mut rec))
+                .map_err(err)?;
+        }
+    }
+    let n = rec.t.len();
+    let (nq, nv) = (m.nq(), m.nv());
+    let q_rows: Vec<f64> = rec
+        .q
+        .chunks_exact(nq.max(1))
+        .take(n)
+        .flat_map(|q| core.q_to_layout(q))
+        .collect();
+    let v_rows = |x: &[f64]| -> Vec<f64> {
+        x.chunks_exact(nv.max(1))
+            .take(n)
+            .flat_map(|v| core.v_to_layout(v))
+            .collect()
+    };
+    let out = PyDict::new(py);
+    out.set_item("t", PyArray1::from_vec(py, rec.t))?;
+    out.set_item("q", rows_array(py, q_rows, n, core.nq())?)?;
+    out.set_item("v", rows_array(py, v_rows(&rec.v), n, nv)?)?;
+    out.set_item("tau", rows_array(py, v_rows(&rec.tau), n, nv)?)?;
+    out.set_item("energy", PyArray1::from_vec(py, rec.energy))?;
+    Ok(out)
+}
+
+/// Writes the 3D replay of a trajectory of `model` to `path`: one self-contained HTML file
+/// (WebGL; the URDF's visual geometry, a stick figure without it) that opens offline. `traj` is
+/// a dict (the result of `simulate`) or an object with `t` (N) and `q` (N × nq, the model's
+/// layout). Frames are taken at 60 per second of `t`, and the last.
+#[pyfunction]
+#[pyo3(signature = (model, traj, path, title = None))]
+pub fn replay_html(
+    model: PyRef<'_, Model>,
+    traj: &Bound<'_, PyAny>,
+    path: PathBuf,
+    title: Option<&str>,
+) -> PyResult<()> {
+    let func = "replay_html";
+    let core: &ModelCore = &model.inner;
+    let get = |key: &str| {
+        traj.get_item(key)
+            .or_else(|_| traj.getattr(key))
+            .map_err(|_| PyValueError::new_err(format!("replay_html: traj has no \"{key}\"")))
+    };
+    let times = get("t")?;
+    let n = times.len()?;
+    let t = vector(&times, func, "traj[\"t\"]", "N", n)?
+        .as_slice()
+        .to_vec();
+    let qs = matrix(&get("q")?, func, "traj[\"q\"]", "nq", core.nq())?;
+    if qs.rows != t.len() {
+        return Err(value_error(
+            func,
+            format!("traj has {} times but {} rows of q", t.len(), qs.rows),
+        ));
+    }
+    let m = &core.model;
+    let mut scene = rigid_replay::robot_nodes(m, core.source.as_deref());
+    scene.title = title.map_or_else(|| m.name().to_string(), str::to_string);
+    let mut data = Data::new(m);
+    let mut rec = rigid_replay::Recording::default();
+    let mut q = Vec::new();
+    for (k, (tk, row)) in t
+        .iter()
+        .zip(qs.as_slice().chunks_exact(core.nq().max(1)))
+        .enumerate()
+    {
+        let x = crate::convert::Vector::Owned(row.to_vec());
+        core.q_into(&x, &mut q, func, &format!("traj[\"q\"][{k}]"))?;
+        rec.record_model(&scene, m, &mut data, *tk, &q, k + 1 == t.len())
+            .map_err(|e| value_error(func, format!("row {k}: {e}")))?;
+    }
+    let html = scene.html(&rec);
+    let tmp = path.with_extension(format!("tmp{}", std::process::id()));
+    std::fs::write(&tmp, html)
+        .and_then(|()| std::fs::rename(&tmp, &path))
+        .map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            io_error(
+                &e,
+                format!("replay_html: cannot write {}: {e}", path.display()),
+            )
+        })
+}
