@@ -198,6 +198,12 @@ fn the_doctor_names_injected_faults_and_repairs_them() {
         let change = f["change"].as_f64().unwrap_or(f64::INFINITY);
         if r.status != Status::Ok {
             t.detected += 1;
+        } else if std::env::var("RIGID_DOCTOR_DEBUG").is_ok() {
+            let m = &r.metrics;
+            eprintln!(
+                "UNDETECTED {code} {tag} change {change:.2} var {:?} axes {:?} prod {:?} size {:?}",
+                m.variance_ratio, m.axes_cosine, m.products_cosine, m.size_ratio
+            );
         }
         if cause == code {
             t.named += 1;
