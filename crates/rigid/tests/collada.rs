@@ -5,6 +5,9 @@ use rigid::io::collada::parse_dae;
 use rigid::io::mesh_file::read_mesh;
 use rigid::spatial::Vec3;
 
+mod common;
+use common::reference::{package_roots, skip};
+
 /// A unit cube (12 triangles) as two `<polylist>` quads and `<triangles>`, instanced twice.
 const CUBE: &str = r##"<?xml version="1.0"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
@@ -81,18 +84,10 @@ fn bad_collada_is_an_error_not_a_panic() {
 
 #[test]
 fn a_robot_dae_matches_its_stl_twin() {
-    if std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1") {
+    if skip("the COLLADA/STL twin") {
         return;
     }
-    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/pinocchio/packages.py");
-    let py = std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into());
-    let out = std::process::Command::new(py)
-        .args([script, "roots"])
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "run `bash scripts/test.sh`");
-    let roots: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let erd = std::path::PathBuf::from(roots["example-robot-data"].as_str().unwrap());
+    let erd = package_roots()["example-robot-data"].clone();
     // TIAGo's arm: a Y-up COLLADA collision mesh and the STL visual mesh of the same part
     let dir = erd.join("tiago_description/meshes/arm");
     let dae = read_mesh(&dir.join("arm_2_collision.dae")).unwrap();

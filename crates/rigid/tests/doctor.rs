@@ -21,42 +21,13 @@ use rigid::mass::{Consistency, RotationalInertia, SpatialInertia, Verdict};
 use rigid::spatial::Transform;
 use serde_json::Value;
 use std::collections::HashMap;
+
+mod common;
+use common::reference::{package_roots, run_script, skip};
 use std::path::PathBuf;
-use std::process::Command;
-
-fn skip() -> bool {
-    std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1")
-}
-
-fn python() -> String {
-    std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into())
-}
 
 fn tests_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests")
-}
-
-fn run_python(args: &[&str]) -> String {
-    let out = Command::new(python())
-        .args(args)
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run {} ({e}); run `bash scripts/test.sh`", python()));
-    assert!(
-        out.status.success(),
-        "{args:?} failed (run `bash scripts/test.sh`):\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn package_roots() -> HashMap<String, PathBuf> {
-    let script = tests_dir().join("pinocchio/packages.py");
-    let v: Value = serde_json::from_str(&run_python(&[script.to_str().unwrap(), "roots"])).unwrap();
-    v.as_object()
-        .unwrap()
-        .iter()
-        .filter_map(|(k, p)| Some((k.clone(), PathBuf::from(p.as_str()?))))
-        .collect()
 }
 
 fn corpus() -> Value {
@@ -143,22 +114,20 @@ struct Tally {
 
 #[test]
 fn the_generator_reproduces_the_committed_corpus() {
-    if skip() {
+    if skip("the doctor's corpus") {
         return;
     }
-    let script = tests_dir().join("doctor/inject.py");
-    let fresh: Value = serde_json::from_str(&run_python(&[script.to_str().unwrap()])).unwrap();
+    let fresh: Value = serde_json::from_slice(&run_script("doctor/inject.py", &[])).unwrap();
     assert_eq!(
         fresh,
         corpus(),
-        "tests/doctor/corpus.json is stale: python3 {} > tests/doctor/corpus.json",
-        script.display()
+        "tests/doctor/corpus.json is stale: python3 tests/doctor/inject.py > tests/doctor/corpus.json"
     );
 }
 
 #[test]
 fn the_doctor_names_injected_faults_and_repairs_them() {
-    if skip() {
+    if skip("the doctor's corpus") {
         return;
     }
     let roots = package_roots();
@@ -319,7 +288,7 @@ fn the_doctor_names_injected_faults_and_repairs_them() {
 
 #[test]
 fn a_valid_body_is_never_repaired() {
-    if skip() {
+    if skip("the doctor's corpus") {
         return;
     }
     let roots = package_roots();

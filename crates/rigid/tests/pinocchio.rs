@@ -24,11 +24,10 @@ use rigid::multibody::{
     kinetic_energy, nonlinear_effects, potential_energy, rnea, Data, Model,
 };
 use serde_json::Value;
-use std::path::PathBuf;
-use std::process::Command;
 
 mod common;
 use common::json::vec_of;
+use common::reference::{self, run_script, skip, to_rigid};
 
 /// Random states per robot.
 const STATES: usize = 8;
@@ -37,47 +36,17 @@ const TOLERANCE: f64 = 1e-9;
 /// Absolute floor of the scale in the relative error.
 const FLOOR: f64 = 1e-6;
 
-fn python() -> String {
-    std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into())
-}
-
 /// Pinocchio's reference for one robot, or `None` when skipped by `RIGID_SKIP_PINOCCHIO=1`.
 fn reference(robot: &str) -> Option<Value> {
-    if std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1") {
-        eprintln!("RIGID_SKIP_PINOCCHIO=1: not comparing {robot} with Pinocchio");
+    if skip(robot) {
         return None;
     }
-    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/pinocchio/reference.py");
-    let out = Command::new(python())
-        .arg(&script)
-        .arg(robot)
-        .args([
-            "--states",
-            &STATES.to_string(),
-            "--seed",
-            "7",
-            "--derivatives",
-        ])
-        .output()
-        .unwrap_or_else(|e| {
-            panic!(
-                "cannot run {} ({e}): install Python 3 and run `bash scripts/test.sh`, which \
-                 pip-installs Pinocchio and example-robot-data (or set RIGID_SKIP_PINOCCHIO=1)",
-                python()
-            )
-        });
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    if !out.status.success() {
-        if stderr.contains("No module named") {
-            panic!(
-                "Python cannot import Pinocchio or example-robot-data:\n{stderr}\nRun `bash \
-                 scripts/test.sh` (it pip-installs scripts/requirements-test.txt), or set \
-                 RIGID_SKIP_PINOCCHIO=1 to skip this comparison."
-            );
-        }
-        panic!("{} failed for {robot}:\n{stderr}", script.display());
-    }
-    Some(serde_json::from_slice(&out.stdout).expect("reference.py printed invalid JSON"))
+    let states = STATES.to_string();
+    let out = run_script(
+        "pinocchio/reference.py",
+        &[robot, "--states", &states, "--seed", "7", "--derivatives"],
+    );
+    Some(serde_json::from_slice(&out).expect("reference.py printed invalid JSON"))
 }
 
 fn mat_of(v: &Value) -> Vec<Vec<f64>> {
@@ -86,14 +55,7 @@ fn mat_of(v: &Value) -> Vec<Vec<f64>> {
 
 /// `‖a - b‖∞ / max(‖b‖∞, FLOOR)`.
 fn rel(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
-    let scale = b.iter().map(|y| y.abs()).fold(FLOOR, f64::max);
-    diff / scale
+    reference::rel(a, b, FLOOR)
 }
 
 /// Maximum relative errors, one per quantity, over all states.
@@ -112,37 +74,7 @@ impl Errors {
 
 /// Index maps from the reference's layout (Pinocchio's joint order) into rigid's: `(q, v)`.
 fn index_maps(model: &Model, joints: &[Value]) -> (Vec<usize>, Vec<usize>) {
-    assert_eq!(
-        model.joints().len(),
-        joints.len(),
-        "number of moving joints"
-    );
-    let (mut pq, mut pv) = (vec![0; model.nq()], vec![0; model.nv()]);
-    for rj in joints {
-        let name = rj["name"].as_str().unwrap();
-        let field = |k: &str| rj[k].as_u64().unwrap() as usize;
-        let id = model
-            .joint_id(name)
-            .unwrap_or_else(|| panic!("rigid has no joint {name}"));
-        let j = &model.joints()[id.0];
-        assert_eq!((j.nq, j.nv), (field("nq"), field("nv")), "joint {name}");
-        for t in 0..j.nq {
-            pq[field("idx_q") + t] = j.idx_q + t;
-        }
-        for t in 0..j.nv {
-            pv[field("idx_v") + t] = j.idx_v + t;
-        }
-    }
-    (pq, pv)
-}
-
-/// `x` in rigid's layout from the reference's.
-fn to_rigid(x: &[f64], map: &[usize]) -> Vec<f64> {
-    let mut out = vec![0.0; x.len()];
-    for (k, &r) in map.iter().enumerate() {
-        out[r] = x[k];
-    }
-    out
+    reference::index_maps(model, joints).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// `x` (rigid's layout) in the reference's layout.
