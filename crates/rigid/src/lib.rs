@@ -21,6 +21,7 @@ pub mod body;
 pub mod error;
 #[doc(hidden)]
 pub mod fuzzing;
+pub mod identification;
 pub mod io;
 pub mod mass;
 pub mod multibody;
