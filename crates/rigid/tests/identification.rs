@@ -156,7 +156,8 @@ fn synthetic(model: &Model, n: usize, seed: u64, terms: (&[f64], &[f64], &[f64])
         s.t.push(k as f64 * 0.01);
         for i in 0..model.nv() {
             let sign = if v[i] > 0.0 { 1.0 } else { -1.0 };
-            s.tau.push(tau[i] + fv[i] * v[i] + fc[i] * sign + ia[i] * a[i]);
+            s.tau
+                .push(tau[i] + fv[i] * v[i] + fc[i] * sign + ia[i] * a[i]);
         }
         s.q.extend(q);
         s.v.extend(v);
@@ -197,7 +198,12 @@ fn least_squares_recovers_exact_parameters_and_joint_terms() {
         assert!(est.relative_residual < 1e-10 && est.condition_number > 1.0);
         assert!(est.base_std.iter().all(|s| s.is_finite() && *s < 1e-6));
         // the viscous friction of joint 4 stands alone as a base parameter
-        let i = id.base.independent.iter().position(|&j| j == f0 + 6).unwrap();
+        let i = id
+            .base
+            .independent
+            .iter()
+            .position(|&j| j == f0 + 6)
+            .unwrap();
         assert!((est.base[i] - fv[3]).abs() < 1e-9);
     }
 }
@@ -212,7 +218,10 @@ fn bad_motions_are_refused_with_the_reason() {
     let Err(e) = Identification::new(&model, &s, JointTerms::default()) else {
         panic!("5 samples accepted");
     };
-    assert!(matches!(e, IdentificationError::TooFewSamples { .. }), "{e}");
+    assert!(
+        matches!(e, IdentificationError::TooFewSamples { .. }),
+        "{e}"
+    );
     assert!(e.to_string().contains("record at least 7 samples"), "{e}");
     let mut s = synthetic(&model, 100, 1, (&zeros, &zeros, &zeros));
     // joint 1 frozen at 0.3 rad: the inertia about its axis acts on nothing
@@ -235,8 +244,14 @@ fn bad_motions_are_refused_with_the_reason() {
         panic!("a frozen joint was not noticed");
     };
     let text = e.to_string();
-    assert!(matches!(e, IdentificationError::RankDeficient { .. }), "{e}");
-    assert!(text.contains("never move: joint1") && text.contains("rigid excite"), "{text}");
+    assert!(
+        matches!(e, IdentificationError::RankDeficient { .. }),
+        "{e}"
+    );
+    assert!(
+        text.contains("never move: joint1") && text.contains("rigid excite"),
+        "{text}"
+    );
 }
 
 /// Noisy torques on a model whose inertias are made non-physical in the unidentifiable
@@ -254,7 +269,9 @@ fn physically_consistent_estimate_is_valid_for_every_body() {
     }
     let id = Identification::new(&model, &s, JointTerms::default()).unwrap();
     let ls = id.least_squares(Weighting::None).unwrap();
-    let pc = id.physically_consistent(&PhysicalOptions::default()).unwrap();
+    let pc = id
+        .physically_consistent(&PhysicalOptions::default())
+        .unwrap();
     for (i, p) in pc.parameters.as_slice().chunks(10).enumerate() {
         let g = SpatialInertia::from_parameters(p.try_into().unwrap());
         let c = Consistency::of(&g);
@@ -282,7 +299,10 @@ fn physically_consistent_estimate_is_valid_for_every_body() {
     let bounded = id.physically_consistent(&opts).unwrap();
     for (i, (lo, hi)) in bounds.iter().enumerate() {
         let m = bounded.parameters[10 * i];
-        assert!(m >= lo - 1e-6 && m <= hi + 1e-6, "body {i}: {m} not in [{lo}, {hi}]");
+        assert!(
+            m >= lo - 1e-6 && m <= hi + 1e-6,
+            "body {i}: {m} not in [{lo}, {hi}]"
+        );
     }
     let impossible = PhysicalOptions {
         mass_bounds: Some(vec![(-2.0, -1.0); 6]),
@@ -298,30 +318,64 @@ fn physically_consistent_estimate_is_valid_for_every_body() {
 #[test]
 fn csv_layouts_and_errors() {
     let model = builtin("double_pendulum").unwrap();
-    let full = Samples::from_csv(&model, "0,0.1,0.2,1,2,3,4,5,6\n0.1,0.1,0.2,1,2,3,4,5,6\n", None)
-        .unwrap();
+    let full = Samples::from_csv(
+        &model,
+        "0,0.1,0.2,1,2,3,4,5,6\n0.1,0.1,0.2,1,2,3,4,5,6\n",
+        None,
+    )
+    .unwrap();
     assert_eq!((full.len(), full.a[1], full.tau[1]), (2, 4.0, 6.0));
     // round trip through to_csv
     let again = Samples::from_csv(&model, &full.to_csv(&model), None).unwrap();
     assert_eq!(again, full);
     let cases = [
         ("0,1,2,3\n", "line 1", "columns"),
-        ("0,1,2,3,4,5,6,7,8\n0.1,1,2\n", "line 2", "every row needs the same columns"),
-        ("0,1,2,3,4,5,6,7,8\n0.1,1,x,3,4,5,6,7,8\n", "line 2, column 3 (q_joint2)", "\"x\""),
-        ("0,1,2,3,4,5,6,7,8\n0.1,1,2,inf,4,5,6,7,8\n", "column 4 (v_joint1)", "finite"),
-        ("0,1,2,3,4,5,6,7,8\n0,1,2,3,4,5,6,7,8\n", "line 2, column 1 (t)", "increase"),
-        ("t,q_joint2,q_joint1,tau_joint1,tau_joint2\n", "column 2", "joint order"),
+        (
+            "0,1,2,3,4,5,6,7,8\n0.1,1,2\n",
+            "line 2",
+            "every row needs the same columns",
+        ),
+        (
+            "0,1,2,3,4,5,6,7,8\n0.1,1,x,3,4,5,6,7,8\n",
+            "line 2, column 3 (q_joint2)",
+            "\"x\"",
+        ),
+        (
+            "0,1,2,3,4,5,6,7,8\n0.1,1,2,inf,4,5,6,7,8\n",
+            "column 4 (v_joint1)",
+            "finite",
+        ),
+        (
+            "0,1,2,3,4,5,6,7,8\n0,1,2,3,4,5,6,7,8\n",
+            "line 2, column 1 (t)",
+            "increase",
+        ),
+        (
+            "t,q_joint2,q_joint1,tau_joint1,tau_joint2\n",
+            "column 2",
+            "joint order",
+        ),
         ("", "line 1", "no samples"),
     ];
     for (text, place, what) in cases {
-        let e = Samples::from_csv(&model, text, None).unwrap_err().to_string();
+        let e = Samples::from_csv(&model, text, None)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(place) && e.contains(what), "{text:?}: {e}");
     }
     // positions only, uneven steps
     let uneven: String = (0..30)
-        .map(|k| format!("{},{},0,0,0\n", k as f64 * 0.01 + if k == 17 { 0.005 } else { 0.0 }, k))
+        .map(|k| {
+            format!(
+                "{},{},0,0,0\n",
+                k as f64 * 0.01 + if k == 17 { 0.005 } else { 0.0 },
+                k
+            )
+        })
         .collect();
-    let e = Samples::from_csv(&model, &uneven, None).unwrap_err().to_string();
+    let e = Samples::from_csv(&model, &uneven, None)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("line 18") && e.contains("uniform"), "{e}");
     // multi-dof joints cannot be differentiated from q alone
     let free = common::random_tree(1, 2, false);
@@ -351,7 +405,12 @@ fn savitzky_golay_differentiates_sampled_motion() {
     for k in 0..s.len() {
         let t = s.t[k];
         assert!((s.v[2 * k] - df(t)).abs() < 1e-6 && (s.v[2 * k + 1] + df(t)).abs() < 1e-6);
-        assert!((s.a[2 * k] - ddf(t)).abs() < 1e-4, "{} {}", s.a[2 * k], ddf(t));
+        assert!(
+            (s.a[2 * k] - ddf(t)).abs() < 1e-4,
+            "{} {}",
+            s.a[2 * k],
+            ddf(t)
+        );
     }
 }
 

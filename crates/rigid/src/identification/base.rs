@@ -207,7 +207,11 @@ impl BaseParameters {
     pub fn of_model(model: &Model, terms: JointTerms, seed: u64) -> Result<Self, MultibodyError> {
         let layout = ParameterLayout::new(model, terms);
         let (nv, p) = (model.nv(), layout.len());
-        let samples = if nv == 0 { 0 } else { (3 * p).div_ceil(nv).max(20) };
+        let samples = if nv == 0 {
+            0
+        } else {
+            (3 * p).div_ceil(nv).max(20)
+        };
         let mut rng = Rng::new(seed);
         let mut reg = Regressor::new(model);
         let mut w = DMatrix::zeros(samples * nv, p);
@@ -295,7 +299,8 @@ impl BaseParameters {
     #[must_use]
     pub fn project(&self, pi: &DVector<f64>) -> DVector<f64> {
         let pb = DVector::from_iterator(self.len(), self.independent.iter().map(|&j| pi[j]));
-        let pd = DVector::from_iterator(self.dependent.len(), self.dependent.iter().map(|&j| pi[j]));
+        let pd =
+            DVector::from_iterator(self.dependent.len(), self.dependent.iter().map(|&j| pi[j]));
         pb + &self.grouping * pd
     }
 

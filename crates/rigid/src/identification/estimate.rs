@@ -348,6 +348,16 @@ impl Identification {
         })
     }
 
+    /// The report of any full parameters `pi` ([`ParameterLayout`]) against the samples: the
+    /// model's own values (`self.prior`), another estimate, ... (standard deviations and
+    /// condition number of the unweighted problem).
+    ///
+    /// # Errors
+    /// A sample the algorithms refuse.
+    pub fn evaluate(&self, pi: &DVector<f64>) -> Result<Estimate, IdentificationError> {
+        self.report(pi, &self.r)
+    }
+
     /// The unweighted factor `R` of `[W τ]` (for the semidefinite program).
     pub(crate) fn factor_r(&self) -> &DMatrix<f64> {
         &self.r

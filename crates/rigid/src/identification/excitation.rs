@@ -176,7 +176,12 @@ fn shape(x: &[f64], lim: &[(f64, f64, f64)], omega: f64, n: usize) -> FourierTra
     let mut hi = vec![f64::NEG_INFINITY; nv];
     let mut vmax = vec![0.0f64; nv];
     for i in 0..grid {
-        t.sample(i as f64 * t.period() / grid as f64, &mut q, &mut v, &mut acc);
+        t.sample(
+            i as f64 * t.period() / grid as f64,
+            &mut q,
+            &mut v,
+            &mut acc,
+        );
         for k in 0..nv {
             lo[k] = lo[k].min(q[k]);
             hi[k] = hi[k].max(q[k]);

@@ -124,7 +124,10 @@ impl Identification {
             pm[(i, i)] += opts.regularization;
         }
         pm *= 2.0 / scale;
-        let q: Vec<f64> = (m.transpose() * &e * (-2.0 / scale)).iter().copied().collect();
+        let q: Vec<f64> = (m.transpose() * &e * (-2.0 / scale))
+            .iter()
+            .copied()
+            .collect();
         let P = upper_csc(&pm);
 
         // constraints: s = b - A y in the cones

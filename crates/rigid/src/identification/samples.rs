@@ -113,9 +113,8 @@ impl SavitzkyGolay {
         let m = self.half_window as i64;
         let d = self.order.max(2);
         let rows = (2 * m + 1) as usize;
-        let a = nalgebra::DMatrix::from_fn(rows, d + 1, |r, c| {
-            ((r as i64 - m) as f64).powi(c as i32)
-        });
+        let a =
+            nalgebra::DMatrix::from_fn(rows, d + 1, |r, c| ((r as i64 - m) as f64).powi(c as i32));
         // (AᵀA)⁻¹ Aᵀ: row c gives the polynomial's coefficient c; x'(0) = c1, x''(0) = 2 c2
         let ata = a.transpose() * &a;
         let pinv = ata
@@ -265,7 +264,9 @@ impl Samples {
                 && cells.iter().any(|c| c.parse::<f64>().is_err());
             if is_header {
                 for (c, cell) in cells.iter().enumerate() {
-                    let claims = ["q_", "v_", "a_", "tau_"].iter().any(|p| cell.starts_with(p));
+                    let claims = ["q_", "v_", "a_", "tau_"]
+                        .iter()
+                        .any(|p| cell.starts_with(p));
                     if claims && *cell != names[c] {
                         return Err(err(
                             line,
@@ -299,9 +300,7 @@ impl Samples {
                             line,
                             Some(c),
                             &names,
-                            format!(
-                                "\"{cell}\" is not a number; remove the row or fill the gap"
-                            ),
+                            format!("\"{cell}\" is not a number; remove the row or fill the gap"),
                         ))
                     }
                 }
