@@ -2,6 +2,7 @@
 #![allow(dead_code, non_snake_case)]
 
 pub mod json;
+pub mod pinocchio;
 
 use nalgebra::{DMatrix, DVector};
 use rigid::mass::{RotationalInertia, SpatialInertia};
