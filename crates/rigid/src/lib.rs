@@ -14,6 +14,7 @@
 //! | [`body`] | one body in motion: Newton-Euler, Euler, simulator on SE(3), Lagrange by autodiff |
 //! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis matrix, energies, DH and Modern Robotics builders, built-in robots |
 //! | [`io`] | URDF import into a multibody `Model` (inertia policy, warnings); `rigid doctor` ([`io::urdf::doctor`]) |
+//! | [`identification`] | inertial parameters from measured motion: joint-torque regressor, base parameters, least squares, physically consistent estimate (semidefinite program), exciting trajectories |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
