@@ -9,7 +9,9 @@ mod bench;
 mod bench_batch;
 mod doctor;
 mod eval;
+mod excite;
 mod explicit;
+mod identify;
 mod load;
 mod mass;
 mod model;
@@ -36,6 +38,10 @@ enum Command {
     /// Simulate a robot (URDF or built-in model) or one rigid body (a TOML spec): CSV, plots, a
     /// 3D replay in the browser, and a summary.
     Simulate(Box<simulate::SimulateArgs>),
+    /// Identify a robot's inertial parameters from measured motion (a CSV of samples).
+    Identify(Box<identify::IdentifyArgs>),
+    /// Write an exciting trajectory for identification (CSV).
+    Excite(excite::ExciteArgs),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
     /// The explicit dynamic model: M(q), Coriolis, centrifugal and gravity terms as abbreviated tables or code.
@@ -171,6 +177,8 @@ fn main() -> ExitCode {
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),
+        Command::Identify(args) => report(identify::run(&args)),
+        Command::Excite(args) => report(excite::run(&args)),
         Command::Model(args) => report(model::run(&args)),
         Command::Explicit(args) => report(explicit::run(&args)),
         Command::View(args) => report(view::run(&args)),

@@ -50,7 +50,7 @@ fn cases() -> Vec<Case> {
     let mut out = Vec::new();
     let tmp = std::env::temp_dir().join(format!("rigid-corpus-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    for kind in ["urdf", "spec", "mesh", "cases", "cli"] {
+    for kind in ["urdf", "spec", "mesh", "cases", "samples", "cli"] {
         let dir = corpus_dir().join(kind);
         let mut entries: Vec<PathBuf> = std::fs::read_dir(&dir)
             .unwrap()
@@ -331,7 +331,7 @@ fn the_corpus_is_what_its_generator_writes() {
         .expect("python3");
     assert!(status.success());
     let mut n = 0;
-    for kind in ["urdf", "spec", "mesh", "cases", "cli"] {
+    for kind in ["urdf", "spec", "mesh", "cases", "samples", "cli"] {
         let mut made: Vec<_> = std::fs::read_dir(out.join(kind))
             .unwrap()
             .flatten()

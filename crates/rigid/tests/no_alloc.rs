@@ -1,7 +1,8 @@
 //! After `Data::new`, forward kinematics, Jacobians, RNEA (and gravity, nle, external wrenches),
 //! CRBA, `M⁻¹`, ABA, Cholesky forward dynamics, the Coriolis matrix, the energies and the analytical
 //! derivatives (RNEA, ABA, gravity, frame kinematics, `integrate`/`difference` Jacobians) allocate
-//! nothing, and so does a step of the simulator (every integrator, control law, an external wrench):
+//! nothing, and so does a step of the simulator (every integrator, control law, an external wrench)
+//! and the joint-torque regressor of identification (`Regressor::compute` and its stacked form):
 //! a counting global allocator proves it.
 
 mod common;
@@ -104,6 +105,15 @@ fn algorithms_allocate_nothing_after_data_new() {
             difference_jacobians(model, &q, &q, &mut j0, &mut j1).unwrap();
         });
         assert_eq!(n, 0, "{}: {n} allocations", model.name());
+        // the joint-torque regressor, one sample and three stacked
+        let mut reg = rigid::identification::Regressor::new(model);
+        let (q3, v3, a3) = (q.repeat(3), v.repeat(3), a.repeat(3));
+        let mut w = nalgebra::DMatrix::zeros(3 * model.nv(), 10 * model.njoints());
+        let n = allocations(|| {
+            reg.compute(model, &q, &v, &a).unwrap();
+            reg.stack(model, &q3, &v3, &a3, &mut w).unwrap();
+        });
+        assert_eq!(n, 0, "{}: regressor: {n} allocations", model.name());
         // a simulation step, with every integrator, control law and an external wrench
         let target = q.clone();
         let q1 = random_configuration(model, &mut rng);

@@ -3,7 +3,7 @@
 `python3 make_corpus.py [OUT_DIR]`; the files are committed, this script says how each was
 made, and the test checks that it still writes exactly them).
 
-Every case is a file NAME.EXT in a folder by kind (urdf, spec, mesh, cases, cli) and a sidecar
+Every case is a file NAME.EXT in a folder by kind (urdf, spec, mesh, cases, samples, cli) and a sidecar
 NAME.expect:
 
     args: eval {dir}/../../fixtures/pendulum.urdf --cases {file}
@@ -400,6 +400,58 @@ cases("unknown_model", '{"cases": []}', "error", "unknown model", '"no_such_robo
 cases("floating_builtin", '{"cases": []}', "error", "--floating", "built-in",
       args="eval puma560 --floating --cases {file}")
 
+# ------------------------------------------------------------------- identification samples (CSV)
+IDENTIFY = "identify {dir}/../../fixtures/pendulum.urdf --data {file}"
+
+
+def samples(name, text, status, *contains, args=IDENTIFY):
+    write("samples", name, "csv", text, args, status, *contains)
+
+
+def swing(n, dt=0.01, nan_at=None):
+    """rows t, q, v, a, tau of the pendulum swinging (q = sin 2t + 0.5 sin 5t, exact torques:
+    tau = 0.51 a + 9.81 sin q)."""
+    import math
+    rows = ["t,q_hinge,v_hinge,a_hinge,tau_hinge"]
+    for k in range(n):
+        t = k * dt
+        q = math.sin(2 * t) + 0.5 * math.sin(5 * t)
+        v = 2 * math.cos(2 * t) + 2.5 * math.cos(5 * t)
+        a = -4 * math.sin(2 * t) - 12.5 * math.sin(5 * t)
+        tau = 0.51 * a + 9.81 * math.sin(q)
+        cells = [t, q, v, a, tau]
+        if k == nan_at:
+            cells[1] = float("nan")
+        rows.append(",".join(repr(x) if isinstance(x, float) else str(x) for x in cells))
+    return "\n".join(rows) + "\n"
+
+
+samples("valid_swing", swing(200), "ok")
+samples("nan_row", swing(50, nan_at=7), "error", "line 9", "column 2 (q_hinge)", "NaN",
+        "remove the row")
+samples("wrong_column_count", "0,0.1,0.2\n0.01,0.1,0.2,0.3,0.4,0.5\n", "error", "line 2",
+        "every row needs the same columns")
+samples("too_many_columns", "0,1,2,3,4,5,6\n", "error", "line 1", "7 columns", "needs 5")
+samples("too_few_samples", swing(2), "error", "2 samples", "3 base parameters",
+        "record at least 4 samples")
+samples("rank_deficient", "".join(f"{k * 0.01},0.3,0,0,2.899\n" for k in range(100)), "error",
+        "excites only", "never move: hinge", "rigid excite")
+samples("time_not_increasing", "0,0,0,0,0\n0.1,0,0,0,0\n0.1,0,0,0,0\n", "error", "line 3",
+        "column 1 (t)", "does not increase")
+samples("header_wrong_joint", "t,q_elbow,v_elbow,a_elbow,tau_elbow\n0,0,0,0,0\n", "error",
+        "column 2", "q_elbow", "q_hinge")
+samples("word_in_cell", swing(3).replace("0.01,", "zero,", 1), "error", "line 3",
+        "column 1 (t)", "not a number")
+samples("uneven_time_positions_only", "0,0.1,1\n0.01,0.2,1\n0.05,0.3,1\n0.06,0.4,1\n", "error",
+        "line 3", "uniform sampling")
+samples("empty", "", "error", "no samples")
+samples("mass_tolerance_without_physical", swing(200), "error", "--mass-tolerance", "--physical",
+        args=IDENTIFY + " --mass-tolerance 0.2")
+samples("out_of_builtin", swing(200), "error", "--out", "built-in",
+        args="identify pendulum --data {file} --out {out}")
+samples("out_to_missing_folder", swing(200), "error", "/no/such/dir/x.urdf",
+        args=IDENTIFY + " --out /no/such/dir/x.urdf")
+
 # --------------------------------------------------------------------------- command-line args
 def cli(name, args, status, *contains):
     write("cli", name, "args", "", args, status, *contains)
@@ -450,6 +502,14 @@ cli("robot_output_folder_missing", f"simulate {ROBOT} --duration 0.01 --csv /no/
 cli("view_q_wrong_length", f"view {ROBOT} --q 1,2,3 --html {{out}}", "error", "--q")
 cli("unknown_command", "fly puma560", "error", "fly")
 cli("inertia_policy_unknown", "model puma560 --inertia lenient", "error", "lenient")
+cli("identify_missing_data", "identify puma560 --data no_such_samples.csv", "error",
+    "no_such_samples.csv")
+cli("excite_floating", f"excite {ROBOT} --floating --out {{out}}", "error", "root_joint",
+    "one degree of freedom")
+cli("excite_rate_zero", "excite puma560 --rate 0 --out {out}", "error", "--rate")
+cli("excite_duration_nan", "excite puma560 --duration nan --out {out}", "error", "--duration")
+cli("excite_missing_folder", "excite pendulum --iterations 2 --duration 1 --out /no/such/dir/t.csv",
+    "error", "/no/such/dir/t.csv")
 
 print("corpus written:", sum(len([f for f in fs if not f.endswith(".expect")])
                               for _, _, fs in os.walk(HERE)) - 1, "files")

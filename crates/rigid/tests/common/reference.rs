@@ -120,3 +120,17 @@ pub fn to_rigid(x: &[f64], map: &[usize]) -> Vec<f64> {
     }
     out
 }
+
+/// One JSON record a line of `python3 tests/SCRIPT ARGS`, or `None` (skipped) when
+/// `RIGID_SKIP_PINOCCHIO=1`.
+pub fn json_lines(script: &str, args: &[&str]) -> Option<Vec<Value>> {
+    if skip(script) {
+        return None;
+    }
+    let text = String::from_utf8(run_script(script, args)).expect("UTF-8");
+    Some(
+        text.lines()
+            .map(|l| serde_json::from_str(l).expect("the script printed invalid JSON"))
+            .collect(),
+    )
+}

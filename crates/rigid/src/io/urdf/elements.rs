@@ -252,6 +252,7 @@ impl Parser {
         Ok(UrdfLink {
             name,
             line: self.line(node),
+            span: node.range(),
             inertial,
             visuals,
             collisions,

@@ -48,12 +48,14 @@
 mod build;
 pub mod doctor;
 mod elements;
+mod inertials;
 mod mesh_path;
 mod parse;
 
 pub use build::{
     build_model, build_model_with, load_urdf, load_urdf_str, load_urdf_with, ROOT_JOINT_NAME,
 };
+pub use inertials::{edit_inertials, was_comment, with_body_inertials, InertialEdit};
 pub use mesh_path::resolve_mesh_path;
 pub use parse::{parse_urdf_file, parse_urdf_str};
 
@@ -107,6 +109,8 @@ pub struct UrdfLink {
     pub name: String,
     /// Line of the `<link>` element in the file (1-based).
     pub line: u32,
+    /// Byte range of the `<link>` element in the file (to write an `<inertial>` into it).
+    pub span: std::ops::Range<usize>,
     /// `<inertial>`, if present.
     pub inertial: Option<UrdfInertial>,
     /// `<visual>` elements whose geometry could be read, in file order.
