@@ -1,0 +1,179 @@
+#!/usr/bin/env python3
+"""Floating-point operations per call of rigid's algorithms, counted in the running code.
+
+    python3 bench/flops.py                         # RNEA, CRBA, ABA, M⁻¹ on ur5, talos, puma560
+    python3 bench/flops.py --models ur5 --algos rnea,crba --json out.json
+
+Method (no hardware counters needed): `rigid bench MODEL --only ALGO --states N --repetitions 1`
+runs under Valgrind's callgrind with collection switched on only inside the timing loop
+(`--toggle-collect=rigid::bench::pass`: one call of the algorithm per state, in a warm-up pass
+and one timed pass, so `2 N` calls; the public function itself may be inlined there) and one
+execution count per machine instruction (`--dump-instr=yes`). Each executed instruction is looked up in
+`objdump -d` of the same binary and classified: `mulsd` = 1 multiplication, `mulpd` on an xmm
+register = 2 (one per lane), `vmulpd` on ymm = 4, `add`/`sub` likewise are additions, a fused
+multiply-add is one of each; `div` and `sqrt` are counted apart; negation (`xorpd`), `abs`
+(`andpd`), compares and moves are not arithmetic and are not counted. Dividing by the number of
+calls gives the operations of one call *of the code as
+compiled*: everything the public function does (argument checks such as the quaternion norm,
+sine and cosine, the joint transforms, the recursion), nothing outside it but the loop's clock reads (integer) and one division per pass (amortised
+over the `N` calls of the pass, so not counted in the `div` column's integer part).
+
+Self-check: the per-call count must not depend on how many calls were made (N and 2N states give
+the same count up to the data-dependent branches of sin/cos range reduction, < 1 %); the script
+prints both and fails when they differ by more than 1 %.
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import compare  # noqa: E402  (model manifest, rigid's model argument)
+
+EXE = os.path.join(ROOT, "target", "release", "rigid")
+LOOP = "rigid::bench::pass"
+INSN = re.compile(r"^\s*([0-9a-f]+):\s+(\S+)\s*(.*)$")
+
+
+def classify(mnemonic, operands):
+    """(multiplications, additions, divisions, square roots) of one double-precision instruction."""
+    m = mnemonic
+    if m.startswith("v"):
+        m = m[1:]
+    lanes = 1
+    if m.endswith("pd"):
+        lanes = 4 if "ymm" in operands else 8 if "zmm" in operands else 2
+    elif not m.endswith("sd"):
+        return None  # integer, single precision or not arithmetic
+    base = m[:-2]
+    if base in ("mul",):
+        return (lanes, 0, 0, 0)
+    if base in ("add", "sub", "hadd", "hsub", "addsub"):
+        return (0, lanes, 0, 0)
+    if re.match(r"^f(n)?m(add|sub)(132|213|231)$", base):
+        return (lanes, lanes, 0, 0)
+    if base == "div":
+        return (0, 0, lanes, 0)
+    if base == "sqrt":
+        return (0, 0, 0, lanes)
+    return None
+
+
+def disassemble(exe):
+    ops = {}
+    out = subprocess.run(["objdump", "-d", "--no-show-raw-insn", exe], capture_output=True, text=True,
+                         check=True).stdout
+    for line in out.splitlines():
+        mt = INSN.match(line)
+        if not mt:
+            continue
+        c = classify(mt.group(2), mt.group(3))
+        if c:
+            ops[int(mt.group(1), 16)] = c
+    return ops
+
+
+def parse_callgrind(path):
+    """Execution count per instruction address (self cost only)."""
+    counts = {}
+    last = 0
+    skip_next = False
+    with open(path) as f:
+        for line in f:
+            line = line.rstrip("\n")
+            if not line or line.startswith("#"):
+                continue
+            if line.startswith("calls="):
+                skip_next = True  # the next line is the call's inclusive cost
+                continue
+            if "=" in line.split()[0] or line.startswith(("events:", "positions:", "summary:", "totals:")):
+                continue
+            parts = line.split()
+            pos = parts[0]
+            if pos.startswith("0x"):
+                addr = int(pos, 16)
+            elif pos.startswith("+"):
+                addr = last + int(pos[1:])
+            elif pos.startswith("-"):
+                addr = last - int(pos[1:])
+            elif pos == "*":
+                addr = last
+            else:
+                continue
+            last = addr
+            if skip_next:
+                skip_next = False
+                continue
+            cost = int(parts[-1]) if len(parts) >= 3 else 0
+            counts[addr] = counts.get(addr, 0) + cost
+    return counts
+
+
+def count(model, algo, states, ops):
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "cg.out")
+        cmd = ["valgrind", "--tool=callgrind", "--dump-instr=yes", "--toggle-collect=" + LOOP,
+               "--callgrind-out-file=" + out, EXE, "bench", compare.rigid_model_arg(model)]
+        if model["floating"]:
+            cmd.append("--floating")
+        cmd += ["--only", algo, "--states", str(states), "--repetitions", "1", "--json"]
+        subprocess.run(cmd, cwd=ROOT, capture_output=True, check=True)
+        counts = parse_callgrind(out)
+    calls = 2 * states  # warm-up pass + one timed pass
+    tot = [0, 0, 0, 0]
+    for addr, n in counts.items():
+        c = ops.get(addr)
+        if c:
+            for k in range(4):
+                tot[k] += c[k] * n
+    instructions = sum(counts.values())
+    return {"calls": calls, "mul": tot[0] / calls, "add": tot[1] / calls, "div": tot[2] / calls,
+            "sqrt": tot[3] / calls, "instructions": instructions / calls}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--models", default="ur5,talos,puma560")
+    ap.add_argument("--algos", default="rnea,crba,aba,minverse")
+    ap.add_argument("--states", type=int, default=50)
+    ap.add_argument("--json", help="save the counts to this file")
+    ap.add_argument("--no-build", action="store_true", help="use target/release/rigid as it is")
+    args = ap.parse_args()
+    if shutil.which("valgrind") is None or shutil.which("objdump") is None:
+        sys.exit("needs valgrind (callgrind) and objdump")
+    if not args.no_build:
+        subprocess.run(["cargo", "build", "--release", "-p", "rigid-cli"], cwd=ROOT, check=True)
+    ops = disassemble(EXE)
+    models = compare.read_manifest(set(args.models.split(",")))
+    result = {}
+    print("| model | nv | algorithm | mul | add | mul + add | div | sqrt | instructions | check (2N states) |")
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---|")
+    bad = []
+    for m in models:
+        for algo in args.algos.split(","):
+            a = count(m, algo, args.states, ops)
+            b = count(m, algo, 2 * args.states, ops)
+            flops_a, flops_b = a["mul"] + a["add"], b["mul"] + b["add"]
+            ok = abs(flops_a - flops_b) <= 0.01 * flops_a
+            if not ok:
+                bad.append("%s %s: %.0f vs %.0f" % (m["name"], algo, flops_a, flops_b))
+            result.setdefault(m["name"], {})[algo] = a
+            print("| %s | %d | %s | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %s |" % (
+                m["name"], m["nv"], algo, a["mul"], a["add"], flops_a, a["div"], a["sqrt"], a["instructions"],
+                "%.0f ok" % flops_b if ok else "**%.0f**" % flops_b))
+            sys.stdout.flush()
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(result, f, indent=1)
+    if bad:
+        sys.exit("per-call counts depend on the number of calls: " + "; ".join(bad))
+
+
+if __name__ == "__main__":
+    main()
