@@ -3,6 +3,7 @@
 
     python3 bench/flops.py                         # RNEA, CRBA, ABA, M⁻¹ on ur5, talos, puma560
     python3 bench/flops.py --models ur5 --algos rnea,crba --json out.json
+    python3 bench/flops.py --pinocchio             # also Pinocchio's compiled library, same method
 
 Method (no hardware counters needed): `rigid bench MODEL --only ALGO --states N --repetitions 1`
 runs under Valgrind's callgrind with collection switched on only inside the timing loop
@@ -17,6 +18,13 @@ calls gives the operations of one call *of the code as
 compiled*: everything the public function does (argument checks such as the quaternion norm,
 sine and cosine, the joint transforms, the recursion), nothing outside it but the loop's clock reads (integer) and one division per pass (amortised
 over the `N` calls of the pass, so not counted in the `div` column's integer part).
+
+--pinocchio: the same count on Pinocchio's timing program (`bench/pinocchio`, the `lib` build:
+the wheel's `libpinocchio_default.so`, built by `python3 bench/compare.py` or
+`bash bench/pinocchio/run.sh --build-only`), collection switched on inside `pinocchio::rnea<double…`
+(`crba`, `aba`, `computeMinverse`) wherever it is called, divided by the number of calls into it
+read from callgrind's call graph. Its CRBA and ABA figures average the LOCAL and WORLD conventions
+(the program times both; CRBA is also called inside its `cholesky_fd`).
 
 Self-check: the per-call count must not depend on how many calls were made (N and 2N states give
 the same count up to the data-dependent branches of sin/cos range reduction, < 1 %); the script
@@ -79,9 +87,12 @@ def disassemble(exe):
     return ops
 
 
-def parse_callgrind(path):
-    """Execution count per instruction address (self cost only)."""
-    counts = {}
+def parse_callgrind(path, pattern=None):
+    """Execution count per (object, instruction address), self cost only; and, if `pattern` (a
+    regular expression) is given, the number of calls into functions it matches from functions it
+    does not match."""
+    counts, calls, names = {}, 0, {}
+    ob = cob = fn = cfn = None
     last = 0
     skip_next = False
     with open(path) as f:
@@ -89,10 +100,30 @@ def parse_callgrind(path):
             line = line.rstrip("\n")
             if not line or line.startswith("#"):
                 continue
+            key, eq, val = line.partition("=")
+            if eq and key in ("ob", "cob", "fn", "cfn", "fl", "fi", "fe", "cfi", "cfl"):
+                mt = re.match(r"\((\d+)\)(?: (.*))?$", val)
+                kind = "ob" if key in ("ob", "cob") else "fn" if key in ("fn", "cfn") else "fl"
+                name = val
+                if mt:
+                    if mt.group(2) is not None:
+                        names[(kind, mt.group(1))] = mt.group(2)
+                    name = names.get((kind, mt.group(1)), val)
+                if key == "ob":
+                    ob = name
+                elif key == "cob":
+                    cob = name
+                elif key == "fn":
+                    fn, cob = name, None
+                elif key == "cfn":
+                    cfn = name
+                continue
             if line.startswith("calls="):
+                if pattern and re.search(pattern, cfn or "") and not re.search(pattern, fn or ""):
+                    calls += int(line.split("=")[1].split()[0])
                 skip_next = True  # the next line is the call's inclusive cost
                 continue
-            if "=" in line.split()[0] or line.startswith(("events:", "positions:", "summary:", "totals:")):
+            if eq:
                 continue
             parts = line.split()
             pos = parts[0]
@@ -111,11 +142,29 @@ def parse_callgrind(path):
                 skip_next = False
                 continue
             cost = int(parts[-1]) if len(parts) >= 3 else 0
-            counts[addr] = counts.get(addr, 0) + cost
-    return counts
+            counts[(ob, addr)] = counts.get((ob, addr), 0) + cost
+    return counts, calls
 
 
-def count(model, algo, states, ops):
+def tally(counts, calls):
+    """Operations per call from instruction execution counts (objects disassembled on demand)."""
+    tot = [0, 0, 0, 0]
+    for (ob, addr), n in counts.items():
+        if ob not in DISASSEMBLY:
+            DISASSEMBLY[ob] = disassemble(ob) if ob and os.path.exists(ob) else {}
+        c = DISASSEMBLY[ob].get(addr)
+        if c:
+            for k in range(4):
+                tot[k] += c[k] * n
+    return {"calls": calls, "mul": tot[0] / calls, "add": tot[1] / calls, "div": tot[2] / calls,
+            "sqrt": tot[3] / calls, "instructions": sum(counts.values()) / calls}
+
+
+DISASSEMBLY = {}
+
+
+def count(model, algo, states):
+    """rigid: one call of `algo` per state in a warm-up and a timed pass."""
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "cg.out")
         cmd = ["valgrind", "--tool=callgrind", "--dump-instr=yes", "--toggle-collect=" + LOOP,
@@ -124,17 +173,31 @@ def count(model, algo, states, ops):
             cmd.append("--floating")
         cmd += ["--only", algo, "--states", str(states), "--repetitions", "1", "--json"]
         subprocess.run(cmd, cwd=ROOT, capture_output=True, check=True)
-        counts = parse_callgrind(out)
-    calls = 2 * states  # warm-up pass + one timed pass
-    tot = [0, 0, 0, 0]
-    for addr, n in counts.items():
-        c = ops.get(addr)
-        if c:
-            for k in range(4):
-                tot[k] += c[k] * n
-    instructions = sum(counts.values())
-    return {"calls": calls, "mul": tot[0] / calls, "add": tot[1] / calls, "div": tot[2] / calls,
-            "sqrt": tot[3] / calls, "instructions": instructions / calls}
+        counts, _ = parse_callgrind(out)
+    return tally(counts, 2 * states)  # warm-up pass + one timed pass
+
+
+# Pinocchio's functions (demangled names start with the return type)
+PIN_FUNCTION = {"rnea": "pinocchio::rnea<double", "crba": "pinocchio::crba<double",
+                "aba": "pinocchio::aba<double", "minverse": "pinocchio::computeMinverse<double"}
+
+
+def count_pinocchio(model, algo, states, variant="lib"):
+    """Pinocchio 4.1 (the `lib` build: the wheel's compiled library): every call of the function
+    during its timing program (its LOCAL and WORLD conventions alike, and the calls inside
+    `cholesky_fd`), per call."""
+    exe = os.path.join(compare.PIN_BUILD, "timings-" + variant)
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "cg.out")
+        cmd = ["valgrind", "--tool=callgrind", "--dump-instr=yes",
+               "--toggle-collect=*" + PIN_FUNCTION[algo] + "*", "--callgrind-out-file=" + out, exe,
+               "--build", variant, "--reps", "1", "--states", str(states),
+               "%s=%s" % (model["name"], model["file"])]
+        subprocess.run(cmd, capture_output=True, check=True)
+        counts, calls = parse_callgrind(out, re.escape(PIN_FUNCTION[algo]))
+    if calls == 0:
+        return None
+    return tally(counts, calls)
 
 
 def main():
@@ -144,29 +207,37 @@ def main():
     ap.add_argument("--states", type=int, default=50)
     ap.add_argument("--json", help="save the counts to this file")
     ap.add_argument("--no-build", action="store_true", help="use target/release/rigid as it is")
+    ap.add_argument("--pinocchio", action="store_true",
+                    help="also count Pinocchio's compiled library (bench/pinocchio's timing program, lib build)")
     args = ap.parse_args()
     if shutil.which("valgrind") is None or shutil.which("objdump") is None:
         sys.exit("needs valgrind (callgrind) and objdump")
     if not args.no_build:
         subprocess.run(["cargo", "build", "--release", "-p", "rigid-cli"], cwd=ROOT, check=True)
-    ops = disassemble(EXE)
     models = compare.read_manifest(set(args.models.split(",")))
     result = {}
-    print("| model | nv | algorithm | mul | add | mul + add | div | sqrt | instructions | check (2N states) |")
-    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---|")
+    print("| model | nv | algorithm | code | mul | add | mul + add | div | sqrt | instructions | check (2N states) |")
+    print("|---|---:|---|---|---:|---:|---:|---:|---:|---:|---|")
     bad = []
     for m in models:
         for algo in args.algos.split(","):
-            a = count(m, algo, args.states, ops)
-            b = count(m, algo, 2 * args.states, ops)
+            a = count(m, algo, args.states)
+            b = count(m, algo, 2 * args.states)
             flops_a, flops_b = a["mul"] + a["add"], b["mul"] + b["add"]
             ok = abs(flops_a - flops_b) <= 0.01 * flops_a
             if not ok:
                 bad.append("%s %s: %.0f vs %.0f" % (m["name"], algo, flops_a, flops_b))
             result.setdefault(m["name"], {})[algo] = a
-            print("| %s | %d | %s | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %s |" % (
+            print("| %s | %d | %s | rigid | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %s |" % (
                 m["name"], m["nv"], algo, a["mul"], a["add"], flops_a, a["div"], a["sqrt"], a["instructions"],
                 "%.0f ok" % flops_b if ok else "**%.0f**" % flops_b))
+            if args.pinocchio:
+                p = count_pinocchio(m, algo, args.states)
+                result[m["name"]][algo + "_pinocchio"] = p
+                if p:
+                    print("| %s | %d | %s | Pinocchio (lib) | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %d calls |" % (
+                        m["name"], m["nv"], algo, p["mul"], p["add"], p["mul"] + p["add"], p["div"], p["sqrt"],
+                        p["instructions"], p["calls"]))
             sys.stdout.flush()
     if args.json:
         with open(args.json, "w") as f:
