@@ -53,6 +53,47 @@ pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
     t
 }
 
+/// For a one-dof joint whose motion subspace is a coordinate axis (`S = s e_c`, angular first,
+/// `Model::dof_axis`): `(c, s x_i)`, the one nonzero component of the joint twist `S x_i`.
+#[inline(always)]
+pub(crate) fn axis_motion(model: &Model, i: usize, x: &[f64]) -> Option<(usize, f64)> {
+    let j = &model.joints[i];
+    if j.nv != 1 {
+        return None;
+    }
+    model.dof_axis[j.idx_v].map(|(c, s)| (c, s * x[j.idx_v]))
+}
+
+/// `T + x e_c`: adds the joint twist of [`axis_motion`] (component `c`, angular first).
+#[inline(always)]
+pub(crate) fn add_axis(T: &mut Twist, c: usize, x: f64) {
+    if c < 3 {
+        T.w[c] += x;
+    } else {
+        T.v[c - 3] += x;
+    }
+}
+
+/// `[ad_V] (x e_c)` = [`Twist::cross`] with the joint twist of [`axis_motion`], written out:
+/// `(ω × w, v × w)` for an angular `w = x e_c`, `(0, ω × u)` for a linear `u = x e_(c-3)`
+/// (4 products instead of 18).
+#[inline(always)]
+pub(crate) fn cross_axis(V: &Twist, c: usize, x: f64) -> Twist {
+    // a × (x e_k)
+    fn cross_e(a: &Vec3, k: usize, x: f64) -> Vec3 {
+        match k {
+            0 => Vec3::new(0.0, a.z * x, -(a.y * x)),
+            1 => Vec3::new(-(a.z * x), 0.0, a.x * x),
+            _ => Vec3::new(a.y * x, -(a.x * x), 0.0),
+        }
+    }
+    if c < 3 {
+        Twist::new(cross_e(&V.w, c, x), cross_e(&V.v, c, x))
+    } else {
+        Twist::new(Vec3::zeros(), cross_e(&V.w, c - 3, x))
+    }
+}
+
 /// The first pass of [`crba`] and [`compute_minverse`]: every body posed in the frame {r} of its
 /// tree's root body (the body moved by a joint without a parent), `rMi = rM_{λ(i)} liMi` with
 /// `rM_root = 1`, its joint columns `J_k = [Ad_{rMi}] S_k` into `J` and its inertia

@@ -1,7 +1,7 @@
 //! The recursive Newton-Euler algorithm for inverse dynamics (Featherstone 2008, Table 5.1;
 //! Lynch & Park §8.3.2), in body coordinates, with gravity as a fictitious base acceleration.
 
-use super::{joint_motion, parent_placement};
+use super::{add_axis, axis_motion, cross_axis, joint_motion, parent_placement};
 use crate::error::DimensionError;
 use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::{Twist, Wrench};
@@ -37,14 +37,26 @@ fn rnea_impl(
         let G = &model.inertias[i];
         let mut A = liMi.inv_act_twist(&Ap);
         if let Some(a) = a {
-            A += joint_motion(model, i, a);
+            match axis_motion(model, i, a) {
+                Some((c, x)) => add_axis(&mut A, c, x),
+                None => A += joint_motion(model, i, a),
+            }
         }
         let mut F;
         if let Some(v) = v {
-            let vJ = joint_motion(model, i, v);
-            let V = liMi.inv_act_twist(&Vp) + vJ;
+            let mut V = liMi.inv_act_twist(&Vp);
+            match axis_motion(model, i, v) {
+                Some((c, x)) => {
+                    add_axis(&mut V, c, x);
+                    A += cross_axis(&V, c, x);
+                }
+                None => {
+                    let vJ = joint_motion(model, i, v);
+                    V += vJ;
+                    A += V.cross(&vJ);
+                }
+            }
             data.velocities[i] = V;
-            A += V.cross(&vJ);
             F = G.momentum(&A) - V.ad_transpose(&G.momentum(&V));
         } else {
             data.velocities[i] = Twist::zero();
