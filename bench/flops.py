@@ -4,6 +4,7 @@
     python3 bench/flops.py                         # RNEA, CRBA, ABA, M⁻¹ on ur5, talos, puma560
     python3 bench/flops.py --models ur5 --algos rnea,crba --json out.json
     python3 bench/flops.py --pinocchio             # also Pinocchio's compiled library, same method
+    python3 bench/flops.py --no-build --times run.json   # + ns per call from `compare.py --json run.json`
 
 Method (no hardware counters needed): `rigid bench MODEL --only ALGO --states N --repetitions 1`
 runs under Valgrind's callgrind with collection switched on only inside the timing loop
@@ -200,6 +201,47 @@ def count_pinocchio(model, algo, states, variant="lib"):
     return tally(counts, calls)
 
 
+def cpu_ghz():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("cpu MHz"):
+                    return float(line.split(":")[1]) / 1000
+    except OSError:
+        pass
+    return 0.0
+
+
+# double-precision operations per cycle and core: two 256-bit FMA pipes (AVX2: 2 x 4 lanes x 2) for
+# the hardware's peak; what a generic x86-64 build can issue (SSE2, no FMA): two 128-bit
+# multiplies and two 128-bit additions per cycle
+PEAK_PER_CYCLE = {"AVX2 FMA": 16, "SSE2": 8}
+
+
+def rate_table(result, times_file, ghz):
+    """Markdown: flops, ns per call (median over compare.py's rounds), flops per ns, % of peak."""
+    with open(times_file) as f:
+        times = json.load(f)
+    rows = ["| model | algorithm | rigid mul + add | rigid ns | flops/ns | %% of peak (AVX2 FMA / SSE2 at %.2f GHz) "
+            "| Pinocchio mul + add | Pinocchio ns | flops/ns |" % ghz,
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for model, algos in result.items():
+        for algo, a in algos.items():
+            if algo.endswith("_pinocchio"):
+                continue
+            flops = a["mul"] + a["add"]
+            ns = (times.get("rigid_median", {}).get(model) or {}).get(algo)
+            p = algos.get(algo + "_pinocchio")
+            pns = (times.get("pinocchio_best", {}).get(model) or {}).get(algo)
+            rate = flops / ns if ns else None
+            peak = ["%.1f" % (100 * rate / (ghz * c)) if rate and ghz else "–" for c in PEAK_PER_CYCLE.values()]
+            rows.append("| %s | %s | %.0f | %s | %s | %s | %s | %s | %s |" % (
+                model, algo, flops, "%.0f" % ns if ns else "–", "%.2f" % rate if rate else "–", " / ".join(peak),
+                "%.0f" % (p["mul"] + p["add"]) if p else "–", "%.0f" % pns if pns else "–",
+                "%.2f" % ((p["mul"] + p["add"]) / pns) if p and pns else "–"))
+    return "\n".join(rows)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--models", default="ur5,talos,puma560")
@@ -207,6 +249,9 @@ def main():
     ap.add_argument("--states", type=int, default=50)
     ap.add_argument("--json", help="save the counts to this file")
     ap.add_argument("--no-build", action="store_true", help="use target/release/rigid as it is")
+    ap.add_argument("--times", help="a `bench/compare.py --json` file: add ns per call, flops per ns and the "
+                    "fraction of the core's peak double-precision rate")
+    ap.add_argument("--ghz", type=float, default=cpu_ghz(), help="clock for the peak rate (default: /proc/cpuinfo)")
     ap.add_argument("--pinocchio", action="store_true",
                     help="also count Pinocchio's compiled library (bench/pinocchio's timing program, lib build)")
     args = ap.parse_args()
@@ -242,6 +287,9 @@ def main():
     if args.json:
         with open(args.json, "w") as f:
             json.dump(result, f, indent=1)
+    if args.times:
+        print()
+        print(rate_table(result, args.times, args.ghz))
     if bad:
         sys.exit("per-call counts depend on the number of calls: " + "; ".join(bad))
 
