@@ -233,3 +233,28 @@ pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialIne
     }
     SpatialInertia::from_raw_parts(m, h + T.translation * m, Mat3::from_column_slice(&out))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{add_axis, cross_axis};
+    use crate::spatial::{Twist, Vec3};
+
+    /// The written-out `[ad_V] (x e_c)` and `T + x e_c` equal the general cross product and sum
+    /// with the twist `x e_c`, for every coordinate axis (angular and linear) and both signs.
+    #[test]
+    fn axis_twist_products_equal_the_general_ones() {
+        let V = Twist::new(Vec3::new(0.3, -1.2, 0.7), Vec3::new(-0.4, 0.9, 1.5));
+        for c in 0..6 {
+            for x in [0.8, -2.5] {
+                let mut e = [0.0; 6];
+                e[c] = x;
+                let S = Twist::new(Vec3::new(e[0], e[1], e[2]), Vec3::new(e[3], e[4], e[5]));
+                let d = (cross_axis(&V, c, x) - V.cross(&S)).to_vector();
+                assert!(d.amax() < 1e-15, "cross, axis {c}: {d}");
+                let mut T = V;
+                add_axis(&mut T, c, x);
+                assert!(((T - (V + S)).to_vector()).amax() < 1e-15, "sum, axis {c}");
+            }
+        }
+    }
+}
