@@ -28,7 +28,7 @@ import numpy as np
 import pinocchio as pin
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from reference import joint_layout, q_to_rigid, robots_dir, v_perm  # noqa: E402
+from reference import joint_layout, plain, q_to_rigid, robots_dir, v_perm  # noqa: E402
 
 
 def site_dirs():
@@ -64,29 +64,27 @@ PACKAGES = {
 }
 
 
-def plain(x):
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    if isinstance(x, dict):
-        return {k: plain(v) for k, v in x.items()}
-    if isinstance(x, list):
-        return [plain(v) for v in x]
-    if isinstance(x, (np.floating, np.integer)):
-        return x.item()
-    return x
-
-
-def one(path, floating, states, seed):
+def load(path, floating):
+    """`(model, None)`, Pinocchio's model of the file (a free-flyer root when `floating`) with
+    unbounded position limits replaced by [-1, 1] for random configurations, or
+    `(None, {"refused": why})`."""
     try:
         if floating:
             model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
         else:
             model = pin.buildModelFromUrdf(path)
     except Exception as e:  # noqa: BLE001 (Pinocchio raises plain exceptions)
-        return dict(refused=str(e).strip().splitlines()[-1] if str(e).strip() else repr(e))
+        return None, dict(refused=str(e).strip().splitlines()[-1] if str(e).strip() else repr(e))
     lo, up = model.lowerPositionLimit, model.upperPositionLimit
     model.lowerPositionLimit = np.where(np.abs(lo) < 1e10, lo, -1.0)
     model.upperPositionLimit = np.where(np.abs(up) < 1e10, up, 1.0)
+    return model, None
+
+
+def one(path, floating, states, seed):
+    model, refused = load(path, floating)
+    if refused:
+        return refused
     data = model.createData()
     joints, nq, nv = joint_layout(model)
     p = v_perm(joints, nv)

@@ -23,21 +23,14 @@ import numpy as np
 import pinocchio as pin
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from packages import PACKAGES, plain  # noqa: E402
-from reference import joint_layout, q_to_rigid, v_perm  # noqa: E402
+from packages import PACKAGES, load  # noqa: E402
+from reference import joint_layout, plain, q_to_rigid, v_perm  # noqa: E402
 
 
 def one(path, floating, states, seed):
-    try:
-        if floating:
-            model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
-        else:
-            model = pin.buildModelFromUrdf(path)
-    except Exception as e:  # noqa: BLE001 (Pinocchio raises plain exceptions)
-        return dict(refused=str(e).strip().splitlines()[-1] if str(e).strip() else repr(e))
-    lo, up = model.lowerPositionLimit, model.upperPositionLimit
-    model.lowerPositionLimit = np.where(np.abs(lo) < 1e10, lo, -1.0)
-    model.upperPositionLimit = np.where(np.abs(up) < 1e10, up, 1.0)
+    model, refused = load(path, floating)
+    if refused:
+        return refused
     data = model.createData()
     joints, nq, nv = joint_layout(model)
     p = v_perm(joints, nv)
