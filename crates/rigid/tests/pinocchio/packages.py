@@ -112,19 +112,11 @@ def one(path, floating, states, seed):
     return dict(nq=nq, nv=nv, joints=joints, states=out)
 
 
-def main():
-    args = sys.argv[1:]
-    if not args or args[0] in ("-h", "--help"):
-        print(__doc__)
-        return
-    if args[0] == "list":
-        print(json.dumps(sorted(PACKAGES)))
-        return
-    if args[0] == "roots":
-        print(json.dumps({name: find() for name, find in PACKAGES.items()}))
-        return
+def each_file(args, one, states=3):
+    """`PACKAGE [--states N] [--seed S]`: for every URDF file of the package, fixed and floating,
+    one JSON line `{"package", "file", "floating", **one(file, floating, states, seed)}`."""
     name = args[0]
-    states = int(args[args.index("--states") + 1]) if "--states" in args else 3
+    states = int(args[args.index("--states") + 1]) if "--states" in args else states
     seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
     if name not in PACKAGES:
         sys.exit(f"unknown package {name!r}; known: {', '.join(sorted(PACKAGES))}")
@@ -139,6 +131,20 @@ def main():
             rec = dict(package=name, file=f, floating=floating)
             rec.update(one(f, floating, states, seed))
             print(json.dumps(plain(rec)), flush=True)
+
+
+def main():
+    args = sys.argv[1:]
+    if not args or args[0] in ("-h", "--help"):
+        print(__doc__)
+        return
+    if args[0] == "list":
+        print(json.dumps(sorted(PACKAGES)))
+        return
+    if args[0] == "roots":
+        print(json.dumps({name: find() for name, find in PACKAGES.items()}))
+        return
+    each_file(args, one)
 
 
 if __name__ == "__main__":
