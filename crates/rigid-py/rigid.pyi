@@ -29,6 +29,9 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+features: tuple[str, ...]
+"""The optional capabilities of this build: ``"sdp"`` when it has the physically consistent
+identification (``identify(..., physical=True)``; built with ``--features sdp``)."""
 
 ArrayLike = npt.ArrayLike
 Vector = npt.NDArray[np.float64]
@@ -307,6 +310,46 @@ def simulate_body(spec: Spec, omega: ArrayLike | None = None, velocity: ArrayLik
     spec frame's axes, its body twist ``omega`` and ``velocity`` (N+1, 3), and the total
     ``energy`` (J)."""
 
+def regressor(model: Model, data: Data, q: ArrayLike, v: ArrayLike, a: ArrayLike) -> Matrix:
+    """The joint-torque regressor ``Y(q, v, a)``, (nv, 10·nb), with ``rnea(q, v, a) = Y π``
+    (gravity included; ``π = dynamic_parameters(model)``): linear in the ten inertial parameters
+    ``(m, m cx, m cy, m cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz)`` of every body about its joint frame
+    (Atkeson, An & Hollerbach 1986). Rows in the model's velocity layout, bodies in joint order.
+    Pinocchio: ``computeJointTorqueRegressor`` (the same column order)."""
+
+def dynamic_parameters(model: Model) -> Vector:
+    """The model's inertial parameters ``π`` (10·nb), ten per body as in ``regressor``
+    (Pinocchio: ``model.inertias[i].toDynamicParameters()`` stacked)."""
+
+def excite(model: Model, duration: float = 10.0, rate: float = 100.0, harmonics: int = 5,
+           iterations: int = 300, friction: bool = False, seed: int = 1,
+           out: Path | None = None) -> dict[str, Any]:
+    """An exciting trajectory for identification (``rigid excite``): a finite Fourier series per
+    joint, ``q(t) = q₀ + Σ_l a_l/(lω) sin(lωt) − b_l/(lω) cos(lωt)`` (Swevers et al. 1997),
+    within the joint limits, optimised for the condition number of the base regressor. Returns
+    ``t`` (N,), ``q`` (N, nq), ``v``, ``a`` and ``tau`` (N, nv: the torques the model predicts;
+    replace them with measurements) and ``condition_number``; ``out`` also writes the CSV that
+    ``identify`` reads. 1-dof joints only."""
+
+def identify(model: Model, samples: Path | dict[str, ArrayLike], physical: bool = False,
+             friction: bool = False, rotor_inertia: bool = False, weighted: bool = False,
+             regularization: float = 1e-4, mass_tolerance: float | None = None,
+             window: float = 0.05) -> dict[str, Any]:
+    """The inertial parameters of ``model`` from measured motion (``rigid identify``).
+    ``samples``: a CSV file (``t, q…, v…, a…, tau…``, or ``t, q…, v…, tau…`` / ``t, q…, tau…``
+    with the missing derivatives by a Savitzky–Golay differentiator of ``window`` seconds;
+    columns in rigid's joint layout, as ``excite`` writes them) or a dict of arrays ``t`` (N,),
+    ``q`` (N, nq), ``v``, ``a``, ``tau`` (N, nv) in the model's layout. Returns
+    ``parameter_names``, ``base_parameters`` (the identifiable combinations, e.g.
+    ``"Izz1 + Iyy2 + …"``), and for ``model_values``, ``least_squares`` and (with ``physical``)
+    ``physical``: ``base``, ``base_std``, ``parameters`` (the full vector: base parameters
+    estimated, the rest from the model), residuals, ``condition_number`` and ``consistent`` per
+    body. ``physical`` solves the semidefinite program of Wensing, Kim & Slotine (2017), every
+    body's pseudo-inertia positive definite, regularised towards the model's values; it needs
+    the module built with the feature ``sdp`` (OpenBLAS), else ``ValueError`` says how. Bad
+    samples (NaN, wrong columns, too few, a motion that does not excite every base parameter):
+    ``ValueError`` naming the row, column or parameter."""
+
 def doctor(path: Path, fix: Path | None = None) -> dict[str, Any]:
     """The inertia doctor of a URDF file: the structure of ``rigid doctor --json``
     (``{"robot", "bodies": [{"name", "line", "status", "findings", "likely_cause",
@@ -314,6 +357,7 @@ def doctor(path: Path, fix: Path | None = None) -> dict[str, Any]:
     ``<inertial>`` blocks that needed a repair are replaced."""
 
 # Pinocchio's names of the verbs with the same signature.
+computeJointTorqueRegressor = regressor
 nonLinearEffects = nle
 computeGeneralizedGravity = gravity
 computeMinverse = minverse

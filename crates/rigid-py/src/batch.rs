@@ -49,7 +49,7 @@ fn v_rows(core: &ModelCore, x: &Matrix<'_>) -> Vec<f64> {
 }
 
 /// The inputs of a batch call: `Q` and the velocity-space arrays, checked and in rigid's layout.
-fn inputs(
+pub(crate) fn inputs(
     core: &ModelCore,
     func: &str,
     q: &Bound<'_, PyAny>,

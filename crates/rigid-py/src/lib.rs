@@ -19,6 +19,7 @@ mod configuration;
 mod convert;
 mod derivatives;
 mod dynamics;
+mod identification;
 mod model;
 mod simulation;
 
@@ -26,7 +27,8 @@ use pyo3::prelude::*;
 
 /// Pinocchio's names of the verbs whose signature is the same, so that porting a script is a
 /// search-and-replace of `pin.` by `rigid.`.
-const PINOCCHIO_ALIASES: [(&str, &str); 12] = [
+const PINOCCHIO_ALIASES: [(&str, &str); 13] = [
+    ("computeJointTorqueRegressor", "regressor"),
     ("computeRNEADerivatives", "rnea_derivatives"),
     ("computeABADerivatives", "aba_derivatives"),
     (
@@ -52,6 +54,12 @@ const PINOCCHIO_ALIASES: [(&str, &str); 12] = [
 #[pyo3(name = "rigid")]
 fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // the optional capabilities this build has (`sdp`: the physically consistent identification)
+    let features: Vec<&str> = [("sdp", cfg!(feature = "sdp"))]
+        .into_iter()
+        .filter_map(|(name, on)| on.then_some(name))
+        .collect();
+    m.add("features", pyo3::types::PyTuple::new(m.py(), features)?)?;
     m.add_class::<model::Model>()?;
     m.add_class::<model::Data>()?;
     m.add("UrdfWarning", m.py().get_type::<model::UrdfWarning>())?;
@@ -80,6 +88,10 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::rnea_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::aba_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::crba_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(identification::regressor, m)?)?;
+    m.add_function(wrap_pyfunction!(identification::dynamic_parameters, m)?)?;
+    m.add_function(wrap_pyfunction!(identification::excite, m)?)?;
+    m.add_function(wrap_pyfunction!(identification::identify, m)?)?;
     m.add_function(wrap_pyfunction!(body::mass_properties, m)?)?;
     m.add_function(wrap_pyfunction!(body::spatial_inertia, m)?)?;
     m.add_function(wrap_pyfunction!(body::simulate_body, m)?)?;

@@ -257,6 +257,7 @@ fn bad_motions_are_refused_with_the_reason() {
 /// Noisy torques on a model whose inertias are made non-physical in the unidentifiable
 /// directions: the physically consistent estimate has every body consistent, fits the samples
 /// nearly as well as least squares, and its model runs in ABA.
+#[cfg(feature = "sdp")]
 #[test]
 fn physically_consistent_estimate_is_valid_for_every_body() {
     let model = builtin("puma560").unwrap();
@@ -312,6 +313,34 @@ fn physically_consistent_estimate_is_valid_for_every_body() {
         id.physically_consistent(&impossible),
         Err(IdentificationError::Solver(_))
     ));
+}
+
+/// Built without the feature `sdp`, the physically consistent estimate still checks its options,
+/// then says how to build it in.
+#[cfg(not(feature = "sdp"))]
+#[test]
+fn without_sdp_the_physical_estimate_says_how_to_build_it() {
+    let model = builtin("puma560").unwrap();
+    let zeros = [0.0; 6];
+    let s = synthetic(&model, 100, 8, (&zeros, &zeros, &zeros));
+    let id = Identification::new(&model, &s, JointTerms::default()).unwrap();
+    let bad = PhysicalOptions {
+        regularization: f64::NAN,
+        ..PhysicalOptions::default()
+    };
+    assert!(matches!(
+        id.physically_consistent(&bad),
+        Err(IdentificationError::Invalid(_))
+    ));
+    match id.physically_consistent(&PhysicalOptions::default()) {
+        Err(IdentificationError::NotBuilt(m)) => {
+            assert!(
+                m.contains("--features sdp") && m.contains("libopenblas-dev"),
+                "{m}"
+            )
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 /// The CSV reader: the three layouts, and every malformed input named by line and column.

@@ -14,6 +14,7 @@
 use rigid::identification::excitation::{optimize, ExcitationOptions, FourierTrajectory};
 use rigid::identification::*;
 use rigid::io::urdf::load_urdf;
+#[cfg(feature = "sdp")]
 use rigid::mass::{Consistency, SpatialInertia, Verdict};
 use rigid::multibody::simulation::{Integrator, JointLimits, SimulationOptions, Simulator};
 use rigid::multibody::*;
@@ -65,6 +66,7 @@ fn closed_loop(model: &Model, traj: &FourierTrajectory) -> Samples {
     s
 }
 
+#[cfg(feature = "sdp")]
 fn body_verdicts(pi: &nalgebra::DVector<f64>, n: usize) -> Vec<Verdict> {
     (0..n)
         .map(|i| {
@@ -121,86 +123,91 @@ fn check(model: &Model) {
     );
     assert!(err < 1e-8, "{name}: noise-free error {err:e}");
 
-    // noisy: 1 % of each joint's torque RMS
-    let mut noisy = s.clone();
-    let mut rng = Rng::new(42);
-    for k in 0..nv {
-        let rms =
-            (s.tau.iter().skip(k).step_by(nv).map(|x| x * x).sum::<f64>() / s.len() as f64).sqrt();
-        for x in noisy.tau.iter_mut().skip(k).step_by(nv) {
-            *x += 0.01 * rms * rng.normal();
+    // noisy, the physically consistent estimate (the crate feature `sdp`)
+    #[cfg(feature = "sdp")]
+    {
+        // noisy: 1 % of each joint's torque RMS
+        let mut noisy = s.clone();
+        let mut rng = Rng::new(42);
+        for k in 0..nv {
+            let rms = (s.tau.iter().skip(k).step_by(nv).map(|x| x * x).sum::<f64>()
+                / s.len() as f64)
+                .sqrt();
+            for x in noisy.tau.iter_mut().skip(k).step_by(nv) {
+                *x += 0.01 * rms * rng.normal();
+            }
         }
-    }
-    let id = Identification::new(model, &noisy, JointTerms::default()).unwrap();
-    let ls = id.least_squares(Weighting::None).unwrap();
-    let pc = id
-        .physically_consistent(&PhysicalOptions::default())
-        .unwrap();
-    let n = model.njoints();
-    let pc_verdicts = body_verdicts(&pc.parameters, n);
-    assert!(
-        pc_verdicts.iter().all(|v| *v == Verdict::Consistent),
-        "{name}: {pc_verdicts:?}"
-    );
-    let ls_verdicts = body_verdicts(&ls.parameters, n);
-    let ls_bad = ls_verdicts
-        .iter()
-        .filter(|v| !matches!(v, Verdict::Consistent | Verdict::RoundOff))
-        .count();
-
-    // held out: another exciting motion, exact torques
-    let other = ExcitationOptions {
-        duration: 8.0,
-        iterations: 1,
-        seed: 7,
-        ..ExcitationOptions::default()
-    };
-    let (held, _) = optimize(model, &other).unwrap();
-    let truth_model = model_with_parameters(model, true_pi.as_slice()).unwrap();
-    let held = held.samples(&truth_model, 0.02).unwrap();
-    let hid = Identification::new(model, &held, JointTerms::default()).unwrap();
-    let e_ls = hid.evaluate(&ls.parameters).unwrap().residual_rms;
-    let e_pc = hid.evaluate(&pc.parameters).unwrap().residual_rms;
-    let tau_rms = (held.tau.iter().map(|x| x * x).sum::<f64>() / held.tau.len() as f64).sqrt();
-    eprintln!(
-        "{name}: noisy: least squares {ls_bad} of {n} bodies non-physical ({ls_verdicts:?}); \
-         physically consistent: all {n} consistent; held-out torque RMS error: least squares \
-         {e_ls:.4e}, physical {e_pc:.4e} (held-out torque RMS {tau_rms:.3e}); training residual \
-         RMS: least squares {:.4e}, physical {:.4e}",
-        ls.residual_rms, pc.residual_rms
-    );
-    // no worse, to within 1 % (a held-out motion weighs the estimation errors differently
-    // from the samples: only there is the constrained estimate guaranteed no further from a
-    // consistent truth than least squares)
-    assert!(
-        e_pc <= 1.01 * e_ls,
-        "{name}: physical {e_pc:e} > least squares {e_ls:e}"
-    );
-
-    // the consistent model runs in ABA along the held-out motion
-    let fitted = model_with_parameters(model, pc.parameters.as_slice()).unwrap();
-    let mut data = Data::new(&fitted);
-    for k in 0..held.len() {
-        let r = |x: &[f64], w| x[k * w..(k + 1) * w].to_vec();
-        let x = aba(
-            &fitted,
-            &mut data,
-            &r(&held.q, model.nq()),
-            &r(&held.v, nv),
-            &r(&held.tau, nv),
-        )
-        .unwrap();
+        let id = Identification::new(model, &noisy, JointTerms::default()).unwrap();
+        let ls = id.least_squares(Weighting::None).unwrap();
+        let pc = id
+            .physically_consistent(&PhysicalOptions::default())
+            .unwrap();
+        let n = model.njoints();
+        let pc_verdicts = body_verdicts(&pc.parameters, n);
         assert!(
-            x.iter().all(|v| v.is_finite()),
-            "{name}: ABA NaN at sample {k}"
+            pc_verdicts.iter().all(|v| *v == Verdict::Consistent),
+            "{name}: {pc_verdicts:?}"
         );
-    }
-    if ls_bad > 0 {
+        let ls_verdicts = body_verdicts(&ls.parameters, n);
+        let ls_bad = ls_verdicts
+            .iter()
+            .filter(|v| !matches!(v, Verdict::Consistent | Verdict::RoundOff))
+            .count();
+
+        // held out: another exciting motion, exact torques
+        let other = ExcitationOptions {
+            duration: 8.0,
+            iterations: 1,
+            seed: 7,
+            ..ExcitationOptions::default()
+        };
+        let (held, _) = optimize(model, &other).unwrap();
+        let truth_model = model_with_parameters(model, true_pi.as_slice()).unwrap();
+        let held = held.samples(&truth_model, 0.02).unwrap();
+        let hid = Identification::new(model, &held, JointTerms::default()).unwrap();
+        let e_ls = hid.evaluate(&ls.parameters).unwrap().residual_rms;
+        let e_pc = hid.evaluate(&pc.parameters).unwrap().residual_rms;
+        let tau_rms = (held.tau.iter().map(|x| x * x).sum::<f64>() / held.tau.len() as f64).sqrt();
         eprintln!(
-            "{name}: least squares is non-physical; the consistent model ran ABA on {} states \
-             without NaN",
-            held.len()
+            "{name}: noisy: least squares {ls_bad} of {n} bodies non-physical ({ls_verdicts:?}); \
+             physically consistent: all {n} consistent; held-out torque RMS error: least squares \
+             {e_ls:.4e}, physical {e_pc:.4e} (held-out torque RMS {tau_rms:.3e}); training residual \
+             RMS: least squares {:.4e}, physical {:.4e}",
+            ls.residual_rms, pc.residual_rms
         );
+        // no worse, to within 1 % (a held-out motion weighs the estimation errors differently
+        // from the samples: only there is the constrained estimate guaranteed no further from a
+        // consistent truth than least squares)
+        assert!(
+            e_pc <= 1.01 * e_ls,
+            "{name}: physical {e_pc:e} > least squares {e_ls:e}"
+        );
+
+        // the consistent model runs in ABA along the held-out motion
+        let fitted = model_with_parameters(model, pc.parameters.as_slice()).unwrap();
+        let mut data = Data::new(&fitted);
+        for k in 0..held.len() {
+            let r = |x: &[f64], w| x[k * w..(k + 1) * w].to_vec();
+            let x = aba(
+                &fitted,
+                &mut data,
+                &r(&held.q, model.nq()),
+                &r(&held.v, nv),
+                &r(&held.tau, nv),
+            )
+            .unwrap();
+            assert!(
+                x.iter().all(|v| v.is_finite()),
+                "{name}: ABA NaN at sample {k}"
+            );
+        }
+        if ls_bad > 0 {
+            eprintln!(
+                "{name}: least squares is non-physical; the consistent model ran ABA on {} states \
+                 without NaN",
+                held.len()
+            );
+        }
     }
 }
 

@@ -322,6 +322,23 @@ fn obj_with_several_objects_is_one_solid() {
     assert!(ev < 1e-14 && ei < 1e-14);
 }
 
+/// Texture and normal indices are never read (only positions and faces make mass properties):
+/// a normal index that tobj's bounds check would wrap around (`vn * 3 + 2` overflowing to 0, then
+/// an out-of-bounds read; found by fuzzing, `fuzz/regressions/obj/`) is harmless, and the solid
+/// loads as written.
+#[test]
+fn obj_texture_and_normal_indices_are_ignored() {
+    let path = temp("tetra_wrapping_normal.obj");
+    // (vn - 1) * 3 + 2 ≡ 0 (mod 2^64) for the normal index -6148914691236517207 with one `vn`
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvt 0.5 0.5\n\
+               f 1/-9223372036854775808/-6148914691236517207 3//-6148914691236517207 2/1/1\n\
+               f 1 2 4\nf 1 4 3\n  vn 1 0 0\nf 2 3 4\n";
+    std::fs::write(&path, obj).unwrap();
+    let mesh = read_mesh(&path).unwrap();
+    assert_eq!(mesh.triangles.len(), 4);
+    assert!((mesh.volume().unwrap() - tetrahedron().volume().unwrap()).abs() < 1e-15);
+}
+
 fn tetrahedron() -> TriMesh {
     TriMesh::new(
         vec![Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::z()],

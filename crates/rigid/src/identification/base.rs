@@ -198,7 +198,8 @@ impl BaseParameters {
     /// let model = rigid::multibody::builtin("puma560").unwrap();
     /// let base = BaseParameters::of_model(&model, JointTerms::default(), 1)?;
     /// assert_eq!(base.len(), 36); // 60 inertial parameters, 36 combinations identifiable
-    /// assert_eq!(base.expression(0), "Izz1 + Iyy2 + Iyy3"); // the first joint's axis
+    /// // the first joint sees the inertia of everything about its axis: Izz1 only in a sum
+    /// assert!(base.expression(0).starts_with("Izz1 + "));
     /// # Ok::<(), rigid::multibody::MultibodyError>(())
     /// ```
     ///

@@ -361,6 +361,7 @@ impl Identification {
     }
 
     /// The unweighted factor `R` of `[W τ]` (for the semidefinite program).
+    #[cfg(feature = "sdp")]
     pub(crate) fn factor_r(&self) -> &DMatrix<f64> {
         &self.r
     }

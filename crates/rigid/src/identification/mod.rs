@@ -47,14 +47,12 @@
 mod base;
 mod estimate;
 pub mod excitation;
-#[cfg(feature = "sdp")]
 mod physical;
 mod regressor;
 mod samples;
 
 pub use base::{BaseParameters, JointTerms, ParameterLayout};
 pub use estimate::{Estimate, Identification, Weighting, RANK_TOLERANCE};
-#[cfg(feature = "sdp")]
 pub use physical::PhysicalOptions;
 pub use regressor::{body_regressor, model_parameters, model_with_parameters, Regressor};
 pub use samples::{column_names, CsvLayout, Samples, SavitzkyGolay};
@@ -106,6 +104,9 @@ pub enum IdentificationError {
     /// The conic solver did not solve the physically consistent problem.
     #[error("{0}")]
     Solver(String),
+    /// A capability this build of rigid leaves out (the message says how to build it in).
+    #[error("{0}")]
+    NotBuilt(String),
     /// A bad option or argument (the message says which).
     #[error("{0}")]
     Invalid(String),

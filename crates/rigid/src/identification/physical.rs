@@ -4,12 +4,16 @@
 
 use super::estimate::{Estimate, Identification};
 use super::IdentificationError;
+#[cfg(feature = "sdp")]
 use crate::mass::SpatialInertia;
+#[cfg(feature = "sdp")]
 use clarabel::algebra::CscMatrix;
+#[cfg(feature = "sdp")]
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, PSDTriangleConeT,
     SolverStatus, SupportedConeT,
 };
+#[cfg(feature = "sdp")]
 use nalgebra::{DMatrix, DVector};
 
 /// Options of [`Identification::physically_consistent`].
@@ -39,6 +43,7 @@ impl Default for PhysicalOptions {
     }
 }
 
+#[cfg(feature = "sdp")]
 /// `svec` of a symmetric 4x4 matrix in Clarabel's order: the upper triangle column by column,
 /// off-diagonal entries times `√2`.
 fn svec(j: &crate::mass::Mat4) -> [f64; 10] {
@@ -57,6 +62,7 @@ fn svec(j: &crate::mass::Mat4) -> [f64; 10] {
     out
 }
 
+#[cfg(feature = "sdp")]
 /// The pseudo-inertia of the parameters `p` ([`SpatialInertia::pseudo_inertia`], linear in `p`).
 fn pseudo(p: &[f64]) -> crate::mass::Mat4 {
     SpatialInertia::from_parameters(p.try_into().expect("ten parameters")).pseudo_inertia()
@@ -74,14 +80,18 @@ impl Identification {
     /// with one 4x4 semidefinite cone per body, is solved by Clarabel's interior-point method.
     /// The result satisfies the constraints as solved: nothing is clipped afterwards.
     ///
+    /// Needs the crate feature `sdp` (Clarabel's semidefinite cone links OpenBLAS from the
+    /// system): without it the options are checked and [`IdentificationError::NotBuilt`] says
+    /// how to build it.
+    ///
     /// # Errors
     /// [`IdentificationError::Solver`] when Clarabel does not report a solution (infeasible
-    /// mass bounds, numerical failure), [`IdentificationError::Invalid`] for bad options.
+    /// mass bounds, numerical failure), [`IdentificationError::Invalid`] for bad options,
+    /// [`IdentificationError::NotBuilt`] without the feature `sdp`.
     pub fn physically_consistent(
         &self,
         opts: &PhysicalOptions,
     ) -> Result<Estimate, IdentificationError> {
-        let p = self.layout.len();
         let nb = self.layout.bodies;
         if !(opts.regularization.is_finite() && opts.regularization >= 0.0) {
             return Err(IdentificationError::Invalid(format!(
@@ -107,6 +117,23 @@ impl Identification {
                 )));
             }
         }
+        #[cfg(feature = "sdp")]
+        return self.solve_sdp(opts);
+        #[cfg(not(feature = "sdp"))]
+        Err(IdentificationError::NotBuilt(
+            "the physically consistent estimate (a semidefinite program) needs rigid built with \
+             the feature `sdp`, which links OpenBLAS: install it (Debian: `apt-get install \
+             libopenblas-dev libgfortran-12-dev pkg-config`), then build with `--features sdp` \
+             (the CLI: `cargo install --path crates/rigid-cli --features sdp`)"
+                .into(),
+        ))
+    }
+
+    /// [`Self::physically_consistent`] once its options are checked: Clarabel.
+    #[cfg(feature = "sdp")]
+    fn solve_sdp(&self, opts: &PhysicalOptions) -> Result<Estimate, IdentificationError> {
+        let p = self.layout.len();
+        let nb = self.layout.bodies;
         let r = self.factor_r();
         let rp = r.columns(0, p);
         let z = r.column(p);
@@ -207,6 +234,7 @@ impl Identification {
     }
 }
 
+#[cfg(feature = "sdp")]
 /// The upper triangle of a symmetric matrix in compressed-column form.
 fn upper_csc(m: &DMatrix<f64>) -> CscMatrix<f64> {
     let n = m.ncols();

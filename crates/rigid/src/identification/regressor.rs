@@ -122,7 +122,8 @@ pub fn model_with_parameters(model: &Model, pi: &[f64]) -> Result<Model, Dimensi
 /// let (q, v, a) = ([0.1, -0.4, 0.3, 0.2, 0.5, -0.1], [0.5; 6], [-1.0; 6]);
 /// let mut reg = Regressor::new(&model);
 /// let y = reg.compute(&model, &q, &v, &a)?;
-/// let tau = rnea(&model, &mut Data::new(&model), &q, &v, &a)?;
+/// let mut data = Data::new(&model);
+/// let tau = rnea(&model, &mut data, &q, &v, &a)?;
 /// assert!((y * model_parameters(&model) - tau).norm() < 1e-12 * tau.norm());
 /// # Ok::<(), rigid::multibody::MultibodyError>(())
 /// ```

@@ -182,10 +182,10 @@ impl Samples {
     /// ```
     /// use rigid::identification::Samples;
     /// let model = rigid::multibody::builtin("pendulum").unwrap();
-    /// let s = Samples::from_csv(&model, "t,q_joint,v_joint,a_joint,tau_joint\n0,0.1,0,0,0.5\n", None)?;
+    /// let s = Samples::from_csv(&model, "t,q_joint1,v_joint1,a_joint1,tau_joint1\n0,0.1,0,0,0.5\n", None)?;
     /// assert_eq!((s.len(), s.tau[0]), (1, 0.5));
     /// let bad = Samples::from_csv(&model, "0,0.1,0,0,0.5\n0.1,0.2,nan,0,0.5\n", None).unwrap_err();
-    /// assert!(bad.to_string().contains("line 2, column 3 (v_joint)"));
+    /// assert!(bad.to_string().contains("line 2, column 3 (v_joint1)"));
     /// # Ok::<(), rigid::identification::IdentificationError>(())
     /// ```
     pub fn from_csv(

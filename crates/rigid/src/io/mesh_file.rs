@@ -97,6 +97,32 @@ pub fn read_obj(path: &Path) -> Result<TriMesh, MeshFileError> {
     parse_obj(&mut BufReader::new(File::open(path)?))
 }
 
+/// The OBJ text without its `vt` and `vn` lines. Only positions and faces make a body's mass
+/// properties; and tobj (4.0) bounds-checks texture and normal indices with unchecked arithmetic
+/// (`vn * 3 + 2`), so that a crafted relative index wraps around and indexes out of bounds, a
+/// panic that coverage-guided fuzzing found (`fuzz/regressions/obj/`). Without those lines tobj
+/// never reads the indices.
+fn without_texcoords_and_normals(
+    reader: &mut impl std::io::BufRead,
+) -> Result<Vec<u8>, MeshFileError> {
+    let mut bytes = Vec::new();
+    reader.read_to_end(&mut bytes)?;
+    let mut out = Vec::with_capacity(bytes.len());
+    for line in bytes.split_inclusive(|&b| b == b'\n') {
+        let start = line
+            .iter()
+            .position(|b| !b.is_ascii_whitespace())
+            .unwrap_or(line.len());
+        let rest = &line[start..];
+        let skip = (rest.starts_with(b"vt") || rest.starts_with(b"vn"))
+            && rest.get(2).is_some_and(u8::is_ascii_whitespace);
+        if !skip {
+            out.extend_from_slice(line);
+        }
+    }
+    Ok(out)
+}
+
 /// As [`read_obj`], from a reader of the file's text.
 ///
 /// # Errors
@@ -111,9 +137,12 @@ pub fn parse_obj(reader: &mut impl std::io::BufRead) -> Result<TriMesh, MeshFile
         ignore_lines: true,
         ..Default::default()
     };
+    let text = without_texcoords_and_normals(reader)?;
     let (models, _materials) =
-        tobj::load_obj_buf(reader, &options, |_| Err(tobj::LoadError::OpenFileFailed))
-            .map_err(MeshFileError::Obj)?;
+        tobj::load_obj_buf(&mut std::io::Cursor::new(text), &options, |_| {
+            Err(tobj::LoadError::OpenFileFailed)
+        })
+        .map_err(MeshFileError::Obj)?;
     let mut mesh = TriMesh::default();
     for model in &models {
         let offset = mesh.vertices.len();

@@ -28,7 +28,7 @@ import numpy as np
 import pinocchio as pin
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from reference import joint_layout, q_to_rigid, robots_dir, v_perm  # noqa: E402
+from reference import joint_layout, plain, q_to_rigid, robots_dir, v_perm  # noqa: E402
 
 
 def site_dirs():
@@ -64,29 +64,27 @@ PACKAGES = {
 }
 
 
-def plain(x):
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    if isinstance(x, dict):
-        return {k: plain(v) for k, v in x.items()}
-    if isinstance(x, list):
-        return [plain(v) for v in x]
-    if isinstance(x, (np.floating, np.integer)):
-        return x.item()
-    return x
-
-
-def one(path, floating, states, seed):
+def load(path, floating):
+    """`(model, None)`, Pinocchio's model of the file (a free-flyer root when `floating`) with
+    unbounded position limits replaced by [-1, 1] for random configurations, or
+    `(None, {"refused": why})`."""
     try:
         if floating:
             model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
         else:
             model = pin.buildModelFromUrdf(path)
     except Exception as e:  # noqa: BLE001 (Pinocchio raises plain exceptions)
-        return dict(refused=str(e).strip().splitlines()[-1] if str(e).strip() else repr(e))
+        return None, dict(refused=str(e).strip().splitlines()[-1] if str(e).strip() else repr(e))
     lo, up = model.lowerPositionLimit, model.upperPositionLimit
     model.lowerPositionLimit = np.where(np.abs(lo) < 1e10, lo, -1.0)
     model.upperPositionLimit = np.where(np.abs(up) < 1e10, up, 1.0)
+    return model, None
+
+
+def one(path, floating, states, seed):
+    model, refused = load(path, floating)
+    if refused:
+        return refused
     data = model.createData()
     joints, nq, nv = joint_layout(model)
     p = v_perm(joints, nv)
@@ -114,19 +112,11 @@ def one(path, floating, states, seed):
     return dict(nq=nq, nv=nv, joints=joints, states=out)
 
 
-def main():
-    args = sys.argv[1:]
-    if not args or args[0] in ("-h", "--help"):
-        print(__doc__)
-        return
-    if args[0] == "list":
-        print(json.dumps(sorted(PACKAGES)))
-        return
-    if args[0] == "roots":
-        print(json.dumps({name: find() for name, find in PACKAGES.items()}))
-        return
+def each_file(args, one, states=3):
+    """`PACKAGE [--states N] [--seed S]`: for every URDF file of the package, fixed and floating,
+    one JSON line `{"package", "file", "floating", **one(file, floating, states, seed)}`."""
     name = args[0]
-    states = int(args[args.index("--states") + 1]) if "--states" in args else 3
+    states = int(args[args.index("--states") + 1]) if "--states" in args else states
     seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
     if name not in PACKAGES:
         sys.exit(f"unknown package {name!r}; known: {', '.join(sorted(PACKAGES))}")
@@ -141,6 +131,20 @@ def main():
             rec = dict(package=name, file=f, floating=floating)
             rec.update(one(f, floating, states, seed))
             print(json.dumps(plain(rec)), flush=True)
+
+
+def main():
+    args = sys.argv[1:]
+    if not args or args[0] in ("-h", "--help"):
+        print(__doc__)
+        return
+    if args[0] == "list":
+        print(json.dumps(sorted(PACKAGES)))
+        return
+    if args[0] == "roots":
+        print(json.dumps({name: find() for name, find in PACKAGES.items()}))
+        return
+    each_file(args, one)
 
 
 if __name__ == "__main__":

@@ -50,6 +50,19 @@ ROBOTS = {
 }
 
 
+def plain(x):
+    """`x` with numpy arrays and scalars made JSON-serialisable."""
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    if isinstance(x, dict):
+        return {k: plain(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [plain(v) for v in x]
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    return x
+
+
 def robots_dir():
     """The robots/ folder of example-robot-data, wherever pip (cmeel) or conda put it."""
     env = os.environ.get("EXAMPLE_ROBOT_DATA_MODEL_DIR")
@@ -214,17 +227,6 @@ def main():
             for i in range(1, model.njoints)
         }
         out_states.append(st)
-
-    def plain(x):
-        if isinstance(x, np.ndarray):
-            return x.tolist()
-        if isinstance(x, dict):
-            return {k: plain(v) for k, v in x.items()}
-        if isinstance(x, list):
-            return [plain(v) for v in x]
-        if isinstance(x, (np.floating, np.integer)):
-            return x.item()
-        return x
 
     print(json.dumps(plain(dict(
         robot=name,

@@ -14,8 +14,6 @@ order (10 per joint, `Inertia.toDynamicParameters` order), and `parameters`: the
 parameters of each of Pinocchio's joints, in the same order.
 """
 
-import glob
-import json
 import os
 import sys
 
@@ -23,21 +21,14 @@ import numpy as np
 import pinocchio as pin
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from packages import PACKAGES, plain  # noqa: E402
+from packages import each_file, load  # noqa: E402
 from reference import joint_layout, q_to_rigid, v_perm  # noqa: E402
 
 
 def one(path, floating, states, seed):
-    try:
-        if floating:
-            model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
-        else:
-            model = pin.buildModelFromUrdf(path)
-    except Exception as e:  # noqa: BLE001 (Pinocchio raises plain exceptions)
-        return dict(refused=str(e).strip().splitlines()[-1] if str(e).strip() else repr(e))
-    lo, up = model.lowerPositionLimit, model.upperPositionLimit
-    model.lowerPositionLimit = np.where(np.abs(lo) < 1e10, lo, -1.0)
-    model.upperPositionLimit = np.where(np.abs(up) < 1e10, up, 1.0)
+    model, refused = load(path, floating)
+    if refused:
+        return refused
     data = model.createData()
     joints, nq, nv = joint_layout(model)
     p = v_perm(joints, nv)
@@ -59,22 +50,7 @@ def main():
     if not args or args[0] in ("-h", "--help"):
         print(__doc__)
         return
-    name = args[0]
-    states = int(args[args.index("--states") + 1]) if "--states" in args else 2
-    seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
-    if name not in PACKAGES:
-        sys.exit(f"unknown package {name!r}; known: {', '.join(sorted(PACKAGES))}")
-    root = PACKAGES[name]()
-    if root is None:
-        sys.exit(f"package {name} is not installed: pip install -r scripts/requirements-test.txt")
-    files = sorted(glob.glob(os.path.join(root, "**", "*.urdf"), recursive=True))
-    if not files:
-        sys.exit(f"no .urdf file under {root}")
-    for f in files:
-        for floating in (False, True):
-            rec = dict(package=name, file=f, floating=floating)
-            rec.update(one(f, floating, states, seed))
-            print(json.dumps(plain(rec)), flush=True)
+    each_file(args, one, states=2)
 
 
 if __name__ == "__main__":
