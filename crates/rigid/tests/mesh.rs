@@ -324,15 +324,16 @@ fn obj_with_several_objects_is_one_solid() {
 
 /// Texture and normal indices are never read (only positions and faces make mass properties):
 /// a normal index that tobj's bounds check would wrap around (`vn * 3 + 2` overflowing to 0, then
-/// an out-of-bounds read; found by fuzzing, `fuzz/regressions/obj/`) is harmless, and the solid
-/// loads as written.
+/// an out-of-bounds read; found by fuzzing, `fuzz/regressions/obj/`) is harmless, and so is a
+/// texture index off its range on a `vt` line whose keyword ends in a vertical tab (tobj splits
+/// on Unicode whitespace); the solid loads as written.
 #[test]
 fn obj_texture_and_normal_indices_are_ignored() {
     let path = temp("tetra_wrapping_normal.obj");
     // (vn - 1) * 3 + 2 ≡ 0 (mod 2^64) for the normal index -6148914691236517207 with one `vn`
     let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvt 0.5 0.5\n\
                f 1/-9223372036854775808/-6148914691236517207 3//-6148914691236517207 2/1/1\n\
-               f 1 2 4\nf 1 4 3\n  vn 1 0 0\nf 2 3 4\n";
+               f 1 2 4\nf 1 4 3\n  vn 1 0 0\nvt\x0b\t0 0\nf 2/-7 3 4\n";
     std::fs::write(&path, obj).unwrap();
     let mesh = read_mesh(&path).unwrap();
     assert_eq!(mesh.triangles.len(), 4);

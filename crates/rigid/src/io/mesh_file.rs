@@ -109,14 +109,12 @@ fn without_texcoords_and_normals(
     reader.read_to_end(&mut bytes)?;
     let mut out = Vec::with_capacity(bytes.len());
     for line in bytes.split_inclusive(|&b| b == b'\n') {
-        let start = line
-            .iter()
-            .position(|b| !b.is_ascii_whitespace())
-            .unwrap_or(line.len());
-        let rest = &line[start..];
-        let skip = (rest.starts_with(b"vt") || rest.starts_with(b"vn"))
-            && rest.get(2).is_some_and(u8::is_ascii_whitespace);
-        if !skip {
+        // tobj's own reading: lines, then Unicode whitespace (a vertical tab separates too); a
+        // line that is not UTF-8 is kept, and tobj refuses the file
+        let keyword = std::str::from_utf8(line)
+            .ok()
+            .and_then(|l| l.split_whitespace().next());
+        if !matches!(keyword, Some("vt" | "vn")) {
             out.extend_from_slice(line);
         }
     }
