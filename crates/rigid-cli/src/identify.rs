@@ -5,7 +5,7 @@
 use crate::load::{load_model, urdf_path, LoadArgs};
 use clap::Args;
 use rigid::identification::{
-    Estimate, Identification, JointTerms, PhysicalOptions, Samples, SavitzkyGolay, Weighting,
+    Estimate, Identification, JointTerms, PhysicalOptions, Samples, Weighting,
 };
 use rigid::io::urdf::{parse_urdf_file, with_body_inertials};
 use rigid::mass::{Consistency, SpatialInertia, Verdict};
@@ -93,10 +93,8 @@ pub fn run(args: &IdentifyArgs) -> Result<(), String> {
     let data = &args.data;
     let text = std::fs::read_to_string(data)
         .map_err(|e| format!("cannot read {}: {e}", data.display()))?;
-    let dt = first_step(&text);
-    let sg = dt.map(|dt| SavitzkyGolay::for_window(args.window, dt));
-    let samples =
-        Samples::from_csv(&model, &text, sg).map_err(|e| format!("{}: {e}", data.display()))?;
+    let samples = Samples::from_csv(&model, &text, Some(args.window))
+        .map_err(|e| format!("{}: {e}", data.display()))?;
     let terms = JointTerms {
         friction: args.friction,
         rotor_inertia: args.rotor_inertia,
@@ -113,13 +111,9 @@ pub fn run(args: &IdentifyArgs) -> Result<(), String> {
     let pc = if args.physical {
         let opts = PhysicalOptions {
             regularization: args.regularization,
-            mass_bounds: args.mass_tolerance.map(|f| {
-                model
-                    .inertias()
-                    .iter()
-                    .map(|g| ((1.0 - f) * g.mass(), (1.0 + f) * g.mass()))
-                    .collect()
-            }),
+            mass_bounds: args
+                .mass_tolerance
+                .map(|f| PhysicalOptions::mass_bounds_within(&model, f)),
             ..PhysicalOptions::default()
         };
         Some(id.physically_consistent(&opts).map_err(|e| e.to_string())?)
@@ -167,15 +161,6 @@ pub fn run(args: &IdentifyArgs) -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-/// The time step between the first two data rows (for the differentiator's window), if any.
-fn first_step(text: &str) -> Option<f64> {
-    let mut times = text
-        .lines()
-        .filter_map(|l| l.split(',').next()?.trim().parse::<f64>().ok());
-    let (a, b) = (times.next()?, times.next()?);
-    (b > a).then_some(b - a)
 }
 
 /// The body inertias of an estimate.

@@ -17,7 +17,7 @@ use pyo3::types::PyDict;
 use rigid::identification::excitation::{optimize, ExcitationOptions};
 use rigid::identification::{
     model_parameters, Estimate, Identification, JointTerms, PhysicalOptions, Regressor, Samples,
-    SavitzkyGolay, Weighting,
+    Weighting,
 };
 use rigid::mass::{Consistency, SpatialInertia};
 
@@ -167,15 +167,7 @@ fn read_samples(core: &ModelCore, samples: &Bound<'_, PyAny>, window: f64) -> Py
     })?;
     let text = std::fs::read_to_string(&path)
         .map_err(|e| io_error(&e, format!("{func}: cannot read {}: {e}", path.display())))?;
-    let mut times = text
-        .lines()
-        .filter_map(|l| l.split(',').next()?.trim().parse::<f64>().ok());
-    let dt = match (times.next(), times.next()) {
-        (Some(a), Some(b)) if b > a => Some(b - a),
-        _ => None,
-    };
-    let sg = dt.map(|dt| SavitzkyGolay::for_window(window, dt));
-    Samples::from_csv(&core.model, &text, sg)
+    Samples::from_csv(&core.model, &text, Some(window))
         .map_err(|e| value_error(func, format!("{}: {e}", path.display())))
 }
 

@@ -33,6 +33,27 @@ pub struct PhysicalOptions {
     pub margin: f64,
 }
 
+impl PhysicalOptions {
+    /// Mass bounds `((1 − f) m_i, (1 + f) m_i)` around each body's mass in `model` (`f = 0.2`:
+    /// ±20 %), for [`Self::mass_bounds`].
+    ///
+    /// ```
+    /// use rigid::identification::PhysicalOptions;
+    /// let model = rigid::multibody::builtin("double_pendulum").unwrap();
+    /// let b = PhysicalOptions::mass_bounds_within(&model, 0.2);
+    /// let m = model.inertias()[0].mass();
+    /// assert_eq!(b[0], (0.8 * m, 1.2 * m));
+    /// ```
+    #[must_use]
+    pub fn mass_bounds_within(model: &crate::multibody::Model, fraction: f64) -> Vec<(f64, f64)> {
+        model
+            .inertias()
+            .iter()
+            .map(|g| ((1.0 - fraction) * g.mass(), (1.0 + fraction) * g.mass()))
+            .collect()
+    }
+}
+
 impl Default for PhysicalOptions {
     fn default() -> Self {
         Self {

@@ -166,8 +166,9 @@ impl Samples {
 
     /// Samples from CSV text: an optional header line, then rows `t, q…, v…, a…, tau…`,
     /// `t, q…, v…, tau…` or `t, q…, tau…` (the layout is told by the number of columns).
-    /// Missing velocities and accelerations are computed by the Savitzky–Golay differentiator
-    /// `sg` (`None`: degree 4 over 0.05 s), which drops the samples at both ends.
+    /// Missing velocities and accelerations are computed by a Savitzky–Golay differentiator of
+    /// degree 4 over `window` seconds ([`SavitzkyGolay::for_window`] at the file's time step;
+    /// `None`: 0.05 s), which drops the samples at both ends.
     ///
     /// A header whose column names start with `q_`, `v_`, `a_` or `tau_` must name the
     /// coordinates in rigid's order ([`column_names`]); other names are not checked.
@@ -191,7 +192,7 @@ impl Samples {
     pub fn from_csv(
         model: &Model,
         text: &str,
-        sg: Option<SavitzkyGolay>,
+        window: Option<f64>,
     ) -> Result<Self, IdentificationError> {
         let (nq, nv) = (model.nq(), model.nv());
         let widths = [
@@ -381,7 +382,7 @@ impl Samples {
                 ),
             )
         })?;
-        let sg = sg.unwrap_or_else(|| SavitzkyGolay::for_window(0.05, dt));
+        let sg = SavitzkyGolay::for_window(window.unwrap_or(0.05), dt);
         s.differentiate(nq, nv, kind, &sg, dt)
             .map_err(|needed| err(first_line, None, &names, needed))?;
         Ok(s)
