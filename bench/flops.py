@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Floating-point operations per call of rigid's algorithms, counted in the running code.
 
-    python3 bench/flops.py                         # RNEA, CRBA, ABA, M⁻¹ on ur5, talos, puma560
+    python3 bench/flops.py                         # RNEA, CRBA, ABA, M⁻¹, both derivatives; ur5, talos, puma560
     python3 bench/flops.py --models ur5 --algos rnea,crba --json out.json
     python3 bench/flops.py --pinocchio             # also Pinocchio's compiled library, same method
     python3 bench/flops.py --no-build --times run.json   # + ns per call from `compare.py --json run.json`
@@ -23,13 +23,21 @@ over the `N` calls of the pass, so not counted in the `div` column's integer par
 --pinocchio: the same count on Pinocchio's timing program (`bench/pinocchio`, the `lib` build:
 the wheel's `libpinocchio_default.so`, built by `python3 bench/compare.py` or
 `bash bench/pinocchio/run.sh --build-only`), collection switched on inside `pinocchio::rnea<double…`
-(`crba`, `aba`, `computeMinverse`) wherever it is called, divided by the number of calls into it
-read from callgrind's call graph. Its CRBA and ABA figures average the LOCAL and WORLD conventions
-(the program times both; CRBA is also called inside its `cholesky_fd`).
+(`crba`, `aba`, `computeMinverse`, `computeRNEADerivatives`, `computeABADerivatives`) wherever it is
+called, callees included, divided by the number of calls into it read from callgrind's call graph.
+Its CRBA and ABA figures average the LOCAL and WORLD conventions (the program times both; CRBA is
+also called inside its `cholesky_fd`). Callgrind's `--toggle-collect` flips collection on entry and
+again on exit, so a toggled function calling another toggled one would switch it off for the
+callee: the derivatives' public functions call `impl::` overloads of the same name, some inlined
+into the timing program, some not. So a first run with collection on throughout gives the call
+graph, and only the outermost functions of the family (those called from outside it) are toggled.
 
-Self-check: the per-call count must not depend on how many calls were made (N and 2N states give
-the same count up to the data-dependent branches of sin/cos range reduction, < 1 %); the script
-prints both and fails when they differ by more than 1 %.
+Self-checks: the per-call count must not depend on how many calls were made (N and 2N states give
+the same count up to the data-dependent branches of sin/cos range reduction, < 1 %), for rigid and
+for Pinocchio; and Pinocchio's counting run must collect the instructions per call that the first
+run's call graph gives as the outermost functions' inclusive cost (a wrongly nested toggle collects
+a few instructions per call). The script prints both counts and fails when a check is off by more
+than 1 %.
 """
 import argparse
 import json
@@ -88,14 +96,13 @@ def disassemble(exe):
     return ops
 
 
-def parse_callgrind(path, pattern=None):
-    """Execution count per (object, instruction address), self cost only; and, if `pattern` (a
-    regular expression) is given, the number of calls into functions it matches from functions it
-    does not match."""
-    counts, calls, names = {}, 0, {}
-    ob = cob = fn = cfn = None
+def parse_callgrind(path):
+    """Execution count per (object, instruction address), self cost only; and the call graph:
+    {(caller, callee): [calls, inclusive instructions]}."""
+    counts, edges, names = {}, {}, {}
+    ob = fn = cfn = None
     last = 0
-    skip_next = False
+    edge = None  # the call whose inclusive cost is on the next line
     with open(path) as f:
         for line in f:
             line = line.rstrip("\n")
@@ -112,17 +119,14 @@ def parse_callgrind(path, pattern=None):
                     name = names.get((kind, mt.group(1)), val)
                 if key == "ob":
                     ob = name
-                elif key == "cob":
-                    cob = name
                 elif key == "fn":
-                    fn, cob = name, None
+                    fn = name
                 elif key == "cfn":
                     cfn = name
                 continue
             if line.startswith("calls="):
-                if pattern and re.search(pattern, cfn or "") and not re.search(pattern, fn or ""):
-                    calls += int(line.split("=")[1].split()[0])
-                skip_next = True  # the next line is the call's inclusive cost
+                edge = edges.setdefault((fn, cfn), [0, 0])
+                edge[0] += int(line.split("=")[1].split()[0])
                 continue
             if eq:
                 continue
@@ -139,12 +143,31 @@ def parse_callgrind(path, pattern=None):
             else:
                 continue
             last = addr
-            if skip_next:
-                skip_next = False
-                continue
             cost = int(parts[-1]) if len(parts) >= 3 else 0
+            if edge is not None:  # the call's inclusive cost, not an instruction of `fn`
+                edge[1] += cost
+                edge = None
+                continue
             counts[(ob, addr)] = counts.get((ob, addr), 0) + cost
-    return counts, calls
+    return counts, edges
+
+
+def outermost(edges, family):
+    """The functions of `family` (a regular expression) called from outside it, the number of
+    those calls and their inclusive instructions. Fails if one of them is also called from inside
+    the family: toggling collection on both would switch it off in the nested call."""
+    def inside(name):
+        return re.search(family, name or "") is not None
+    outer, calls, incl = set(), 0, 0
+    for (fn, cfn), (n, ir) in edges.items():
+        if inside(cfn) and not inside(fn):
+            outer.add(cfn)
+            calls += n
+            incl += ir
+    nested = {cfn for (fn, cfn) in edges if inside(cfn) and inside(fn)} & outer
+    if nested:
+        raise RuntimeError("called both from outside and inside /%s/: %s" % (family, sorted(nested)))
+    return sorted(outer), calls, incl
 
 
 def tally(counts, calls):
@@ -178,27 +201,52 @@ def count(model, algo, states):
     return tally(counts, 2 * states)  # warm-up pass + one timed pass
 
 
-# Pinocchio's functions (demangled names start with the return type)
-PIN_FUNCTION = {"rnea": "pinocchio::rnea<double", "crba": "pinocchio::crba<double",
-                "aba": "pinocchio::aba<double", "minverse": "pinocchio::computeMinverse<double"}
+# Pinocchio's functions, regular expressions over callgrind's demangled names (which start with the
+# return type). The derivatives' public overloads forward to `impl::` overloads of the same name
+# (`computeABADerivatives(model, data, q, v, tau)` -> `impl::…(…, q, v, tau)` -> `impl::…(…, q, v,
+# tau, ddq_dq, ddq_dv, Minv)`), some inlined into the timing program, some not: their family takes
+# both namespaces, and only its outermost members switch collection on (see `outermost`).
+PIN_FAMILY = {"rnea": r"pinocchio::rnea<double", "crba": r"pinocchio::crba<double",
+              "aba": r"pinocchio::aba<double", "minverse": r"pinocchio::computeMinverse<double",
+              "rnea_derivatives": r"pinocchio::(impl::)?computeRNEADerivatives<double",
+              "aba_derivatives": r"pinocchio::(impl::)?computeABADerivatives<double"}
+PIN_GRAPH = {}  # (model, states) -> call graph of the timing program with collection on throughout
 
 
-def count_pinocchio(model, algo, states, variant="lib"):
-    """Pinocchio 4.1 (the `lib` build: the wheel's compiled library): every call of the function
-    during its timing program (its LOCAL and WORLD conventions alike, and the calls inside
-    `cholesky_fd`), per call."""
+def run_pinocchio(model, states, toggles=(), variant="lib"):
+    """Pinocchio's timing program under callgrind: (instruction counts, call graph)."""
     exe = os.path.join(compare.PIN_BUILD, "timings-" + variant)
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "cg.out")
-        cmd = ["valgrind", "--tool=callgrind", "--dump-instr=yes",
-               "--toggle-collect=*" + PIN_FUNCTION[algo] + "*", "--callgrind-out-file=" + out, exe,
-               "--build", variant, "--reps", "1", "--states", str(states),
-               "%s=%s" % (model["name"], model["file"])]
+        cmd = ["valgrind", "--tool=callgrind", "--dump-instr=yes", "--callgrind-out-file=" + out]
+        cmd += ["--toggle-collect=" + name for name in toggles]
+        cmd += [exe, "--build", variant, "--reps", "1", "--states", str(states),
+                "%s=%s" % (model["name"], model["file"])]
         subprocess.run(cmd, capture_output=True, check=True)
-        counts, calls = parse_callgrind(out, re.escape(PIN_FUNCTION[algo]))
+        return parse_callgrind(out)
+
+
+def count_pinocchio(model, algo, states):
+    """Pinocchio 4.1 (the `lib` build: the wheel's compiled library): every call of the function
+    during its timing program (its LOCAL and WORLD conventions alike, and the calls inside
+    `cholesky_fd`), per call, callees included (the derivatives' passes, Eigen's products).
+
+    Two runs: one with collection on throughout gives the call graph, hence the outermost
+    functions of the family and their inclusive instructions per call; the counting run toggles
+    collection on exactly those, and must collect the same instructions per call (within 1 %,
+    `inclusive` in the result), which a wrongly nested toggle would not."""
+    key = (model["name"], states)
+    if key not in PIN_GRAPH:
+        PIN_GRAPH[key] = run_pinocchio(model, states)[1]
+    outer, calls, incl = outermost(PIN_GRAPH[key], PIN_FAMILY[algo])
     if calls == 0:
         return None
-    return tally(counts, calls)
+    counts, edges = run_pinocchio(model, states, outer)
+    if outermost(edges, PIN_FAMILY[algo])[1] != calls:
+        raise RuntimeError("%s %s: the counting run made a different number of calls" % (model["name"], algo))
+    result = tally(counts, calls)
+    result["inclusive"] = incl / calls
+    return result
 
 
 def cpu_ghz():
@@ -245,7 +293,7 @@ def rate_table(result, times_file, ghz):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--models", default="ur5,talos,puma560")
-    ap.add_argument("--algos", default="rnea,crba,aba,minverse")
+    ap.add_argument("--algos", default="rnea,crba,aba,minverse,rnea_derivatives,aba_derivatives")
     ap.add_argument("--states", type=int, default=50)
     ap.add_argument("--json", help="save the counts to this file")
     ap.add_argument("--no-build", action="store_true", help="use target/release/rigid as it is")
@@ -280,9 +328,18 @@ def main():
                 p = count_pinocchio(m, algo, args.states)
                 result[m["name"]][algo + "_pinocchio"] = p
                 if p:
-                    print("| %s | %d | %s | Pinocchio (lib) | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %d calls |" % (
-                        m["name"], m["nv"], algo, p["mul"], p["add"], p["mul"] + p["add"], p["div"], p["sqrt"],
-                        p["instructions"], p["calls"]))
+                    q = count_pinocchio(m, algo, 2 * args.states)
+                    flops_p, flops_q = p["mul"] + p["add"], q["mul"] + q["add"]
+                    ok = abs(flops_p - flops_q) <= 0.01 * flops_p
+                    if not ok:
+                        bad.append("%s %s (Pinocchio): %.0f vs %.0f" % (m["name"], algo, flops_p, flops_q))
+                    whole = abs(p["instructions"] - p["inclusive"]) <= 0.01 * p["inclusive"]
+                    if not whole:
+                        bad.append("%s %s (Pinocchio): %.0f instructions collected per call, %.0f executed" % (
+                            m["name"], algo, p["instructions"], p["inclusive"]))
+                    print("| %s | %d | %s | Pinocchio (lib) | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %s, %d calls |" % (
+                        m["name"], m["nv"], algo, p["mul"], p["add"], flops_p, p["div"], p["sqrt"],
+                        p["instructions"], "%.0f ok" % flops_q if ok else "**%.0f**" % flops_q, p["calls"]))
             sys.stdout.flush()
     if args.json:
         with open(args.json, "w") as f:
@@ -291,7 +348,7 @@ def main():
         print()
         print(rate_table(result, args.times, args.ghz))
     if bad:
-        sys.exit("per-call counts depend on the number of calls: " + "; ".join(bad))
+        sys.exit("self-check failed: " + "; ".join(bad))
 
 
 if __name__ == "__main__":
