@@ -99,6 +99,7 @@ pub fn model_with_parameters(model: &Model, pi: &[f64]) -> Result<Model, Dimensi
     for (g, p) in m.inertias.iter_mut().zip(pi.chunks_exact(10)) {
         *g = SpatialInertia::from_parameters(p.try_into().expect("chunks of 10"));
     }
+    m.refresh_inertia_forms();
     Ok(m)
 }
 

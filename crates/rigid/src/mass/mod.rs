@@ -7,6 +7,7 @@ mod consistency;
 mod inertia;
 mod mesh;
 mod parameters;
+mod principal_form;
 mod shapes;
 mod spatial_inertia;
 
@@ -17,5 +18,6 @@ pub use consistency::{nearest_consistent, Consistency, Mat4, Verdict, ROUND_OFF_
 pub use inertia::{RotationalInertia, DEFAULT_INERTIA_TOLERANCE};
 pub use mesh::{MeshError, MeshMassProperties, TriMesh};
 pub use parameters::PARAMETER_NAMES;
+pub use principal_form::PrincipalForm;
 pub use shapes::{Shape, ShapeError};
 pub use spatial_inertia::SpatialInertia;

@@ -119,6 +119,8 @@ impl ModelBuilder {
                 dof_axis: Vec::new(),
                 quaternions: Vec::new(),
                 unrotated: Vec::new(),
+                placement_permutation: Vec::new(),
+                principal: Vec::new(),
                 nq: 0,
                 nv: 0,
             },
@@ -212,6 +214,8 @@ impl ModelBuilder {
         });
         m.inertias.push(inertia);
         m.unrotated.push(placement.rotation == Mat3::identity());
+        m.placement_permutation
+            .push(signed_permutation(&placement.rotation));
         if let Some(o) = kind.quaternion_offset() {
             m.quaternions.push((id, m.nq + o));
         }
@@ -417,6 +421,27 @@ impl ModelBuilder {
                 *pe = (*pe).max(e);
             }
         }
+        self.model.refresh_inertia_forms();
         Ok(self.model)
     }
+}
+
+/// `Some` when every column of `r` is `±e_k` up to 4 ulps of 1 in each entry (the rounding of
+/// `cos(π/2) ≈ 6e-17` in a rotation built from `rpy`): `[(k, ±1); 3]`, column by column.
+fn signed_permutation(r: &Mat3) -> Option<[(usize, f64); 3]> {
+    const TOL: f64 = 4.0 * f64::EPSILON;
+    let mut out = [(0, 0.0); 3];
+    let mut used = [false; 3];
+    for (c, slot) in out.iter_mut().enumerate() {
+        let col = r.column(c);
+        let k = col.iamax();
+        let ones = (col[k].abs() - 1.0).abs() <= TOL;
+        let zeros = (0..3).all(|t| t == k || col[t].abs() <= TOL);
+        if !ones || !zeros || used[k] {
+            return None;
+        }
+        used[k] = true;
+        *slot = (k, col[k].signum());
+    }
+    Some(out)
 }

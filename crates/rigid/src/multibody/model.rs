@@ -127,11 +127,28 @@ pub struct Model {
     /// Per joint: `X_T` has exactly the identity rotation (a URDF origin without `rpy`), so that
     /// `oM_λ X_T X_J(q)` of a revolute joint turns two columns of `R_λ` (no 3x3 product).
     pub(crate) unrotated: Vec<bool>,
+    /// Per joint: `X_T`'s rotation is a signed permutation (a URDF `rpy` in multiples of π/2,
+    /// up to the rounding of `cos(π/2)`): column `c` of `R_T` is `s e_k` for `(k, s)` in slot
+    /// `c`, so that `R_λ R_T` picks and signs columns of `R_λ` instead of a 3x3 product.
+    pub(crate) placement_permutation: Vec<Option<[(usize, f64); 3]>>,
+    /// Per body: its inertia in the form that is cheapest to rotate
+    /// ([`PrincipalForm`](crate::mass::PrincipalForm)), `None` when it has none (zero mass with a
+    /// nonzero first moment). Derived from `inertias` by [`Model::refresh_inertia_forms`].
+    pub(crate) principal: Vec<Option<crate::mass::PrincipalForm>>,
     pub(crate) nq: usize,
     pub(crate) nv: usize,
 }
 
 impl Model {
+    /// Recomputes what is derived from the body inertias; called whenever `inertias` changes.
+    pub(crate) fn refresh_inertia_forms(&mut self) {
+        self.principal = self
+            .inertias
+            .iter()
+            .map(crate::mass::PrincipalForm::new)
+            .collect();
+    }
+
     /// The model's name.
     #[must_use]
     pub fn name(&self) -> &str {

@@ -136,12 +136,31 @@ pub(crate) fn root_frame_bodies(
                             mat3_vec(&rMp.rotation, &j.placement.translation) + rMp.translation,
                         )
                     }
+                    // R_T a signed permutation: R_λ R_T picks and signs columns of R_λ
+                    JointType::Revolute { axis } | JointType::Continuous { axis }
+                        if model.placement_permutation[i].is_some() =>
+                    {
+                        let perm = model.placement_permutation[i].unwrap_or([(0, 1.0); 3]);
+                        let R = &rMp.rotation;
+                        let RT = Mat3::from_columns(&[
+                            R.column(perm[0].0) * perm[0].1,
+                            R.column(perm[1].0) * perm[1].1,
+                            R.column(perm[2].0) * perm[2].1,
+                        ]);
+                        Transform::new(
+                            rotate_about(&RT, &axis, q[j.idx_q]),
+                            mat3_vec(R, &j.placement.translation) + rMp.translation,
+                        )
+                    }
                     _ => compose(rMp, &parent_placement(model, i, q)),
                 }
             }
         };
         rM[i] = rMi;
-        G[i] = inertia_to_parent(&model.inertias[i], &rMi);
+        G[i] = match &model.principal[i] {
+            Some(form) => form.transformed(&rMi),
+            None => inertia_to_parent(&model.inertias[i], &rMi),
+        };
         match j.kind {
             // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
             JointType::Revolute { axis } | JointType::Continuous { axis } => {
