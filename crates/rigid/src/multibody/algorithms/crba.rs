@@ -96,6 +96,24 @@ pub fn crba<'a>(
             }
             continue;
         }
+        if ji.nv == 1 {
+            // one dof (revolute, prismatic): no loops over the joint's dofs
+            let k = ji.idx_v;
+            let Jk = data.dof_J[k];
+            data.crba_forces[k] = Ic.momentum(&Jk);
+            let column = &mut M[k * nv + k..k * nv + end_v];
+            for (m, F) in column.iter_mut().zip(&data.crba_forces[k..end_v]) {
+                *m = Jk.dot(F);
+            }
+            column[0] += model.armature[k];
+            for l in k + 1..end_v {
+                M[l * nv + k] = M[k * nv + l];
+            }
+            if let Some(p) = ji.parent {
+                data.composite_inertias[p.0] += Ic;
+            }
+            continue;
+        }
         for k in dofs.clone() {
             data.crba_forces[k] = Ic.momentum(&data.dof_J[k]);
         }
