@@ -2,7 +2,7 @@
 //! the central inertia through its principal axes as a scalar plus two rank-one terms.
 
 use super::SpatialInertia;
-use crate::spatial::{Mat3, Vec3};
+use crate::spatial::{Mat3, ModelVec3, Vec3};
 
 /// `G = (m, c, I_c)` with the central inertia written through its principal moments
 /// `λ₁ ≤ λ₂ ≤ λ₃` and axes `a_k` (the spectral theorem, `I_c = Σ λ_k a_k a_kᵀ`, and
@@ -30,10 +30,10 @@ use crate::spatial::{Mat3, Vec3};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrincipalForm {
     mass: f64,
-    com: Vec3,
+    com: ModelVec3,
     lambda1: f64,
-    u2: Vec3,
-    u3: Vec3,
+    u2: ModelVec3,
+    u3: ModelVec3,
 }
 
 impl PrincipalForm {
@@ -51,18 +51,20 @@ impl PrincipalForm {
             - m * (Mat3::identity() * com.dot(&com) - com * com.transpose());
         let (lambda, axes) = super::RotationalInertia::from_matrix_unchecked(&ic).principal();
         let u = |k: usize| axes.column(k) * (lambda[k] - lambda[0]).max(0.0).sqrt();
-        let form = Self {
-            mass: m,
-            com,
-            lambda1: lambda[0],
-            u2: u(1),
-            u3: u(2),
-        };
+        let (u2, u3) = (u(1), u(2));
         let finite = [m, lambda[0]].iter().all(|x| x.is_finite())
-            && [com, form.u2, form.u3]
+            && [com, u2, u3]
                 .iter()
                 .all(|v| v.iter().all(|x| x.is_finite()));
-        finite.then_some(form)
+        // a diagonal inertia keeps the frame axes exactly (`RotationalInertia::principal`), so
+        // its u₂, u₃ are coordinate axes, as is a centre of mass on one axis
+        finite.then_some(Self {
+            mass: m,
+            com: ModelVec3::new(&com),
+            lambda1: lambda[0],
+            u2: ModelVec3::new(&u2),
+            u3: ModelVec3::new(&u3),
+        })
     }
 
     /// The inertia in a frame where this body's frame has pose `(R, p)`:
@@ -72,16 +74,9 @@ impl PrincipalForm {
     #[must_use]
     #[inline(always)]
     pub fn transformed(&self, t: &crate::spatial::Transform) -> SpatialInertia {
-        let r = t.rotation.as_slice(); // column-major
-        let rot = |v: &Vec3| {
-            Vec3::new(
-                r[0] * v.x + r[3] * v.y + r[6] * v.z,
-                r[1] * v.x + r[4] * v.y + r[7] * v.z,
-                r[2] * v.x + r[5] * v.y + r[8] * v.z,
-            )
-        };
-        let c = rot(&self.com) + t.translation;
-        let (a, b) = (rot(&self.u2), rot(&self.u3));
+        let r = &t.rotation;
+        let c = self.com.rotated(r) + t.translation;
+        let (a, b) = (self.u2.rotated(r), self.u3.rotated(r));
         let h = c * self.mass;
         let d = self.lambda1 + h.dot(&c);
         let xy = a.x * a.y + b.x * b.y - h.x * c.y;
@@ -129,6 +124,30 @@ mod tests {
             let got = PrincipalForm::new(&g).expect("finite, and h = 0 when m = 0").transformed(&t).matrix();
             let scale = 1.0 + want.amax();
             prop_assert!((got - want).amax() < 1e-13 * scale, "{got} vs {want}");
+        }
+    }
+
+    /// A diagonal inertia with the centre of mass on an axis (the usual URDF body) takes the
+    /// coordinate-axis path of every vector, and still equals the adjoint congruence.
+    #[test]
+    fn axis_aligned_bodies_equal_the_adjoint_congruence() {
+        use crate::spatial::ModelVec3;
+        let t = Transform::new(rotation(0.7, -0.4, 2.1), Vec3::new(0.3, -0.2, 0.5));
+        for (k, com) in [
+            Vec3::zeros(),
+            Vec3::new(0.0, -0.3, 0.0),
+            Vec3::new(0.0, 0.0, 0.25),
+        ]
+        .iter()
+        .enumerate()
+        {
+            let g =
+                SpatialInertia::from_com(1.5, *com, RotationalInertia::diagonal(0.2, 0.05, 0.21));
+            let f = PrincipalForm::new(&g).expect("a form");
+            assert!(matches!(f.com, ModelVec3::Axis(..)), "case {k}");
+            assert!(matches!(f.u2, ModelVec3::Axis(..)) && matches!(f.u3, ModelVec3::Axis(..)));
+            let d = (f.transformed(&t).matrix() - g.transformed(&t).matrix()).amax();
+            assert!(d < 1e-15, "case {k}: {d:e}");
         }
     }
 

@@ -120,6 +120,7 @@ impl ModelBuilder {
                 quaternions: Vec::new(),
                 unrotated: Vec::new(),
                 placement_permutation: Vec::new(),
+                placement_translation: Vec::new(),
                 principal: Vec::new(),
                 nq: 0,
                 nv: 0,
@@ -216,6 +217,8 @@ impl ModelBuilder {
         m.unrotated.push(placement.rotation == Mat3::identity());
         m.placement_permutation
             .push(signed_permutation(&placement.rotation));
+        m.placement_translation
+            .push(crate::spatial::ModelVec3::new(&placement.translation));
         if let Some(o) = kind.quaternion_offset() {
             m.quaternions.push((id, m.nq + o));
         }

@@ -131,6 +131,9 @@ pub struct Model {
     /// up to the rounding of `cos(π/2)`): column `c` of `R_T` is `s e_k` for `(k, s)` in slot
     /// `c`, so that `R_λ R_T` picks and signs columns of `R_λ` instead of a 3x3 product.
     pub(crate) placement_permutation: Vec<Option<[(usize, f64); 3]>>,
+    /// Per joint: `X_T`'s translation `t`, kept as `s e_k` when it lies on a coordinate axis
+    /// (`R_λ t` is then a scaled column of `R_λ`).
+    pub(crate) placement_translation: Vec<crate::spatial::ModelVec3>,
     /// Per body: its inertia in the form that is cheapest to rotate
     /// ([`PrincipalForm`](crate::mass::PrincipalForm)), `None` when it has none (zero mass with a
     /// nonzero first moment). Derived from `inertias` by [`Model::refresh_inertia_forms`].

@@ -136,7 +136,7 @@ pub(crate) fn root_frame_bodies(
                     {
                         Transform::new(
                             rotate_about(&rMp.rotation, &axis, q[j.idx_q]),
-                            mat3_vec(&rMp.rotation, &j.placement.translation) + rMp.translation,
+                            model.placement_translation[i].rotated(&rMp.rotation) + rMp.translation,
                         )
                     }
                     // R_T a signed permutation: R_λ R_T picks and signs columns of R_λ
@@ -152,9 +152,17 @@ pub(crate) fn root_frame_bodies(
                         ]);
                         Transform::new(
                             rotate_about(&RT, &axis, q[j.idx_q]),
-                            mat3_vec(R, &j.placement.translation) + rMp.translation,
+                            model.placement_translation[i].rotated(R) + rMp.translation,
                         )
                     }
+                    // X_T without rotation: R = R_λ, p = p_λ + R_λ (t + a q)
+                    JointType::Prismatic { axis } if model.unrotated[i] => Transform::new(
+                        rMp.rotation,
+                        mat3_vec(
+                            &rMp.rotation,
+                            &(j.placement.translation + axis * q[j.idx_q]),
+                        ) + rMp.translation,
+                    ),
                     _ => compose(rMp, &parent_placement(model, i, q)),
                 }
             }
@@ -172,6 +180,14 @@ pub(crate) fn root_frame_bodies(
                     None => mat3_vec(&rMi.rotation, &axis),
                 };
                 J[j.idx_v] = Twist::new(w, rMi.translation.cross(&w));
+            }
+            // S = (0, a): J = (0, R a)
+            JointType::Prismatic { axis } => {
+                let u = match model.dof_axis[j.idx_v] {
+                    Some((c, s)) => rMi.rotation.column(c - 3) * s, // R (s e_(c-3))
+                    None => mat3_vec(&rMi.rotation, &axis),
+                };
+                J[j.idx_v] = Twist::new(Vec3::zeros(), u);
             }
             // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
             JointType::FreeFlyer => {
