@@ -70,6 +70,25 @@ fn loop_aba(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), Mu
     loop_qvx(aba, m, r, out, d)
 }
 
+/// The loop counterpart of `crba_lower`: single calls, each matrix's lower triangle packed.
+fn loop_crba_lower(
+    m: &Model,
+    r: &Rows,
+    out: &mut [f64],
+    d: &mut Data,
+) -> Result<(), MultibodyError> {
+    let (nq, nv) = (m.nq(), m.nv());
+    let mut at = 0;
+    for k in 0..r.n {
+        let t = crba(m, d, &r.qs[k * nq..][..nq])?;
+        for (j, column) in t.as_slice().chunks_exact(nv).enumerate() {
+            out[at..at + nv - j].copy_from_slice(&column[j..]);
+            at += nv - j;
+        }
+    }
+    Ok(())
+}
+
 fn loop_crba(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), MultibodyError> {
     let (nq, nn) = (m.nq(), m.nv() * m.nv());
     for k in 0..r.n {
@@ -92,7 +111,8 @@ fn median(mut x: Vec<f64>) -> f64 {
 }
 
 /// `{"rnea": {"loop": states/s, "threads_1": …, "threads_2": …, "threads_2_vs_loop": speed-up,
-/// "threads_2_vs_1": speed-up, …}, "aba": …, "crba": …}`; a speed-up is the median over passes of
+/// "threads_2_vs_1": speed-up, …}, "aba": …, "crba": …, "crba_lower": …}` (`crba_lower`: the packed
+/// lower triangles of `Batch::crba_lower`); a speed-up is the median over passes of
 /// the ratio of the two configurations' times within the pass.
 ///
 /// # Errors
@@ -104,7 +124,7 @@ pub fn throughput(
     reps: usize,
 ) -> Result<serde_json::Value, String> {
     let nv = model.nv();
-    let kernels: [(&str, usize, Kernel, Single); 3] = [
+    let kernels: [(&str, usize, Kernel, Single); 4] = [
         (
             "rnea",
             nv,
@@ -118,6 +138,12 @@ pub fn throughput(
             loop_aba,
         ),
         ("crba", nv * nv, |b, m, r, o| b.crba(m, &r.qs, o), loop_crba),
+        (
+            "crba_lower",
+            nv * (nv + 1) / 2,
+            |b, m, r, o| b.crba_lower(m, &r.qs, o),
+            loop_crba_lower,
+        ),
     ];
     let pools = threads
         .iter()

@@ -101,3 +101,30 @@ fn a_reused_batch_equals_fresh_calls_and_checks_the_model() {
         Err(MultibodyError::DataMismatch { .. })
     ));
 }
+
+/// The packed lower triangle equals the full matrices' entries on and below the diagonal, state
+/// by state, for a random tree (zero blocks between branches included), and ragged lengths are
+/// refused.
+#[test]
+fn crba_lower_packs_the_full_matrices_lower_triangles() {
+    let model = common::random_tree(5, 9, true);
+    let (nq, nv, n) = (model.nq(), model.nv(), 17);
+    let mut rng = Rng::new(11);
+    let mut qs = vec![];
+    for _ in 0..n {
+        qs.extend(common::state(&model, &mut rng).0);
+    }
+    let per = nv * (nv + 1) / 2;
+    let (mut full, mut packed) = (vec![0.0; n * nv * nv], vec![f64::NAN; n * per]);
+    batch::crba_batch(&model, &qs, &mut full).unwrap();
+    batch::crba_lower_batch(&model, &qs, &mut packed).unwrap();
+    for k in 0..n {
+        let m = &full[k * nv * nv..][..nv * nv];
+        let want: Vec<f64> = (0..nv)
+            .flat_map(|j| (j..nv).map(move |i| m[j * nv + i]))
+            .collect();
+        assert_eq!(&packed[k * per..][..per], want.as_slice(), "state {k}");
+    }
+    assert!(batch::crba_lower_batch(&model, &qs[..nq * n - 1], &mut packed).is_err());
+    assert!(batch::crba_lower_batch(&model, &qs, &mut packed[..per * n - 1]).is_err());
+}

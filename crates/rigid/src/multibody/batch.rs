@@ -161,6 +161,36 @@ impl Batch {
             Ok(())
         })
     }
+
+    /// The lower triangle of `M(q_k)` for every state k (see [`crba_lower_batch`]).
+    ///
+    /// # Errors
+    /// As [`crba_lower_batch`], or [`MultibodyError::DataMismatch`].
+    pub fn crba_lower(
+        &mut self,
+        model: &Model,
+        qs: &[f64],
+        packed: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        let (nv, nq) = (model.nv, model.nq);
+        let per = nv * (nv + 1) / 2;
+        count(model, qs, &[], packed.len(), per)?;
+        for_each_state(&mut self.datas, packed, per, |data, k, out| {
+            let m = crba(model, data, &qs[k * nq..(k + 1) * nq])?;
+            pack_lower(m.as_slice(), nv, out);
+            Ok(())
+        })
+    }
+}
+
+/// The lower triangle of the column-major `nv x nv` matrix `m`, column by column (LAPACK's packed
+/// storage `'L'`: column `j`'s rows `j..nv` at `j nv − j(j−1)/2`).
+fn pack_lower(m: &[f64], nv: usize, out: &mut [f64]) {
+    let mut at = 0;
+    for (j, column) in m.chunks_exact(nv).enumerate() {
+        out[at..at + nv - j].copy_from_slice(&column[j..]);
+        at += nv - j;
+    }
 }
 
 /// Derivatives for many states: `nv x nv` matrices written row-major, one after the other.
@@ -349,6 +379,34 @@ pub fn aba_batch(
 /// A length that is not `N nq` / `N nv²`, or the first failing state's error.
 pub fn crba_batch(model: &Model, qs: &[f64], mass: &mut [f64]) -> Result<(), MultibodyError> {
     Batch::new(model).crba(model, qs, mass)
+}
+
+/// The lower triangle of `M(q_k)` for every state k (see [`crba`]; workspaces made for this call,
+/// see [`Batch`]), packed: `N` blocks of `nv(nv+1)/2` numbers, each the columns' entries on and
+/// below the diagonal, column after column (LAPACK's packed storage `'L'`, which is also the
+/// upper triangle row by row). Half the memory written of [`crba_batch`]'s full matrices, for
+/// callers that factor or store `M` (it is symmetric).
+///
+/// ```
+/// use rigid::multibody::{batch, crba, double_pendulum, Data};
+/// let model = double_pendulum();
+/// let qs = [0.3, 0.0, -0.2, 0.5]; // two states
+/// let mut packed = [0.0; 2 * 3];
+/// batch::crba_lower_batch(&model, &qs, &mut packed)?;
+/// let mut data = Data::new(&model);
+/// let m = crba(&model, &mut data, &qs[2..])?;
+/// assert_eq!(packed[3..], [m[(0, 0)], m[(1, 0)], m[(1, 1)]]);
+/// # Ok::<(), rigid::multibody::MultibodyError>(())
+/// ```
+///
+/// # Errors
+/// A length that is not `N nq` / `N nv(nv+1)/2`, or the first failing state's error.
+pub fn crba_lower_batch(
+    model: &Model,
+    qs: &[f64],
+    packed: &mut [f64],
+) -> Result<(), MultibodyError> {
+    Batch::new(model).crba_lower(model, qs, packed)
 }
 
 /// `∂τ/∂q` and `∂τ/∂v` at `(q_k, v_k, a_k)` for every state k (see

@@ -27,7 +27,7 @@
 //! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`layout`] (`PinocchioLayout`) | URDF models loaded with sibling joints sorted by name |
 //! | `∂τ/∂(q, v)`, `∂q̈/∂(q, v, τ)`, `∂g/∂q`, frame kinematics, `∂(q ⊕ v)`, `∂(q₁ ⊖ q₀)` | [`derivatives`] ([`rnea_derivatives`], [`aba_derivatives`], …; `q` along `q ⊕ δ`) | Carpentier & Mansard, RSS 2018 |
 //! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`] | ABA; Lynch & Park ch. 9, 11 |
-//! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |
+//! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`, `crba_lower_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |
 //!
 //! No algorithm allocates after [`Data::new`] (tested with a counting allocator), and each
 //! dispatches once on the joint type per joint ([`JointType::placed_transform`]); the motion
