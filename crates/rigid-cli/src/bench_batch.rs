@@ -78,6 +78,9 @@ fn loop_crba_lower(
     d: &mut Data,
 ) -> Result<(), MultibodyError> {
     let (nq, nv) = (m.nq(), m.nv());
+    if nv == 0 {
+        return Ok(()); // nothing to pack (and no columns to cut)
+    }
     let mut at = 0;
     for k in 0..r.n {
         let t = crba(m, d, &r.qs[k * nq..][..nq])?;

@@ -395,3 +395,115 @@ fn minverse_keeps_no_state_from_a_previous_call() {
         assert_eq!(again, fresh, "{}", model.name());
     }
 }
+
+/// A chain built to take every shortcut of CRBA's first pass, each checked against RNEA: column
+/// `k` of `M` is `rnea(q, 0, e_k) − rnea(q, 0, 0)` with gravity off. The shortcuts: placements
+/// whose rotation is a signed permutation (`rpy` in multiples of π/2, as URDF files write them),
+/// unrotated ones, offsets and centres of mass on one axis, diagonal inertias (coordinate
+/// principal axes), prismatic joints along ±axes, behind a fixed root and behind a free flyer.
+#[test]
+fn crba_shortcuts_equal_rnea_columns() {
+    use rigid::mass::{RotationalInertia, SpatialInertia};
+    use rigid::spatial::{so3, Transform, Vec3};
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    let rpy = |r: f64, p: f64, y: f64| {
+        so3::exp(&Vec3::new(0.0, 0.0, y))
+            * so3::exp(&Vec3::new(0.0, p, 0.0))
+            * so3::exp(&Vec3::new(r, 0.0, 0.0))
+    };
+    let mut rng = Rng::new(77);
+    for floating in [false, true] {
+        let mut b = ModelBuilder::new("shortcuts");
+        b.set_gravity(Vec3::zeros());
+        let body = |k: usize| {
+            let mut com = Vec3::zeros();
+            com[k % 3] = 0.1 + 0.05 * k as f64;
+            SpatialInertia::from_com(
+                1.0 + 0.1 * k as f64,
+                com,
+                RotationalInertia::diagonal(0.02, 0.03, 0.04),
+            )
+        };
+        let mut parent = if floating {
+            Some(
+                b.add_joint(
+                    None,
+                    "root",
+                    JointType::FreeFlyer,
+                    Transform::identity(),
+                    body(0),
+                )
+                .unwrap(),
+            )
+        } else {
+            None
+        };
+        let kinds = [
+            (
+                JointType::Revolute { axis: Vec3::z() },
+                rpy(0.0, 0.0, 0.0),
+                Vec3::new(0.0, 0.0, 0.3),
+            ),
+            (
+                JointType::Revolute { axis: Vec3::z() },
+                rpy(half_pi, 0.0, 0.0),
+                Vec3::new(0.0, 0.12, 0.0),
+            ),
+            (
+                JointType::Prismatic { axis: -Vec3::y() },
+                rpy(0.0, 0.0, 0.0),
+                Vec3::new(0.2, 0.0, 0.0),
+            ),
+            (
+                JointType::Revolute { axis: -Vec3::x() },
+                rpy(-half_pi, 0.0, std::f64::consts::PI),
+                Vec3::new(0.1, -0.2, 0.05),
+            ),
+            (
+                JointType::Prismatic { axis: Vec3::z() },
+                rpy(0.0, half_pi, 0.0),
+                Vec3::new(0.0, 0.0, 0.15),
+            ),
+            (
+                JointType::Continuous { axis: Vec3::y() },
+                rpy(0.0, 0.0, 0.0),
+                Vec3::zeros(),
+            ),
+            (
+                JointType::Revolute {
+                    axis: Vec3::new(0.0, 0.6, 0.8),
+                },
+                rpy(half_pi, 0.0, half_pi),
+                Vec3::new(0.0, 0.0, 0.1),
+            ),
+        ];
+        for (k, (kind, r, t)) in kinds.into_iter().enumerate() {
+            let id = b
+                .add_joint(
+                    parent,
+                    &format!("j{k}"),
+                    kind,
+                    Transform::new(r, t),
+                    body(k + 1),
+                )
+                .unwrap();
+            parent = Some(id);
+        }
+        let model = b.build().unwrap();
+        let nv = model.nv();
+        let mut data = Data::new(&model);
+        for _ in 0..4 {
+            let (q, _, _) = state(&model, &mut rng);
+            let M = crba(&model, &mut data, &q).unwrap().clone();
+            let zero = vec![0.0; nv];
+            let bias = rnea(&model, &mut data, &q, &zero, &zero).unwrap().clone();
+            for k in 0..nv {
+                let mut e = vec![0.0; nv];
+                e[k] = 1.0;
+                let col = rnea(&model, &mut data, &q, &zero, &e).unwrap() - &bias;
+                let d = (M.column(k) - col).amax();
+                assert!(d < 1e-12, "floating {floating}, column {k}: {d:e}");
+            }
+        }
+    }
+}

@@ -1,6 +1,7 @@
 //! Mass properties of one rigid body: rotational inertia (point masses, primitive solids,
 //! triangle meshes, compounds of parts), principal axes, Steiner, validity, and the 6x6 spatial
-//! inertia `G`, the pseudo-inertia and physical consistency, the ten inertial parameters `π`.
+//! inertia `G`, the pseudo-inertia and physical consistency, the ten inertial parameters `π`,
+//! and `G`'s principal form (cheap to rotate, for the multibody algorithms).
 
 mod compound;
 mod consistency;

@@ -37,15 +37,22 @@ pub struct PrincipalForm {
 }
 
 impl PrincipalForm {
-    /// The form of `g`; `None` for a body that has none: zero mass with a nonzero first moment
-    /// `h = m c` (no centre of mass), or a non-finite entry.
+    /// The form of `g`; `None` for a body that has none or would lose digits in it (the callers
+    /// then move `G` by the adjoint congruence): a non-finite entry, zero mass with a nonzero
+    /// first moment `h = m c` (no centre of mass), or `m|c|²` larger than `2 max|I_O|` (a tiny
+    /// mass far from the origin, where `I_c = I_O − m[c]ᵀ[c]` would cancel; a physical body
+    /// never gets there, since `tr I_O = tr I_c + 2m|c|²` bounds `m|c|²` by `1.5 max|I_O|`).
     #[must_use]
     pub fn new(g: &SpatialInertia) -> Option<Self> {
-        let (m, h) = (g.mass(), g.first_moment());
-        if m == 0.0 && h != Vec3::zeros() {
+        let (m, h, io) = (g.mass(), g.first_moment(), g.inertia_origin_matrix());
+        let finite = m.is_finite() && h.iter().chain(io.iter()).all(|x| x.is_finite());
+        if !finite || (m == 0.0 && h != Vec3::zeros()) {
             return None;
         }
         let com = if m == 0.0 { Vec3::zeros() } else { h / m };
+        if (m * com.dot(&com)).abs() > 2.0 * io.amax() {
+            return None;
+        }
         // I_c = I_O − m[c]ᵀ[c] (for m = 0 and h = 0, I_c = I_O)
         let ic = *g.inertia_origin_matrix()
             - m * (Mat3::identity() * com.dot(&com) - com * com.transpose());
@@ -56,7 +63,7 @@ impl PrincipalForm {
             && [com, u2, u3]
                 .iter()
                 .all(|v| v.iter().all(|x| x.is_finite()));
-        // a diagonal inertia keeps the frame axes exactly (`RotationalInertia::principal`), so
+        // an exactly diagonal inertia keeps the frame axes (`RotationalInertia::principal`), so
         // its u₂, u₃ are coordinate axes, as is a centre of mass on one axis
         finite.then_some(Self {
             mass: m,
@@ -121,10 +128,51 @@ mod tests {
                 RotationalInertia::new(d[0], d[1], d[2], o[0], o[1], o[2]));
             let t = Transform::new(rotation(e[0], e[1], e[2]), Vec3::from(p));
             let want = g.transformed(&t).matrix();
-            let got = PrincipalForm::new(&g).expect("finite, and h = 0 when m = 0").transformed(&t).matrix();
+            let Some(form) = PrincipalForm::new(&g) else {
+                // only a body whose m|c|² outweighs its inertia about the origin goes without
+                let (mc2, io) = (m * Vec3::from(c).norm_squared(), g.inertia_origin().matrix().amax());
+                prop_assert!(mc2.abs() > 2.0 * io, "no form for m = {m}, c = {c:?}");
+                return Ok(());
+            };
+            let got = form.transformed(&t).matrix();
             let scale = 1.0 + want.amax();
             prop_assert!((got - want).amax() < 1e-13 * scale, "{got} vs {want}");
         }
+    }
+
+    proptest! {
+        /// Tiny masses far from the origin (identified, non-physical parameters): either no form
+        /// (the callers fall back to the adjoint congruence) or one as accurate as that.
+        #[test]
+        fn tiny_masses_keep_their_digits(
+            m in 1e-12..1e-6f64, h in prop::array::uniform3(-1e-3..1e-3f64),
+            d in prop::array::uniform3(0.01..0.2f64), e in prop::array::uniform3(-3.2..3.2f64),
+        ) {
+            let g = SpatialInertia::from_parts(m, Vec3::from(h), RotationalInertia::diagonal(d[0], d[1], d[2]));
+            let t = Transform::new(rotation(e[0], e[1], e[2]), Vec3::new(0.2, -0.1, 0.3));
+            if let Some(f) = PrincipalForm::new(&g) {
+                let want = g.transformed(&t).matrix();
+                prop_assert!((f.transformed(&t).matrix() - want).amax() < 1e-13 * (1.0 + want.amax()));
+            }
+        }
+    }
+
+    /// Non-finite entries have no form (a NaN is carried by the adjoint congruence, not lost in
+    /// an eigen-decomposition).
+    #[test]
+    fn non_finite_bodies_have_no_form() {
+        let nan = SpatialInertia::from_parts(
+            1.0,
+            Vec3::zeros(),
+            RotationalInertia::new(1.0, 1.0, 1.0, f64::NAN, 0.0, 0.0),
+        );
+        assert!(PrincipalForm::new(&nan).is_none());
+        let inf = SpatialInertia::from_parts(
+            f64::INFINITY,
+            Vec3::zeros(),
+            RotationalInertia::diagonal(1.0, 1.0, 1.0),
+        );
+        assert!(PrincipalForm::new(&inf).is_none());
     }
 
     /// A diagonal inertia with the centre of mass on an axis (the usual URDF body) takes the

@@ -125,7 +125,8 @@ pub struct Model {
     /// `(joint, index in q)` of every quaternion (spherical and free-flyer joints).
     pub(crate) quaternions: Vec<(usize, usize)>,
     /// Per joint: `X_T` has exactly the identity rotation (a URDF origin without `rpy`), so that
-    /// `oM_λ X_T X_J(q)` of a revolute joint turns two columns of `R_λ` (no 3x3 product).
+    /// `oM_λ X_T X_J(q)` of a revolute joint turns two columns of `R_λ` and that of a prismatic
+    /// joint keeps `R_λ` (no 3x3 product).
     pub(crate) unrotated: Vec<bool>,
     /// Per joint: `X_T`'s rotation is a signed permutation (a URDF `rpy` in multiples of π/2,
     /// up to the rounding of `cos(π/2)`): column `c` of `R_T` is `s e_k` for `(k, s)` in slot
@@ -135,8 +136,9 @@ pub struct Model {
     /// (`R_λ t` is then a scaled column of `R_λ`).
     pub(crate) placement_translation: Vec<crate::spatial::ModelVec3>,
     /// Per body: its inertia in the form that is cheapest to rotate
-    /// ([`PrincipalForm`](crate::mass::PrincipalForm)), `None` when it has none (zero mass with a
-    /// nonzero first moment). Derived from `inertias` by [`Model::refresh_inertia_forms`].
+    /// ([`PrincipalForm`](crate::mass::PrincipalForm)), `None` when it has none (see
+    /// [`PrincipalForm::new`](crate::mass::PrincipalForm::new)). Derived from `inertias` by
+    /// [`Model::refresh_inertia_forms`].
     pub(crate) principal: Vec<Option<crate::mass::PrincipalForm>>,
     pub(crate) nq: usize,
     pub(crate) nv: usize,

@@ -104,10 +104,11 @@ pub(crate) fn cross_axis(V: &Twist, c: usize, x: f64) -> Twist {
 /// not used (`M` does not depend on it), its children's placements are their `liMi` (no
 /// composition), and a revolute joint whose `X_T` has no rotation turns two columns of `R_λ`
 /// instead of a 3x3 product (when `R_T` is a signed permutation, a URDF `rpy` in multiples of
-/// π/2, `R_λ R_T` picks and signs columns first). Revolute and free-flyer columns skip the
-/// products with the zeros of `S`. Each body's inertia is moved by its
-/// [`PrincipalForm`](crate::mass::PrincipalForm) (≈ 86 operations against ≈ 136 for
-/// `(R I) Rᵀ` and the shift).
+/// π/2, `R_λ R_T` picks and signs columns first), and an unrotated prismatic joint keeps `R_λ`.
+/// Revolute, prismatic and free-flyer columns skip the products with the zeros of `S`. Each
+/// non-root body's inertia is moved by its [`PrincipalForm`](crate::mass::PrincipalForm)
+/// (≈ 86 operations against ≈ 136 for `(R I) Rᵀ` and the shift), or by the adjoint congruence
+/// when it has none.
 #[inline(always)]
 pub(crate) fn root_frame_bodies(
     model: &Model,
