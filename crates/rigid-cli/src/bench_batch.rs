@@ -78,16 +78,10 @@ fn loop_crba_lower(
     d: &mut Data,
 ) -> Result<(), MultibodyError> {
     let (nq, nv) = (m.nq(), m.nv());
-    if nv == 0 {
-        return Ok(()); // nothing to pack (and no columns to cut)
-    }
-    let mut at = 0;
+    let per = nv * (nv + 1) / 2;
     for k in 0..r.n {
         let t = crba(m, d, &r.qs[k * nq..][..nq])?;
-        for (j, column) in t.as_slice().chunks_exact(nv).enumerate() {
-            out[at..at + nv - j].copy_from_slice(&column[j..]);
-            at += nv - j;
-        }
+        batch::pack_lower(t.as_slice(), nv, &mut out[k * per..][..per])?;
     }
     Ok(())
 }

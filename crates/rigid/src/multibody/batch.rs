@@ -152,12 +152,8 @@ impl Batch {
         qs: &[f64],
         mass: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        let nn = model.nv * model.nv;
-        count(model, qs, &[], mass.len(), nn)?;
-        let nq = model.nq;
-        for_each_state(&mut self.datas, mass, nn, |data, k, out| {
-            let m = crba(model, data, &qs[k * nq..(k + 1) * nq])?;
-            out.copy_from_slice(m.as_slice());
+        self.crba_into(model, qs, mass, model.nv * model.nv, |m, _, out| {
+            out.copy_from_slice(m);
             Ok(())
         })
     }
@@ -172,25 +168,51 @@ impl Batch {
         qs: &[f64],
         packed: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        let (nv, nq) = (model.nv, model.nq);
-        let per = nv * (nv + 1) / 2;
-        count(model, qs, &[], packed.len(), per)?;
-        for_each_state(&mut self.datas, packed, per, |data, k, out| {
+        let nv = model.nv;
+        self.crba_into(model, qs, packed, nv * (nv + 1) / 2, pack_lower)
+    }
+
+    /// `write(M(q_k) column-major, nv, out_k)` for every state k, `per` numbers per state.
+    fn crba_into(
+        &mut self,
+        model: &Model,
+        qs: &[f64],
+        out: &mut [f64],
+        per: usize,
+        write: impl Fn(&[f64], usize, &mut [f64]) -> Result<(), DimensionError> + Sync,
+    ) -> Result<(), MultibodyError> {
+        count(model, qs, &[], out.len(), per)?;
+        let (nq, nv) = (model.nq, model.nv);
+        for_each_state(&mut self.datas, out, per, |data, k, out_k| {
             let m = crba(model, data, &qs[k * nq..(k + 1) * nq])?;
-            pack_lower(m.as_slice(), nv, out);
-            Ok(())
+            Ok(write(m.as_slice(), nv, out_k)?)
         })
     }
 }
 
-/// The lower triangle of the column-major `nv x nv` matrix `m`, column by column (LAPACK's packed
-/// storage `'L'`: column `j`'s rows `j..nv` at `j nv − j(j−1)/2`).
-fn pack_lower(m: &[f64], nv: usize, out: &mut [f64]) {
+/// The lower triangle of the column-major `nv x nv` matrix `m` into `out`, column by column
+/// (LAPACK's packed storage `'L'`: column `j`'s rows `j..nv` at `j nv − j(j−1)/2`, which is also
+/// the upper triangle row by row), as [`crba_lower_batch`] writes each state.
+///
+/// ```
+/// let m = [1.0, 2.0, 3.0, 2.0, 4.0, 5.0, 3.0, 5.0, 6.0]; // 3x3, column-major
+/// let mut packed = [0.0; 6];
+/// rigid::multibody::batch::pack_lower(&m, 3, &mut packed)?;
+/// assert_eq!(packed, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+/// # Ok::<(), rigid::error::DimensionError>(())
+/// ```
+///
+/// # Errors
+/// `m` not `nv²` long, or `out` not `nv(nv+1)/2`.
+pub fn pack_lower(m: &[f64], nv: usize, out: &mut [f64]) -> Result<(), DimensionError> {
+    DimensionError::check("m", nv * nv, m.len())?;
+    DimensionError::check("out", nv * (nv + 1) / 2, out.len())?;
     let mut at = 0;
-    for (j, column) in m.chunks_exact(nv).enumerate() {
-        out[at..at + nv - j].copy_from_slice(&column[j..]);
+    for j in 0..nv {
+        out[at..at + nv - j].copy_from_slice(&m[j * nv + j..(j + 1) * nv]);
         at += nv - j;
     }
+    Ok(())
 }
 
 /// Derivatives for many states: `nv x nv` matrices written row-major, one after the other.

@@ -130,21 +130,20 @@ pub(crate) fn root_frame_bodies(
             Some(p) if model.joints[p.0].parent.is_none() => parent_placement(model, i, q),
             Some(p) => {
                 let rMp = &rM[p.0];
-                match j.kind {
+                match (j.kind, model.unrotated[i], model.placement_permutation[i]) {
                     // X_T without rotation: R_λ exp([a] q) turns two columns of R_λ
-                    JointType::Revolute { axis } | JointType::Continuous { axis }
-                        if model.unrotated[i] =>
-                    {
+                    (JointType::Revolute { axis } | JointType::Continuous { axis }, true, _) => {
                         Transform::new(
                             rotate_about(&rMp.rotation, &axis, q[j.idx_q]),
                             model.placement_translation[i].rotated(&rMp.rotation) + rMp.translation,
                         )
                     }
                     // R_T a signed permutation: R_λ R_T picks and signs columns of R_λ
-                    JointType::Revolute { axis } | JointType::Continuous { axis }
-                        if model.placement_permutation[i].is_some() =>
-                    {
-                        let perm = model.placement_permutation[i].unwrap_or([(0, 1.0); 3]);
+                    (
+                        JointType::Revolute { axis } | JointType::Continuous { axis },
+                        false,
+                        Some(perm),
+                    ) => {
                         let R = &rMp.rotation;
                         let RT = Mat3::from_columns(&[
                             R.column(perm[0].0) * perm[0].1,
@@ -157,7 +156,7 @@ pub(crate) fn root_frame_bodies(
                         )
                     }
                     // X_T without rotation: R = R_λ, p = p_λ + R_λ (t + a q)
-                    JointType::Prismatic { axis } if model.unrotated[i] => Transform::new(
+                    (JointType::Prismatic { axis }, true, _) => Transform::new(
                         rMp.rotation,
                         mat3_vec(
                             &rMp.rotation,
