@@ -120,6 +120,7 @@ impl ModelBuilder {
                 quaternions: Vec::new(),
                 unrotated: Vec::new(),
                 placement_permutation: Vec::new(),
+                chain_angles: Vec::new(),
                 placement_translation: Vec::new(),
                 principal: Vec::new(),
                 nq: 0,
@@ -217,6 +218,14 @@ impl ModelBuilder {
         m.unrotated.push(placement.rotation == Mat3::identity());
         m.placement_permutation
             .push(signed_permutation(&placement.rotation));
+        let turned = matches!(
+            kind,
+            JointType::Revolute { .. } | JointType::Continuous { .. }
+        ) && parent.is_some_and(|p| m.joints[p.0].parent.is_some())
+            && (m.unrotated[id] || m.placement_permutation[id].is_some());
+        if turned {
+            m.chain_angles.push(m.nq);
+        }
         m.placement_translation
             .push(crate::spatial::ModelVec3::new(&placement.translation));
         if let Some(o) = kind.quaternion_offset() {

@@ -71,6 +71,8 @@ pub struct Data {
     /// Placements `rMi` in the frame of each tree's root body (CRBA, `M⁻¹`).
     pub(crate) root_placements: Vec<Transform>,
     pub(crate) dof_J: Vec<Twist>,
+    /// `[sin q_k, cos q_k]` for every entry of `q` (CRBA's first pass).
+    pub(crate) sin_cos: Vec<[f64; 2]>,
     pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,
     /// Each body's inertia in a frame common to its tree (Coriolis: the world; `M⁻¹`: the root
@@ -129,6 +131,7 @@ impl Data {
             crba_forces: vec![Wrench::zero(); nv],
             root_placements: vec![Transform::identity(); n],
             dof_J: vec![Twist::zero(); nv],
+            sin_cos: vec![[0.0; 2]; model.nq()],
             u: DVector::zeros(nv),
             spatial_velocities: vec![Twist::zero(); n],
             world_inertias: vec![SpatialInertia::zero(); n],

@@ -64,6 +64,12 @@ fn rodrigues(a: &Vec3, s: f64, c: f64) -> Mat3 {
 #[inline(always)]
 pub(crate) fn rotate_about(r: &Mat3, a: &Vec3, q: f64) -> Mat3 {
     let (s, c) = super::sincos::sin_cos(q);
+    rotate_about_sc(r, a, s, c)
+}
+
+/// [`rotate_about`] with `s = sin q` and `c = cos q` given.
+#[inline(always)]
+pub(crate) fn rotate_about_sc(r: &Mat3, a: &Vec3, s: f64, c: f64) -> Mat3 {
     // columns j and k turn: u' = c u + s w, w' = c w - s u (constant indices in each arm)
     #[inline(always)]
     fn turn(r: &Mat3, j: usize, k: usize, s: f64, c: f64) -> Mat3 {

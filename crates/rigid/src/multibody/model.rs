@@ -132,6 +132,10 @@ pub struct Model {
     /// up to the rounding of `cos(π/2)`): column `c` of `R_T` is `s e_k` for `(k, s)` in slot
     /// `c`, so that `R_λ R_T` picks and signs columns of `R_λ` instead of a 3x3 product.
     pub(crate) placement_permutation: Vec<Option<[(usize, f64); 3]>>,
+    /// The `q` indices of the revolute joints whose placement CRBA's first pass turns by
+    /// `rotate_about` (a parent that is not a root, `X_T` unrotated or a signed permutation):
+    /// their sines and cosines are computed ahead of the chain, two at a time.
+    pub(crate) chain_angles: Vec<usize>,
     /// Per joint: `X_T`'s translation `t`, kept as `s e_k` when it lies on a coordinate axis
     /// (`R_λ t` is then a scaled column of `R_λ`).
     pub(crate) placement_translation: Vec<crate::spatial::ModelVec3>,

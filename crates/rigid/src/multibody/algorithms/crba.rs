@@ -57,6 +57,7 @@ pub fn crba<'a>(
         &mut data.root_placements,
         &mut data.dof_J,
         &mut data.composite_inertias,
+        &mut data.sin_cos,
     );
     let n = model.joints.len();
     let nv = model.nv;

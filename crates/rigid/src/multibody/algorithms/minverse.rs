@@ -84,6 +84,7 @@ pub(crate) fn minverse_unchecked(
         &mut data.root_placements,
         &mut data.dof_J,
         &mut data.world_inertias,
+        &mut data.sin_cos,
     );
     let n = model.joints.len();
     let nv = model.nv;

@@ -36,7 +36,7 @@ pub(crate) use minverse::minverse_unchecked;
 pub(crate) use rnea::check_fext;
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 
-use super::joint::rotate_about;
+use super::joint::rotate_about_sc;
 use super::{JointType, Model};
 use crate::mass::SpatialInertia;
 use crate::spatial::{mat3_vec, Mat3, Transform, Twist, Vec3};
@@ -97,7 +97,9 @@ pub(crate) fn cross_axis(V: &Twist, c: usize, x: f64) -> Twist {
 /// The first pass of [`crba`] and [`compute_minverse`]: every body posed in the frame {r} of its
 /// tree's root body (the body moved by a joint without a parent), `rMi = rM_{λ(i)} liMi` with
 /// `rM_root = 1`, its joint columns `J_k = [Ad_{rMi}] S_k` into `J` and its inertia
-/// `rG_i = [Ad_{rMi⁻¹}]ᵀ G_i [Ad_{rMi⁻¹}]` into `G`.
+/// `rG_i = [Ad_{rMi⁻¹}]ᵀ G_i [Ad_{rMi⁻¹}]` into `G`. The sines and cosines of the angles it
+/// turns by `rotate_about` (`Model::chain_angles`) are computed first, two at a time, into `sc`
+/// (indexed by `q`'s entries), so that they are off the chain's critical path.
 ///
 /// `M` and `M⁻¹` pair twists with wrenches, so any frame common to a tree gives them, and trees
 /// share no dof. In the root body's frame the root's columns are its constant `S` and its `q` is
@@ -116,7 +118,9 @@ pub(crate) fn root_frame_bodies(
     rM: &mut [Transform],
     J: &mut [Twist],
     G: &mut [SpatialInertia],
+    sc: &mut [[f64; 2]],
 ) {
+    super::sincos::sin_cos_at(q, &model.chain_angles, sc);
     for i in 0..model.joints.len() {
         let j = &model.joints[i];
         let rMi = match j.parent {
@@ -134,7 +138,7 @@ pub(crate) fn root_frame_bodies(
                     // X_T without rotation: R_λ exp([a] q) turns two columns of R_λ
                     (JointType::Revolute { axis } | JointType::Continuous { axis }, true, _) => {
                         Transform::new(
-                            rotate_about(&rMp.rotation, &axis, q[j.idx_q]),
+                            rotate_about_sc(&rMp.rotation, &axis, sc[j.idx_q][0], sc[j.idx_q][1]),
                             model.placement_translation[i].rotated(&rMp.rotation) + rMp.translation,
                         )
                     }
@@ -151,7 +155,7 @@ pub(crate) fn root_frame_bodies(
                             R.column(perm[2].0) * perm[2].1,
                         ]);
                         Transform::new(
-                            rotate_about(&RT, &axis, q[j.idx_q]),
+                            rotate_about_sc(&RT, &axis, sc[j.idx_q][0], sc[j.idx_q][1]),
                             model.placement_translation[i].rotated(R) + rMp.translation,
                         )
                     }

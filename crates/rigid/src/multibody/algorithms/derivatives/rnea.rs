@@ -165,6 +165,7 @@ fn derivatives_unchecked(
         &mut data.root_placements,
         &mut data.dof_J,
         &mut data.composite_inertias,
+        &mut data.sin_cos,
     );
     let (v, a) = (va.map(|x| x.0), va.map(|x| x.1));
     forward_velocity(model, data, q, v, fext);
