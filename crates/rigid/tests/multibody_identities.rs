@@ -398,8 +398,8 @@ fn minverse_keeps_no_state_from_a_previous_call() {
 
 /// A chain built to take every shortcut of CRBA's first pass, each checked against RNEA: column
 /// `k` of `M` is `rnea(q, 0, e_k) − rnea(q, 0, 0)` with gravity off. The shortcuts: placements
-/// whose rotation is a signed permutation (`rpy` in multiples of π/2, as URDF files write them),
-/// unrotated ones, offsets and centres of mass on one axis, diagonal inertias (coordinate
+/// whose rotation is a signed permutation (`rpy` in multiples of π/2, as URDF files write them)
+/// or a turn about one coordinate axis, unrotated ones, offsets and centres of mass on one axis, diagonal inertias (coordinate
 /// principal axes), prismatic joints along ±axes, behind a fixed root and behind a free flyer.
 #[test]
 fn crba_shortcuts_equal_rnea_columns() {
@@ -475,6 +475,22 @@ fn crba_shortcuts_equal_rnea_columns() {
                 },
                 rpy(half_pi, 0.0, half_pi),
                 Vec3::new(0.0, 0.0, 0.1),
+            ),
+            // X_T turns about one coordinate axis (UR5's `rpy="0 1.570796325 0"`, Panda's hand)
+            (
+                JointType::Revolute { axis: Vec3::z() },
+                rpy(0.0, 1.570796325, 0.0),
+                Vec3::new(0.0, 0.1, 0.0),
+            ),
+            (
+                JointType::Prismatic { axis: Vec3::y() },
+                rpy(0.0, 0.0, -std::f64::consts::FRAC_PI_4),
+                Vec3::new(0.0, 0.0, 0.06),
+            ),
+            (
+                JointType::Revolute { axis: -Vec3::x() },
+                rpy(0.3, 0.0, 0.0),
+                Vec3::new(0.05, 0.0, 0.0),
             ),
         ];
         for (k, (kind, r, t)) in kinds.into_iter().enumerate() {

@@ -121,6 +121,7 @@ impl ModelBuilder {
                 unrotated: Vec::new(),
                 placement_permutation: Vec::new(),
                 chain_angles: Vec::new(),
+                placement_turn: Vec::new(),
                 placement_translation: Vec::new(),
                 principal: Vec::new(),
                 nq: 0,
@@ -218,11 +219,19 @@ impl ModelBuilder {
         m.unrotated.push(placement.rotation == Mat3::identity());
         m.placement_permutation
             .push(signed_permutation(&placement.rotation));
+        m.placement_turn
+            .push(if m.placement_permutation[id].is_none() {
+                coordinate_turn(&placement.rotation)
+            } else {
+                None
+            });
         let turned = matches!(
             kind,
             JointType::Revolute { .. } | JointType::Continuous { .. }
         ) && parent.is_some_and(|p| m.joints[p.0].parent.is_some())
-            && (m.unrotated[id] || m.placement_permutation[id].is_some());
+            && (m.unrotated[id]
+                || m.placement_permutation[id].is_some()
+                || m.placement_turn[id].is_some());
         if turned {
             m.chain_angles.push(m.nq);
         }
@@ -456,4 +465,28 @@ fn signed_permutation(r: &Mat3) -> Option<[(usize, f64); 3]> {
         *slot = (k, col[k].signum());
     }
     Some(out)
+}
+
+/// `Some((e_k, sin θ, cos θ))` when `r` is a rotation by `θ` about the coordinate axis `e_k`
+/// (a URDF `rpy` with one nonzero angle, within 4 ulps), so that `R_λ r` turns two columns of
+/// `R_λ` (`rotate_about`) instead of a 3x3 product.
+fn coordinate_turn(r: &Mat3) -> Option<(Vec3, f64, f64)> {
+    const TOL: f64 = 4.0 * f64::EPSILON;
+    let k = (0..3).find(|&k| (r[(k, k)] - 1.0).abs() <= TOL)?;
+    let off = (0..3).filter(|&t| t != k);
+    if off
+        .clone()
+        .any(|t| r[(k, t)].abs() > TOL || r[(t, k)].abs() > TOL)
+    {
+        return None;
+    }
+    // about e_k, the plane (j, l) in cyclic order turns: r_jj = r_ll = c, r_lj = -r_jl = s
+    let (j, l) = ((k + 1) % 3, (k + 2) % 3);
+    let (s, c) = (r[(l, j)], r[(j, j)]);
+    if (r[(l, l)] - c).abs() > TOL || (r[(j, l)] + s).abs() > TOL {
+        return None;
+    }
+    let mut e = Vec3::zeros();
+    e[k] = 1.0;
+    Some((e, s, c))
 }

@@ -136,6 +136,10 @@ pub struct Model {
     /// `rotate_about` (a parent that is not a root, `X_T` unrotated or a signed permutation):
     /// their sines and cosines are computed ahead of the chain, two at a time.
     pub(crate) chain_angles: Vec<usize>,
+    /// Per joint, when `X_T`'s rotation is not a signed permutation: `Some((e_k, sin θ, cos θ))`
+    /// if it turns by `θ` about a coordinate axis `e_k` (a URDF `rpy` with one nonzero angle), so
+    /// that `R_λ R_T` turns two columns of `R_λ` (`rotate_about`) instead of a 3x3 product.
+    pub(crate) placement_turn: Vec<Option<(crate::spatial::Vec3, f64, f64)>>,
     /// Per joint: `X_T`'s translation `t`, kept as `s e_k` when it lies on a coordinate axis
     /// (`R_λ t` is then a scaled column of `R_λ`).
     pub(crate) placement_translation: Vec<crate::spatial::ModelVec3>,

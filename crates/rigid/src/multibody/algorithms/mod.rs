@@ -106,7 +106,9 @@ pub(crate) fn cross_axis(V: &Twist, c: usize, x: f64) -> Twist {
 /// not used (`M` does not depend on it), its children's placements are their `liMi` (no
 /// composition), and a revolute joint whose `X_T` has no rotation turns two columns of `R_λ`
 /// instead of a 3x3 product (when `R_T` is a signed permutation, a URDF `rpy` in multiples of
-/// π/2, `R_λ R_T` picks and signs columns first), and an unrotated prismatic joint keeps `R_λ`.
+/// π/2, `R_λ R_T` picks and signs columns first; when it turns about one coordinate axis, as
+/// UR5's `rpy="0 1.570796325 0"`, `R_λ R_T` turns two columns too), and an unrotated prismatic
+/// joint keeps `R_λ`.
 /// Revolute, prismatic and free-flyer columns skip the products with the zeros of `S`. Each
 /// non-root body's inertia is moved by its [`PrincipalForm`](crate::mass::PrincipalForm)
 /// (≈ 86 operations against ≈ 136 for `(R I) Rᵀ` and the shift), or by the adjoint congruence
@@ -134,11 +136,18 @@ pub(crate) fn root_frame_bodies(
             Some(p) if model.joints[p.0].parent.is_none() => parent_placement(model, i, q),
             Some(p) => {
                 let rMp = &rM[p.0];
-                match (j.kind, model.unrotated[i], model.placement_permutation[i]) {
+                let sc_i = |k: usize| (sc[k][0], sc[k][1]);
+                match (
+                    j.kind,
+                    model.unrotated[i],
+                    model.placement_permutation[i],
+                    model.placement_turn[i],
+                ) {
                     // X_T without rotation: R_λ exp([a] q) turns two columns of R_λ
-                    (JointType::Revolute { axis } | JointType::Continuous { axis }, true, _) => {
+                    (JointType::Revolute { axis } | JointType::Continuous { axis }, true, ..) => {
+                        let (s, c) = sc_i(j.idx_q);
                         Transform::new(
-                            rotate_about_sc(&rMp.rotation, &axis, sc[j.idx_q][0], sc[j.idx_q][1]),
+                            rotate_about_sc(&rMp.rotation, &axis, s, c),
                             model.placement_translation[i].rotated(&rMp.rotation) + rMp.translation,
                         )
                     }
@@ -147,6 +156,7 @@ pub(crate) fn root_frame_bodies(
                         JointType::Revolute { axis } | JointType::Continuous { axis },
                         false,
                         Some(perm),
+                        _,
                     ) => {
                         let R = &rMp.rotation;
                         let RT = Mat3::from_columns(&[
@@ -154,13 +164,36 @@ pub(crate) fn root_frame_bodies(
                             R.column(perm[1].0) * perm[1].1,
                             R.column(perm[2].0) * perm[2].1,
                         ]);
+                        let (s, c) = sc_i(j.idx_q);
                         Transform::new(
-                            rotate_about_sc(&RT, &axis, sc[j.idx_q][0], sc[j.idx_q][1]),
+                            rotate_about_sc(&RT, &axis, s, c),
                             model.placement_translation[i].rotated(R) + rMp.translation,
                         )
                     }
+                    // R_T a turn about e_k: R_λ R_T turns two columns of R_λ, then the joint two
+                    (
+                        JointType::Revolute { axis } | JointType::Continuous { axis },
+                        false,
+                        None,
+                        Some((e, sT, cT)),
+                    ) => {
+                        let (s, c) = sc_i(j.idx_q);
+                        let RT = rotate_about_sc(&rMp.rotation, &e, sT, cT);
+                        Transform::new(
+                            rotate_about_sc(&RT, &axis, s, c),
+                            model.placement_translation[i].rotated(&rMp.rotation) + rMp.translation,
+                        )
+                    }
+                    // the same for a prismatic joint: R = R_λ R_T, p = p_λ + R_λ t + R (a q)
+                    (JointType::Prismatic { axis }, false, None, Some((e, sT, cT))) => {
+                        let R = rotate_about_sc(&rMp.rotation, &e, sT, cT);
+                        let p = model.placement_translation[i].rotated(&rMp.rotation)
+                            + mat3_vec(&R, &(axis * q[j.idx_q]))
+                            + rMp.translation;
+                        Transform::new(R, p)
+                    }
                     // X_T without rotation: R = R_λ, p = p_λ + R_λ (t + a q)
-                    (JointType::Prismatic { axis }, true, _) => Transform::new(
+                    (JointType::Prismatic { axis }, true, ..) => Transform::new(
                         rMp.rotation,
                         mat3_vec(
                             &rMp.rotation,
