@@ -228,10 +228,12 @@ impl ModelBuilder {
         let turned = matches!(
             kind,
             JointType::Revolute { .. } | JointType::Continuous { .. }
-        ) && parent.is_some_and(|p| m.joints[p.0].parent.is_some())
-            && (m.unrotated[id]
+        ) && parent.is_some_and(|p| {
+            m.joints[p.0].parent.is_none()
+                || m.unrotated[id]
                 || m.placement_permutation[id].is_some()
-                || m.placement_turn[id].is_some());
+                || m.placement_turn[id].is_some()
+        });
         if turned {
             m.chain_angles.push(m.nq);
         }

@@ -133,7 +133,8 @@ pub struct Model {
     /// `c`, so that `R_λ R_T` picks and signs columns of `R_λ` instead of a 3x3 product.
     pub(crate) placement_permutation: Vec<Option<[(usize, f64); 3]>>,
     /// The `q` indices of the revolute joints whose placement CRBA's first pass turns by
-    /// `rotate_about` (a parent that is not a root, `X_T` unrotated or a signed permutation):
+    /// `rotate_about` (a root's children; deeper, `X_T` unrotated, a signed permutation or a
+    /// turn about one axis):
     /// their sines and cosines are computed ahead of the chain, two at a time.
     pub(crate) chain_angles: Vec<usize>,
     /// Per joint, when `X_T`'s rotation is not a signed permutation: `Some((e_k, sin θ, cos θ))`

@@ -133,7 +133,17 @@ pub(crate) fn root_frame_bodies(
                 rM[i] = Transform::identity();
                 continue;
             }
-            Some(p) if model.joints[p.0].parent.is_none() => parent_placement(model, i, q),
+            // a root's child: rMi = liMi = X_T X_J(q)
+            Some(p) if model.joints[p.0].parent.is_none() => match j.kind {
+                JointType::Revolute { axis } | JointType::Continuous { axis } => {
+                    let [s, c] = sc[j.idx_q];
+                    Transform::new(
+                        rotate_about_sc(&j.placement.rotation, &axis, s, c),
+                        j.placement.translation,
+                    )
+                }
+                _ => parent_placement(model, i, q),
+            },
             Some(p) => {
                 let rMp = &rM[p.0];
                 let sc_i = |k: usize| (sc[k][0], sc[k][1]);
