@@ -73,23 +73,25 @@ pub fn crba<'a>(
         if ji.parent.is_none() && ji.kind == JointType::FreeFlyer {
             // J = 1₆ in the root frame: the 6x6 block is Ic itself, row r of column l is F_l[r]
             let (r0, G) = (ji.idx_v, Ic.matrix());
-            for (c, col) in M.chunks_exact_mut(nv).skip(r0).take(6).enumerate() {
+            let forces = &data.crba_forces[r0 + 6..end_v];
+            let mut cols = M[r0 * nv..(r0 + 6) * nv].chunks_exact_mut(nv);
+            let mut col = |c: usize| {
+                let col = cols.next().expect("six columns");
                 col[r0..r0 + 6].copy_from_slice(G.column(c).as_slice());
-                // upper triangle, row r0 + c: M[r0 + c, l] = F_l[c] for the subtree's l
-                for (m, F) in col[r0 + 6..end_v]
-                    .iter_mut()
-                    .zip(&data.crba_forces[r0 + 6..end_v])
-                {
-                    *m = if c < 3 { F.m[c] } else { F.f[c - 3] };
-                }
+                &mut col[r0 + 6..end_v]
+            };
+            // the columns cut to the length of `forces`, so that the loop below has no index test
+            let n = forces.len();
+            let [c0, c1, c2, c3, c4, c5] =
+                [col(0), col(1), col(2), col(3), col(4), col(5)].map(|c| &mut c[..n]);
+            // lower triangle, rows l of the root's columns: M[l, r0 + c] = F_l[c], one pass over
+            // the F_l with six stores each
+            for (t, F) in forces.iter().enumerate() {
+                (c0[t], c1[t], c2[t]) = (F.m.x, F.m.y, F.m.z);
+                (c3[t], c4[t], c5[t]) = (F.f.x, F.f.y, F.f.z);
             }
-            // lower triangle: column l, rows r0..r0 + 6
-            for (col, F) in M
-                .chunks_exact_mut(nv)
-                .take(end_v)
-                .skip(r0 + 6)
-                .zip(&data.crba_forces[r0 + 6..end_v])
-            {
+            // upper triangle, the root's rows of the later columns l: F_l
+            for (col, F) in M.chunks_exact_mut(nv).take(end_v).skip(r0 + 6).zip(forces) {
                 col[r0..r0 + 6].copy_from_slice(&[F.m.x, F.m.y, F.m.z, F.f.x, F.f.y, F.f.z]);
             }
             for k in dofs {
