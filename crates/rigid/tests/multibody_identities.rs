@@ -397,9 +397,10 @@ fn minverse_keeps_no_state_from_a_previous_call() {
 }
 
 /// A chain built to take every shortcut of CRBA's first pass, each checked against RNEA: column
-/// `k` of `M` is `rnea(q, 0, e_k) − rnea(q, 0, 0)` with gravity off. The shortcuts: placements
-/// whose rotation is a signed permutation (`rpy` in multiples of π/2, as URDF files write them)
-/// or a turn about one coordinate axis, unrotated ones, offsets and centres of mass on one axis, diagonal inertias (coordinate
+/// `k` of `M` is `rnea(q, 0, e_k) − rnea(q, 0, 0)` with gravity off; `M⁻¹` (the same first pass)
+/// times `M` is the identity. The shortcuts: placements whose rotation is a signed permutation
+/// (`rpy` in multiples of π/2, as URDF files write them) or a turn about one coordinate axis,
+/// unrotated ones, offsets and centres of mass on one axis, diagonal inertias (coordinate
 /// principal axes), prismatic joints along ±axes, behind a fixed root and behind a free flyer.
 #[test]
 fn crba_shortcuts_equal_rnea_columns() {
@@ -520,6 +521,51 @@ fn crba_shortcuts_equal_rnea_columns() {
                 let d = (M.column(k) - col).amax();
                 assert!(d < 1e-12, "floating {floating}, column {k}: {d:e}");
             }
+            let Minv = compute_minverse(&model, &mut data, &q).unwrap().clone();
+            let d = (Minv * &M - nalgebra::DMatrix::<f64>::identity(nv, nv)).amax();
+            assert!(d < 1e-10, "floating {floating}: M⁻¹ M − 1 = {d:e}");
         }
     }
+}
+
+/// A `Data` made for a model with the same numbers of joints and dofs but another `nq` (a planar
+/// root, nq = 3, against a spherical one, nq = 4, both nv = 3) is refused with `DataMismatch`,
+/// not a panic in the buffers sized by `nq`.
+#[test]
+fn data_of_another_nq_is_a_data_mismatch() {
+    use rigid::mass::SpatialInertia;
+    use rigid::spatial::{Transform, Vec3};
+    let tree = |root: JointType| {
+        let mut b = ModelBuilder::new("two");
+        let body = SpatialInertia::from_com(
+            1.0,
+            Vec3::new(0.1, 0.0, 0.0),
+            rigid::mass::RotationalInertia::diagonal(0.01, 0.02, 0.03),
+        );
+        let r = b
+            .add_joint(None, "root", root, Transform::identity(), body)
+            .unwrap();
+        b.add_joint(
+            Some(r),
+            "elbow",
+            JointType::Revolute { axis: Vec3::z() },
+            Transform::new(rigid::spatial::Mat3::identity(), Vec3::new(0.3, 0.0, 0.0)),
+            body,
+        )
+        .unwrap();
+        b.build().unwrap()
+    };
+    let (planar, spherical) = (tree(JointType::Planar), tree(JointType::Spherical));
+    assert_eq!((planar.nv(), spherical.nv()), (4, 4));
+    assert_ne!(planar.nq(), spherical.nq());
+    let mut data = Data::new(&planar);
+    let q = neutral(&spherical);
+    assert!(matches!(
+        crba(&spherical, &mut data, q.as_slice()),
+        Err(MultibodyError::DataMismatch { .. })
+    ));
+    assert!(matches!(
+        compute_minverse(&spherical, &mut data, q.as_slice()),
+        Err(MultibodyError::DataMismatch { .. })
+    ));
 }

@@ -165,6 +165,7 @@ impl Regressor {
         if self.y.ncols() != 10 * model.njoints() || self.y.nrows() != model.nv {
             return Err(MultibodyError::DataMismatch {
                 njoints: self.y.ncols() / 10,
+                nq: self.data.sin_cos.len(),
                 nv: self.y.nrows(),
             });
         }

@@ -225,16 +225,7 @@ impl ModelBuilder {
             } else {
                 None
             });
-        let turned = matches!(
-            kind,
-            JointType::Revolute { .. } | JointType::Continuous { .. }
-        ) && parent.is_some_and(|p| {
-            m.joints[p.0].parent.is_none()
-                || m.unrotated[id]
-                || m.placement_permutation[id].is_some()
-                || m.placement_turn[id].is_some()
-        });
-        if turned {
+        if m.reads_chain_angle(id) {
             m.chain_angles.push(m.nq);
         }
         m.placement_translation
@@ -474,14 +465,12 @@ fn signed_permutation(r: &Mat3) -> Option<[(usize, f64); 3]> {
 /// `R_λ` (`rotate_about`) instead of a 3x3 product.
 fn coordinate_turn(r: &Mat3) -> Option<(Vec3, f64, f64)> {
     const TOL: f64 = 4.0 * f64::EPSILON;
-    let k = (0..3).find(|&k| (r[(k, k)] - 1.0).abs() <= TOL)?;
-    let off = (0..3).filter(|&t| t != k);
-    if off
-        .clone()
-        .any(|t| r[(k, t)].abs() > TOL || r[(t, k)].abs() > TOL)
-    {
-        return None;
-    }
+    // the axis: r_kk = 1 and the rest of row and column k zero (every k tried: a tiny turn
+    // about a later axis also has r_kk = 1 on an earlier k)
+    let k = (0..3).find(|&k| {
+        (r[(k, k)] - 1.0).abs() <= TOL
+            && (0..3).all(|t| t == k || (r[(k, t)].abs() <= TOL && r[(t, k)].abs() <= TOL))
+    })?;
     // about e_k, the plane (j, l) in cyclic order turns: r_jj = r_ll = c, r_lj = -r_jl = s
     let (j, l) = ((k + 1) % 3, (k + 2) % 3);
     let (s, c) = (r[(l, j)], r[(j, j)]);

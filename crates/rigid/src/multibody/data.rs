@@ -71,7 +71,8 @@ pub struct Data {
     /// Placements `rMi` in the frame of each tree's root body (CRBA, `M⁻¹`).
     pub(crate) root_placements: Vec<Transform>,
     pub(crate) dof_J: Vec<Twist>,
-    /// `[sin q_k, cos q_k]` for every entry of `q` (CRBA's first pass).
+    /// `[sin q_k, cos q_k]` for the entries `k` of `q` listed in `Model::chain_angles`, written
+    /// by the first pass of CRBA, `M⁻¹` and the RNEA derivatives (the other entries are unused).
     pub(crate) sin_cos: Vec<[f64; 2]>,
     pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,

@@ -186,11 +186,14 @@ pub enum MultibodyError {
     /// The mass matrix is not positive definite (Cholesky failed).
     #[error("mass matrix is not positive definite")]
     NotPositiveDefinite,
-    /// A [`Data`] made for another model (different numbers of joints or degrees of freedom).
-    #[error("data was made for another model ({njoints} joints, nv = {nv})")]
+    /// A [`Data`] made for another model (different numbers of joints, configuration
+    /// coordinates or degrees of freedom).
+    #[error("data was made for another model ({njoints} joints, nq = {nq}, nv = {nv})")]
     DataMismatch {
         /// Joints the data was made for.
         njoints: usize,
+        /// Configuration coordinates the data was made for.
+        nq: usize,
         /// Degrees of freedom the data was made for.
         nv: usize,
     },
@@ -224,10 +227,12 @@ pub(crate) fn check_q(model: &Model, q: &[f64]) -> Result<(), MultibodyError> {
 pub(crate) fn check_data(model: &Model, data: &Data) -> Result<(), MultibodyError> {
     if data.placements.len() != model.njoints()
         || data.tau.len() != model.nv
+        || data.sin_cos.len() != model.nq
         || data.frame_placements.len() != model.frames.len()
     {
         return Err(MultibodyError::DataMismatch {
             njoints: data.placements.len(),
+            nq: data.sin_cos.len(),
             nv: data.tau.len(),
         });
     }

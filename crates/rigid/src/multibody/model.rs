@@ -132,10 +132,9 @@ pub struct Model {
     /// up to the rounding of `cos(π/2)`): column `c` of `R_T` is `s e_k` for `(k, s)` in slot
     /// `c`, so that `R_λ R_T` picks and signs columns of `R_λ` instead of a 3x3 product.
     pub(crate) placement_permutation: Vec<Option<[(usize, f64); 3]>>,
-    /// The `q` indices of the revolute joints whose placement CRBA's first pass turns by
-    /// `rotate_about` (a root's children; deeper, `X_T` unrotated, a signed permutation or a
-    /// turn about one axis):
-    /// their sines and cosines are computed ahead of the chain, two at a time.
+    /// The `q` indices of the joints for which [`Model::reads_chain_angle`] holds: the first pass
+    /// of CRBA, `M⁻¹` and the RNEA derivatives computes their sines and cosines ahead of the
+    /// chain, several at a time (four per AVX2 register, else two).
     pub(crate) chain_angles: Vec<usize>,
     /// Per joint, when `X_T`'s rotation is not a signed permutation: `Some((e_k, sin θ, cos θ))`
     /// if it turns by `θ` about a coordinate axis `e_k` (a URDF `rpy` with one nonzero angle), so
@@ -154,6 +153,23 @@ pub struct Model {
 }
 
 impl Model {
+    /// Whether the first pass of CRBA, `M⁻¹` and the RNEA derivatives (`root_frame_bodies`)
+    /// turns joint `i` by a sine and cosine computed ahead of the chain: a revolute joint that is
+    /// a root's child, or deeper with `X_T` unrotated, a signed permutation or a turn about one
+    /// coordinate axis. The one definition behind `chain_angles` and the pass's match arms.
+    pub(crate) fn reads_chain_angle(&self, i: usize) -> bool {
+        let j = &self.joints[i];
+        matches!(
+            j.kind,
+            JointType::Revolute { .. } | JointType::Continuous { .. }
+        ) && j.parent.is_some_and(|p| {
+            self.joints[p.0].parent.is_none()
+                || self.unrotated[i]
+                || self.placement_permutation[i].is_some()
+                || self.placement_turn[i].is_some()
+        })
+    }
+
     /// Recomputes what is derived from the body inertias; called whenever `inertias` changes.
     pub(crate) fn refresh_inertia_forms(&mut self) {
         self.principal = self

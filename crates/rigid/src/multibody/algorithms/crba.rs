@@ -81,9 +81,9 @@ pub fn crba<'a>(
                 &mut col[r0 + 6..end_v]
             };
             // the columns cut to the length of `forces`, so that the loop below has no index test
-            let n = forces.len();
+            let len = forces.len();
             let [c0, c1, c2, c3, c4, c5] =
-                [col(0), col(1), col(2), col(3), col(4), col(5)].map(|c| &mut c[..n]);
+                [col(0), col(1), col(2), col(3), col(4), col(5)].map(|c| &mut c[..len]);
             // lower triangle, rows l of the root's columns: M[l, r0 + c] = F_l[c], one pass over
             // the F_l with six stores each
             for (t, F) in forces.iter().enumerate() {

@@ -94,12 +94,14 @@ pub(crate) fn cross_axis(V: &Twist, c: usize, x: f64) -> Twist {
     }
 }
 
-/// The first pass of [`crba`] and [`compute_minverse`]: every body posed in the frame {r} of its
+/// The first pass of [`crba`], [`compute_minverse`] and [`rnea_derivatives`]: every body posed
+/// in the frame {r} of its
 /// tree's root body (the body moved by a joint without a parent), `rMi = rM_{λ(i)} liMi` with
 /// `rM_root = 1`, its joint columns `J_k = [Ad_{rMi}] S_k` into `J` and its inertia
 /// `rG_i = [Ad_{rMi⁻¹}]ᵀ G_i [Ad_{rMi⁻¹}]` into `G`. The sines and cosines of the angles it
-/// turns by `rotate_about` (`Model::chain_angles`) are computed first, two at a time, into `sc`
-/// (indexed by `q`'s entries), so that they are off the chain's critical path.
+/// turns by (`Model::chain_angles`) are computed first, several at a time (four per AVX2
+/// register, else two), into `sc` (indexed by `q`'s entries), so that they are off the chain's
+/// critical path.
 ///
 /// `M` and `M⁻¹` pair twists with wrenches, so any frame common to a tree gives them, and trees
 /// share no dof. In the root body's frame the root's columns are its constant `S` and its `q` is
@@ -108,7 +110,8 @@ pub(crate) fn cross_axis(V: &Twist, c: usize, x: f64) -> Twist {
 /// instead of a 3x3 product (when `R_T` is a signed permutation, a URDF `rpy` in multiples of
 /// π/2, `R_λ R_T` picks and signs columns first; when it turns about one coordinate axis, as
 /// UR5's `rpy="0 1.570796325 0"`, `R_λ R_T` turns two columns too), and an unrotated prismatic
-/// joint keeps `R_λ`.
+/// joint keeps `R_λ` (one whose `X_T` turns about a coordinate axis takes `R_λ R_T` by two
+/// columns, `p = p_λ + R_λ t + R a q`).
 /// Revolute, prismatic and free-flyer columns skip the products with the zeros of `S`. Each
 /// non-root body's inertia is moved by its [`PrincipalForm`](crate::mass::PrincipalForm)
 /// (≈ 86 operations against ≈ 136 for `(R I) Rᵀ` and the shift), or by the adjoint congruence
@@ -125,6 +128,15 @@ pub(crate) fn root_frame_bodies(
     super::sincos::sin_cos_at(q, &model.chain_angles, sc);
     for i in 0..model.joints.len() {
         let j = &model.joints[i];
+        // the joint's precomputed (sin q, cos q): read only by the arms `reads_chain_angle` names
+        let angle = || {
+            debug_assert!(
+                model.reads_chain_angle(i),
+                "joint {i} has no precomputed angle"
+            );
+            let [s, c] = sc[j.idx_q];
+            (s, c)
+        };
         let rMi = match j.parent {
             None => {
                 G[i] = model.inertias[i];
@@ -136,7 +148,7 @@ pub(crate) fn root_frame_bodies(
             // a root's child: rMi = liMi = X_T X_J(q)
             Some(p) if model.joints[p.0].parent.is_none() => match j.kind {
                 JointType::Revolute { axis } | JointType::Continuous { axis } => {
-                    let [s, c] = sc[j.idx_q];
+                    let (s, c) = angle();
                     Transform::new(
                         rotate_about_sc(&j.placement.rotation, &axis, s, c),
                         j.placement.translation,
@@ -146,7 +158,6 @@ pub(crate) fn root_frame_bodies(
             },
             Some(p) => {
                 let rMp = &rM[p.0];
-                let sc_i = |k: usize| (sc[k][0], sc[k][1]);
                 match (
                     j.kind,
                     model.unrotated[i],
@@ -155,7 +166,7 @@ pub(crate) fn root_frame_bodies(
                 ) {
                     // X_T without rotation: R_λ exp([a] q) turns two columns of R_λ
                     (JointType::Revolute { axis } | JointType::Continuous { axis }, true, ..) => {
-                        let (s, c) = sc_i(j.idx_q);
+                        let (s, c) = angle();
                         Transform::new(
                             rotate_about_sc(&rMp.rotation, &axis, s, c),
                             model.placement_translation[i].rotated(&rMp.rotation) + rMp.translation,
@@ -174,7 +185,7 @@ pub(crate) fn root_frame_bodies(
                             R.column(perm[1].0) * perm[1].1,
                             R.column(perm[2].0) * perm[2].1,
                         ]);
-                        let (s, c) = sc_i(j.idx_q);
+                        let (s, c) = angle();
                         Transform::new(
                             rotate_about_sc(&RT, &axis, s, c),
                             model.placement_translation[i].rotated(R) + rMp.translation,
@@ -187,7 +198,7 @@ pub(crate) fn root_frame_bodies(
                         None,
                         Some((e, sT, cT)),
                     ) => {
-                        let (s, c) = sc_i(j.idx_q);
+                        let (s, c) = angle();
                         let RT = rotate_about_sc(&rMp.rotation, &e, sT, cT);
                         Transform::new(
                             rotate_about_sc(&RT, &axis, s, c),
