@@ -3,6 +3,7 @@
 //! own rayon pool), median over the passes; the configurations take turns pass by pass.
 
 use nalgebra::DVector;
+use rigid::error::DimensionError;
 use rigid::multibody::{aba, batch, crba, rnea, Data, Model, MultibodyError};
 use std::time::Instant;
 
@@ -70,6 +71,24 @@ fn loop_aba(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), Mu
     loop_qvx(aba, m, r, out, d)
 }
 
+/// Single `crba` calls, `write(M column-major, nv, out_k)` with `per` numbers per state: the
+/// loop counterpart of `Batch::crba_into`.
+fn loop_crba_into(
+    m: &Model,
+    r: &Rows,
+    out: &mut [f64],
+    d: &mut Data,
+    per: usize,
+    write: impl Fn(&[f64], usize, &mut [f64]) -> Result<(), DimensionError>,
+) -> Result<(), MultibodyError> {
+    let nq = m.nq();
+    for k in 0..r.n {
+        let t = crba(m, d, &r.qs[k * nq..][..nq])?;
+        write(t.as_slice(), m.nv(), &mut out[k * per..][..per])?;
+    }
+    Ok(())
+}
+
 /// The loop counterpart of `crba_lower`: single calls, each matrix's lower triangle packed.
 fn loop_crba_lower(
     m: &Model,
@@ -77,22 +96,15 @@ fn loop_crba_lower(
     out: &mut [f64],
     d: &mut Data,
 ) -> Result<(), MultibodyError> {
-    let (nq, nv) = (m.nq(), m.nv());
-    let per = nv * (nv + 1) / 2;
-    for k in 0..r.n {
-        let t = crba(m, d, &r.qs[k * nq..][..nq])?;
-        batch::pack_lower(t.as_slice(), nv, &mut out[k * per..][..per])?;
-    }
-    Ok(())
+    let nv = m.nv();
+    loop_crba_into(m, r, out, d, nv * (nv + 1) / 2, batch::pack_lower)
 }
 
 fn loop_crba(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), MultibodyError> {
-    let (nq, nn) = (m.nq(), m.nv() * m.nv());
-    for k in 0..r.n {
-        let t = crba(m, d, &r.qs[k * nq..][..nq])?;
-        out[k * nn..][..nn].copy_from_slice(t.as_slice());
-    }
-    Ok(())
+    loop_crba_into(m, r, out, d, m.nv() * m.nv(), |t, _, out| {
+        out.copy_from_slice(t);
+        Ok(())
+    })
 }
 
 /// Wall time (s) of one run of `f`.
