@@ -15,7 +15,7 @@
 //!
 //! Requires the packages of `scripts/requirements-test.txt`; `RIGID_SKIP_PINOCCHIO=1` skips.
 
-use rigid::io::urdf::doctor::{BodyReport, Cause, Doctor, Status};
+use rigid::doctor::{BodyReport, Cause, Doctor, Status};
 use rigid::io::urdf::{parse_urdf_file, UrdfInertial, UrdfRobot};
 use rigid::mass::{Consistency, RotationalInertia, SpatialInertia, Verdict};
 use rigid::spatial::Transform;

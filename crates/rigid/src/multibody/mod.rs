@@ -45,24 +45,27 @@
 pub mod algorithms;
 pub mod batch;
 mod builder;
-mod builders;
 mod builtins;
-mod configuration;
+pub(crate) mod configuration;
 mod data;
-mod joint;
-pub mod layout;
+pub(crate) mod joint;
+mod textbook;
+
 mod model;
+pub(crate) mod plan;
 pub mod simulation;
-mod sincos;
 
 pub use algorithms::*;
 pub use builder::{InertiaCheck, ModelBuilder};
-pub use builders::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 pub use builtins::{builtin, builtin_names, double_pendulum, pendulum, puma560, Puma560Options};
-pub use configuration::{difference, integrate, neutral, normalize, random_configuration, Rng};
+pub use configuration::{
+    difference, difference_jacobians, integrate, integrate_jacobians, neutral, normalize,
+    random_configuration, Rng,
+};
 pub use data::Data;
-pub use joint::JointType;
+pub use joint::{column_names, JointType, PinocchioCoords};
 pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
+pub use textbook::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 
 use crate::error::{DimensionError, InertiaError};
 use thiserror::Error;
@@ -211,11 +214,11 @@ pub enum MultibodyError {
 pub(crate) fn check_q(model: &Model, q: &[f64]) -> Result<(), MultibodyError> {
     DimensionError::check("q", model.nq, q.len())?;
     check_finite("q", q)?;
-    for &(j, o) in &model.quaternions {
-        let n = joint::quat_norm(&q[o..o + 4]);
+    for &(j, o) in &model.plan().quaternions {
+        let n = crate::spatial::quat_norm(&q[o..o + 4]);
         if (n - 1.0).abs() > QUATERNION_TOLERANCE {
             return Err(MultibodyError::NotUnitQuaternion {
-                joint: model.joints[j].name.clone(),
+                joint: model.joints()[j].name.clone(),
                 norm: n,
             });
         }

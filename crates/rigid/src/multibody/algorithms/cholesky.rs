@@ -9,12 +9,12 @@ use nalgebra::DVector;
 /// `λ(k), λ(λ(k)), …`.
 #[inline]
 fn dof_parent(model: &Model, k: usize) -> Option<usize> {
-    let j = &model.joints[model.dof_joint[k]];
+    let j = &model.joints()[model.plan().dof_joint[k]];
     if k > j.idx_v {
         return Some(k - 1);
     }
     j.parent.map(|p| {
-        let pj = &model.joints[p.0];
+        let pj = &model.joints()[p.0];
         pj.idx_v + pj.nv - 1
     })
 }

@@ -59,14 +59,14 @@ pub fn crba<'a>(
         &mut data.composite_inertias,
         &mut data.sin_cos,
     );
-    let n = model.joints.len();
+    let n = model.njoints();
     let nv = model.nv;
     let M = data.mass_matrix.as_mut_slice(); // column-major, M[(k, l)] = M[l * nv + k]
     for i in (0..n).rev() {
-        let ji = &model.joints[i];
+        let ji = &model.joints()[i];
         let Ic = data.composite_inertias[i];
         let end_v = {
-            let last = &model.joints[ji.subtree_end - 1];
+            let last = &model.joints()[ji.subtree_end - 1];
             last.idx_v + last.nv
         };
         let dofs = ji.idx_v..ji.idx_v + ji.nv;

@@ -22,10 +22,10 @@ pub fn forward_kinematics_q(
 }
 
 pub(crate) fn placements_unchecked(model: &Model, data: &mut Data, q: &[f64]) {
-    for i in 0..model.joints.len() {
+    for i in 0..model.njoints() {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
-        data.placements[i] = match model.joints[i].parent {
+        data.placements[i] = match model.joints()[i].parent {
             Some(p) => compose(&data.placements[p.0], &liMi),
             None => liMi,
         };
@@ -45,11 +45,11 @@ pub fn forward_kinematics_qv(
     check_q(model, q)?;
     check_data(model, data)?;
     check_v(model, "v", v)?;
-    for i in 0..model.joints.len() {
+    for i in 0..model.njoints() {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
         let vJ = joint_motion(model, i, v);
-        let (oMp, Vp) = match model.joints[i].parent {
+        let (oMp, Vp) = match model.joints()[i].parent {
             Some(p) => (data.placements[p.0], data.velocities[p.0]),
             None => (crate::spatial::Transform::identity(), Twist::zero()),
         };
@@ -81,12 +81,12 @@ pub fn forward_kinematics(
     check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "a", a)?;
-    for i in 0..model.joints.len() {
+    for i in 0..model.njoints() {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
         let vJ = joint_motion(model, i, v);
         let aJ = joint_motion(model, i, a);
-        let (oMp, Vp, Ap) = match model.joints[i].parent {
+        let (oMp, Vp, Ap) = match model.joints()[i].parent {
             Some(p) => (
                 data.placements[p.0],
                 data.velocities[p.0],

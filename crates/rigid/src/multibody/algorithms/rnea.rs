@@ -26,15 +26,15 @@ fn rnea_impl(
     out: Out,
 ) {
     let a_world = Twist::new(crate::spatial::Vec3::zeros(), -model.gravity);
-    let n = model.joints.len();
+    let n = model.njoints();
     for i in 0..n {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
-        let (Vp, Ap) = match model.joints[i].parent {
+        let (Vp, Ap) = match model.joints()[i].parent {
             Some(p) => (data.velocities[p.0], data.accelerations_gravity[p.0]),
             None => (Twist::zero(), a_world),
         };
-        let G = &model.inertias[i];
+        let G = &model.inertias()[i];
         let mut A = liMi.inv_act_twist(&Ap);
         if let Some(a) = a {
             match axis_motion(model, i, a) {
@@ -74,10 +74,10 @@ fn rnea_impl(
         Out::G => &mut data.g,
     };
     for i in (0..n).rev() {
-        let j = &model.joints[i];
+        let j = &model.joints()[i];
         let F = data.forces[i];
         for k in j.idx_v..j.idx_v + j.nv {
-            tau[k] = model.dof_S[k].dot(&F);
+            tau[k] = model.plan().dof_S[k].dot(&F);
             if let Some(a) = a {
                 tau[k] += model.armature[k] * a[k];
             }

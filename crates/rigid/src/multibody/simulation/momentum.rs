@@ -26,28 +26,28 @@ pub(crate) fn momentum(
     p: &mut [f64],
     mut grad: Option<&mut [f64]>,
 ) {
-    let n = model.joints.len();
+    let n = model.njoints();
     for i in 0..n {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
-        let W = match model.joints[i].parent {
+        let W = match model.joints()[i].parent {
             Some(pj) => liMi.inv_act_twist(&data.velocities[pj.0]),
             None => Twist::zero(),
         };
         let V = W + joint_motion(model, i, v);
         data.c_bias[i] = W;
         data.velocities[i] = V;
-        data.forces[i] = model.inertias[i].momentum(&V);
+        data.forces[i] = model.inertias()[i].momentum(&V);
     }
     for i in (0..n).rev() {
-        let j = &model.joints[i];
+        let j = &model.joints()[i];
         let H = data.forces[i];
         let adH = match grad {
             Some(_) => data.c_bias[i].ad_transpose(&H),
             None => Wrench::zero(),
         };
         for k in j.idx_v..j.idx_v + j.nv {
-            let S = &model.dof_S[k];
+            let S = &model.plan().dof_S[k];
             p[k] = S.dot(&H) + model.armature[k] * v[k];
             if let Some(g) = grad.as_deref_mut() {
                 g[k] = S.dot(&adH);

@@ -39,14 +39,12 @@
 //! allocated per call.
 
 mod aba;
-mod configuration;
 mod kinematics;
 mod passes;
 mod product;
 mod rnea;
 
 pub use aba::{aba_derivatives, aba_derivatives_with_external, AbaDerivatives};
-pub use configuration::{difference_jacobians, integrate_jacobians};
 pub use kinematics::{
     frame_kinematics_derivatives, joint_kinematics_derivatives, KinematicsDerivatives,
 };

@@ -35,8 +35,8 @@ pub(crate) fn forward_velocity(
 ) {
     let d = &mut data.derivatives;
     let J = &data.dof_J;
-    for i in 0..model.joints.len() {
-        let j = &model.joints[i];
+    for i in 0..model.njoints() {
+        let j = &model.joints()[i];
         let (Vp, Ap) = match j.parent {
             Some(p) => (d.vel[p.0], d.acc0[p.0]),
             None => {
@@ -85,8 +85,8 @@ pub(crate) fn forward_velocity(
 pub(crate) fn forward_acceleration(model: &Model, data: &mut Data, a: Option<&[f64]>) {
     let d = &mut data.derivatives;
     let J = &data.dof_J;
-    for i in 0..model.joints.len() {
-        let j = &model.joints[i];
+    for i in 0..model.njoints() {
+        let j = &model.joints()[i];
         let (Ap, Aap, Vp) = match j.parent {
             Some(p) => (d.acc[p.0], d.acc_a[p.0], d.vel[p.0]),
             None => (
@@ -122,8 +122,8 @@ pub(crate) fn forward_acceleration(model: &Model, data: &mut Data, a: Option<&[f
 pub(crate) fn bias_torques(model: &Model, data: &mut Data) {
     let d = &mut data.derivatives;
     d.bias.copy_from_slice(&d.force);
-    for i in (0..model.joints.len()).rev() {
-        let j = &model.joints[i];
+    for i in (0..model.njoints()).rev() {
+        let j = &model.joints()[i];
         let F = d.bias[i];
         for k in j.idx_v..j.idx_v + j.nv {
             d.tau_bias[k] = data.dof_J[k].dot(&F);
@@ -224,8 +224,8 @@ pub(crate) fn backward(model: &Model, data: &mut Data, a: Option<&[f64]>, out: O
     };
     let dv = dtau_dv.as_mut_slice();
     let M = mass_matrix.as_mut_slice();
-    for i in (0..model.joints.len()).rev() {
-        let j = &model.joints[i];
+    for i in (0..model.njoints()).rev() {
+        let j = &model.joints()[i];
         let (Y, F) = (Ic[i], force[i]);
         let (iv, own) = (j.idx_v, j.idx_v + j.nv);
         let end = dof_end[iv];
