@@ -53,6 +53,7 @@ mod textbook;
 
 mod model;
 pub(crate) mod plan;
+pub mod reference;
 pub mod simulation;
 
 pub use algorithms::*;
