@@ -180,7 +180,7 @@ impl Regressor {
             loop {
                 let joint = &model.joints()[i];
                 for k in joint.idx_v..joint.idx_v + joint.nv {
-                    let S = &model.plan().dof_S[k];
+                    let S = &data.S[k]; // S(q), as RNEA left it
                     for (c, f) in phi.iter().enumerate() {
                         y[(k, 10 * j + c)] = S.dot(f);
                     }

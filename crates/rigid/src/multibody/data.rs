@@ -61,6 +61,10 @@ pub struct Data {
     /// [`aba_derivatives`](super::aba_derivatives), the kinematics derivatives).
     pub derivatives: super::Derivatives,
     // --- internal workspaces ---
+    /// The motion-subspace columns `S_k(q)` (child frames) at the `q` of the last algorithm:
+    /// constant columns set once here, the others rewritten by each algorithm
+    /// (`update_subspaces`).
+    pub(crate) S: Vec<Twist>,
     pub(crate) ia: Vec<Mat6>,
     pub(crate) pa: Vec<Wrench>,
     pub(crate) c_bias: Vec<Twist>,
@@ -123,6 +127,7 @@ impl Data {
             com: Vec3::zeros(),
             mass: model.total_mass(),
             derivatives: super::Derivatives::new(model),
+            S: (0..nv).map(|k| model.motion_subspace(k)).collect(),
             ia: vec![Mat6::zeros(); n],
             pa: vec![Wrench::zero(); n],
             c_bias: vec![Twist::zero(); n],

@@ -201,6 +201,18 @@ pub enum MultibodyError {
         /// Degrees of freedom the data was made for.
         nv: usize,
     },
+    /// An algorithm that does not (yet) handle a joint whose motion subspace depends on `q`
+    /// (a universal joint): the analytical derivatives, `J̇` and the Coriolis matrix assume `S`
+    /// constant in body coordinates.
+    #[error("joint '{joint}' ({kind}): {algorithm} assumes every joint's motion subspace is constant in body coordinates, and this one's depends on q; use finite differences of the other algorithms")]
+    Unsupported {
+        /// The joint.
+        joint: String,
+        /// Its type.
+        kind: &'static str,
+        /// The algorithm.
+        algorithm: &'static str,
+    },
     /// A frame or joint index out of range.
     #[error("{what} index {index} out of range")]
     OutOfRange {

@@ -57,6 +57,8 @@ pub(crate) struct Plan {
     pub(crate) quaternions: Vec<(usize, usize)>,
     /// The joints whose motion subspace depends on `q` (then `c_J ≠ 0`).
     pub(crate) variable_subspace: Vec<usize>,
+    /// Per joint: whether its motion subspace depends on `q`.
+    pub(crate) varies: Vec<bool>,
     /// Per joint: the kind of `X_T`'s rotation.
     pub(crate) placement: Vec<PlacementKind>,
     /// Per joint: `X_T`'s translation, kept as `s e_k` when it lies on a coordinate axis.
@@ -76,6 +78,7 @@ impl Plan {
             dof_axis: Vec::new(),
             quaternions: Vec::new(),
             variable_subspace: Vec::new(),
+            varies: joints.iter().map(|j| !j.kind.constant_subspace()).collect(),
             placement: joints
                 .iter()
                 .map(|j| placement_kind(&j.placement))

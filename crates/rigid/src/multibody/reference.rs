@@ -26,7 +26,7 @@
 //! let tau = reference::rnea(&model, &q, &v, &a)?;
 //! let mut data = Data::new(&model);
 //! assert!((rnea(&model, &mut data, &q, &v, &a)? - &tau).amax() < 1e-12);
-//! let ddq = reference::aba(&model, &q, &v, &tau)?;
+//! let ddq = reference::aba(&model, &q, &v, tau.as_slice())?;
 //! assert!(ddq.iter().zip(a).all(|(x, y)| (x - y).abs() < 1e-9));
 //! # Ok::<(), rigid::multibody::MultibodyError>(())
 //! ```

@@ -1,7 +1,7 @@
 //! The articulated-body algorithm for forward dynamics (Featherstone 2008, Table 7.1), in body
 //! coordinates, and forward dynamics by Cholesky factorisation of `M` as a cross-check.
 
-use super::{joint_motion, parent_placement};
+use super::{joint_bias, joint_motion, parent_placement, update_subspaces};
 use crate::error::DimensionError;
 use crate::multibody::plan::PlacementKind;
 use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
@@ -19,6 +19,7 @@ fn aba_impl(
     fext: Option<&[Wrench]>,
 ) -> Result<(), MultibodyError> {
     let n = model.njoints();
+    update_subspaces(model, q, &mut data.S);
     // pass 1: kinematics, bias forces
     for i in 0..n {
         let liMi = parent_placement(model, i, q);
@@ -27,10 +28,13 @@ fn aba_impl(
             Some(p) => data.velocities[p.0],
             None => Twist::zero(),
         };
-        let vJ = joint_motion(model, i, v);
+        let vJ = joint_motion(model, &data.S, i, v);
         let V = liMi.inv_act_twist(&Vp) + vJ;
         data.velocities[i] = V;
         data.c_bias[i] = V.cross(&vJ);
+        if let Some(cJ) = joint_bias(model, i, q, v) {
+            data.c_bias[i] += cJ;
+        }
         let G = &model.inertias()[i];
         data.ia[i] = G.matrix();
         let mut pA = -V.ad_transpose(&G.momentum(&V));
@@ -47,7 +51,7 @@ fn aba_impl(
         if nv == 1 {
             // one degree of freedom: D and u are scalars
             let IA = &data.ia[i];
-            let S = &model.plan().dof_S[iv];
+            let S = &data.S[iv];
             // U = I^A S, Sᵀ U, Sᵀ p^A: for S = s e_c a column and two components
             let (U, SU, Sp) = match model.plan().dof_axis[iv] {
                 Some((c, s)) => {
@@ -91,15 +95,15 @@ fn aba_impl(
         }
         let IA = data.ia[i];
         for a in 0..nv {
-            data.u_cols[iv + a] = mat6_twist(&IA, &model.plan().dof_S[iv + a]);
+            data.u_cols[iv + a] = mat6_twist(&IA, &data.S[iv + a]);
         }
         let mut D = Mat6::identity();
         for a in 0..nv {
             for b in 0..nv {
-                D[(a, b)] = model.plan().dof_S[iv + a].dot(&data.u_cols[iv + b]);
+                D[(a, b)] = data.S[iv + a].dot(&data.u_cols[iv + b]);
             }
             D[(a, a)] += model.armature[iv + a];
-            data.u[iv + a] = tau[iv + a] - model.plan().dof_S[iv + a].dot(&pA);
+            data.u[iv + a] = tau[iv + a] - data.S[iv + a].dot(&pA);
         }
         let Dinv = D.try_inverse().ok_or(MultibodyError::NotPositiveDefinite)?;
         data.d_inv[i] = Dinv;
@@ -136,7 +140,7 @@ fn aba_impl(
         if nv == 1 {
             let x = data.d_inv_1[iv] * (data.u[iv] - A.dot(&data.u_cols[iv]));
             data.ddq[iv] = x;
-            A += model.plan().dof_S[iv] * x;
+            A += data.S[iv] * x;
             data.accelerations_gravity[i] = A;
             continue;
         }
@@ -151,7 +155,7 @@ fn aba_impl(
                 x += Dinv[(a, b)] * rhs[b];
             }
             data.ddq[iv + a] = x;
-            A += model.plan().dof_S[iv + a] * x;
+            A += data.S[iv + a] * x;
         }
         data.accelerations_gravity[i] = A;
     }

@@ -31,6 +31,7 @@ pub fn compute_joint_jacobians<'a>(
     check_q(model, q)?;
     check_data(model, data)?;
     placements_unchecked(model, data, q);
+    super::update_subspaces(model, q, &mut data.S);
     fill_jacobian(model, data);
     Ok(&data.jacobian)
 }
@@ -41,7 +42,7 @@ fn fill_jacobian(model: &Model, data: &mut Data) {
         set_col(
             &mut data.jacobian,
             k,
-            &oMi.act_twist(&model.plan().dof_S[k]),
+            &oMi.act_twist(&data.S[k]),
         );
     }
 }
@@ -71,13 +72,15 @@ fn col(m: &DMatrix<f64>, k: usize) -> Twist {
 /// `data.jacobian`, `data.jacobian_dot`, `placements`, `velocities`.
 ///
 /// # Errors
-/// Wrong lengths, non-finite entries, or a non-unit quaternion.
+/// Wrong lengths, non-finite entries, a non-unit quaternion, or a joint whose motion subspace
+/// depends on `q` ([`MultibodyError::Unsupported`]: `J̇` would need `Ṡ`).
 pub fn compute_joint_jacobians_time_variation<'a>(
     model: &Model,
     data: &'a mut Data,
     q: &[f64],
     v: &[f64],
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
+    super::require_constant_subspaces(model, "the Jacobian's time derivative")?;
     forward_kinematics_qv(model, data, q, v)?;
     fill_jacobian(model, data);
     for i in 0..model.njoints() {

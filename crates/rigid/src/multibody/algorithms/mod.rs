@@ -42,16 +42,54 @@ use super::Model;
 use crate::mass::SpatialInertia;
 use crate::spatial::{compose, mat3_vec, rotate_about_sc, trig, Mat3, Transform, Twist, Vec3};
 
-/// `S_i q̇_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame).
+/// `S_i x_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame), with `S` the
+/// motion-subspace columns at the current `q` (`Data::S`).
 #[inline]
-pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
-    let j = &model.joints()[i];
+pub(crate) fn joint_motion(model: &Model, S: &[Twist], i: usize, x: &[f64]) -> Twist {
+    let r = model.joints()[i].dofs();
     let mut t = Twist::zero();
-    let r = j.idx_v..j.idx_v + j.nv;
-    for (S, xk) in model.plan().dof_S[r.clone()].iter().zip(&x[r]) {
+    for (S, xk) in S[r.clone()].iter().zip(&x[r]) {
         t += *S * *xk;
     }
     t
+}
+
+/// Writes `S(q)` of the joints whose motion subspace depends on `q` (`Plan::variable_subspace`)
+/// into `S`; the other columns are constant and `Data::new` set them. The first thing every
+/// algorithm that reads `Data::S` does.
+#[inline]
+pub(crate) fn update_subspaces(model: &Model, q: &[f64], S: &mut [Twist]) {
+    for &i in &model.plan().variable_subspace {
+        let j = &model.joints()[i];
+        j.kind.subspace(&q[j.coordinates()], &mut S[j.dofs()]);
+    }
+}
+
+/// `c_J = Ṡ q̇` of joint `i`, or `None` when its motion subspace is constant (then `c_J = 0`).
+#[inline(always)]
+pub(crate) fn joint_bias(model: &Model, i: usize, q: &[f64], v: &[f64]) -> Option<Twist> {
+    if !model.plan().varies[i] {
+        return None;
+    }
+    let j = &model.joints()[i];
+    Some(j.kind.bias(&q[j.coordinates()], &v[j.dofs()]))
+}
+
+/// `Err(Unsupported)` naming the first joint whose motion subspace depends on `q`, for the
+/// algorithms that assume a constant `S` in body coordinates (the analytical derivatives, `J̇`
+/// and the Coriolis matrix).
+pub(crate) fn require_constant_subspaces(
+    model: &Model,
+    algorithm: &'static str,
+) -> Result<(), crate::multibody::MultibodyError> {
+    match model.plan().variable_subspace.first() {
+        Some(&i) => Err(crate::multibody::MultibodyError::Unsupported {
+            joint: model.joints()[i].name.clone(),
+            kind: model.joints()[i].kind.name(),
+            algorithm,
+        }),
+        None => Ok(()),
+    }
 }
 
 /// For a one-dof joint whose motion subspace is a coordinate axis (`S = s e_c`, angular first,

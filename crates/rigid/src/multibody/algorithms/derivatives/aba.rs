@@ -56,6 +56,7 @@ pub fn aba_derivatives<'a>(
     v: &[f64],
     tau: &[f64],
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     check_aba_inputs(model, data, q, v, tau)?;
     aba_derivatives_unchecked(model, data, q, v, tau, None)
 }
@@ -84,6 +85,7 @@ pub fn aba_derivatives_with_external<'a>(
     tau: &[f64],
     fext: &[Wrench],
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     check_aba_inputs(model, data, q, v, tau)?;
     check_fext(model, fext)?;
     aba_derivatives_unchecked(model, data, q, v, tau, Some(fext))

@@ -63,6 +63,7 @@ pub fn frame_kinematics_derivatives<'a>(
     frame: FrameId,
     rf: ReferenceFrame,
 ) -> Result<KinematicsDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     let f = model
         .frames
         .get(frame.0)
@@ -103,6 +104,7 @@ pub fn joint_kinematics_derivatives<'a>(
     joint: JointId,
     rf: ReferenceFrame,
 ) -> Result<KinematicsDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     if joint.0 >= model.njoints() {
         return Err(MultibodyError::OutOfRange {
             what: "joint",
