@@ -105,8 +105,8 @@ pub enum ModelError {
         /// The index.
         index: usize,
     },
-    /// A zero or non-finite joint axis.
-    #[error("joint '{name}': axis is zero or not finite")]
+    /// A zero or non-finite joint axis (or two parallel axes of a joint that needs two).
+    #[error("joint '{name}': axis is zero or not finite, or its two axes are parallel")]
     BadAxis {
         /// The joint.
         name: String,
