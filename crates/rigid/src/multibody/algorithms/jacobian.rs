@@ -39,11 +39,7 @@ pub fn compute_joint_jacobians<'a>(
 fn fill_jacobian(model: &Model, data: &mut Data) {
     for k in 0..model.nv {
         let oMi = &data.placements[model.plan().dof_joint[k]];
-        set_col(
-            &mut data.jacobian,
-            k,
-            &oMi.act_twist(&data.S[k]),
-        );
+        set_col(&mut data.jacobian, k, &oMi.act_twist(&data.S[k]));
     }
 }
 

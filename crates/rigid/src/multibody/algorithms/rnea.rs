@@ -2,8 +2,7 @@
 //! Lynch & Park §8.3.2), in body coordinates, with gravity as a fictitious base acceleration.
 
 use super::{
-    add_axis, axis_motion, cross_axis, joint_bias, joint_motion, parent_placement,
-    update_subspaces,
+    add_axis, axis_motion, cross_axis, joint_bias, joint_motion, parent_placement, update_subspaces,
 };
 use crate::error::DimensionError;
 use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
