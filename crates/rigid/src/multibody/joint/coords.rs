@@ -36,7 +36,8 @@ impl JointType {
     #[must_use]
     pub fn coordinate_suffixes(&self) -> (&'static [&'static str], &'static [&'static str]) {
         match self {
-            Self::Revolute { .. } | Self::Prismatic { .. } => (&[""], &[""]),
+            Self::Revolute { .. } | Self::Prismatic { .. } | Self::Helical { .. } => (&[""], &[""]),
+            Self::Universal { .. } => (&["1", "2"], &["1", "2"]),
             Self::FreeFlyer => (
                 &["x", "y", "z", "qx", "qy", "qz", "qw"],
                 &["wx", "wy", "wz", "vx", "vy", "vz"],
@@ -52,7 +53,10 @@ impl JointType {
     pub fn pinocchio_coords(&self, continuous: bool) -> PinocchioCoords {
         match self {
             Self::Revolute { .. } if continuous => PinocchioCoords::CosSin,
-            Self::Revolute { .. } | Self::Prismatic { .. } => PinocchioCoords::Same,
+            Self::Revolute { .. }
+            | Self::Prismatic { .. }
+            | Self::Helical { .. }
+            | Self::Universal { .. } => PinocchioCoords::Same,
             Self::Spherical => PinocchioCoords::Spherical,
             Self::FreeFlyer => PinocchioCoords::FreeFlyer,
             Self::Planar => PinocchioCoords::Planar,

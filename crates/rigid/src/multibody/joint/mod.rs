@@ -53,6 +53,26 @@ pub enum JointType {
     /// `(v_x, v_y, ω_z)` (as Pinocchio's planar joint): `X_J = (Rz(θ), (x, y, 0))`,
     /// `S = [e_vx, e_vy, e_ωz]` constant in the child frame.
     Planar,
+    /// Screw joint: rotation `q` (rad) about `axis` and translation `pitch q` (m) along it:
+    /// `X_J = (exp([axis] q), pitch q axis)`, `S = (axis, pitch axis)` (Pinocchio's
+    /// `JointModelHelicalUnaligned`).
+    Helical {
+        /// Unit axis in the joint frame.
+        axis: Vec3,
+        /// Translation per radian (m/rad).
+        pitch: f64,
+    },
+    /// Universal (Cardan) joint: rotation `q₁` about `axis1`, then `q₂` about `axis2` in the
+    /// frame so moved: `X_J = (exp([a₁] q₁) exp([a₂] q₂), 0)`. `S(q) = [(R₂ᵀ a₁, 0), (a₂, 0)]`
+    /// with `R₂ = exp([a₂] q₂)` depends on `q₂`, and `c_J = Ṡ q̇ = ((R₂ᵀ a₁) × a₂ q̇₁ q̇₂, 0)`
+    /// (Pinocchio's `JointModelUniversal`).
+    Universal {
+        /// Unit first axis, in the joint frame.
+        axis1: Vec3,
+        /// Unit second axis, in the frame moved by the first rotation (not parallel to
+        /// `axis1`).
+        axis2: Vec3,
+    },
 }
 
 /// How the algorithms treat a joint: the three joints with written-out fast paths, and the
@@ -90,7 +110,8 @@ impl JointType {
     #[inline]
     pub fn nq(&self) -> usize {
         match self {
-            Self::Revolute { .. } | Self::Prismatic { .. } => 1,
+            Self::Revolute { .. } | Self::Prismatic { .. } | Self::Helical { .. } => 1,
+            Self::Universal { .. } => 2,
             Self::Spherical => 4,
             Self::FreeFlyer => 7,
             Self::Planar => 3,
@@ -102,13 +123,15 @@ impl JointType {
     #[inline]
     pub fn nv(&self) -> usize {
         match self {
-            Self::Revolute { .. } | Self::Prismatic { .. } => 1,
+            Self::Revolute { .. } | Self::Prismatic { .. } | Self::Helical { .. } => 1,
+            Self::Universal { .. } => 2,
             Self::Spherical | Self::Planar => 3,
             Self::FreeFlyer => 6,
         }
     }
 
-    /// A short lower-case name (`revolute`, `prismatic`, `spherical`, `free_flyer`, `planar`).
+    /// A short lower-case name (`revolute`, `prismatic`, `spherical`, `free_flyer`, `planar`,
+    /// `helical`, `universal`).
     #[must_use]
     pub fn name(&self) -> &'static str {
         match self {
@@ -117,6 +140,8 @@ impl JointType {
             Self::Spherical => "spherical",
             Self::FreeFlyer => "free_flyer",
             Self::Planar => "planar",
+            Self::Helical { .. } => "helical",
+            Self::Universal { .. } => "universal",
         }
     }
 
@@ -128,7 +153,9 @@ impl JointType {
             Self::Revolute { axis } => Shape::Revolute(axis),
             Self::Prismatic { axis } => Shape::Prismatic(axis),
             Self::FreeFlyer => Shape::FreeFlyer,
-            Self::Spherical | Self::Planar => Shape::General,
+            Self::Spherical | Self::Planar | Self::Helical { .. } | Self::Universal { .. } => {
+                Shape::General
+            }
         }
     }
 
@@ -137,7 +164,10 @@ impl JointType {
     #[inline]
     pub(crate) fn group(&self) -> Group {
         match self {
-            Self::Revolute { .. } | Self::Prismatic { .. } => Group::Vector,
+            Self::Revolute { .. }
+            | Self::Prismatic { .. }
+            | Self::Helical { .. }
+            | Self::Universal { .. } => Group::Vector,
             Self::Spherical => Group::SO3,
             Self::FreeFlyer => Group::SE3,
             Self::Planar => Group::SE2,
@@ -178,6 +208,14 @@ impl JointType {
                     Vec3::new(q[0], q[1], 0.0),
                 )
             }
+            Self::Helical { axis, pitch } => {
+                let (s, c) = trig::sin_cos(q[0]);
+                Transform::new(rodrigues(axis, s, c), axis * (pitch * q[0]))
+            }
+            Self::Universal { axis1, axis2 } => {
+                let R1 = rotate_about(&Mat3::identity(), axis1, q[0]);
+                Transform::from_rotation(rotate_about(&R1, axis2, q[1]))
+            }
         }
     }
 
@@ -200,6 +238,14 @@ impl JointType {
                 crate::spatial::mat3_mul(&placement.rotation, &self.transform(q).rotation),
                 placement.translation,
             ),
+            Self::Helical { axis, pitch } => Transform::new(
+                rotate_about(&placement.rotation, axis, q[0]),
+                placement.rotation * (axis * (pitch * q[0])) + placement.translation,
+            ),
+            Self::Universal { axis1, axis2 } => {
+                let R1 = rotate_about(&placement.rotation, axis1, q[0]);
+                Transform::new(rotate_about(&R1, axis2, q[1]), placement.translation)
+            }
             Self::FreeFlyer | Self::Planar => *placement * self.transform(q),
         }
     }
@@ -214,14 +260,15 @@ impl JointType {
             | Self::Prismatic { .. }
             | Self::Spherical
             | Self::FreeFlyer
-            | Self::Planar => true,
+            | Self::Planar
+            | Self::Helical { .. } => true,
+            Self::Universal { .. } => false,
         }
     }
 
     /// The motion subspace `S(q)` (6 x nv), one twist per column, in the child frame: the body
     /// twist of the child relative to the parent is `Σ_k S_k q̇_k`. `S.len()` is `nv`.
     pub fn subspace(&self, q: &[f64], S: &mut [Twist]) {
-        let _ = q; // every joint here has a constant S
         let z = Vec3::zeros();
         let e = |k| Vec3::ith(k, 1.0);
         match self {
@@ -237,6 +284,13 @@ impl JointType {
                 S[1] = Twist::new(z, e(1));
                 S[2] = Twist::new(e(2), z);
             }
+            Self::Helical { axis, pitch } => S[0] = Twist::new(*axis, axis * *pitch),
+            Self::Universal { axis1, axis2 } => {
+                // R₂ᵀ a₁ = exp(-[a₂] q₂) a₁
+                let R2t = rotate_about(&Mat3::identity(), axis2, -q[1]);
+                S[0] = Twist::new(R2t * axis1, z);
+                S[1] = Twist::new(*axis2, z);
+            }
         }
     }
 
@@ -245,13 +299,18 @@ impl JointType {
     /// relative to the parent that `S q̈` does not give.
     #[must_use]
     pub fn bias(&self, q: &[f64], v: &[f64]) -> Twist {
-        let _ = (q, v);
         match self {
             Self::Revolute { .. }
             | Self::Prismatic { .. }
             | Self::Spherical
             | Self::FreeFlyer
-            | Self::Planar => Twist::zero(),
+            | Self::Planar
+            | Self::Helical { .. } => Twist::zero(),
+            Self::Universal { axis1, axis2 } => {
+                // Ṡ₁ = d/dt (R₂ᵀ a₁) = (R₂ᵀ a₁) × a₂ q̇₂, so c_J = Ṡ₁ q̇₁
+                let S1 = rotate_about(&Mat3::identity(), axis2, -q[1]) * axis1;
+                Twist::new(S1.cross(axis2) * (v[0] * v[1]), Vec3::zeros())
+            }
         }
     }
 
@@ -279,7 +338,8 @@ impl JointType {
         // the scale of each coordinate before the quaternion where it has no finite bounds:
         // radians or metres
         let scales: &[f64] = match self {
-            Self::Revolute { .. } => &[PI],
+            Self::Revolute { .. } | Self::Helical { .. } => &[PI],
+            Self::Universal { .. } => &[PI, PI],
             Self::Prismatic { .. } => &[1.0],
             Self::Spherical => &[],
             Self::FreeFlyer => &[1.0, 1.0, 1.0],
@@ -308,8 +368,8 @@ impl JointType {
         }
     }
 
-    /// The joint with its axis (if any) normalised, or `None` if the axis is zero or not
-    /// finite.
+    /// The joint with its axis (if any) normalised, or `None` if an axis is zero or not finite,
+    /// a pitch not finite, or a universal joint's two axes parallel.
     #[must_use]
     pub fn normalized_axis(&self) -> Option<Self> {
         let unit = |a: &Vec3| {
@@ -319,6 +379,20 @@ impl JointType {
         Some(match self {
             Self::Revolute { axis } => Self::Revolute { axis: unit(axis)? },
             Self::Prismatic { axis } => Self::Prismatic { axis: unit(axis)? },
+            Self::Helical { axis, pitch } => Self::Helical {
+                axis: unit(axis)?,
+                pitch: Some(*pitch).filter(|p| p.is_finite())?,
+            },
+            Self::Universal { axis1, axis2 } => {
+                let (a1, a2) = (unit(axis1)?, unit(axis2)?);
+                if a1.cross(&a2).norm() < 1e-6 {
+                    return None;
+                }
+                Self::Universal {
+                    axis1: a1,
+                    axis2: a2,
+                }
+            }
             Self::Spherical | Self::FreeFlyer | Self::Planar => *self,
         })
     }
