@@ -108,3 +108,65 @@ fn fast_rnea_crba_aba_equal_the_reference_on_example_robot_data() {
         );
     }
 }
+
+/// The plan is never stale: inertias changed through the API (`Model::set_inertias`) change
+/// CRBA, `M⁻¹` and ABA exactly as the reference algorithms (which read no cache) say.
+#[test]
+fn changing_inertias_through_the_api_rebuilds_the_plan() {
+    let mut model = common::random_tree(9, 10, true);
+    let mut rng = Rng::new(21);
+    let heavier: Vec<_> = model
+        .inertias()
+        .iter()
+        .map(|_| common::inertia(&mut rng))
+        .collect();
+    model.set_inertias(&heavier).unwrap();
+    let mut data = Data::new(&model);
+    let (q, v, _) = state(&model, &mut rng);
+    let M = reference::crba(&model, &q).unwrap();
+    assert!(rel_err_m(crba(&model, &mut data, &q).unwrap(), &M) < 1e-12);
+    let Minv = rigid::multibody::compute_minverse(&model, &mut data, &q).unwrap();
+    let eye = nalgebra::DMatrix::identity(model.nv(), model.nv());
+    assert!(rel_err_m(&(Minv * &M), &eye) < 1e-9);
+    let tau = vec![0.3; model.nv()];
+    let ddq = reference::aba(&model, &q, &v, &tau).unwrap();
+    assert!(rel_err_v(aba(&model, &mut data, &q, &v, &tau).unwrap(), &ddq) < 1e-12);
+    // a wrong count or a negative mass is refused, and the model is left as it was
+    assert!(model.set_inertias(&heavier[1..]).is_err());
+    let mut bad = heavier.clone();
+    bad[2] = rigid::mass::SpatialInertia::from_parts(
+        -1.0,
+        rigid::spatial::Vec3::zeros(),
+        rigid::mass::RotationalInertia::diagonal(1.0, 1.0, 1.0),
+    );
+    assert!(model.set_inertias(&bad).is_err());
+    assert_eq!(model.inertias(), &heavier[..]);
+}
+
+/// `Data::composite_inertias` means one thing: the composite inertias of CRBA, whichever
+/// algorithm filled it last (the RNEA derivatives compute them too; `M⁻¹` and the ABA
+/// derivatives keep their per-body inertias elsewhere).
+#[test]
+fn composite_inertias_are_the_composites_after_every_algorithm_that_writes_them() {
+    let model = common::random_tree(4, 12, false);
+    let mut rng = Rng::new(8);
+    let (q, v, a) = state(&model, &mut rng);
+    let mut data = Data::new(&model);
+    crba(&model, &mut data, &q).unwrap();
+    let after_crba = data.composite_inertias.clone();
+    let mut other = Data::new(&model);
+    rigid::multibody::rnea_derivatives(&model, &mut other, &q, &v, &a).unwrap();
+    let mut other2 = Data::new(&model);
+    crba(&model, &mut other2, &q).unwrap();
+    rigid::multibody::aba_derivatives(&model, &mut other2, &q, &v, &a).unwrap();
+    rigid::multibody::compute_minverse(&model, &mut other2, &q).unwrap();
+    for ((x, y), z) in after_crba
+        .iter()
+        .zip(&other.composite_inertias)
+        .zip(&other2.composite_inertias)
+    {
+        let (x, y, z) = (x.matrix(), y.matrix(), z.matrix());
+        assert!((x - y).amax() < 1e-12 * x.amax().max(1.0));
+        assert_eq!(x, z);
+    }
+}

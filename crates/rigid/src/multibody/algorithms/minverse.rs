@@ -72,7 +72,7 @@ pub fn compute_minverse<'a>(
 }
 
 /// [`compute_minverse`] on checked inputs: fills `data.minv`, and `data.root_placements`,
-/// `data.dof_J`, `data.world_inertias` (every body in its tree's root frame).
+/// `data.dof_J`, `data.root_frame_inertias` (every body in its tree's root frame).
 pub(crate) fn minverse_unchecked(
     model: &Model,
     data: &mut Data,
@@ -83,13 +83,13 @@ pub(crate) fn minverse_unchecked(
         q,
         &mut data.root_placements,
         &mut data.dof_J,
-        &mut data.world_inertias,
+        &mut data.root_frame_inertias,
         &mut data.sin_cos,
     );
     let n = model.njoints();
     let nv = model.nv;
     for i in 0..n {
-        data.ia[i] = data.world_inertias[i].matrix();
+        data.ia[i] = data.root_frame_inertias[i].matrix();
         data.minv_depth[i] = model.joints()[i]
             .parent
             .map_or(0, |p| data.minv_depth[p.0] + 1);

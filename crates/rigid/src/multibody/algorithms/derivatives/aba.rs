@@ -100,8 +100,6 @@ fn aba_derivatives_unchecked<'a>(
     fext: Option<&[Wrench]>,
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
     minverse_unchecked(model, data, q)?;
-    data.composite_inertias
-        .copy_from_slice(&data.world_inertias);
     forward_velocity(model, data, q, Some(v), fext);
     bias_torques(model, data);
     // q̈ = M⁻¹ (τ - b)

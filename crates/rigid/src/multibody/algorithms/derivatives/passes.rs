@@ -25,7 +25,7 @@ pub(crate) enum Output {
 /// (`a_g` at the root), `f⁰_i = G_i A⁰_i + V_i ×* G_i V_i - F_i^ext`, `h_i = G_i V_i` and the
 /// symmetric part of `B_i`; per dof `∂V/∂q_k = V_λ × J_k` and `∂A/∂v_k = (V_i + V_λ) × J_k`.
 /// Needs `data.dof_J`, `data.root_placements` and the root-frame inertias in
-/// `data.composite_inertias` (`root_frame_bodies`). `v = None`: at rest.
+/// `data.root_frame_inertias` (`root_frame_bodies`). `v = None`: at rest.
 pub(crate) fn forward_velocity(
     model: &Model,
     data: &mut Data,
@@ -47,7 +47,7 @@ pub(crate) fn forward_velocity(
                 (Twist::zero(), Twist::new(Vec3::zeros(), g))
             }
         };
-        let G = &data.composite_inertias[i];
+        let G = &data.root_frame_inertias[i];
         let dofs = j.idx_v..j.idx_v + j.nv;
         let Some(v) = v else {
             d.vel[i] = Twist::zero();
@@ -101,7 +101,7 @@ pub(crate) fn forward_acceleration(model: &Model, data: &mut Data, a: Option<&[f
             for k in dofs.clone() {
                 Aa += J[k] * a[k];
             }
-            d.force[i] += data.composite_inertias[i].momentum(&Aa);
+            d.force[i] += data.root_frame_inertias[i].momentum(&Aa);
         }
         d.acc_a[i] = Aa;
         d.acc[i] = d.acc0[i] + Aa;
@@ -183,6 +183,9 @@ fn array(w: &Wrench) -> [f64; 6] {
 /// columns of each joint's dofs. Column-major outputs: entry (row r, column c) at `c nv + r`.
 pub(crate) fn backward(model: &Model, data: &mut Data, a: Option<&[f64]>, out: Output) {
     let nv = model.nv;
+    // the composites start as the bodies' own root-frame inertias and are summed in place
+    data.composite_inertias
+        .copy_from_slice(&data.root_frame_inertias);
     let Data {
         derivatives: d,
         dof_J: J,

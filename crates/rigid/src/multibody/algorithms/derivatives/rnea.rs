@@ -167,7 +167,7 @@ fn derivatives_unchecked(
         q,
         &mut data.root_placements,
         &mut data.dof_J,
-        &mut data.composite_inertias,
+        &mut data.root_frame_inertias,
         &mut data.sin_cos,
     );
     let (v, a) = (va.map(|x| x.0), va.map(|x| x.1));
