@@ -30,7 +30,7 @@
 //! repaired, when no cause is found.
 //!
 //! Geometry: meshes are read from disk (STL, OBJ, COLLADA; `package://` resolved by
-//! [`resolve_mesh_path`](super::resolve_mesh_path)); a mesh that cannot be found is noted and
+//! [`resolve_mesh_path`](crate::io::urdf::resolve_mesh_path)); a mesh that cannot be found is noted and
 //! skipped, and a link without readable shapes gets the physical checks only.
 
 pub mod checks;

@@ -85,7 +85,7 @@ struct JointMap {
 }
 
 /// The map between rigid's layout of a [`Model`]'s vectors and Pinocchio's (see the
-/// [module](self) documentation). Made once per model; the conversions allocate nothing.
+/// [module](crate::interop) documentation). Made once per model; the conversions allocate nothing.
 #[derive(Clone, Debug)]
 pub struct PinocchioLayout {
     joints: Vec<JointMap>,

@@ -24,7 +24,7 @@
 //! | `K = ½ q̇ᵀ M q̇`, `U = -Σ mᵢ gᵀ cᵢ` | [`kinetic_energy`], [`potential_energy`] | Lynch & Park §8.1 |
 //! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |
 //! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
-//! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`layout`] (`PinocchioLayout`) | URDF models loaded with sibling joints sorted by name |
+//! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`PinocchioLayout`](crate::interop::PinocchioLayout) | URDF models loaded with sibling joints sorted by name |
 //! | `∂τ/∂(q, v)`, `∂q̈/∂(q, v, τ)`, `∂g/∂q`, frame kinematics, `∂(q ⊕ v)`, `∂(q₁ ⊖ q₀)` | [`derivatives`] ([`rnea_derivatives`], [`aba_derivatives`], …; `q` along `q ⊕ δ`) | Carpentier & Mansard, RSS 2018 |
 //! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`] | ABA; Lynch & Park ch. 9, 11 |
 //! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`, `crba_lower_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |

@@ -130,7 +130,7 @@ pub struct Frame {
 }
 
 /// A kinematic tree, constant once built (Featherstone's `model`, Pinocchio's `Model`).
-/// Build one with [`ModelBuilder`]; evaluate it with a [`Data`](super::Data) workspace.
+/// Build one with [`ModelBuilder`](super::ModelBuilder); evaluate it with a [`Data`](super::Data) workspace.
 #[derive(Clone, Debug)]
 pub struct Model {
     pub(crate) name: String,

@@ -1,5 +1,11 @@
 //! The articulated-body algorithm for forward dynamics (Featherstone 2008, Table 7.1), in body
 //! coordinates, and forward dynamics by Cholesky factorisation of `M` as a cross-check.
+//!
+//! Read [`reference::aba`](crate::multibody::reference::aba) first (spatial_v2's `FDab.m`): this
+//! is the same three loops, with `IA{λ(i)} += Xup' * Ia * Xup` as the written-out
+//! [`congruence`](crate::spatial) (its plane-rotation variant when `X_T` has no rotation and the
+//! joint turns about a coordinate axis), and a one-dof joint's `U`, `d`, `u` as scalars and
+//! columns (`S = ±e_c` picks a column of `I^A` and a component of `p^A`).
 
 use super::{joint_bias, joint_motion, parent_placement, update_subspaces};
 use crate::error::DimensionError;
@@ -174,7 +180,7 @@ fn aba_impl(
 ///
 /// Returns `data.ddq`. O(n). Should the recursion meet a joint inertia `D_i ≤ 0` while `M` is
 /// positive definite (digits lost to a light body carrying a heavy subtree), the answer comes from
-/// the sparse Cholesky factorisation of `M` instead ([`forward_dynamics_cholesky`]).
+/// the sparse Cholesky factorisation of `M` instead ([`forward_dynamics_cholesky`](crate::multibody::forward_dynamics_cholesky)).
 ///
 /// # Errors
 /// Wrong lengths, non-finite entries, a non-unit quaternion, or a singular `M` (a massless
@@ -229,7 +235,7 @@ pub fn aba_with_external<'a>(
 /// When ABA meets a joint inertia `D ≤ 0`, `M` may still be positive definite: the recursion's
 /// subtraction `I^A - U D⁻¹ Uᵀ` loses every digit when a light body carries a heavy subtree (mass
 /// ratios of 1e10 and more). Solve `M q̈ = τ - b` by the sparse Cholesky factorisation of `M`
-/// instead ([`forward_dynamics_cholesky`]); a massless subtree makes `M` singular and stays an
+/// instead ([`forward_dynamics_cholesky`](crate::multibody::forward_dynamics_cholesky)); a massless subtree makes `M` singular and stays an
 /// error. No allocation (`data.nle` lends its storage for the zero acceleration).
 fn cholesky_fallback<'a>(
     model: &Model,

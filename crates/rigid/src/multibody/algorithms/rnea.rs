@@ -1,5 +1,11 @@
 //! The recursive Newton-Euler algorithm for inverse dynamics (Featherstone 2008, Table 5.1;
 //! Lynch & Park §8.3.2), in body coordinates, with gravity as a fictitious base acceleration.
+//!
+//! Read [`reference::rnea`](crate::multibody::reference::rnea) first (spatial_v2's `ID.m`): this
+//! is the same two loops with `Xup{i} * v` as [`Transform::inv_act_twist`](crate::spatial::Transform::inv_act_twist)
+//! (no 6x6 matrix), `I{i} * a` as [`SpatialInertia::momentum`](crate::mass::SpatialInertia::momentum),
+//! `crm(v) * vJ` written out for a joint whose `S` is a coordinate axis (`cross_axis`), and
+//! `Xup{i}' * f{i}` as [`Transform::act_wrench`](crate::spatial::Transform::act_wrench).
 
 use super::{
     add_axis, axis_motion, cross_axis, joint_bias, joint_motion, parent_placement, update_subspaces,
