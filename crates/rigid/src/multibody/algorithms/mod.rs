@@ -15,6 +15,7 @@ mod rnea;
 pub(crate) use aba::check_inputs as check_aba_inputs;
 pub use aba::{aba, aba_with_external};
 pub use cholesky::forward_dynamics_cholesky;
+pub(crate) use cholesky::{ltl_factor, ltl_solve_lower, ltl_solve_transposed, NONE as NO_DOF};
 pub use coriolis::coriolis_matrix;
 pub use crba::crba;
 pub use derivatives::{
