@@ -47,6 +47,7 @@ pub mod batch;
 mod builder;
 mod builtins;
 pub(crate) mod configuration;
+pub mod constraints;
 mod data;
 pub(crate) mod joint;
 mod textbook;

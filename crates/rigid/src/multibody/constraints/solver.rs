@@ -1,0 +1,213 @@
+//! The linear algebra of the constrained problems: the Delassus matrix through the tree-sparse
+//! factor `M = LᵀL`, a dense Cholesky, and the proximal iterations.
+//!
+//! With `M = LᵀL` (Featherstone 2008, §6.5: `L` keeps the tree's sparsity) and `Z = L⁻ᵀ Jᵀ`:
+//! `M⁻¹ = L⁻¹ L⁻ᵀ`, so the Delassus matrix is `K = J M⁻¹ Jᵀ = Zᵀ Z`, and for any `w = L⁻ᵀ f`
+//! the solution of `M x = f + Jᵀ λ` is `x = L⁻¹ (w + Z λ)`, with `J x = Zᵀ w + K λ`. The column
+//! of `Z` of a constraint row is nonzero only on the constraint's support (the chains of its two
+//! joints), so building `Z` costs O(m d²) and `K` O(m² d) for a depth d. This is the Schur
+//! complement form of the KKT system `[[M, −Jᵀ], [J, μ I]]` that Pinocchio's
+//! `ContactCholeskyDecomposition` factorises as a whole (Carpentier, Budhiraja & Mansard 2021).
+
+use super::workspace::ConstraintData;
+use super::{ConstraintError, ProximalSettings, SolverStats};
+use crate::multibody::algorithms::{ltl_solve_lower, NO_DOF};
+use crate::multibody::Data;
+use nalgebra::{DMatrix, DVector};
+
+/// `Z = L⁻ᵀ Jᵀ` and `K = Zᵀ Z` from `cd.jacobian` and the factor `L` in `data.chol`
+/// (`data.dof_parent` its parent dofs).
+pub(crate) fn delassus(data: &Data, cd: &mut ConstraintData) {
+    let nv = data.chol.nrows();
+    let (L, lambda) = (data.chol.as_slice(), &data.dof_parent);
+    let n = cd.placements.len();
+    for c in 0..n {
+        let support = &cd.support[c].cols;
+        for r in cd.rows[c]..cd.rows[c + 1] {
+            let mut z = cd.z.column_mut(r);
+            for &(k, _, _) in support {
+                z[k] = cd.jacobian[(r, k)];
+            }
+            // back substitution on the support, from its deepest dof up (it is closed under
+            // taking parents, so the fill-in stays in it)
+            for &(k, _, _) in support.iter().rev() {
+                z[k] /= L[k * nv + k];
+                let zk = z[k];
+                let mut j = lambda[k];
+                while j != NO_DOF {
+                    z[j] -= L[j * nv + k] * zk;
+                    j = lambda[j];
+                }
+            }
+        }
+    }
+    let m = cd.dim();
+    for c in 0..n {
+        for r in cd.rows[c]..cd.rows[c + 1] {
+            for s in 0..=r {
+                let mut x = 0.0;
+                for &(k, _, _) in &cd.support[c].cols {
+                    x += cd.z[(k, r)] * cd.z[(k, s)];
+                }
+                cd.delassus[(r, s)] = x;
+                cd.delassus[(s, r)] = x;
+            }
+        }
+    }
+    debug_assert_eq!(cd.delassus.nrows(), m);
+}
+
+/// `y = Zᵀ x` over the supports (`y` of length m).
+pub(crate) fn z_transpose_times(cd: &ConstraintData, x: &DVector<f64>, y: &mut [f64]) {
+    for c in 0..cd.placements.len() {
+        for r in cd.rows[c]..cd.rows[c + 1] {
+            y[r] = cd.support[c]
+                .cols
+                .iter()
+                .map(|&(k, _, _)| cd.z[(k, r)] * x[k])
+                .sum();
+        }
+    }
+}
+
+/// `x ← L⁻¹ (x + Z λ)`: the primal solution from `x = w` and the multipliers.
+pub(crate) fn primal(data: &Data, cd: &ConstraintData, lambda: &DVector<f64>, x: &mut [f64]) {
+    for c in 0..cd.placements.len() {
+        for r in cd.rows[c]..cd.rows[c + 1] {
+            for &(k, _, _) in &cd.support[c].cols {
+                x[k] += cd.z[(k, r)] * lambda[r];
+            }
+        }
+    }
+    ltl_solve_lower(data.chol.as_slice(), &data.dof_parent, x);
+}
+
+/// In-place Cholesky `A = G Gᵀ` of the leading `n x n` block of `a` (lower triangle; the upper
+/// one is left as it was).
+///
+/// # Errors
+/// [`ConstraintError::Singular`] when a pivot is not positive (relative to the largest diagonal
+/// entry, 1e-14) or not finite.
+pub(crate) fn cholesky(a: &mut DMatrix<f64>, n: usize) -> Result<(), ConstraintError> {
+    let scale = (0..n).map(|i| a[(i, i)].abs()).fold(0.0, f64::max);
+    for j in 0..n {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= a[(j, k)] * a[(j, k)];
+        }
+        if d.is_nan() || d <= 1e-14 * scale || !d.is_finite() {
+            return Err(ConstraintError::Singular);
+        }
+        let d = d.sqrt();
+        a[(j, j)] = d;
+        for i in j + 1..n {
+            let mut s = a[(i, j)];
+            for k in 0..j {
+                s -= a[(i, k)] * a[(j, k)];
+            }
+            a[(i, j)] = s / d;
+        }
+    }
+    Ok(())
+}
+
+/// `x ← (G Gᵀ)⁻¹ x` with the factor of [`cholesky`] in the leading `n x n` block of `g`.
+pub(crate) fn cholesky_solve(g: &DMatrix<f64>, n: usize, x: &mut [f64]) {
+    for i in 0..n {
+        let mut s = x[i];
+        for k in 0..i {
+            s -= g[(i, k)] * x[k];
+        }
+        x[i] = s / g[(i, i)];
+    }
+    for i in (0..n).rev() {
+        let mut s = x[i];
+        for k in i + 1..n {
+            s -= g[(k, i)] * x[k];
+        }
+        x[i] = s / g[(i, i)];
+    }
+}
+
+/// The proximal iterations on `K λ = b` (`K` in `cd.delassus`, `b` in `cd.b`), from `λ_0 = 0`,
+/// into `cd.lambda` and `cd.stats` ([`proximal_solve`]).
+///
+/// # Errors
+/// [`ConstraintError::Singular`] when `K + μ I` is not positive definite.
+pub(crate) fn proximal(
+    cd: &mut ConstraintData,
+    settings: &ProximalSettings,
+) -> Result<(), ConstraintError> {
+    let m = cd.dim();
+    cd.stats = proximal_solve(
+        &cd.delassus,
+        &mut cd.chol,
+        &cd.b.as_slice()[..m],
+        cd.lambda.as_mut_slice(),
+        &mut cd.prev.as_mut_slice()[..m],
+        settings,
+    )?;
+    Ok(())
+}
+
+/// The proximal point iterations on a symmetric positive semi-definite system `K x = b`
+/// (`n = b.len()`), from `x_0 = 0`: `(K + μ I) x_{k+1} = b + μ x_k` until
+/// `‖K x − b‖∞ ≤ absolute_accuracy` or `‖x_{k+1} − x_k‖∞ ≤ relative_accuracy`, at most
+/// `max_iter` times (RSS 2021, Alg. 1: Rockafellar's proximal point method, which converges for
+/// any `μ > 0` when `b` is in the range of `K`, and then to the `x` of least norm, the iterates
+/// staying in that range). With `μ = 0` one exact solve. `chol` receives the factor of
+/// `K + μ I`; `prev` is scratch.
+///
+/// # Errors
+/// [`ConstraintError::Singular`] when `K + μ I` is not positive definite.
+pub(crate) fn proximal_solve(
+    K: &DMatrix<f64>,
+    chol: &mut DMatrix<f64>,
+    b: &[f64],
+    x: &mut [f64],
+    prev: &mut [f64],
+    settings: &ProximalSettings,
+) -> Result<SolverStats, ConstraintError> {
+    let n = b.len();
+    let mu = settings.mu;
+    for i in 0..n {
+        for k in 0..=i {
+            chol[(i, k)] = K[(i, k)];
+        }
+        chol[(i, i)] += mu;
+    }
+    cholesky(chol, n)?;
+    prev.fill(0.0);
+    let mut stats = SolverStats::default();
+    let max_iter = if mu == 0.0 { 1 } else { settings.max_iter };
+    for it in 1..=max_iter {
+        for i in 0..n {
+            x[i] = b[i] + mu * prev[i];
+        }
+        cholesky_solve(chol, n, &mut x[..n]);
+        let mut rel: f64 = 0.0;
+        let mut abs: f64 = 0.0;
+        for i in 0..n {
+            rel = rel.max((x[i] - prev[i]).abs());
+            let mut r = -b[i];
+            for k in 0..n {
+                r += K[(i, k)] * x[k];
+            }
+            abs = abs.max(r.abs());
+        }
+        prev.copy_from_slice(&x[..n]);
+        stats = SolverStats {
+            iterations: it,
+            absolute_residual: abs,
+            relative_residual: rel,
+            converged: mu == 0.0
+                || abs <= settings.absolute_accuracy
+                || rel <= settings.relative_accuracy,
+            dynamics_residual: 0.0,
+        };
+        if stats.converged {
+            break;
+        }
+    }
+    Ok(stats)
+}
