@@ -3,6 +3,7 @@
 
 pub mod cases;
 pub mod collada;
+pub mod constraints;
 pub mod mesh_file;
 pub mod spec;
 pub mod urdf;
