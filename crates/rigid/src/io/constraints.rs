@@ -77,7 +77,11 @@ pub fn parse_constraints(text: &str, model: &Model) -> Result<ConstraintFile, St
                 .ok_or("\"max_iter\" is not a positive integer")? as usize,
         },
     };
-    if mu.is_nan() || mu < 0.0 || settings.absolute_accuracy < 0.0 || settings.relative_accuracy < 0.0 {
+    if mu.is_nan()
+        || mu < 0.0
+        || settings.absolute_accuracy < 0.0
+        || settings.relative_accuracy < 0.0
+    {
         return Err("\"mu\" and the accuracies must be >= 0".into());
     }
     let restitution = number(&root, "restitution", 0.0)?;

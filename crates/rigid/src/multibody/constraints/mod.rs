@@ -415,8 +415,8 @@ pub struct SolverStats {
     pub relative_residual: f64,
     /// Whether an accuracy was reached (always after one exact solve with `μ = 0`).
     pub converged: bool,
-    /// [`contact_inverse_dynamics`] only: `‖S_aᵀ τ_a + Jᵀ λ − τ_ID‖∞`, zero unless no torques
-    /// and forces produce `q̈` (then the least-squares answer's residual).
+    /// [`contact_inverse_dynamics`] only: `‖S_aᵀ τ_a + Jᵀ λ − τ_ID‖∞`, zero (to rounding)
+    /// unless no torques and forces produce `q̈` (then the least-squares answer's residual).
     pub dynamics_residual: f64,
 }
 
@@ -506,8 +506,8 @@ pub enum ConstraintError {
     /// A workspace made for another model (or with a constraint set of another size).
     #[error("the constraint workspace was made for another model")]
     DataMismatch,
-    /// `J M⁻¹ Jᵀ + μ I` (or the inverse dynamics' Gram matrix) is not positive definite: the
-    /// constraints are redundant or singular at this configuration.
+    /// `J M⁻¹ Jᵀ + μ I` is not positive definite: the constraints are redundant or singular at
+    /// this configuration.
     #[error("the constraints are redundant or singular at this configuration (J M⁻¹ Jᵀ + mu I is not positive definite): use mu > 0 for the proximal solution")]
     Singular,
 }

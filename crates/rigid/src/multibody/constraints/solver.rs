@@ -211,3 +211,97 @@ pub(crate) fn proximal_solve(
     }
     Ok(stats)
 }
+
+/// The minimum-norm least-squares solution `y = G⁺ b` of a symmetric positive semi-definite
+/// system (`n = b.len()`), by the Cholesky factorisation with complete (diagonal) pivoting
+/// `P G Pᵀ = L Lᵀ`, `L` n x r, stopped at the rank r where the largest remaining pivot is at most
+/// `1e-12` times the largest diagonal entry (Higham 2002, §10.3, LAPACK's `dpstrf`); then
+/// `G⁺ = Pᵀ L (LᵀL)⁻² Lᵀ P` (`Lᵀ` has full row rank). `c` receives `L`, `n2` the factor of
+/// `LᵀL`, `perm` the pivots; `y` the solution. Returns the rank.
+pub(crate) fn pinv_solve(
+    G: &DMatrix<f64>,
+    c: &mut DMatrix<f64>,
+    n2: &mut DMatrix<f64>,
+    perm: &mut [usize],
+    b: &[f64],
+    y: &mut [f64],
+) -> usize {
+    let n = b.len();
+    for i in 0..n {
+        perm[i] = i;
+        for k in 0..=i {
+            c[(i, k)] = G[(i, k)];
+        }
+    }
+    let tol = 1e-12 * (0..n).map(|i| G[(i, i)]).fold(0.0, f64::max);
+    let mut rank = n;
+    for j in 0..n {
+        let p = (j..n)
+            .max_by(|&a, &b| c[(a, a)].total_cmp(&c[(b, b)]))
+            .expect("j < n");
+        if c[(p, p)].is_nan() || c[(p, p)] <= tol {
+            rank = j;
+            break;
+        }
+        if p != j {
+            // symmetric swap of rows and columns j and p in the lower triangle
+            perm.swap(j, p);
+            for k in 0..j {
+                let t = c[(j, k)];
+                c[(j, k)] = c[(p, k)];
+                c[(p, k)] = t;
+            }
+            let t = c[(j, j)];
+            c[(j, j)] = c[(p, p)];
+            c[(p, p)] = t;
+            for i in j + 1..p {
+                let t = c[(i, j)];
+                c[(i, j)] = c[(p, i)];
+                c[(p, i)] = t;
+            }
+            for i in p + 1..n {
+                let t = c[(i, j)];
+                c[(i, j)] = c[(i, p)];
+                c[(i, p)] = t;
+            }
+        }
+        let d = c[(j, j)].sqrt();
+        c[(j, j)] = d;
+        for i in j + 1..n {
+            c[(i, j)] /= d;
+        }
+        for k in j + 1..n {
+            let ckj = c[(k, j)];
+            for i in k..n {
+                c[(i, k)] -= c[(i, j)] * ckj;
+            }
+        }
+    }
+    let r = rank;
+    // LᵀL (r x r) and its Cholesky factor
+    for i in 0..r {
+        for k in 0..=i {
+            n2[(i, k)] = (i..n).map(|l| c[(l, i)] * c[(l, k)]).sum();
+        }
+    }
+    cholesky(n2, r).expect("LᵀL is positive definite for the rank found");
+    // w = Lᵀ P b, solved twice with LᵀL, then y = Pᵀ L w
+    for i in 0..r {
+        y[i] = (i..n).map(|l| c[(l, i)] * b[perm[l]]).sum();
+    }
+    cholesky_solve(n2, r, &mut y[..r]);
+    cholesky_solve(n2, r, &mut y[..r]);
+    // z = L w (n), written from the last row up so that y[..r] is read before it is overwritten
+    for l in (0..n).rev() {
+        let z: f64 = (0..r.min(l + 1)).map(|i| c[(l, i)] * y[i]).sum();
+        y[l] = z;
+    }
+    // y ← Pᵀ z: y[perm[l]] = z[l]
+    for l in 0..n {
+        c[(l, 0)] = y[l]; // the factor is no longer needed: reuse its first column
+    }
+    for l in 0..n {
+        y[perm[l]] = c[(l, 0)];
+    }
+    rank
+}

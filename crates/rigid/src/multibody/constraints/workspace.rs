@@ -62,6 +62,9 @@ pub struct ConstraintData {
     /// The Cholesky factor of `K + μ I` (lower), or of the inverse dynamics' Gram matrix (nv x nv).
     pub(crate) chol: DMatrix<f64>,
     pub(crate) gram: DMatrix<f64>,
+    /// `LᵀL` of the pivoted factor of the inverse dynamics (nv x nv) and its pivots.
+    pub(crate) normal: DMatrix<f64>,
+    pub(crate) perm: Vec<usize>,
     /// `w = L⁻ᵀ (τ − nle)` (nv).
     pub(crate) w: DVector<f64>,
     /// The right-hand side `b` of `K λ = b` (m).
@@ -115,6 +118,8 @@ impl ConstraintData {
             delassus: DMatrix::zeros(m, m),
             chol: DMatrix::zeros(m.max(nv), m.max(nv)),
             gram: DMatrix::zeros(nv, nv),
+            normal: DMatrix::zeros(nv, nv),
+            perm: vec![0; nv],
             w: DVector::zeros(nv),
             b: DVector::zeros(m.max(nv)),
             prev: DVector::zeros(m.max(nv)),
