@@ -38,6 +38,12 @@ pub struct EvalArgs {
     /// nv x nv row-major, derivatives in `q` along the tangent `q ⊕ δ`.
     #[arg(long)]
     pub derivatives: bool,
+    /// A constraint file (closed loops, contacts: `{"constraints": [{"type": "point" | "frame",
+    /// "joint1", "placement1", "joint2", "placement2", "reference_frame", "baumgarte"}], "mu",
+    /// "restitution"}`): adds `constraint_dynamics` (`ddq`, `lambda`) and `impulse_dynamics`
+    /// (`dq_plus`, `impulse`) to each result, at `(q, v, tau)`.
+    #[arg(long)]
+    pub constraints: Option<PathBuf>,
 }
 
 /// The layout of the vectors of `rigid eval` (see `rigid::interop`).
@@ -93,6 +99,10 @@ struct CaseResult {
     rnea_derivatives: Option<RneaDerivatives>,
     #[serde(skip_serializing_if = "Option::is_none")]
     aba_derivatives: Option<AbaDerivatives>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    constraint_dynamics: Option<crate::eval_constraints::ConstraintDynamics>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    impulse_dynamics: Option<crate::eval_constraints::ImpulseDynamics>,
 }
 
 /// `∂τ/∂q`, `∂τ/∂v` (row-major).
@@ -162,6 +172,12 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
         .enumerate()
         .map(|(i, r)| r.map_err(|e| format!("{path}: case {i}: {e}")))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(path) = &args.constraints {
+        let more = crate::eval_constraints::evaluate(&model, path, &cases, layout.as_ref())?;
+        for (r, (c, i)) in results.iter_mut().zip(more) {
+            (r.constraint_dynamics, r.impulse_dynamics) = (Some(c), Some(i));
+        }
+    }
     if let Some(l) = &layout {
         results.iter_mut().for_each(|r| result_to_pinocchio(l, r));
     }
@@ -370,6 +386,8 @@ fn evaluate(
         placements: Placements(placements),
         rnea_derivatives,
         aba_derivatives,
+        constraint_dynamics: None,
+        impulse_dynamics: None,
     })
 }
 

@@ -9,6 +9,7 @@ mod bench;
 mod bench_batch;
 mod doctor;
 mod eval;
+mod eval_constraints;
 mod excite;
 mod explicit;
 mod identify;
