@@ -79,6 +79,14 @@ pub fn evaluate(
                 .as_slice()
                 .to_vec();
             let lambda = cd.lambda.as_slice().to_vec();
+            if !cd.stats.converged {
+                eprintln!(
+                    "warning: {name}: case {i}: the proximal iterations did not converge in {} \
+                     (|J ddq + gamma| = {:.3e}): redundant constraints that cannot all hold, or \
+                     raise \"max_iter\"",
+                    cd.stats.iterations, cd.stats.absolute_residual
+                );
+            }
             let dq_plus =
                 impulse_dynamics(model, &mut data, &mut cd, &c.q, &c.v, file.restitution, s)
                     .map_err(e("impulse_dynamics"))?

@@ -292,6 +292,25 @@ fn bad_input_is_an_error() {
     let prox = ProximalSettings::new(1e-12, 1e-4, 1000);
     constraint_dynamics(&model, &mut data, &mut cd, &q, &z, &z, &prox).unwrap();
     assert!(cd.ddq.iter().all(|x| x.is_finite()) && cd.stats.converged);
+    // an error no motion can correct (the rocker's tip 0.1 m off the plane, Baumgarte on): μ > 0
+    // gives a finite q̈ and λ, says it did not converge, and q̈ is the least-squares one: the
+    // residual left is the part no motion reaches, kp · 0.1 along y
+    let off = ConstraintModel::point(
+        coupler,
+        tip(0.8),
+        rocker,
+        Transform::from_translation(Vec3::new(0.6, 0.1, 0.0)),
+    )
+    .with_baumgarte(10.0, 0.0);
+    let mut cd_off = ConstraintData::new(&model, &[off]).unwrap();
+    constraint_dynamics(&model, &mut data, &mut cd_off, &q, &z, &z, &prox).unwrap();
+    assert!(!cd_off.stats.converged);
+    assert!((cd_off.stats.absolute_residual - 1.0).abs() < 1e-9, "{:?}", cd_off.stats);
+    assert!(cd_off
+        .ddq
+        .iter()
+        .chain(cd_off.lambda.iter())
+        .all(|x| x.is_finite()));
     // inputs
     let nan = [0.3, f64::NAN, 0.4];
     let e = constraint_dynamics(&model, &mut data, &mut cd, &nan, &z, &z, &prox).unwrap_err();
