@@ -17,7 +17,9 @@
 //! `"max_iter"` (default 1000; one exact solve when `mu` is 0), `"absolute_accuracy"` and
 //! `"relative_accuracy"` (default 1e-12).
 
-use crate::multibody::constraints::{ConstraintKind, ConstraintModel, ProximalSettings, UNIVERSE};
+use crate::multibody::constraints::{
+    Baumgarte, ConstraintKind, ConstraintModel, ProximalSettings, UNIVERSE,
+};
 use crate::multibody::{Model, ReferenceFrame};
 use crate::spatial::{Mat3, Transform, Vec3};
 use serde_json::Value;
@@ -166,7 +168,7 @@ fn constraint(c: &Value, model: &Model) -> Result<ConstraintModel, String> {
         ),
         Some(_) => return Err("\"baumgarte\" is not an object".into()),
     };
-    let mut m = ConstraintModel {
+    Ok(ConstraintModel {
         name: text("name", Some(""))?,
         kind,
         joint1: joint("joint1", None)?,
@@ -174,10 +176,8 @@ fn constraint(c: &Value, model: &Model) -> Result<ConstraintModel, String> {
         joint2: joint("joint2", Some(UNIVERSE))?,
         placement2: placement(c.get("placement2")).map_err(|e| format!("\"placement2\": {e}"))?,
         reference,
-        baumgarte: Default::default(),
-    };
-    m = m.with_baumgarte(kp, kd);
-    Ok(m)
+        baumgarte: Baumgarte { kp, kd },
+    })
 }
 
 /// `{"translation": [3], "rotation": [[3x3]]}` (each key optional), or the identity if absent.

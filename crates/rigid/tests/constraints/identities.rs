@@ -305,7 +305,11 @@ fn bad_input_is_an_error() {
     let mut cd_off = ConstraintData::new(&model, &[off]).unwrap();
     constraint_dynamics(&model, &mut data, &mut cd_off, &q, &z, &z, &prox).unwrap();
     assert!(!cd_off.stats.converged);
-    assert!((cd_off.stats.absolute_residual - 1.0).abs() < 1e-9, "{:?}", cd_off.stats);
+    assert!(
+        (cd_off.stats.absolute_residual - 1.0).abs() < 1e-9,
+        "{:?}",
+        cd_off.stats
+    );
     assert!(cd_off
         .ddq
         .iter()

@@ -173,12 +173,10 @@ impl<'m> ConstrainedSimulator<'m> {
         if self.options.project {
             self.project()?;
         }
-        if self.q.iter().chain(&self.v).any(|x| !x.is_finite()) {
-            return Err(crate::multibody::MultibodyError::NonFinite {
-                what: "state",
-                index: 0,
+        for (what, x) in [("q", &self.q), ("v", &self.v)] {
+            if let Some(index) = x.iter().position(|x| !x.is_finite()) {
+                return Err(crate::multibody::MultibodyError::NonFinite { what, index }.into());
             }
-            .into());
         }
         self.violation()
     }
