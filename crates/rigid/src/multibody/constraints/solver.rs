@@ -19,42 +19,72 @@ use nalgebra::{DMatrix, DVector};
 /// (`data.dof_parent` its parent dofs).
 pub(crate) fn delassus(data: &Data, cd: &mut ConstraintData) {
     let nv = data.chol.nrows();
+    let m = cd.dim();
     let (L, lambda) = (data.chol.as_slice(), &data.dof_parent);
     let n = cd.placements.len();
+    // Z, column-major: column r = Z[r * nv..(r + 1) * nv]
+    let Z = cd.z.as_mut_slice();
     for c in 0..n {
         let support = &cd.support[c].cols;
-        for r in cd.rows[c]..cd.rows[c + 1] {
-            let mut z = cd.z.column_mut(r);
+        let rows = cd.rows[c]..cd.rows[c + 1];
+        for r in rows.clone() {
             for &(k, _, _) in support {
-                z[k] = cd.jacobian[(r, k)];
+                Z[r * nv + k] = cd.jacobian[(r, k)];
             }
-            // back substitution on the support, from its deepest dof up (it is closed under
-            // taking parents, so the fill-in stays in it)
-            for &(k, _, _) in support.iter().rev() {
-                z[k] /= L[k * nv + k];
-                let zk = z[k];
-                let mut j = lambda[k];
-                while j != NO_DOF {
-                    z[j] -= L[j * nv + k] * zk;
-                    j = lambda[j];
+        }
+        // back substitution on the support, from its deepest dof up (it is closed under taking
+        // parents, so the fill-in stays in it), the constraint's rows together so that each
+        // chain of parents is walked once
+        for &(k, _, _) in support.iter().rev() {
+            let d = L[k * nv + k];
+            for r in rows.clone() {
+                Z[r * nv + k] /= d;
+            }
+            let mut j = lambda[k];
+            while j != NO_DOF {
+                let l = L[j * nv + k];
+                for r in rows.clone() {
+                    Z[r * nv + j] -= l * Z[r * nv + k];
                 }
+                j = lambda[j];
             }
         }
     }
-    let m = cd.dim();
+    // K[r, s] = Z_rᵀ Z_s over the span of r's constraint's support (Z_r is zero outside it)
+    let Z = cd.z.as_slice();
+    let K = cd.delassus.as_mut_slice();
     for c in 0..n {
+        let span = match (cd.support[c].cols.first(), cd.support[c].cols.last()) {
+            (Some(a), Some(b)) => a.0..b.0 + 1,
+            _ => 0..0,
+        };
         for r in cd.rows[c]..cd.rows[c + 1] {
+            let zr = &Z[r * nv..(r + 1) * nv][span.clone()];
             for s in 0..=r {
-                let mut x = 0.0;
-                for &(k, _, _) in &cd.support[c].cols {
-                    x += cd.z[(k, r)] * cd.z[(k, s)];
-                }
-                cd.delassus[(r, s)] = x;
-                cd.delassus[(s, r)] = x;
+                let x = dot(zr, &Z[s * nv..(s + 1) * nv][span.clone()]);
+                K[s * m + r] = x;
+                K[r * m + s] = x;
             }
         }
     }
-    debug_assert_eq!(cd.delassus.nrows(), m);
+}
+
+/// `aᵀ b` with four partial sums (independent chains of additions).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut s = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ca
+        .remainder()
+        .iter()
+        .zip(cb.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        for i in 0..4 {
+            s[i] += x[i] * y[i];
+        }
+    }
+    (s[0] + s[1]) + (s[2] + s[3]) + tail
 }
 
 /// `y = Zᵀ x` over the supports (`y` of length m).
