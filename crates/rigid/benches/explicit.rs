@@ -25,7 +25,7 @@ use std::hint::black_box;
 
 #[path = "explicit/puma560.rs"]
 mod puma560;
-#[path = "../tests/explicit_support/mod.rs"]
+#[path = "../tests/it/explicit_support/mod.rs"]
 mod support;
 #[path = "explicit/ur5.rs"]
 mod ur5;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fault-injection corpus for `rigid doctor` (crates/rigid/tests/doctor.rs).
+"""Fault-injection corpus for `rigid doctor` (crates/rigid/tests/it/doctor.rs).
 
 Usage: python3 inject.py [--per-code N] [--seed S] > corpus.json
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Pinocchio reference values for every URDF file of whole robot-description packages
-(crates/rigid/tests/pinocchio_packages.rs).
+(crates/rigid/tests/it/pinocchio_packages.rs).
 
 Usage: python3 packages.py PACKAGE [--states N] [--seed S]
        python3 packages.py list

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Pinocchio reference values for rigid's cross-check (crates/rigid/tests/pinocchio.rs).
+"""Pinocchio reference values for rigid's cross-check (crates/rigid/tests/it/pinocchio.rs).
 
 Usage: python3 reference.py ROBOT [--states N] [--seed S] [--derivatives]   (ROBOT: see ROBOTS, or "list")
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Pinocchio's joint-torque regressor for every URDF file of a robot-description package
-(crates/rigid/tests/identification_packages.rs).
+(crates/rigid/tests/it/identification_packages.rs).
 
 Usage: python3 regressor.py PACKAGE [--states N] [--seed S]
 

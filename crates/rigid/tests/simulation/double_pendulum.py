@@ -1,4 +1,4 @@
-"""Reference trajectory of rigid's built-in `double_pendulum` by SciPy, for tests/simulation.rs.
+"""Reference trajectory of rigid's built-in `double_pendulum` by SciPy, for tests/it/simulation.rs.
 
 Two uniform thin rods (m = 1 kg, l = 1 m) hanging along -z, joints about y, the second at the tip
 of the first; q2 is the relative angle. With a = l/2 and I = m l^2/12 (about the CoM, the rods'

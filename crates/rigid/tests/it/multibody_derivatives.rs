@@ -5,7 +5,7 @@
 //! `∂q̈/∂τ = M⁻¹`, `∂q̈/∂x = -M⁻¹ ∂τ/∂x`).
 #![allow(non_snake_case)]
 
-mod common;
+use crate::common;
 use common::*;
 use nalgebra::{DMatrix, DVector};
 use rigid::io::urdf::load_urdf;
@@ -299,7 +299,7 @@ fn derivatives_reject_bad_inputs_with_the_argument_named() {
     ));
 }
 
-/// The robots of example-robot-data (as in `tests/pinocchio.rs`, loaded with rigid's URDF
+/// The robots of example-robot-data (as in `tests/it/pinocchio.rs`, loaded with rigid's URDF
 /// importer), against finite differences.
 #[test]
 fn derivatives_equal_finite_differences_on_example_robot_data() {

@@ -3,7 +3,7 @@
 //! RNEA against `τ - Σ J_iᵀ F_i`.
 #![allow(non_snake_case)]
 
-mod common;
+use crate::common;
 use common::*;
 use nalgebra::{DMatrix, DVector};
 use rigid::multibody::*;

@@ -1,7 +1,7 @@
 //! `rigid eval --json` end to end against Pinocchio: the states of
 //! `crates/rigid/tests/pinocchio/reference.py` are written as a CASES.json, run through the
 //! binary, and every output compared with Pinocchio's (the same 1e-9 norm-relative tolerance,
-//! `‖Δ‖∞ / max(‖ref‖∞, 1e-6)`, as `crates/rigid/tests/pinocchio.rs`). Set
+//! `‖Δ‖∞ / max(‖ref‖∞, 1e-6)`, as `crates/rigid/tests/it/pinocchio.rs`). Set
 //! `RIGID_SKIP_PINOCCHIO=1` to skip; `bash scripts/test.sh` installs Pinocchio.
 
 use serde_json::{json, Value};

@@ -1,6 +1,6 @@
 //! Batch evaluation equals single calls bit for bit, in order, on 1 and 2 threads.
 
-mod common;
+use crate::common;
 use rigid::multibody::*;
 
 fn states(model: &Model, n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {

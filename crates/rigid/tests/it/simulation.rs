@@ -155,7 +155,7 @@ fn rk4_and_variational_converge_at_fourth_order_and_euler_at_first() {
     }
 }
 
-mod common;
+use crate::common;
 
 fn common_tree() -> Model {
     common::random_tree(21, 6, true)

@@ -15,7 +15,7 @@ use rigid::io::urdf::load_urdf;
 use rigid::multibody::{rnea, Data};
 use serde_json::Value;
 
-mod common;
+use crate::common;
 use common::json::vec_of;
 use common::reference::{index_maps, json_lines, to_rigid};
 

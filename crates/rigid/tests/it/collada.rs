@@ -5,7 +5,7 @@ use rigid::io::collada::parse_dae;
 use rigid::io::mesh_file::read_mesh;
 use rigid::spatial::Vec3;
 
-mod common;
+use crate::common;
 use common::reference::{package_roots, skip};
 
 /// A unit cube (12 triangles) as two `<polylist>` quads and `<triangles>`, instanced twice.

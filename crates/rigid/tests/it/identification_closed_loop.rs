@@ -19,7 +19,7 @@ use rigid::mass::{Consistency, SpatialInertia, Verdict};
 use rigid::multibody::simulation::{Integrator, JointLimits, SimulationOptions, Simulator};
 use rigid::multibody::*;
 
-mod common;
+use crate::common;
 
 /// Samples at 100 Hz of `model` tracking `traj` (computed torque, `K_p = 400`, `K_d = 40`).
 fn closed_loop(model: &Model, traj: &FourierTrajectory) -> Samples {

@@ -18,8 +18,6 @@ use rigid::explicit::{EntryKind, ExplicitModel, TableOptions, Tables};
 use rigid::multibody::*;
 use std::f64::consts::PI;
 
-mod explicit_support;
-
 fn puma_paper() -> Model {
     let mut m = puma560(Puma560Options::default());
     m.set_armature(&[1.14, 4.71, 0.83, 0.20, 0.18, 0.19])

@@ -3,7 +3,7 @@
 //! on every built-in model and random trees with every joint type.
 #![allow(non_snake_case)]
 
-mod common;
+use crate::common;
 use common::*;
 use nalgebra::{DMatrix, DVector};
 use rigid::multibody::*;

@@ -5,43 +5,16 @@
 //! and the joint-torque regressor of identification (`Regressor::compute` and its stacked form):
 //! a counting global allocator proves it.
 
-mod common;
+use crate::allocations_in as allocations;
+use crate::common;
 use rigid::multibody::*;
 use rigid::spatial::Wrench;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn allocations(f: impl FnOnce()) -> usize {
-    let before = ALLOCS.load(Ordering::SeqCst);
-    f();
-    ALLOCS.load(Ordering::SeqCst) - before
-}
 
 #[test]
 fn algorithms_allocate_nothing_after_data_new() {
     // the counter sees allocations
     assert!(allocations(|| drop(std::hint::black_box(vec![1.0f64; 10]))) > 0);
-    // one test only: the counter is global, and tests in one binary run in parallel threads
+    // the counter is per thread: the other tests of this binary run on other threads
     let mut models = vec![common::random_tree(7, 12, true)];
     models.push(puma560(Puma560Options { armature: true }));
     for model in &models {

@@ -25,7 +25,7 @@ use rigid::multibody::{
 };
 use serde_json::Value;
 
-mod common;
+use crate::common;
 use common::json::vec_of;
 use common::reference::{self, run_script, skip, to_rigid};
 

@@ -1,34 +1,10 @@
-//! The simulator's step allocates nothing: a counting global allocator (this test binary only)
+//! The simulator's step allocates nothing: the counting global allocator of this test binary
 //! sees no allocation on the simulating thread across thousands of steps of either integrator.
 
+use crate::allocations;
 use rigid::body::{Integrator, RigidBody, Simulator, State};
 use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::spatial::{Transform, Twist, Vec3};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-struct Counting;
-thread_local! {
-    /// Allocations made by this thread (the test harness's own threads are not counted).
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
 
 #[test]
 fn simulator_steps_do_not_allocate() {

@@ -22,7 +22,7 @@ use rigid::spatial::Transform;
 use serde_json::Value;
 use std::collections::HashMap;
 
-mod common;
+use crate::common;
 use common::reference::{package_roots, run_script, skip};
 use std::path::PathBuf;
 

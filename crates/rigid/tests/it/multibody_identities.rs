@@ -2,7 +2,7 @@
 //! root, spherical, planar, prismatic, revolute joints with random axes).
 #![allow(non_snake_case)]
 
-mod common;
+use crate::common;
 use common::*;
 use nalgebra::{DMatrix, DVector};
 use rigid::multibody::*;

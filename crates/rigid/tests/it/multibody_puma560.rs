@@ -7,12 +7,12 @@ use nalgebra::{DMatrix, DVector};
 use rigid::multibody::*;
 use serde_json::Value;
 
-mod common;
+use crate::common;
 use common::json::{mat_of, vec_of};
 use std::f64::consts::PI;
 
 fn fixture() -> Value {
-    let text = include_str!("fixtures/puma560_rtb.json");
+    let text = include_str!("../fixtures/puma560_rtb.json");
     serde_json::from_str(text).unwrap()
 }
 

@@ -2,7 +2,7 @@
 //! parameters against fresh motions, least squares on exact and noisy torques, the physically
 //! consistent estimate, the CSV reader and its errors, the differentiator, the excitation.
 
-mod common;
+use crate::common;
 use nalgebra::{DMatrix, DVector};
 use rigid::identification::excitation::{optimize, ExcitationOptions};
 use rigid::identification::*;

@@ -12,7 +12,7 @@ use rigid::multibody::{crba, gravity_torques, nonlinear_effects, Data, Model};
 use std::fmt::Write;
 use std::process::Command;
 
-mod explicit_support;
+use crate::explicit_support;
 use explicit_support::{models, rel, run, scratch, states};
 
 const STATES: usize = 1000;

@@ -11,7 +11,7 @@ use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::multibody::*;
 use rigid::spatial::{Transform, Vec3};
 
-mod explicit_support;
+use crate::explicit_support;
 use explicit_support::{random_model, rel, states};
 
 /// `max |a - b|` over the terms (coefficient times parameter values).

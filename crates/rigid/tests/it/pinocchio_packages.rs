@@ -17,7 +17,7 @@ use rigid::io::urdf::{load_urdf, load_urdf_with, InertiaPolicy, UrdfOptions};
 use rigid::multibody::{aba, crba, rnea, Data};
 use serde_json::Value;
 
-mod common;
+use crate::common;
 use common::json::vec_of;
 use common::reference::{self, index_maps, run_script, skip, to_rigid};
 

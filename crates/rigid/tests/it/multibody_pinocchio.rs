@@ -10,7 +10,7 @@ use rigid::multibody::*;
 use rigid::spatial::{Mat3, Transform, Vec3};
 use serde_json::Value;
 
-mod common;
+use crate::common;
 use common::json::{mat_of, vec_of};
 
 fn mat3(v: &Value) -> Mat3 {
@@ -58,7 +58,7 @@ fn rel(x: &DVector<f64>, y: &[f64]) -> f64 {
 
 #[test]
 fn random_tree_agrees_with_pinocchio_to_1e9() {
-    let fx: Value = serde_json::from_str(include_str!("fixtures/tree_pinocchio.json")).unwrap();
+    let fx: Value = serde_json::from_str(include_str!("../fixtures/tree_pinocchio.json")).unwrap();
     let model = build(&fx);
     let mut d = Data::new(&model);
     let mut worst_minv = 0.0f64;
