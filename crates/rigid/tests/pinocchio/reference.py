@@ -157,20 +157,9 @@ def reference_derivatives(model, data, joints, p, rs, q, v, a, tau):
     return out
 
 
-def main():
-    args = sys.argv[1:]
-    if not args or args[0] in ("-h", "--help"):
-        print(__doc__)
-        return
-    if args[0] == "list":
-        print(json.dumps(sorted(ROBOTS)))
-        return
-    name = args[0]
-    states = int(args[args.index("--states") + 1]) if "--states" in args else 5
-    seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
-    derivatives = "--derivatives" in args
-    if name not in ROBOTS:
-        sys.exit(f"unknown robot {name!r}; known: {', '.join(sorted(ROBOTS))}")
+def reference(name, states=5, seed=0, derivatives=False):
+    """Pinocchio's results on robot `name` (a key of ROBOTS) at `states` random states drawn with
+    `seed`, in rigid's conventions: the JSON object this script prints."""
     rel, floating = ROBOTS[name]
     if rel.startswith("local:"):
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), rel[len("local:"):])
@@ -228,7 +217,7 @@ def main():
         }
         out_states.append(st)
 
-    print(json.dumps(plain(dict(
+    return plain(dict(
         robot=name,
         urdf=path,
         floating=floating,
@@ -240,7 +229,24 @@ def main():
         total_mass=pin.computeTotalMass(model),
         joints=joints,
         states=out_states,
-    ))))
+    ))
+
+
+def main():
+    args = sys.argv[1:]
+    if not args or args[0] in ("-h", "--help"):
+        print(__doc__)
+        return
+    if args[0] == "list":
+        print(json.dumps(sorted(ROBOTS)))
+        return
+    name = args[0]
+    states = int(args[args.index("--states") + 1]) if "--states" in args else 5
+    seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
+    derivatives = "--derivatives" in args
+    if name not in ROBOTS:
+        sys.exit(f"unknown robot {name!r}; known: {', '.join(sorted(ROBOTS))}")
+    print(json.dumps(reference(name, states, seed, derivatives)))
 
 
 if __name__ == "__main__":
