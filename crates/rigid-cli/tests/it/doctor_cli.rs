@@ -1,7 +1,8 @@
 //! `rigid doctor`: the JSON report's keys and verdicts on a fixture with known faults, `--fix`
 //! (only the bad `<inertial>` blocks change, each with a comment, and the result is clean), the
 //! `--inertia` policies on the same file, and the real files the issue names (TIAGo's antenna,
-//! Romeo's body) when the PyPI packages are installed.
+//! Romeo's body: example-robot-data's files, checked in under
+//! `crates/rigid/tests/fixtures/robots/` without their meshes).
 
 use serde_json::Value;
 use std::path::PathBuf;
@@ -134,25 +135,9 @@ fn inertia_policies_on_the_command_line() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("strict, warn or repair"));
 }
 
-/// The folder of example-robot-data's robots, or `None` when skipped.
-fn example_robot_data() -> Option<PathBuf> {
-    if std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1") {
-        return None;
-    }
-    let script =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../rigid/tests/pinocchio/packages.py");
-    let py = std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into());
-    let out = Command::new(py).arg(script).arg("roots").output().unwrap();
-    assert!(out.status.success(), "run `bash scripts/test.sh` first");
-    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
-    Some(PathBuf::from(v["example-robot-data"].as_str()?))
-}
-
 #[test]
 fn the_issues_real_files_tiago_antenna_and_romeo_body() {
-    let Some(erd) = example_robot_data() else {
-        return;
-    };
+    let erd = crate::common::example_robot_data();
     for (file, link, line) in [
         (
             "tiago_description/robots/tiago.urdf",

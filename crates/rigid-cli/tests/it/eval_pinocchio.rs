@@ -1,11 +1,17 @@
 //! `rigid eval --json` end to end against Pinocchio: the states of
 //! `crates/rigid/tests/pinocchio/reference.py` are written as a CASES.json, run through the
 //! binary, and every output compared with Pinocchio's (the same 1e-9 norm-relative tolerance,
-//! `‖Δ‖∞ / max(‖ref‖∞, 1e-6)`, as `crates/rigid/tests/it/pinocchio.rs`). Set
-//! `RIGID_SKIP_PINOCCHIO=1` to skip; `bash scripts/test.sh` installs Pinocchio.
+//! `‖Δ‖∞ / max(‖ref‖∞, 1e-6)`, as `crates/rigid/tests/it/pinocchio.rs`).
+//!
+//! Every run uses the checked-in fixture `crates/rigid/tests/pinocchio/reference.json` (written by
+//! `gen_reference.py` beside it) and the URDF files checked in under
+//! `crates/rigid/tests/fixtures/robots/`; `RIGID_CROSSCHECK=1` adds the live check, `reference.py`
+//! run with `RIGID_PYTHON` (or `python3`) with Pinocchio installed (`bash scripts/test.sh`
+//! installs it).
 
+use crate::common::{example_robot_data, live, python, rigid_tests};
 use serde_json::{json, Value};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn floats(v: &Value) -> Vec<f64> {
@@ -26,30 +32,67 @@ fn rel(a: &[f64], b: &[f64]) -> f64 {
     diff / b.iter().map(|y| y.abs()).fold(1e-6, f64::max)
 }
 
-fn check(robot: &str) {
-    if std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1") {
-        return;
+/// Pinocchio's references for `robot`: the checked-in fixture's and, with `RIGID_CROSSCHECK=1`,
+/// the live one; each with where it comes from.
+fn references(robot: &str) -> Vec<(&'static str, Value)> {
+    let path = rigid_tests("pinocchio/reference.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let fixture: Value = serde_json::from_str(&text).unwrap();
+    let r = fixture["robots"][robot].clone();
+    assert!(r.is_object(), "{} has no {robot}", path.display());
+    let mut out = vec![("fixture", r)];
+    if live(&format!("rigid eval {robot} against Pinocchio live")) {
+        let out_ = Command::new(python())
+            .arg(rigid_tests("pinocchio/reference.py"))
+            .args([robot, "--states", "4", "--seed", "3"])
+            .output()
+            .unwrap_or_else(|e| {
+                panic!(
+                    "cannot run {} ({e}): RIGID_CROSSCHECK=1 needs Python with Pinocchio (run \
+                     `bash scripts/test.sh`, or set RIGID_PYTHON)",
+                    python()
+                )
+            });
+        assert!(
+            out_.status.success(),
+            "reference.py failed (RIGID_CROSSCHECK=1 needs Python with Pinocchio: run `bash \
+             scripts/test.sh`, or set RIGID_PYTHON):\n{}",
+            String::from_utf8_lossy(&out_.stderr)
+        );
+        out.push(("live", serde_json::from_slice(&out_.stdout).unwrap()));
     }
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../rigid/tests/pinocchio");
-    let python = std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into());
-    let out = Command::new(&python)
-        .arg(root.join("reference.py"))
-        .args([robot, "--states", "4", "--seed", "3"])
-        .output()
-        .expect("python3 (run `bash scripts/test.sh`)");
-    assert!(
-        out.status.success(),
-        "reference.py failed (run `bash scripts/test.sh` to install Pinocchio, or set \
-         RIGID_SKIP_PINOCCHIO=1):\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    out
+}
 
+/// The URDF file of a reference: the checked-in copy for the fixture's (relative, or `local:`
+/// beside the reference scripts), the installed package's for a live one (absolute).
+fn urdf_of(r: &Value) -> PathBuf {
+    let file = r["urdf"].as_str().unwrap();
+    if let Some(local) = file.strip_prefix("local:") {
+        rigid_tests("pinocchio").join(local)
+    } else if Path::new(file).is_absolute() {
+        PathBuf::from(file)
+    } else {
+        example_robot_data().join(file)
+    }
+}
+
+fn check(robot: &str) {
+    for (source, r) in references(robot) {
+        check_with(robot, source, &r);
+    }
+}
+
+fn check_with(robot: &str, source: &str, r: &Value) {
     // Pinocchio's joint order → rigid's, by name, from `rigid eval`'s own joint list.
     let states = r["states"].as_array().unwrap();
-    let urdf = r["urdf"].as_str().unwrap();
+    let urdf = urdf_of(r);
+    let urdf = urdf.to_str().unwrap();
     let floating = r["floating"].as_bool().unwrap();
-    let probe = std::env::temp_dir().join(format!("rigid-eval-pin-{robot}-{}", std::process::id()));
+    let probe = std::env::temp_dir().join(format!(
+        "rigid-eval-pin-{robot}-{source}-{}",
+        std::process::id()
+    ));
     std::fs::create_dir_all(&probe).unwrap();
     let run = |cases: &Value| -> Value {
         let path = probe.join("cases.json");
@@ -138,7 +181,7 @@ fn check(robot: &str) {
             worst = worst.max(e);
         }
     }
-    eprintln!("rigid eval {robot}: max relative error vs Pinocchio {worst:.1e}");
+    eprintln!("rigid eval {robot} ({source}): max relative error vs Pinocchio {worst:.1e}");
 }
 
 #[test]

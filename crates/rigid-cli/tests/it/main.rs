@@ -2,6 +2,8 @@
 //! module). They run the binary (`CARGO_BIN_EXE_rigid`); their data is beside this folder:
 //! `fixtures/` (small input files) and `corpus/` (the malformed-input corpus and its generator).
 
+mod common;
+
 mod bench_cli;
 mod corpus;
 mod doctor_cli;

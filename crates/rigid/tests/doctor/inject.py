@@ -3,6 +3,10 @@
 
 Usage: python3 inject.py [--per-code N] [--seed S] > corpus.json
 
+The committed corpus.json is this script's output with the defaults; the live run of the tests
+(RIGID_CROSSCHECK=1) runs it again and compares, the numbers to 1e-9 relative (numpy may round
+differently on another machine).
+
 Takes the real URDF files of the robot-description packages of scripts/requirements-test.txt
 (example-robot-data, icub-models, ...), picks links and injects into each one fault of the
 doctor's list, written as a URDF would write it. Nothing here uses rigid: the faults are defined

@@ -6,7 +6,6 @@ use rigid::io::mesh_file::read_mesh;
 use rigid::spatial::Vec3;
 
 use crate::common;
-use common::reference::{package_roots, skip};
 
 /// A unit cube (12 triangles) as two `<polylist>` quads and `<triangles>`, instanced twice.
 const CUBE: &str = r##"<?xml version="1.0"?>
@@ -84,11 +83,9 @@ fn bad_collada_is_an_error_not_a_panic() {
 
 #[test]
 fn a_robot_dae_matches_its_stl_twin() {
-    if skip("the COLLADA/STL twin") {
-        return;
-    }
-    let erd = package_roots()["example-robot-data"].clone();
     // TIAGo's arm: a Y-up COLLADA collision mesh and the STL visual mesh of the same part
+    // (example-robot-data's files, checked in under tests/fixtures/robots/)
+    let erd = common::example_robot_data();
     let dir = erd.join("tiago_description/meshes/arm");
     let dae = read_mesh(&dir.join("arm_2_collision.dae")).unwrap();
     let stl = read_mesh(&dir.join("arm_2.stl")).unwrap();

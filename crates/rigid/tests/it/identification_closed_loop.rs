@@ -218,15 +218,7 @@ fn puma560_closed_loop_identification() {
 
 #[test]
 fn panda_closed_loop_identification() {
-    if common::reference::skip("the Panda of example-robot-data") {
-        return;
-    }
-    let roots = common::reference::package_roots();
-    let dir = &roots["example-robot-data"];
-    let model = load_urdf(
-        std::path::Path::new(dir).join("panda_description/urdf/panda.urdf"),
-        false,
-    )
-    .unwrap();
+    let dir = common::example_robot_data();
+    let model = load_urdf(dir.join("panda_description/urdf/panda.urdf"), false).unwrap();
     check(&model);
 }

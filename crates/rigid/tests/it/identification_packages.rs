@@ -7,7 +7,13 @@
 //! rows in rigid's order (free-flyer rows angular first; Pinocchio's are linear first) and its
 //! columns by Pinocchio's joints, which urdfdom orders by name among siblings: the columns are
 //! matched to rigid's bodies by joint name. The parameter order inside a body is the same
-//! (`toDynamicParameters`). `RIGID_SKIP_PINOCCHIO=1` skips it.
+//! (`toDynamicParameters`).
+//!
+//! Every run does this on the checked-in fixture `tests/pinocchio/regressor.json`
+//! (`tests/pinocchio/gen_packages.py` writes it with `regressor.py`: the UR5, the Panda and the
+//! double pendulum, one state each, fixed and floating, from the copies under
+//! `tests/fixtures/robots/`); `RIGID_CROSSCHECK=1` adds the live check on every file of the
+//! installed package, run with `RIGID_PYTHON` (or `python3`).
 
 use nalgebra::{DMatrix, DVector};
 use rigid::identification::{model_parameters, Regressor};
@@ -17,7 +23,7 @@ use serde_json::Value;
 
 use crate::common;
 use common::json::vec_of;
-use common::reference::{index_maps, json_lines, to_rigid};
+use common::reference::{self, index_maps, json_lines, record_file, to_rigid};
 
 fn rel(a: &[f64], b: &[f64]) -> f64 {
     common::reference::rel(a, b, 1e-6)
@@ -25,7 +31,7 @@ fn rel(a: &[f64], b: &[f64]) -> f64 {
 
 /// `(‖Yπ + armature ∘ a − rnea‖ / ‖rnea‖, Pinocchio's Y vs rigid's)`, the worst over the states.
 fn compare_file(r: &Value) -> Result<(f64, f64), String> {
-    let file = r["file"].as_str().unwrap();
+    let file = record_file("example-robot-data", r["file"].as_str().unwrap());
     let floating = r["floating"].as_bool().unwrap();
     let model = load_urdf(file, floating).map_err(|e| format!("rigid refuses it: {e}"))?;
     let joints = r["joints"].as_array().unwrap();
@@ -87,15 +93,24 @@ fn compare_file(r: &Value) -> Result<(f64, f64), String> {
 
 #[test]
 fn regressor_of_every_example_robot_data_urdf_is_rnea_and_pinocchio() {
-    let Some(records) = json_lines(
-        "pinocchio/regressor.py",
-        &["example-robot-data", "--states", "2", "--seed", "3"],
-    ) else {
-        return;
-    };
+    check_records(
+        "fixture",
+        &reference::fixture_lines("pinocchio/regressor.json"),
+    );
+    if reference::live("the regressor against Pinocchio live") {
+        let records = json_lines(
+            "pinocchio/regressor.py",
+            &["example-robot-data", "--states", "2", "--seed", "3"],
+        );
+        check_records("live", &records);
+    }
+}
+
+fn check_records(source: &str, records: &[Value]) {
     let (mut compared, mut failures) = (0, Vec::new());
     let (mut worst_rnea, mut worst_pin) = (0.0f64, 0.0f64);
-    for r in &records {
+    let mut loadable = 0;
+    for r in records {
         let file = r["file"].as_str().unwrap();
         let floating = r["floating"].as_bool().unwrap();
         let short = file.rsplit("/robots/").next().unwrap_or(file);
@@ -103,6 +118,7 @@ fn regressor_of_every_example_robot_data_urdf_is_rnea_and_pinocchio() {
         if r.get("refused").is_some() {
             continue;
         }
+        loadable += 1;
         match compare_file(r) {
             Ok((er, ep)) => {
                 compared += 1;
@@ -118,9 +134,19 @@ fn regressor_of_every_example_robot_data_urdf_is_rnea_and_pinocchio() {
         }
     }
     eprintln!(
-        "example-robot-data: {compared} models (files x fixed/floating); worst Yπ vs rnea \
-         {worst_rnea:.2e}, worst Y vs Pinocchio {worst_pin:.2e}"
+        "example-robot-data ({source}): {compared} models (files x fixed/floating); worst Yπ vs \
+         rnea {worst_rnea:.2e}, worst Y vs Pinocchio {worst_pin:.2e}"
     );
-    assert!(compared > 50, "only {compared} models compared");
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    if source == "live" {
+        // the whole package
+        assert!(compared > 50, "only {compared} models compared");
+        assert!(failures.is_empty(), "{}", failures.join("\n"));
+    } else {
+        assert!(failures.is_empty(), "{}", failures.join("\n"));
+        // the fixture's few files: every one
+        assert!(
+            compared > 0 && compared == loadable,
+            "{compared} of {loadable} models compared"
+        );
+    }
 }

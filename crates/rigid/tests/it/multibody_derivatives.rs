@@ -300,7 +300,7 @@ fn derivatives_reject_bad_inputs_with_the_argument_named() {
 }
 
 /// The robots of example-robot-data (as in `tests/it/pinocchio.rs`, loaded with rigid's URDF
-/// importer), against finite differences.
+/// importer from the copies under `tests/fixtures/robots/`), against finite differences.
 #[test]
 fn derivatives_equal_finite_differences_on_example_robot_data() {
     const ROBOTS: [(&str, bool); 6] = [
@@ -311,16 +311,7 @@ fn derivatives_equal_finite_differences_on_example_robot_data() {
         ("talos_data/robots/talos_reduced.urdf", true),
         ("talos_data/robots/talos_full_v2.urdf", true),
     ];
-    let Some(dir) = example_robot_data() else {
-        if std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1") {
-            eprintln!("RIGID_SKIP_PINOCCHIO=1 and example-robot-data not found: robots skipped");
-            return;
-        }
-        panic!(
-            "example-robot-data not found: run `bash scripts/test.sh` (it pip-installs it), set \
-             EXAMPLE_ROBOT_DATA to its robots/ folder, or RIGID_SKIP_PINOCCHIO=1 to skip"
-        );
-    };
+    let dir = example_robot_data();
     let mut rng = Rng::new(25);
     for (file, floating) in ROBOTS {
         let model = load_urdf(dir.join(file), floating).unwrap_or_else(|e| panic!("{file}: {e}"));

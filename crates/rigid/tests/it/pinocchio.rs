@@ -14,8 +14,13 @@
 //! (`computeMinverse`, symmetrised like `M`), nle, gravity, kinetic and potential energy, CoM,
 //! total mass and every joint placement.
 //!
-//! Requires `python3` with `pin` and `example-robot-data` (`bash scripts/test.sh` installs
-//! them); set `RIGID_SKIP_PINOCCHIO=1` to skip. `RIGID_PYTHON` overrides the interpreter.
+//! Every run compares with the checked-in fixture `tests/pinocchio/reference.json`
+//! (`tests/pinocchio/gen_reference.py` writes it with `reference.py`: 2 states per robot, the
+//! first with the derivatives; TALOS one state without), loading the URDF files checked in under
+//! `tests/fixtures/robots/`, to the same tolerance. `RIGID_CROSSCHECK=1` adds the live check:
+//! `reference.py` run with `RIGID_PYTHON` (or `python3`) with `pin` and `example-robot-data`
+//! (`bash scripts/test.sh` installs them), 8 states per robot, on the installed package's files,
+//! and the fixture regenerated and compared with the committed one.
 
 use nalgebra::DMatrix;
 use rigid::io::urdf::load_urdf;
@@ -27,26 +32,43 @@ use serde_json::Value;
 
 use crate::common;
 use common::json::vec_of;
-use common::reference::{self, run_script, skip, to_rigid};
+use common::reference::{self, run_script, to_rigid};
+use std::path::PathBuf;
 
-/// Random states per robot.
+/// Random states per robot of the live check.
 const STATES: usize = 8;
 /// Largest relative error accepted.
 const TOLERANCE: f64 = 1e-9;
 /// Absolute floor of the scale in the relative error.
 const FLOOR: f64 = 1e-6;
 
-/// Pinocchio's reference for one robot, or `None` when skipped by `RIGID_SKIP_PINOCCHIO=1`.
-fn reference(robot: &str) -> Option<Value> {
-    if skip(robot) {
-        return None;
-    }
-    let states = STATES.to_string();
-    let out = run_script(
-        "pinocchio/reference.py",
-        &[robot, "--states", &states, "--seed", "7", "--derivatives"],
+/// Pinocchio's references for one robot: the checked-in fixture's and, with `RIGID_CROSSCHECK=1`,
+/// the live one of `reference.py`; each with where it comes from.
+fn references(robot: &str) -> Vec<(&'static str, Value)> {
+    let fixture = reference::fixture("pinocchio/reference.json");
+    let r = fixture["robots"][robot].clone();
+    assert!(
+        r.is_object(),
+        "tests/pinocchio/reference.json has no {robot}: run tests/pinocchio/gen_reference.py"
     );
-    Some(serde_json::from_slice(&out).expect("reference.py printed invalid JSON"))
+    let mut out = vec![("fixture", r)];
+    if reference::live(&format!("{robot}: Pinocchio live")) {
+        let states = STATES.to_string();
+        let live = run_script(
+            "pinocchio/reference.py",
+            &[robot, "--states", &states, "--seed", "7", "--derivatives"],
+        );
+        let live = serde_json::from_slice(&live).expect("reference.py printed invalid JSON");
+        out.push(("live", live));
+    }
+    out
+}
+
+/// The URDF file of a reference: the checked-in copy for the fixture's (a path under
+/// example-robot-data's `robots/` folder, or `local:NAME` beside `tests/pinocchio/`), the
+/// installed package's for a live one (an absolute path).
+fn urdf(r: &Value) -> PathBuf {
+    reference::record_file("example-robot-data", r["urdf"].as_str().unwrap())
 }
 
 fn mat_of(v: &Value) -> Vec<Vec<f64>> {
@@ -83,11 +105,15 @@ fn from_rigid(x: &[f64], map: &[usize]) -> Vec<f64> {
 }
 
 fn compare(robot: &str) {
-    let Some(r) = reference(robot) else { return };
+    for (source, r) in references(robot) {
+        compare_with(robot, source, &r);
+    }
+}
+
+fn compare_with(robot: &str, source: &str, r: &Value) {
     let start = std::time::Instant::now();
-    let urdf = r["urdf"].as_str().unwrap();
     let floating = r["floating"].as_bool().unwrap();
-    let model = load_urdf(urdf, floating).unwrap_or_else(|e| panic!("{robot}: {e}"));
+    let model = load_urdf(urdf(r), floating).unwrap_or_else(|e| panic!("{robot}: {e}"));
     let mut data = Data::new(&model);
     let joints = r["joints"].as_array().unwrap();
     let (pq, pv) = index_maps(&model, joints);
@@ -157,17 +183,18 @@ fn compare(robot: &str) {
 
     let line: Vec<String> = err.0.iter().map(|(w, e)| format!("{w} {e:.1e}")).collect();
     eprintln!(
-        "{robot} (nq {}, nv {}, {} states, rigid {:.0} ms): max relative error: {}",
+        "{robot} ({source}; nq {}, nv {}, {} states, rigid {:.0} ms): max relative error: {}",
         model.nq(),
         model.nv(),
-        STATES,
+        r["states"].as_array().unwrap().len(),
         start.elapsed().as_secs_f64() * 1e3,
         line.join(", ")
     );
     for (what, e) in &err.0 {
         assert!(
             *e <= TOLERANCE,
-            "{robot}: {what} differs from Pinocchio by {e:.3e} relative (tolerance {TOLERANCE:e})"
+            "{robot} ({source}): {what} differs from Pinocchio by {e:.3e} relative (tolerance \
+             {TOLERANCE:e})"
         );
     }
 }
@@ -224,29 +251,37 @@ fn flat_in_reference_layout(m: &DMatrix<f64>, pv: &[usize]) -> Vec<f64> {
 
 /// Pinocchio's `computeRNEADerivatives` (with random external wrenches in the joint frames) and
 /// `computeABADerivatives` against [`rnea_derivatives_with_external`] and [`aba_derivatives`],
-/// on the states of [`compare`]: every matrix to 1e-9 relative (`rel`). Pinocchio's
+/// on the states of [`compare`] that carry them: every matrix to 1e-9 relative (`rel`). Pinocchio's
 /// derivatives are along its `integrate` (`q * exp(v)`, a free-flyer's `v` linear first, a
 /// continuous joint's tangent the angle), rigid's along `q ⊕ δ`: the same columns once the
 /// free-flyer halves are swapped, which `reference.py` does.
 fn compare_derivatives(robot: &str) {
+    for (source, r) in references(robot) {
+        compare_derivatives_with(robot, source, &r);
+    }
+}
+
+fn compare_derivatives_with(robot: &str, source: &str, r: &Value) {
     use rigid::multibody::{aba_derivatives, rnea_derivatives_with_external};
     use rigid::spatial::Wrench;
-    let Some(r) = reference(robot) else { return };
-    let model = load_urdf(
-        r["urdf"].as_str().unwrap(),
-        r["floating"].as_bool().unwrap(),
-    )
-    .unwrap_or_else(|e| panic!("{robot}: {e}"));
+    let model = load_urdf(urdf(r), r["floating"].as_bool().unwrap())
+        .unwrap_or_else(|e| panic!("{robot}: {e}"));
     let mut data = Data::new(&model);
     let joints = r["joints"].as_array().unwrap();
     let (pq, pv) = index_maps(&model, joints);
     let mut err = Errors::default();
+    let mut compared = 0;
+    // the fixture keeps the derivatives of its first state only (none for TALOS)
     for s in r["states"].as_array().unwrap() {
+        let d = &s["derivatives"];
+        if d.is_null() {
+            continue;
+        }
+        compared += 1;
         let q = to_rigid(&vec_of(&s["q"]), &pq);
         let v = to_rigid(&vec_of(&s["v"]), &pv);
         let a = to_rigid(&vec_of(&s["a"]), &pv);
         let tau = to_rigid(&vec_of(&s["tau"]), &pv);
-        let d = &s["derivatives"];
         let mut fext = vec![Wrench::zero(); model.njoints()];
         for (rj, f) in joints.iter().zip(d["fext"].as_array().unwrap()) {
             let id = model.joint_id(rj["name"].as_str().unwrap()).unwrap();
@@ -291,15 +326,20 @@ fn compare_derivatives(robot: &str) {
             ),
         );
     }
+    if compared == 0 {
+        eprintln!("{robot} derivatives ({source}): none (the fixture keeps none for {robot})");
+        return;
+    }
     let line: Vec<String> = err.0.iter().map(|(w, e)| format!("{w} {e:.1e}")).collect();
     eprintln!(
-        "{robot} derivatives: max relative error: {}",
+        "{robot} derivatives ({source}, {compared} states): max relative error: {}",
         line.join(", ")
     );
     for (what, e) in &err.0 {
         assert!(
             *e <= TOLERANCE,
-            "{robot}: {what} differs from Pinocchio by {e:.3e} relative (tolerance {TOLERANCE:e})"
+            "{robot} ({source}): {what} differs from Pinocchio by {e:.3e} relative (tolerance \
+             {TOLERANCE:e})"
         );
     }
 }
@@ -318,4 +358,16 @@ fn derivatives_agree_with_pinocchio_on_every_robot_and_joint_type() {
     ] {
         compare_derivatives(robot);
     }
+}
+
+/// The checked-in fixtures of the Pinocchio cross-checks (`tests/pinocchio/*.json`) are what
+/// their generators write today with the pinned Pinocchio, to the tests' tolerance (live only:
+/// it runs `gen_reference.py --check` and `gen_packages.py --check`).
+#[test]
+fn the_pinocchio_fixtures_are_what_their_generators_write() {
+    if !reference::live("the Pinocchio fixtures' generators") {
+        return;
+    }
+    reference::check_generator("pinocchio/gen_reference.py");
+    reference::check_generator("pinocchio/gen_packages.py");
 }

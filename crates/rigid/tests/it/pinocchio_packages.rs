@@ -10,8 +10,13 @@
 //! invertible (a moving subtree of zero mass makes it singular and ABA undefined: rigid must then
 //! refuse, not return NaN silently).
 //!
-//! The packages are pinned in `scripts/requirements-test.txt` (installed by `scripts/test.sh`);
-//! `RIGID_SKIP_PINOCCHIO=1` skips the comparison, `RIGID_PYTHON` overrides the interpreter.
+//! Every run does this on the checked-in fixture `tests/pinocchio/packages.json`
+//! (`tests/pinocchio/gen_packages.py` writes it with `packages.py`: one state per file and base)
+//! for a few files of each package, copied under `tests/fixtures/robots/` (not those of
+//! icub-models and gym-ignition-models, whose copyleft licences keep them out of this
+//! repository). `RIGID_CROSSCHECK=1` adds the live check that walks every file of the installed
+//! packages (pinned in `scripts/requirements-test.txt`, installed by `scripts/test.sh`), run with
+//! `RIGID_PYTHON` (or `python3`).
 
 use rigid::io::urdf::{load_urdf, load_urdf_with, InertiaPolicy, UrdfOptions};
 use rigid::multibody::{aba, crba, rnea, Data};
@@ -19,26 +24,40 @@ use serde_json::Value;
 
 use crate::common;
 use common::json::vec_of;
-use common::reference::{self, index_maps, run_script, skip, to_rigid};
+use common::reference::{self, index_maps, record_file, run_script, to_rigid};
+use std::path::Path;
 
 const TOLERANCE: f64 = 1e-9;
 const FLOOR: f64 = 1e-6;
 
-/// One JSON record per (file, floating), or `None` when skipped.
-fn references(package: &str) -> Option<Vec<Value>> {
-    if skip(package) {
-        return None;
+/// The references of one package, each a JSON record per (file, floating), with where they come
+/// from: the checked-in fixture's (a few files; none for the packages not copied) and, with
+/// `RIGID_CROSSCHECK=1`, the live one of `packages.py` (every file).
+fn references(package: &str) -> Vec<(&'static str, Vec<Value>)> {
+    let fixture: Vec<Value> = reference::fixture_lines("pinocchio/packages.json")
+        .into_iter()
+        .filter(|r| r["package"] == package)
+        .collect();
+    let mut out = Vec::new();
+    if fixture.is_empty() {
+        eprintln!("{package}: no file in tests/pinocchio/packages.json (live check only)");
+    } else {
+        out.push(("fixture", fixture));
     }
-    let out = run_script(
-        "pinocchio/packages.py",
-        &[package, "--states", "3", "--seed", "11"],
-    );
-    let text = String::from_utf8(out).expect("UTF-8");
-    Some(
-        text.lines()
-            .map(|l| serde_json::from_str(l).expect("packages.py printed invalid JSON"))
-            .collect(),
-    )
+    if reference::live(&format!("{package}: Pinocchio live")) {
+        let out_ = run_script(
+            "pinocchio/packages.py",
+            &[package, "--states", "3", "--seed", "11"],
+        );
+        let text = String::from_utf8(out_).expect("UTF-8");
+        out.push((
+            "live",
+            text.lines()
+                .map(|l| serde_json::from_str(l).expect("packages.py printed invalid JSON"))
+                .collect(),
+        ));
+    }
+    out
 }
 
 fn rel(a: &[f64], b: &[f64]) -> f64 {
@@ -46,8 +65,7 @@ fn rel(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The largest relative errors of one file: `(rnea, crba, aba or None)`, or why it failed.
-fn compare_file(r: &Value) -> Result<(f64, f64, Option<f64>), String> {
-    let file = r["file"].as_str().unwrap();
+fn compare_file(file: &Path, r: &Value) -> Result<(f64, f64, Option<f64>), String> {
     let floating = r["floating"].as_bool().unwrap();
     let model = load_urdf(file, floating).map_err(|e| format!("rigid refuses it: {e}"))?;
     let (pq, pv) = index_maps(&model, r["joints"].as_array().unwrap())?;
@@ -88,7 +106,7 @@ fn compare_file(r: &Value) -> Result<(f64, f64, Option<f64>), String> {
 
 /// Every file under the three inertia policies: `strict` loads it or refuses it with an error
 /// naming the link or joint and the line; `repair` loads it, with no non-physical body left.
-fn policies(file: &str, tag: &str, failures: &mut Vec<String>) {
+fn policies(file: &Path, tag: &str, failures: &mut Vec<String>) {
     let with = |inertia| {
         let opts = UrdfOptions {
             inertia,
@@ -124,21 +142,25 @@ fn policies(file: &str, tag: &str, failures: &mut Vec<String>) {
 }
 
 fn check_package(package: &str) {
-    let Some(records) = references(package) else {
-        return;
-    };
+    for (source, records) in references(package) {
+        check_records(package, source, &records);
+    }
+}
+
+fn check_records(package: &str, source: &str, records: &[Value]) {
     let (mut compared, mut failures) = (0, Vec::new());
-    for r in &records {
-        let file = r["file"].as_str().unwrap();
+    for r in records {
+        let name = r["file"].as_str().unwrap();
+        let file = record_file(package, name);
         let floating = r["floating"].as_bool().unwrap();
-        let short = file.rsplit("/robots/").next().unwrap_or(file);
+        let short = name.rsplit("/robots/").next().unwrap_or(name);
         let tag = format!("{short}{}", if floating { " (floating)" } else { "" });
         if !floating {
-            policies(file, &tag, &mut failures);
+            policies(&file, &tag, &mut failures);
         }
         if let Some(why) = r.get("refused") {
             // Pinocchio refuses it: rigid may load it or give a clear error; it must not panic.
-            let rigid = load_urdf(file, floating)
+            let rigid = load_urdf(&file, floating)
                 .map(|_| "loads")
                 .unwrap_or("refuses");
             eprintln!(
@@ -147,7 +169,7 @@ fn check_package(package: &str) {
             );
             continue;
         }
-        match compare_file(r) {
+        match compare_file(&file, r) {
             Ok((er, ec, ea)) => {
                 compared += 1;
                 let aba = ea.map_or("undefined (singular M)".into(), |e| format!("{e:.1e}"));
@@ -160,13 +182,13 @@ fn check_package(package: &str) {
         }
     }
     eprintln!(
-        "{package}: {} files x (fixed, floating), {compared} compared with Pinocchio",
+        "{package} ({source}): {} files x (fixed, floating), {compared} compared with Pinocchio",
         records.len() / 2
     );
-    assert!(compared > 0, "{package}: nothing compared");
+    assert!(compared > 0, "{package} ({source}): nothing compared");
     assert!(
         failures.is_empty(),
-        "{package}: {} of {} disagree with Pinocchio (tolerance {TOLERANCE:e}):\n{}",
+        "{package} ({source}): {} of {} disagree with Pinocchio (tolerance {TOLERANCE:e}):\n{}",
         failures.len(),
         records.len(),
         failures.join("\n")

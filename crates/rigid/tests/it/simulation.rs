@@ -6,13 +6,14 @@
 //! - RK4 converges at 4th order on the manifold (error ratio ≈ 16 when dt halves), semi-implicit
 //!   Euler at 1st order, the variational integrator at 4th;
 //! - the double pendulum under gravity matches SciPy's `solve_ivp` (DOP853 at 1e-12) on the
-//!   closed-form equations (`tests/simulation/double_pendulum.py`) to 1e-8 over 5 s;
+//!   closed-form equations (`tests/simulation/double_pendulum.py`) to 1e-8 over 5 s: its
+//!   checked-in trajectory (`tests/simulation/double_pendulum.json`, written by
+//!   `gen_double_pendulum.py` beside it), and with `RIGID_CROSSCHECK=1` the script run live too;
 //! - gravity compensation holds the Panda still (drift < 1e-9 rad over 10 s); computed torque
 //!   tracks a quintic trajectory with an error below 1e-6 rad;
 //! - a batch of simulations gives the single runs bit for bit on 1 and 2 threads.
 //!
-//! The robots come from example-robot-data (installed by `scripts/test.sh`); set
-//! `RIGID_SKIP_PINOCCHIO=1` to skip the tests that need them and SciPy.
+//! The robots are example-robot-data's, from the copies under `tests/fixtures/robots/`.
 
 use rigid::io::urdf::load_urdf;
 use rigid::multibody::simulation::{
@@ -20,38 +21,9 @@ use rigid::multibody::simulation::{
     Simulator, TimeScaling,
 };
 use rigid::multibody::{builtin, difference, random_configuration, Model, Rng};
-use std::path::PathBuf;
-use std::process::Command;
-
-fn python() -> String {
-    std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into())
-}
-
-fn skip() -> bool {
-    let s = std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1");
-    if s {
-        eprintln!("RIGID_SKIP_PINOCCHIO=1: skipping the tests on example-robot-data and SciPy");
-    }
-    s
-}
-
-/// example-robot-data's `robots/` folder.
-fn robots() -> PathBuf {
-    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/pinocchio/packages.py");
-    let out = Command::new(python())
-        .args([script, "roots"])
-        .output()
-        .expect("python3: run `bash scripts/test.sh`");
-    assert!(
-        out.status.success(),
-        "run `bash scripts/test.sh` (it installs example-robot-data)"
-    );
-    let roots: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    PathBuf::from(roots["example-robot-data"].as_str().unwrap())
-}
 
 fn robot(rel: &str, floating: bool) -> Model {
-    load_urdf(robots().join(rel), floating).unwrap()
+    load_urdf(common::example_robot_data().join(rel), floating).unwrap()
 }
 
 /// A random state: `q` within the limits, `v` uniform in [-1, 1] per dof.
@@ -81,9 +53,6 @@ fn conservation(model: &Model, integrator: Integrator) -> (f64, f64) {
 
 #[test]
 fn variational_keeps_energy_and_momentum_of_free_floating_ur5_and_talos() {
-    if skip() {
-        return;
-    }
     for (name, rel) in [
         ("ur5", "ur_description/urdf/ur5_robot.urdf"),
         ("talos", "talos_data/robots/talos_reduced.urdf"),
@@ -161,65 +130,68 @@ fn common_tree() -> Model {
     common::random_tree(21, 6, true)
 }
 
+/// SciPy's trajectories of the double pendulum: the checked-in one and, with
+/// `RIGID_CROSSCHECK=1`, the script's output now; each with where it comes from.
+fn double_pendulum_references() -> Vec<(&'static str, serde_json::Value)> {
+    let fixture = common::reference::fixture("simulation/double_pendulum.json");
+    let args = ["0.5", "-0.3", "0.2", "0", "5", "50"];
+    assert_eq!(
+        fixture["args"],
+        serde_json::json!(args),
+        "tests/simulation/double_pendulum.json is of another run: regenerate it"
+    );
+    let mut out = vec![("fixture", fixture)];
+    if common::reference::live("the double pendulum against SciPy live") {
+        let live = common::reference::run_script("simulation/double_pendulum.py", &args);
+        out.push(("live", serde_json::from_slice(&live).unwrap()));
+    }
+    out
+}
+
 #[test]
 fn double_pendulum_matches_scipy_to_1e_8_over_5_s() {
-    if skip() {
-        return;
-    }
-    let script = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/simulation/double_pendulum.py"
-    );
     let (q0, v0) = ([0.5, -0.3], [0.2, 0.0]);
-    let out = Command::new(python())
-        .args([script, "0.5", "-0.3", "0.2", "0", "5", "50"])
-        .output()
-        .expect("python3 with scipy: run `bash scripts/test.sh`");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let reference: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let rows = |k: &str| -> Vec<Vec<f64>> {
-        reference[k]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|r| {
-                r.as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|x| x.as_f64().unwrap())
-                    .collect()
-            })
-            .collect()
-    };
-    let (qs, vs) = (rows("q"), rows("v"));
-    let model = builtin("double_pendulum").unwrap();
-    let dt = 1e-3;
-    let opts = SimulationOptions::conservative(dt, Integrator::Rk4);
-    let mut sim = Simulator::new(&model, &q0, &v0, opts, Controller::none(&model)).unwrap();
-    let mut worst = 0.0f64;
-    for (k, (q, v)) in qs.iter().zip(&vs).enumerate() {
-        if k > 0 {
-            sim.run(100, |_| {}).unwrap(); // 0.1 s
+    for (source, reference) in double_pendulum_references() {
+        let rows = |k: &str| -> Vec<Vec<f64>> {
+            reference[k]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|r| {
+                    r.as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|x| x.as_f64().unwrap())
+                        .collect()
+                })
+                .collect()
+        };
+        let (qs, vs) = (rows("q"), rows("v"));
+        assert_eq!(qs.len(), 51, "{source}: 0.1 s samples over 5 s");
+        let model = builtin("double_pendulum").unwrap();
+        let dt = 1e-3;
+        let opts = SimulationOptions::conservative(dt, Integrator::Rk4);
+        let mut sim = Simulator::new(&model, &q0, &v0, opts, Controller::none(&model)).unwrap();
+        let mut worst = 0.0f64;
+        for (k, (q, v)) in qs.iter().zip(&vs).enumerate() {
+            if k > 0 {
+                sim.run(100, |_| {}).unwrap(); // 0.1 s
+            }
+            for i in 0..2 {
+                worst = worst
+                    .max((sim.q()[i] - q[i]).abs())
+                    .max((sim.v()[i] - v[i]).abs());
+            }
         }
-        for i in 0..2 {
-            worst = worst
-                .max((sim.q()[i] - q[i]).abs())
-                .max((sim.v()[i] - v[i]).abs());
-        }
+        eprintln!(
+            "double pendulum, RK4 at 1 ms vs SciPy ({source}) over 5 s: max error {worst:.2e}"
+        );
+        assert!(worst < 1e-8, "{source}: {worst:e}");
     }
-    eprintln!("double pendulum, RK4 at 1 ms vs SciPy over 5 s: max error {worst:.2e}");
-    assert!(worst < 1e-8, "{worst:e}");
 }
 
 #[test]
 fn gravity_compensation_holds_the_panda_and_computed_torque_tracks_a_quintic() {
-    if skip() {
-        return;
-    }
     let model = robot("panda_description/urdf/panda.urdf", false);
     let mut rng = Rng::new(12);
     let q0 = random_configuration(&model, &mut rng);

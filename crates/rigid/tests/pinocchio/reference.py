@@ -25,6 +25,8 @@ order): each joint is listed with its name and its slices in the vectors printed
 Rust test matches joints by name.
 
 Requirements: pip install -r scripts/requirements-test.txt (pin, example-robot-data).
+The live cross-check (RIGID_CROSSCHECK=1) runs this script; every run reads reference.json, the
+fixture gen_reference.py writes with it.
 """
 
 import glob

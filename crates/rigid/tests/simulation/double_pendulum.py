@@ -13,6 +13,9 @@ integrated by solve_ivp (DOP853, rtol = atol = 1e-12). Prints JSON: {"t": [...],
 "v": [[...]]} at the requested sample times.
 
     python3 double_pendulum.py Q1 Q2 V1 V2 DURATION SAMPLES
+
+The live cross-check (RIGID_CROSSCHECK=1) runs it; every run reads double_pendulum.json, the
+fixture gen_double_pendulum.py writes with it.
 """
 
 import json

@@ -208,22 +208,25 @@ pub fn step(model: &Model, q: &[f64], v: &[f64], dt: f64) -> Vec<f64> {
     out
 }
 
-/// The `robots/` folder of example-robot-data: `$EXAMPLE_ROBOT_DATA`, or the
-/// `cmeel.prefix/share/example-robot-data/robots` folder of `python3`'s site-packages (where
-/// `bash scripts/test.sh` pip-installs it); `None` if neither exists.
-pub fn example_robot_data() -> Option<std::path::PathBuf> {
-    if let Some(d) = std::env::var_os("EXAMPLE_ROBOT_DATA") {
-        return Some(d.into());
+/// The folder of the checked-in fixtures, `tests/fixtures`.
+pub fn fixtures_dir() -> std::path::PathBuf {
+    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures")
+}
+
+/// The checked-in copy of a description package's folder (`tests/fixtures/robots/PACKAGE`, copied
+/// from the pinned PyPI package by `gen_robots.py` there): for `example-robot-data` its `robots/`
+/// folder. It holds only the files the tests load (its `README.md` lists them and their
+/// licences); the live cross-checks (`RIGID_CROSSCHECK=1`) walk the installed packages.
+pub fn robots(package: &str) -> std::path::PathBuf {
+    let dir = fixtures_dir().join("robots").join(package);
+    if package == "example-robot-data" {
+        dir.join("robots")
+    } else {
+        dir
     }
-    let out = std::process::Command::new(std::env::var("RIGID_PYTHON").unwrap_or("python3".into()))
-        .args([
-            "-c",
-            "import site, sysconfig; print('\\n'.join(site.getsitepackages() + [sysconfig.get_paths()['purelib']]))",
-        ])
-        .output()
-        .ok()?;
-    String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .map(|sp| std::path::PathBuf::from(sp).join("cmeel.prefix/share/example-robot-data/robots"))
-        .find(|p| p.is_dir())
+}
+
+/// The checked-in copy of example-robot-data's `robots/` folder ([`robots`]).
+pub fn example_robot_data() -> std::path::PathBuf {
+    robots("example-robot-data")
 }

@@ -1,27 +1,57 @@
-//! Running the Python reference scripts (`tests/pinocchio/*.py`: Pinocchio and the PyPI
-//! description packages, installed by `scripts/test.sh`) and comparing with their output.
+//! The cross-checks against references computed outside rigid (Pinocchio, SciPy, the PyPI
+//! description packages).
+//!
+//! Every run compares rigid with checked-in fixtures (`tests/pinocchio/*.json`,
+//! `tests/simulation/double_pendulum.json`, each written by the generator script beside it, and
+//! the robot files under `tests/fixtures/robots/`): no Python is needed. `RIGID_CROSSCHECK=1`
+//! turns on the live checks as well: the reference scripts (`tests/pinocchio/*.py`, ...) run
+//! under `RIGID_PYTHON` (else `python3`) with the packages of `scripts/requirements-test.txt`
+//! (`bash scripts/test.sh` installs them in a virtual environment and sets both variables), and
+//! the generators are re-run to check that the fixtures are still what they write.
 
 use rigid::multibody::Model;
 use serde_json::Value;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The interpreter: `RIGID_PYTHON`, or `python3`.
+/// The environment variable that turns the live cross-checks on.
+pub const SWITCH: &str = "RIGID_CROSSCHECK";
+
+/// `true` when `RIGID_CROSSCHECK=1`: the tests that need Python (and its packages), a browser,
+/// a C compiler, `rustc` or `rustfmt` at test time run too. Unset (or `0`) they do not.
+///
+/// # Panics
+/// On any other value (`true`, `yes`, ...), so that a typo does not turn the checks off quietly.
+pub fn crosscheck() -> bool {
+    match std::env::var(SWITCH).as_deref() {
+        Err(_) | Ok("" | "0") => false,
+        Ok("1") => true,
+        Ok(other) => panic!("{SWITCH}={other}: set it to 1 to turn the live cross-checks on"),
+    }
+}
+
+/// [`crosscheck`], saying on stderr that the live check `what` is not run when it is off.
+pub fn live(what: &str) -> bool {
+    let on = crosscheck();
+    if !on {
+        eprintln!("{what}: not run ({SWITCH}=1 turns the live cross-checks on)");
+    }
+    on
+}
+
+/// The interpreter of the live checks: `RIGID_PYTHON`, or `python3`.
 pub fn python() -> String {
     std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into())
 }
 
-/// `true` (and a note on stderr) when `RIGID_SKIP_PINOCCHIO=1` asks to skip `what`.
-pub fn skip(what: &str) -> bool {
-    let skip = std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1");
-    if skip {
-        eprintln!("RIGID_SKIP_PINOCCHIO=1: skipping {what}");
-    }
-    skip
-}
+/// What to do when a live check cannot run its reference.
+const INSTALL: &str = "RIGID_CROSSCHECK=1 runs the references in Python with the packages of \
+     scripts/requirements-test.txt: run `bash scripts/test.sh` (it creates a virtual environment \
+     with them and sets RIGID_PYTHON), or point RIGID_PYTHON at an interpreter that has them; \
+     without RIGID_CROSSCHECK the tests compare with the checked-in fixtures only";
 
-/// The standard output of `python3 tests/SCRIPT ARGS`, with a message that says what to install
-/// when it fails.
+/// The standard output of `RIGID_PYTHON tests/SCRIPT ARGS`, with a message that says what to
+/// install when it fails.
 pub fn run_script(script: &str, args: &[&str]) -> Vec<u8> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests")
@@ -30,28 +60,42 @@ pub fn run_script(script: &str, args: &[&str]) -> Vec<u8> {
         .arg(&path)
         .args(args)
         .output()
-        .unwrap_or_else(|e| {
-            panic!(
-                "cannot run {} ({e}): install Python 3 and run `bash scripts/test.sh`, which \
-                 pip-installs Pinocchio and the description packages (or set \
-                 RIGID_SKIP_PINOCCHIO=1)",
-                python()
-            )
-        });
+        .unwrap_or_else(|e| panic!("cannot run {} ({e}).\n{INSTALL}.", python()));
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
-        let hint = if stderr.contains("No module named") || stderr.contains("not installed") {
-            "\nRun `bash scripts/test.sh` (it pip-installs scripts/requirements-test.txt), or set \
-             RIGID_SKIP_PINOCCHIO=1 to skip the comparisons."
-        } else {
-            ""
-        };
-        panic!("{} {args:?} failed:\n{stderr}{hint}", path.display());
+        panic!(
+            "{} {} {args:?} failed:\n{stderr}\n{INSTALL}.",
+            python(),
+            path.display()
+        );
     }
     out.stdout
 }
 
-/// The folders of the description packages (`packages.py roots`), by package name.
+/// Runs the generator `tests/SCRIPT --check`, which regenerates its fixture in memory and
+/// compares it with the committed one to a tolerance; panics with what differs.
+pub fn check_generator(script: &str) {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join(script);
+    let out = Command::new(python())
+        .arg(&path)
+        .arg("--check")
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {} ({e}).\n{INSTALL}.", python()));
+    assert!(
+        out.status.success(),
+        "{script} --check: the committed fixture is not what the generator writes now \
+         (regenerate it: {} {}):\n{}{}",
+        python(),
+        path.display(),
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The folders of the installed description packages (`packages.py roots`), by package name
+/// (live checks only).
 pub fn package_roots() -> std::collections::HashMap<String, PathBuf> {
     let out = run_script("pinocchio/packages.py", &["roots"]);
     let v: Value = serde_json::from_slice(&out).expect("packages.py roots: JSON");
@@ -60,6 +104,43 @@ pub fn package_roots() -> std::collections::HashMap<String, PathBuf> {
         .iter()
         .filter_map(|(k, p)| Some((k.clone(), PathBuf::from(p.as_str()?))))
         .collect()
+}
+
+/// The checked-in JSON fixture `tests/REL`.
+pub fn fixture(rel: &str) -> Value {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join(rel);
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("cannot read the fixture {}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The checked-in fixture `tests/REL` of one JSON record a line.
+pub fn fixture_lines(rel: &str) -> Vec<Value> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join(rel);
+    std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("cannot read the fixture {}: {e}", path.display()))
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
+        .collect()
+}
+
+/// The file a reference record names: an absolute path (a live record, in the installed
+/// package), `local:NAME` (beside `tests/pinocchio/`), or a path under `package`'s checked-in
+/// folder (a fixture record, [`super::robots`]).
+pub fn record_file(package: &str, file: &str) -> PathBuf {
+    if let Some(local) = file.strip_prefix("local:") {
+        return PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/pinocchio")
+            .join(local);
+    }
+    if Path::new(file).is_absolute() {
+        return PathBuf::from(file);
+    }
+    super::robots(package).join(file)
 }
 
 /// `‖a - b‖∞ / max(‖b‖∞, floor)`, infinite for NaN.
@@ -121,16 +202,10 @@ pub fn to_rigid(x: &[f64], map: &[usize]) -> Vec<f64> {
     out
 }
 
-/// One JSON record a line of `python3 tests/SCRIPT ARGS`, or `None` (skipped) when
-/// `RIGID_SKIP_PINOCCHIO=1`.
-pub fn json_lines(script: &str, args: &[&str]) -> Option<Vec<Value>> {
-    if skip(script) {
-        return None;
-    }
+/// One JSON record a line of `RIGID_PYTHON tests/SCRIPT ARGS` (live checks only).
+pub fn json_lines(script: &str, args: &[&str]) -> Vec<Value> {
     let text = String::from_utf8(run_script(script, args)).expect("UTF-8");
-    Some(
-        text.lines()
-            .map(|l| serde_json::from_str(l).expect("the script printed invalid JSON"))
-            .collect(),
-    )
+    text.lines()
+        .map(|l| serde_json::from_str(l).expect("the script printed invalid JSON"))
+        .collect()
 }

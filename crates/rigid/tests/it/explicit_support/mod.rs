@@ -1,5 +1,5 @@
-//! Shared by the `explicit_*` tests: the models (built-ins and example-robot-data URDFs), random
-//! states, and running generated code.
+//! Shared by the `explicit_*` tests (and the `explicit` benchmark): the models (built-ins and
+//! example-robot-data URDFs), random states, and running generated code.
 #![allow(dead_code)]
 
 use rigid::explicit::lock_joints;
@@ -12,21 +12,12 @@ use rigid::spatial::{so3, Transform, Vec3};
 use std::path::PathBuf;
 use std::process::Command;
 
-/// The `robots/` folder of example-robot-data: `$EXAMPLE_ROBOT_DATA`, or the `cmeel.prefix` of
-/// `python3`'s site-packages (installed by `scripts/test.sh`).
+/// The `robots/` folder of example-robot-data: the copy checked in under
+/// `tests/fixtures/robots/` (the files the tests load, copied from the pinned PyPI package by
+/// `gen_robots.py` there).
 pub fn robots_dir() -> PathBuf {
-    if let Some(d) = std::env::var_os("EXAMPLE_ROBOT_DATA") {
-        return d.into();
-    }
-    let out = Command::new("python3")
-        .args(["-c", "import site, sysconfig; print('\\n'.join(site.getsitepackages() + [sysconfig.get_paths()['purelib']]))"])
-        .output()
-        .expect("python3 runs (install it, then `bash scripts/test.sh`)");
-    String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .map(|sp| PathBuf::from(sp).join("cmeel.prefix/share/example-robot-data/robots"))
-        .find(|p| p.is_dir())
-        .expect("example-robot-data not found: run `bash scripts/test.sh` (it pip-installs it) or set EXAMPLE_ROBOT_DATA")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/robots/example-robot-data/robots")
 }
 
 /// The UR5 of example-robot-data.
