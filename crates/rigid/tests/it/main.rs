@@ -7,7 +7,13 @@
 //! scripts and their fixtures), `doctor/` (the fault corpus of `rigid doctor`), `simulation/`
 //! (the SciPy reference of the double pendulum), `proptest-regressions/` (proptest's saved
 //! failure seeds: for a source file under a folder holding `main.rs` it reads and writes
-//! `../proptest-regressions/<file>.txt`, so `it/compound.rs` has `proptest-regressions/compound.txt`).
+//! `../proptest-regressions/<file>.txt`, so `it/compound.rs` has
+//! `proptest-regressions/compound.txt`).
+//!
+//! `cargo test` needs nothing but Rust: the comparisons with Pinocchio, SciPy and real robot files
+//! read the checked-in fixtures. The checks that need Python (and its packages), a browser, a C
+//! compiler, `rustc` or `rustfmt` at test time are live checks, run when `RIGID_CROSSCHECK=1`
+//! (`common::reference`; `scripts/test.sh` sets it, in a virtual environment it creates).
 
 mod common;
 mod explicit_support;
