@@ -1,5 +1,5 @@
 //! `rigid eval MODEL --cases CASES.json [--floating] [--json] [--derivatives]`: the dynamics of a model at given
-//! states, for scripts and cross-checks (the contract is in `CONVENTIONS.md`).
+//! states, for scripts and cross-checks (the contract is in `docs/conventions.md`).
 
 use crate::load::load_model;
 use clap::Args;

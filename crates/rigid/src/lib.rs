@@ -31,3 +31,8 @@ pub mod io;
 pub mod mass;
 pub mod multibody;
 pub mod spatial;
+
+// The README's code examples, compiled and run as doctests (`cargo test -p rigid --doc`).
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

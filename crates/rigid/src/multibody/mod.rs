@@ -2,7 +2,7 @@
 //! the classic recursive algorithms (forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`,
 //! energies, Coriolis matrix).
 //!
-//! Conventions (see `CONVENTIONS.md`): joints are numbered depth-first from the root; twists and
+//! Conventions (see docs/conventions.md): joints are numbered depth-first from the root; twists and
 //! wrenches are angular first; every body's quantities are expressed in its own joint frame
 //! (the joint frame moved by the joint, "local" coordinates, Featherstone's body coordinates);
 //! [`Data::placements`] holds the world pose `oMi` of each moved joint frame. Free-flyer
