@@ -1,6 +1,6 @@
 """rigid: rigid-body dynamics from Rust, with Pinocchio's verbs and numpy arrays.
 
-Conventions (rigid's layout, the default; see CONVENTIONS.md):
+Conventions (rigid's layout, the default; see docs/conventions.md):
 
 - SI units: kg, m, s, N, N·m, rad. Every result is a fresh float64 numpy array.
 - Twists and wrenches **angular first**: V = (ω, v), F = (m, f); Jacobian rows (ω, v).

@@ -1,8 +1,8 @@
 //! `rigid doctor MODEL.urdf [--json] [--fix OUT.urdf]`: the inertial data of every link checked,
-//! the likely cause of each problem, and a repair (see `rigid::io::urdf::doctor`).
+//! the likely cause of each problem, and a repair (see `rigid::doctor`).
 
 use clap::Args;
-use rigid::io::urdf::doctor::{fixed_urdf, BodyReport, Doctor, Status};
+use rigid::doctor::{fixed_urdf, BodyReport, Doctor, Status};
 use rigid::io::urdf::parse_urdf_file;
 use std::path::PathBuf;
 

@@ -1,11 +1,11 @@
 //! `rigid eval MODEL --cases CASES.json [--floating] [--json] [--derivatives]`: the dynamics of a model at given
-//! states, for scripts and cross-checks (the contract is in `CONVENTIONS.md`).
+//! states, for scripts and cross-checks (the contract is in `docs/conventions.md`).
 
 use crate::load::load_model;
 use clap::Args;
+use rigid::interop::PinocchioLayout;
 use rigid::io::cases::{parse_cases_with, Case};
 use rigid::io::urdf::SiblingOrder;
-use rigid::multibody::layout::PinocchioLayout;
 use rigid::multibody::{
     aba, aba_derivatives, center_of_mass, crba, forward_kinematics_q, gravity_torques,
     kinetic_energy, nonlinear_effects, potential_energy, rnea, rnea_derivatives, Data, Model,
@@ -40,7 +40,7 @@ pub struct EvalArgs {
     pub derivatives: bool,
 }
 
-/// The layout of the vectors of `rigid eval` (see `rigid::multibody::layout`).
+/// The layout of the vectors of `rigid eval` (see `rigid::interop`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Layout {
     /// rigid's: file order, one angle per continuous joint, angular-first free-flyer.
@@ -243,7 +243,7 @@ fn model_info(model: &Model, layout: Option<&PinocchioLayout>) -> ModelInfo {
                 let (idx_q, nq) = layout.map_or((j.idx_q, j.nq), |l| l.joint_q(i));
                 JointInfo {
                     name: j.name.clone(),
-                    kind: j.kind.name(),
+                    kind: j.type_name(),
                     idx_q,
                     nq,
                     idx_v: j.idx_v,

@@ -1,6 +1,6 @@
 //! The `rigid` command-line tool. Each subcommand lives in its own module; this file only
 //! parses the command line and dispatches. The contract of `mass` and `eval` output is in
-//! `CONVENTIONS.md` ("The command-line contract").
+//! `docs/conventions.md` ("The command-line contract").
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

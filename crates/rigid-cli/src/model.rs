@@ -93,7 +93,7 @@ fn print_model(model: &Model) {
             "  {:>3}  {:<32} {:<11} {:<32} {:>5} {:>3} {:>5} {:>3} {:>12.6}",
             i,
             j.name,
-            j.kind.name(),
+            j.type_name(),
             parent,
             j.idx_q,
             j.nq,

@@ -357,7 +357,7 @@ pub fn doctor<'py>(
     path: PathBuf,
     fix: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use rigid::io::urdf::doctor::{fixed_urdf, Doctor};
+    use rigid::doctor::{fixed_urdf, Doctor};
     use rigid::io::urdf::{parse_urdf_file, UrdfError};
     let shown = path.display().to_string();
     let robot = parse_urdf_file(&path).map_err(|e| match &e {

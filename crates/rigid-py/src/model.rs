@@ -7,8 +7,8 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
+use rigid::interop::{LayoutError, PinocchioLayout};
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfError, UrdfOptions};
-use rigid::multibody::layout::{LayoutError, PinocchioLayout};
 use rigid::multibody::{builtin, builtin_names, FrameId, JointId, MultibodyError};
 use rigid::spatial::Transform;
 use std::ffi::CString;
@@ -390,7 +390,7 @@ impl Model {
             .model
             .joints()
             .iter()
-            .map(|j| j.kind.name())
+            .map(|j| j.type_name())
             .collect()
     }
 

@@ -45,7 +45,7 @@ pub fn urdf(data: &[u8]) {
         let _ = crba(&model, &mut d, &q);
         let _ = aba(&model, &mut d, &q, &v, &v);
     }
-    let _ = urdf::doctor::Doctor::new().examine(&robot);
+    let _ = crate::doctor::Doctor::new().examine(&robot);
 }
 
 /// A `rigid mass` body spec (meshes are looked up in a folder that does not exist).

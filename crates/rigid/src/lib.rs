@@ -13,19 +13,26 @@
 //! | [`io`] | reading files: triangle meshes (STL, OBJ, COLLADA), `rigid mass` body specs (TOML) |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, simulator on SE(3), Lagrange by autodiff |
 //! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis matrix, energies, analytical derivatives of the dynamics, DH and Modern Robotics builders, built-in robots |
-//! | [`io`] | URDF import into a multibody `Model` (inertia policy, warnings); `rigid doctor` ([`io::urdf::doctor`]) |
+//! | [`io`] | URDF import into a multibody `Model` (inertia policy, warnings); `rigid doctor` ([`doctor`]) |
 //! | [`explicit`] | the explicit dynamic model of a robot (Armstrong, Khatib & Burdick 1986): `M(q)`, Coriolis, centrifugal and gravity terms as abbreviated expressions, pruned with a proven bound, and generated code |
 //! | [`identification`] | inertial parameters from measured motion: joint-torque regressor, base parameters, least squares, physically consistent estimate (semidefinite program), exciting trajectories |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
 pub mod body;
+pub mod doctor;
 pub mod error;
 pub mod explicit;
 #[doc(hidden)]
 pub mod fuzzing;
 pub mod identification;
+pub mod interop;
 pub mod io;
 pub mod mass;
 pub mod multibody;
 pub mod spatial;
+
+// The README's code examples, compiled and run as doctests (`cargo test -p rigid --doc`).
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

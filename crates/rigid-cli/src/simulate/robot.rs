@@ -7,38 +7,14 @@ use rigid::multibody::simulation::{
     ControlLaw, Controller, Integrator, JointLimits, SimulationError, SimulationOptions, Simulator,
     TimeScaling,
 };
-use rigid::multibody::{neutral, Data, JointType, Model};
+use rigid::multibody::{column_names, neutral, Data, Model};
 use rigid_replay::{robot_nodes, Recording};
 use std::io::Write;
-
-/// Column suffixes of a joint's coordinates in `q` and in `v` (and `τ`).
-fn suffixes(kind: &JointType) -> (&'static [&'static str], &'static [&'static str]) {
-    match kind {
-        JointType::FreeFlyer => (
-            &["x", "y", "z", "qx", "qy", "qz", "qw"],
-            &["wx", "wy", "wz", "vx", "vy", "vz"],
-        ),
-        JointType::Spherical => (&["qx", "qy", "qz", "qw"], &["wx", "wy", "wz"]),
-        JointType::Planar => (&["x", "y", "theta"], &["vx", "vy", "wz"]),
-        _ => (&[""], &[""]),
-    }
-}
 
 /// `t`, then `q_<joint>`, `v_<joint>`, `tau_<joint>` (`_<coordinate>` for multi-dof joints).
 fn csv_header(model: &Model) -> String {
     let mut cols = vec!["t".to_string()];
-    for (prefix, is_q) in [("q", true), ("v", false), ("tau", false)] {
-        for j in model.joints() {
-            let (sq, sv) = suffixes(&j.kind);
-            for s in if is_q { sq } else { sv } {
-                cols.push(if s.is_empty() {
-                    format!("{prefix}_{}", j.name)
-                } else {
-                    format!("{prefix}_{}_{s}", j.name)
-                });
-            }
-        }
-    }
+    cols.extend(column_names(model, &["q", "v", "tau"]));
     cols.join(",")
 }
 

@@ -1,4 +1,4 @@
-//! The `rigid eval` and `rigid model` command-line contract (CONVENTIONS.md): exact JSON keys,
+//! The `rigid eval` and `rigid model` command-line contract (docs/conventions.md): exact JSON keys,
 //! hand-checkable values, and named errors with a non-zero exit on bad input.
 
 use serde_json::Value;

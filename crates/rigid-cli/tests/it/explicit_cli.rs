@@ -86,5 +86,5 @@ fn bad_options_and_models_say_what_is_wrong() {
         "/../rigid/tests/pinocchio/all_joints.urdf"
     );
     let (ok, _, err) = rigid(&["explicit", urdf, "--floating"]);
-    assert!(!ok && err.contains("is a free-flyer"), "{err}");
+    assert!(!ok && err.contains("is of type free_flyer"), "{err}");
 }

@@ -6,7 +6,9 @@ use super::expr::{Expr, Space, MAX_JOINTS};
 use super::params::{ParamKind, Parameters};
 use super::sym::{SymInertia, SymTransform, M3, V3};
 use super::ExplicitError;
-use crate::multibody::{JointId, JointType, Model};
+use crate::multibody::joint::Shape;
+use crate::multibody::{JointId, Model};
+use crate::spatial::Vec3;
 
 /// One moving joint and its body, symbolically.
 #[derive(Clone, Debug)]
@@ -60,20 +62,19 @@ impl Chain {
     /// # Errors
     /// A joint that is not revolute, continuous or prismatic; more than [`MAX_JOINTS`] joints.
     pub fn new(model: &Model) -> Result<Chain, ExplicitError> {
-        for j in model.joints() {
-            let why = match j.kind {
-                JointType::FreeFlyer => Some("a free-flyer (its 6 coordinates and quaternion have no finite trigonometric form)"),
-                JointType::Spherical => Some("spherical (its quaternion has no finite trigonometric form in joint angles)"),
-                JointType::Planar => Some("planar (3 coordinates in one joint)"),
-                _ => None,
-            };
-            if let Some(kind) = why {
-                return Err(ExplicitError::UnsupportedJoint {
+        // the revolute and prismatic joints: one angle's sine and cosine, or one displacement
+        let axes: Vec<(Vec3, bool)> = model
+            .joints()
+            .iter()
+            .map(|j| match j.kind.shape() {
+                Shape::Revolute(axis) => Ok((axis, false)),
+                Shape::Prismatic(axis) => Ok((axis, true)),
+                Shape::FreeFlyer | Shape::General => Err(ExplicitError::UnsupportedJoint {
                     joint: j.name.clone(),
-                    kind,
-                });
-            }
-        }
+                    kind: j.kind.name(),
+                }),
+            })
+            .collect::<Result<_, _>>()?;
         let n = model.njoints();
         if n > MAX_JOINTS {
             return Err(ExplicitError::TooManyJoints { n });
@@ -85,11 +86,7 @@ impl Chain {
         let mut joints = Vec::with_capacity(n);
         let mut prismatic = 0u16;
         for (j, mj) in model.joints().iter().enumerate() {
-            let (axis, is_prismatic) = match mj.kind {
-                JointType::Revolute { axis } | JointType::Continuous { axis } => (axis, false),
-                JointType::Prismatic { axis } => (axis, true),
-                _ => unreachable!("checked above"),
-            };
+            let (axis, is_prismatic) = axes[j];
             if is_prismatic {
                 prismatic |= 1 << j;
             }

@@ -123,12 +123,12 @@ use thiserror::Error;
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum ExplicitError {
     /// A joint type whose motion is not a polynomial in one angle's sine and cosine (or one
-    /// displacement).
-    #[error("joint '{joint}' is {kind}: explicit models are derived for fixed-base trees of revolute and prismatic joints only; use the recursive algorithms for this model")]
+    /// displacement): any joint but a revolute or prismatic one.
+    #[error("joint '{joint}' is of type {kind}: explicit models are derived for fixed-base trees of revolute and prismatic joints only (a quaternion or several coordinates in one joint have no finite trigonometric form); use the recursive algorithms for this model")]
     UnsupportedJoint {
         /// The joint.
         joint: String,
-        /// What it is, and why that does not fit.
+        /// Its type ([`JointType::name`](crate::multibody::JointType::name)).
         kind: &'static str,
     },
     /// More joints than the explicit form can hold.

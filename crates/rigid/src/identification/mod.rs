@@ -55,7 +55,7 @@ pub use base::{BaseParameters, JointTerms, ParameterLayout};
 pub use estimate::{Estimate, Identification, Weighting, RANK_TOLERANCE};
 pub use physical::PhysicalOptions;
 pub use regressor::{body_regressor, model_parameters, model_with_parameters, Regressor};
-pub use samples::{column_names, CsvLayout, Samples, SavitzkyGolay};
+pub use samples::{CsvLayout, Samples, SavitzkyGolay};
 
 use crate::multibody::MultibodyError;
 use thiserror::Error;

@@ -70,7 +70,7 @@ pub fn body_regressor(V: &Twist, A: &Twist) -> [Wrench; 10] {
 #[must_use]
 pub fn model_parameters(model: &Model) -> DVector<f64> {
     let mut pi = DVector::zeros(10 * model.njoints());
-    for (i, g) in model.inertias.iter().enumerate() {
+    for (i, g) in model.inertias().iter().enumerate() {
         pi.rows_mut(10 * i, 10)
             .copy_from_slice(&SpatialInertia::to_parameters(g));
     }
@@ -95,11 +95,12 @@ pub fn model_parameters(model: &Model) -> DVector<f64> {
 /// ```
 pub fn model_with_parameters(model: &Model, pi: &[f64]) -> Result<Model, DimensionError> {
     DimensionError::check("pi", 10 * model.njoints(), pi.len())?;
+    let inertias: Vec<SpatialInertia> = pi
+        .chunks_exact(10)
+        .map(|p| SpatialInertia::from_parameters(p.try_into().expect("chunks of 10")))
+        .collect();
     let mut m = model.clone();
-    for (g, p) in m.inertias.iter_mut().zip(pi.chunks_exact(10)) {
-        *g = SpatialInertia::from_parameters(p.try_into().expect("chunks of 10"));
-    }
-    m.refresh_inertia_forms();
+    m.replace_inertias(inertias);
     Ok(m)
 }
 
@@ -173,13 +174,13 @@ impl Regressor {
         rnea(model, &mut self.data, q, v, a)?;
         let Self { data, y } = self;
         y.fill(0.0);
-        for j in 0..model.joints.len() {
+        for j in 0..model.njoints() {
             let mut phi = body_regressor(&data.velocities[j], &data.accelerations_gravity[j]);
             let mut i = j;
             loop {
-                let joint = &model.joints[i];
+                let joint = &model.joints()[i];
                 for k in joint.idx_v..joint.idx_v + joint.nv {
-                    let S = &model.dof_S[k];
+                    let S = &data.S[k]; // S(q), as RNEA left it
                     for (c, f) in phi.iter().enumerate() {
                         y[(k, 10 * j + c)] = S.dot(f);
                     }

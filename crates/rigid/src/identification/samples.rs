@@ -2,43 +2,7 @@
 //! from a Savitzky–Golay differentiator when the file has only positions (or no accelerations).
 
 use super::IdentificationError;
-use crate::multibody::{JointType, Model};
-
-/// Column names of `model`'s coordinates for each prefix: `q_<joint>` for 1-dof joints,
-/// `q_<joint>_x … _qw` for a free-flyer (`_wx … _vz` for its velocity), `_qx … _qw` /
-/// `_wx … _wz` for a spherical joint, `_x, _y, _theta` / `_vx, _vy, _wz` for a planar one.
-/// The prefix `q` takes the configuration's names, any other prefix the velocity's.
-///
-/// ```
-/// let model = rigid::multibody::builtin("double_pendulum").unwrap();
-/// let names = rigid::identification::column_names(&model, &["q", "tau"]);
-/// assert_eq!(names, ["q_joint1", "q_joint2", "tau_joint1", "tau_joint2"]);
-/// ```
-#[must_use]
-pub fn column_names(model: &Model, prefixes: &[&str]) -> Vec<String> {
-    let mut cols = Vec::new();
-    for prefix in prefixes {
-        for j in model.joints() {
-            let (sq, sv): (&[&str], &[&str]) = match j.kind {
-                JointType::FreeFlyer => (
-                    &["x", "y", "z", "qx", "qy", "qz", "qw"],
-                    &["wx", "wy", "wz", "vx", "vy", "vz"],
-                ),
-                JointType::Spherical => (&["qx", "qy", "qz", "qw"], &["wx", "wy", "wz"]),
-                JointType::Planar => (&["x", "y", "theta"], &["vx", "vy", "wz"]),
-                _ => (&[""], &[""]),
-            };
-            for s in if *prefix == "q" { sq } else { sv } {
-                cols.push(if s.is_empty() {
-                    format!("{prefix}_{}", j.name)
-                } else {
-                    format!("{prefix}_{}_{s}", j.name)
-                });
-            }
-        }
-    }
-    cols
-}
+use crate::multibody::{column_names, Model};
 
 /// Samples of a motion, one per time, each row-major: `q` is `n x nq`, `v`, `a`, `tau` are
 /// `n x nv`.

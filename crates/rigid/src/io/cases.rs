@@ -35,7 +35,7 @@ pub fn parse_cases(text: &str, model: &Model) -> Result<Vec<Case>, String> {
 }
 
 /// As [`parse_cases`], for vectors of `nq` and `nv` numbers (e.g. Pinocchio's `nq`, see
-/// [`crate::multibody::layout`]).
+/// [`crate::interop`]).
 ///
 /// ```
 /// let cases = rigid::io::cases::parse_cases_with(r#"{"cases": [{"q": [1, 0]}]}"#, 2, 1).unwrap();

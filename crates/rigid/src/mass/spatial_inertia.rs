@@ -2,7 +2,7 @@
 
 use super::RotationalInertia;
 use crate::error::InertiaError;
-use crate::spatial::{skew, Mat3, Mat6, Transform, Twist, Vec3, Wrench};
+use crate::spatial::{mat3_mul, mat3_vec, skew, Mat3, Mat6, Transform, Twist, Vec3, Wrench};
 use std::ops::{Add, AddAssign};
 
 /// The spatial inertia `G` of a rigid body in some frame {O}, angular block first:
@@ -171,7 +171,7 @@ impl SpatialInertia {
     #[inline]
     pub fn momentum(&self, v: &Twist) -> Wrench {
         Wrench::new(
-            crate::spatial::mat3_vec(&self.inertia, &v.w) + self.h.cross(&v.v),
+            mat3_vec(&self.inertia, &v.w) + self.h.cross(&v.v),
             v.v * self.mass - self.h.cross(&v.w),
         )
     }
@@ -198,19 +198,41 @@ impl SpatialInertia {
         0.5 * v.dot(&self.momentum(v))
     }
 
-    /// This inertia `G_b` expressed in frame {a}, where `t_ab` is the pose of this frame {b} in {a}:
-    /// `G_a = [Ad_{T_ba}]ᵀ G_b [Ad_{T_ba}]`. With `c_a = R c_b + p`:
-    /// `h_a = R h_b + m p`, `I_a = R I_b Rᵀ - [R h_b][p] - [p][R h_b] - m [p]²`.
+    /// This inertia `G_b` expressed in frame {a}, where `t_ab = (R, p)` is the pose of this frame
+    /// {b} in {a}: `G_a = [Ad_{T_ba}]ᵀ G_b [Ad_{T_ba}]` (notes 000; Featherstone 2008 eq. 2.66).
+    /// With `h' = R h_b` and `c_a = R c_b + p`: `h_a = h' + m p` and
+    /// `I_a = R I_b Rᵀ - [h'][p] - [p][h'] - m [p]²`
+    /// `= R I_b Rᵀ + 2(g·p) 1 - (p gᵀ + g pᵀ)` with `g = h' + ½ m p` (from
+    /// `[x][y] = y xᵀ - (x·y) 1`), written out on the storage: the one implementation of the
+    /// congruence for a spatial inertia, used by every algorithm (its specialised variant for
+    /// bodies with a principal form is [`PrincipalForm::transformed`](super::PrincipalForm::transformed)).
     #[must_use]
+    #[inline]
     pub fn transformed(&self, t_ab: &Transform) -> Self {
-        let r = &t_ab.rotation;
+        let R = &t_ab.rotation;
         let p = &t_ab.translation;
-        let rh = r * self.h;
-        let (kp, krh) = (skew(p), skew(&rh));
+        let m = self.mass;
+        let h = mat3_vec(R, &self.h);
+        let RI = mat3_mul(R, &self.inertia);
+        let g = h + p * (0.5 * m);
+        let d = 2.0 * g.dot(p);
+        let (r, ri) = (R.as_slice(), RI.as_slice()); // column-major
+        let (p, g) = ([p.x, p.y, p.z], [g.x, g.y, g.z]);
+        let mut out = [0.0; 9];
+        for i in 0..3 {
+            for j in i..3 {
+                // (R I Rᵀ)_ij = Σ_k (RI)_ik R_jk
+                let rir = ri[i] * r[j] + ri[3 + i] * r[3 + j] + ri[6 + i] * r[6 + j];
+                let x = rir - p[i] * g[j] - g[i] * p[j];
+                out[j * 3 + i] = x;
+                out[i * 3 + j] = x;
+            }
+            out[i * 4] += d;
+        }
         Self {
-            mass: self.mass,
-            h: rh + p * self.mass,
-            inertia: r * self.inertia * r.transpose() - krh * kp - kp * krh - kp * kp * self.mass,
+            mass: m,
+            h: h + t_ab.translation * m,
+            inertia: Mat3::from_column_slice(&out),
         }
     }
 

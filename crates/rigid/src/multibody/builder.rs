@@ -4,7 +4,26 @@ use super::model::{Frame, FrameId, FrameKind, Joint, JointId, Model};
 use super::{JointType, ModelError};
 use crate::error::DimensionError;
 use crate::mass::SpatialInertia;
-use crate::spatial::{Mat3, Transform, Twist, Vec3};
+use crate::spatial::{Transform, Vec3};
+
+/// The parts of a model under construction ([`Model::from_parts`] compiles its plan).
+#[derive(Clone, Debug)]
+struct Parts {
+    name: String,
+    gravity: Vec3,
+    joints: Vec<Joint>,
+    inertias: Vec<SpatialInertia>,
+    frames: Vec<Frame>,
+    lower: Vec<f64>,
+    upper: Vec<f64>,
+    velocity_limit: Vec<f64>,
+    effort_limit: Vec<f64>,
+    armature: Vec<f64>,
+    damping: Vec<f64>,
+    friction: Vec<f64>,
+    nq: usize,
+    nv: usize,
+}
 
 /// Builds a [`Model`] joint by joint, in depth-first order.
 ///
@@ -26,7 +45,7 @@ use crate::spatial::{Mat3, Transform, Twist, Vec3};
 /// ```
 #[derive(Clone, Debug)]
 pub struct ModelBuilder {
-    model: Model,
+    model: Parts,
     inertia_check: InertiaCheck,
     /// Joint names, and frame names by kind, for O(1) duplicate checks.
     names: std::collections::HashSet<(Option<FrameKind>, String)>,
@@ -60,7 +79,11 @@ pub enum InertiaCheck {
     AsWritten,
 }
 
-fn check_inertia(name: &str, g: &SpatialInertia, check: InertiaCheck) -> Result<(), ModelError> {
+pub(crate) fn check_inertia(
+    name: &str,
+    g: &SpatialInertia,
+    check: InertiaCheck,
+) -> Result<(), ModelError> {
     let bad = |source| ModelError::BadInertia {
         name: name.into(),
         source,
@@ -86,22 +109,12 @@ fn check_inertia(name: &str, g: &SpatialInertia, check: InertiaCheck) -> Result<
     Ok(())
 }
 
-/// `Some((c, s))` if `S = s e_c` exactly (`s = ±1`), angular components first.
-fn unit_axis(S: &Twist) -> Option<(usize, f64)> {
-    let x = S.to_vector();
-    let mut nonzero = (0..6).filter(|&c| x[c] != 0.0);
-    match (nonzero.next(), nonzero.next()) {
-        (Some(c), None) if x[c].abs() == 1.0 => Some((c, x[c])),
-        _ => None,
-    }
-}
-
 impl ModelBuilder {
     /// An empty model called `name`, with gravity `[0, 0, -9.81]` m/s².
     #[must_use]
     pub fn new(name: &str) -> Self {
         Self {
-            model: Model {
+            model: Parts {
                 name: name.into(),
                 gravity: Vec3::new(0.0, 0.0, -9.81),
                 joints: Vec::new(),
@@ -114,16 +127,6 @@ impl ModelBuilder {
                 armature: Vec::new(),
                 damping: Vec::new(),
                 friction: Vec::new(),
-                dof_S: Vec::new(),
-                dof_joint: Vec::new(),
-                dof_axis: Vec::new(),
-                quaternions: Vec::new(),
-                unrotated: Vec::new(),
-                placement_permutation: Vec::new(),
-                chain_angles: Vec::new(),
-                placement_turn: Vec::new(),
-                placement_translation: Vec::new(),
-                principal: Vec::new(),
                 nq: 0,
                 nv: 0,
             },
@@ -214,31 +217,9 @@ impl ModelBuilder {
             idx_v: m.nv,
             nv,
             subtree_end: id + 1,
+            continuous: false,
         });
         m.inertias.push(inertia);
-        m.unrotated.push(placement.rotation == Mat3::identity());
-        m.placement_permutation
-            .push(signed_permutation(&placement.rotation));
-        m.placement_turn
-            .push(if m.placement_permutation[id].is_none() {
-                coordinate_turn(&placement.rotation)
-            } else {
-                None
-            });
-        if m.reads_chain_angle(id) {
-            m.chain_angles.push(m.nq);
-        }
-        m.placement_translation
-            .push(crate::spatial::ModelVec3::new(&placement.translation));
-        if let Some(o) = kind.quaternion_offset() {
-            m.quaternions.push((id, m.nq + o));
-        }
-        for k in 0..nv {
-            let S = kind.motion_subspace(k);
-            m.dof_S.push(S);
-            m.dof_axis.push(unit_axis(&S));
-            m.dof_joint.push(id);
-        }
         m.lower.resize(m.nq + nq, f64::NEG_INFINITY);
         m.upper.resize(m.nq + nq, f64::INFINITY);
         m.velocity_limit.resize(m.nv + nv, f64::INFINITY);
@@ -419,6 +400,29 @@ impl ModelBuilder {
         Ok(())
     }
 
+    /// Mark a revolute joint as imported from a URDF `continuous` joint
+    /// ([`Joint::continuous`](super::Joint::continuous)): the dynamics do not change, Pinocchio's
+    /// layout writes its angle as `(cos θ, sin θ)`.
+    ///
+    /// # Errors
+    /// An unknown joint, or one that is not revolute.
+    pub fn set_continuous(&mut self, joint: JointId) -> Result<(), ModelError> {
+        self.joint_checked(joint)?;
+        let j = &mut self.model.joints[joint.0];
+        match j.kind.shape() {
+            super::joint::Shape::Revolute(_) => {
+                j.continuous = true;
+                Ok(())
+            }
+            super::joint::Shape::Prismatic(_)
+            | super::joint::Shape::FreeFlyer
+            | super::joint::Shape::General => Err(ModelError::Unsupported {
+                index: joint.0,
+                reason: "only a revolute joint can be continuous",
+            }),
+        }
+    }
+
     /// Freeze the model (computes each joint's subtree range).
     ///
     /// # Errors
@@ -435,49 +439,17 @@ impl ModelBuilder {
                 *pe = (*pe).max(e);
             }
         }
-        self.model.refresh_inertia_forms();
-        Ok(self.model)
+        let m = self.model;
+        Ok(Model::from_parts(
+            m.name,
+            m.gravity,
+            m.joints,
+            m.inertias,
+            m.frames,
+            [m.lower, m.upper, m.velocity_limit, m.effort_limit],
+            m.armature,
+            m.damping,
+            m.friction,
+        ))
     }
-}
-
-/// `Some` when every column of `r` is `±e_k` up to 4 ulps of 1 in each entry (the rounding of
-/// `cos(π/2) ≈ 6e-17` in a rotation built from `rpy`): `[(k, ±1); 3]`, column by column.
-fn signed_permutation(r: &Mat3) -> Option<[(usize, f64); 3]> {
-    const TOL: f64 = 4.0 * f64::EPSILON;
-    let mut out = [(0, 0.0); 3];
-    let mut used = [false; 3];
-    for (c, slot) in out.iter_mut().enumerate() {
-        let col = r.column(c);
-        let k = col.iamax();
-        let ones = (col[k].abs() - 1.0).abs() <= TOL;
-        let zeros = (0..3).all(|t| t == k || col[t].abs() <= TOL);
-        if !ones || !zeros || used[k] {
-            return None;
-        }
-        used[k] = true;
-        *slot = (k, col[k].signum());
-    }
-    Some(out)
-}
-
-/// `Some((e_k, sin θ, cos θ))` when `r` is a rotation by `θ` about the coordinate axis `e_k`
-/// (a URDF `rpy` with one nonzero angle, within 4 ulps), so that `R_λ r` turns two columns of
-/// `R_λ` (`rotate_about`) instead of a 3x3 product.
-fn coordinate_turn(r: &Mat3) -> Option<(Vec3, f64, f64)> {
-    const TOL: f64 = 4.0 * f64::EPSILON;
-    // the axis: r_kk = 1 and the rest of row and column k zero (every k tried: a tiny turn
-    // about a later axis also has r_kk = 1 on an earlier k)
-    let k = (0..3).find(|&k| {
-        (r[(k, k)] - 1.0).abs() <= TOL
-            && (0..3).all(|t| t == k || (r[(k, t)].abs() <= TOL && r[(t, k)].abs() <= TOL))
-    })?;
-    // about e_k, the plane (j, l) in cyclic order turns: r_jj = r_ll = c, r_lj = -r_jl = s
-    let (j, l) = ((k + 1) % 3, (k + 2) % 3);
-    let (s, c) = (r[(l, j)], r[(j, j)]);
-    if (r[(l, l)] - c).abs() > TOL || (r[(j, l)] + s).abs() > TOL {
-        return None;
-    }
-    let mut e = Vec3::zeros();
-    e[k] = 1.0;
-    Some((e, s, c))
 }

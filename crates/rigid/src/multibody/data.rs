@@ -28,7 +28,8 @@ pub struct Data {
     /// Wrench `F_i` transmitted from the parent to body i through joint i, in body i's frame
     /// (RNEA).
     pub forces: Vec<Wrench>,
-    /// Composite rigid-body inertia of each subtree, in the frame of its tree's root body (CRBA).
+    /// Composite rigid-body inertia of each subtree, in the frame of its tree's root body (CRBA,
+    /// and the RNEA derivatives, which compute them on the way).
     pub composite_inertias: Vec<SpatialInertia>,
     /// Generalised forces `τ` (RNEA).
     pub tau: DVector<f64>,
@@ -61,6 +62,10 @@ pub struct Data {
     /// [`aba_derivatives`](super::aba_derivatives), the kinematics derivatives).
     pub derivatives: super::Derivatives,
     // --- internal workspaces ---
+    /// The motion-subspace columns `S_k(q)` (child frames) at the `q` of the last algorithm:
+    /// constant columns set once here, the others rewritten by each algorithm
+    /// (`update_subspaces`).
+    pub(crate) S: Vec<Twist>,
     pub(crate) ia: Vec<Mat6>,
     pub(crate) pa: Vec<Wrench>,
     pub(crate) c_bias: Vec<Twist>,
@@ -76,9 +81,11 @@ pub struct Data {
     pub(crate) sin_cos: Vec<[f64; 2]>,
     pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,
-    /// Each body's inertia in a frame common to its tree (Coriolis: the world; `M⁻¹`: the root
-    /// body's frame).
+    /// Composite inertias in the world frame (the Coriolis matrix).
     pub(crate) world_inertias: Vec<SpatialInertia>,
+    /// Each body's own inertia `rG_i` in the frame of its tree's root body (the first pass of
+    /// `M⁻¹` and of the analytical derivatives).
+    pub(crate) root_frame_inertias: Vec<SpatialInertia>,
     pub(crate) world_b: Vec<Mat6>,
     pub(crate) chol: DMatrix<f64>,
     /// `compute_minverse`: `U_i D_i⁻¹` per dof (world), the bias forces `P` for every unit
@@ -123,6 +130,7 @@ impl Data {
             com: Vec3::zeros(),
             mass: model.total_mass(),
             derivatives: super::Derivatives::new(model),
+            S: (0..nv).map(|k| model.motion_subspace(k)).collect(),
             ia: vec![Mat6::zeros(); n],
             pa: vec![Wrench::zero(); n],
             c_bias: vec![Twist::zero(); n],
@@ -136,6 +144,7 @@ impl Data {
             u: DVector::zeros(nv),
             spatial_velocities: vec![Twist::zero(); n],
             world_inertias: vec![SpatialInertia::zero(); n],
+            root_frame_inertias: vec![SpatialInertia::zero(); n],
             world_b: vec![Mat6::zeros(); n],
             chol: DMatrix::zeros(nv, nv),
             minv_ud: vec![Wrench::zero(); nv],

@@ -2,7 +2,7 @@
 //! the classic recursive algorithms (forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`,
 //! energies, Coriolis matrix).
 //!
-//! Conventions (see `CONVENTIONS.md`): joints are numbered depth-first from the root; twists and
+//! Conventions (see docs/conventions.md): joints are numbered depth-first from the root; twists and
 //! wrenches are angular first; every body's quantities are expressed in its own joint frame
 //! (the joint frame moved by the joint, "local" coordinates, Featherstone's body coordinates);
 //! [`Data::placements`] holds the world pose `oMi` of each moved joint frame. Free-flyer
@@ -24,7 +24,7 @@
 //! | `K = ½ q̇ᵀ M q̇`, `U = -Σ mᵢ gᵀ cᵢ` | [`kinetic_energy`], [`potential_energy`] | Lynch & Park §8.1 |
 //! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |
 //! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
-//! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`layout`] (`PinocchioLayout`) | URDF models loaded with sibling joints sorted by name |
+//! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`PinocchioLayout`](crate::interop::PinocchioLayout) | URDF models loaded with sibling joints sorted by name |
 //! | `∂τ/∂(q, v)`, `∂q̈/∂(q, v, τ)`, `∂g/∂q`, frame kinematics, `∂(q ⊕ v)`, `∂(q₁ ⊖ q₀)` | [`derivatives`] ([`rnea_derivatives`], [`aba_derivatives`], …; `q` along `q ⊕ δ`) | Carpentier & Mansard, RSS 2018 |
 //! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`] | ABA; Lynch & Park ch. 9, 11 |
 //! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`, `crba_lower_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |
@@ -45,24 +45,28 @@
 pub mod algorithms;
 pub mod batch;
 mod builder;
-mod builders;
 mod builtins;
-mod configuration;
+pub(crate) mod configuration;
 mod data;
-mod joint;
-pub mod layout;
+pub(crate) mod joint;
+mod textbook;
+
 mod model;
+pub(crate) mod plan;
+pub mod reference;
 pub mod simulation;
-mod sincos;
 
 pub use algorithms::*;
 pub use builder::{InertiaCheck, ModelBuilder};
-pub use builders::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 pub use builtins::{builtin, builtin_names, double_pendulum, pendulum, puma560, Puma560Options};
-pub use configuration::{difference, integrate, neutral, normalize, random_configuration, Rng};
+pub use configuration::{
+    difference, difference_jacobians, integrate, integrate_jacobians, neutral, normalize,
+    random_configuration, Rng,
+};
 pub use data::Data;
-pub use joint::JointType;
+pub use joint::{column_names, JointType, PinocchioCoords};
 pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
+pub use textbook::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 
 use crate::error::{DimensionError, InertiaError};
 use thiserror::Error;
@@ -101,8 +105,8 @@ pub enum ModelError {
         /// The index.
         index: usize,
     },
-    /// A zero or non-finite joint axis.
-    #[error("joint '{name}': axis is zero or not finite")]
+    /// A zero or non-finite joint axis (or two parallel axes of a joint that needs two).
+    #[error("joint '{name}': axis is zero or not finite, or its two axes are parallel")]
     BadAxis {
         /// The joint.
         name: String,
@@ -197,6 +201,18 @@ pub enum MultibodyError {
         /// Degrees of freedom the data was made for.
         nv: usize,
     },
+    /// An algorithm that does not (yet) handle a joint whose motion subspace depends on `q`
+    /// (a universal joint): the analytical derivatives, `J̇` and the Coriolis matrix assume `S`
+    /// constant in body coordinates.
+    #[error("joint '{joint}' ({kind}): {algorithm} assumes every joint's motion subspace is constant in body coordinates, and this one's depends on q; use finite differences of the other algorithms")]
+    Unsupported {
+        /// The joint.
+        joint: String,
+        /// Its type.
+        kind: &'static str,
+        /// The algorithm.
+        algorithm: &'static str,
+    },
     /// A frame or joint index out of range.
     #[error("{what} index {index} out of range")]
     OutOfRange {
@@ -211,11 +227,11 @@ pub enum MultibodyError {
 pub(crate) fn check_q(model: &Model, q: &[f64]) -> Result<(), MultibodyError> {
     DimensionError::check("q", model.nq, q.len())?;
     check_finite("q", q)?;
-    for &(j, o) in &model.quaternions {
-        let n = joint::quat_norm(&q[o..o + 4]);
+    for &(j, o) in &model.plan().quaternions {
+        let n = crate::spatial::quat_norm(&q[o..o + 4]);
         if (n - 1.0).abs() > QUATERNION_TOLERANCE {
             return Err(MultibodyError::NotUnitQuaternion {
-                joint: model.joints[j].name.clone(),
+                joint: model.joints()[j].name.clone(),
                 norm: n,
             });
         }

@@ -1,6 +1,7 @@
 //! The constant description of a kinematic tree: joints in depth-first order, their placements,
 //! the bodies' spatial inertias, limits, armature, named frames and gravity.
 
+use super::plan::Plan;
 use super::{JointType, ModelError};
 use crate::error::DimensionError;
 use crate::mass::SpatialInertia;
@@ -37,6 +38,37 @@ pub struct Joint {
     /// One past the last joint of this joint's subtree: the subtree is `self..subtree_end`
     /// (depth-first order makes it contiguous).
     pub subtree_end: usize,
+    /// A revolute joint imported from a URDF `continuous` joint (no position limits): the
+    /// dynamics are those of any revolute joint, and only Pinocchio's layout differs (it writes
+    /// the angle as `(cos θ, sin θ)`, [`JointType::pinocchio_coords`]).
+    pub continuous: bool,
+}
+
+impl Joint {
+    /// The type's name as the files write it: [`JointType::name`], or `continuous` for a
+    /// revolute joint imported from a URDF `continuous` joint.
+    #[must_use]
+    pub fn type_name(&self) -> &'static str {
+        if self.continuous {
+            "continuous"
+        } else {
+            self.kind.name()
+        }
+    }
+
+    /// The joint's degrees of freedom as a range of indices into `v`, `a`, `τ`.
+    #[must_use]
+    #[inline]
+    pub fn dofs(&self) -> std::ops::Range<usize> {
+        self.idx_v..self.idx_v + self.nv
+    }
+
+    /// The joint's configuration coordinates as a range of indices into `q`.
+    #[must_use]
+    #[inline]
+    pub fn coordinates(&self) -> std::ops::Range<usize> {
+        self.idx_q..self.idx_q + self.nq
+    }
 }
 
 /// What a named frame stands for. Frame names are unique within a kind, and joint names among the
@@ -98,13 +130,13 @@ pub struct Frame {
 }
 
 /// A kinematic tree, constant once built (Featherstone's `model`, Pinocchio's `Model`).
-/// Build one with [`ModelBuilder`]; evaluate it with a [`Data`](super::Data) workspace.
+/// Build one with [`ModelBuilder`](super::ModelBuilder); evaluate it with a [`Data`](super::Data) workspace.
 #[derive(Clone, Debug)]
 pub struct Model {
     pub(crate) name: String,
     pub(crate) gravity: Vec3,
-    pub(crate) joints: Vec<Joint>,
-    pub(crate) inertias: Vec<SpatialInertia>,
+    joints: Vec<Joint>,
+    inertias: Vec<SpatialInertia>,
     pub(crate) frames: Vec<Frame>,
     pub(crate) lower: Vec<f64>,
     pub(crate) upper: Vec<f64>,
@@ -115,68 +147,82 @@ pub struct Model {
     pub(crate) damping: Vec<f64>,
     /// Coulomb (dry) joint friction per degree of freedom (URDF `<dynamics friction>`).
     pub(crate) friction: Vec<f64>,
-    /// Motion subspace column per degree of freedom, in the child frame (constant).
-    pub(crate) dof_S: Vec<Twist>,
-    /// The joint of each degree of freedom.
-    pub(crate) dof_joint: Vec<usize>,
-    /// `Some((c, s))` when `S_k = s e_c` (a coordinate axis, angular first, `s = ±1`): then
-    /// `I S_k` is a column of `I` and `S_kᵀ F` one component of `F`.
-    pub(crate) dof_axis: Vec<Option<(usize, f64)>>,
-    /// `(joint, index in q)` of every quaternion (spherical and free-flyer joints).
-    pub(crate) quaternions: Vec<(usize, usize)>,
-    /// Per joint: `X_T` has exactly the identity rotation (a URDF origin without `rpy`), so that
-    /// `oM_λ X_T X_J(q)` of a revolute joint turns two columns of `R_λ` and that of a prismatic
-    /// joint keeps `R_λ` (no 3x3 product).
-    pub(crate) unrotated: Vec<bool>,
-    /// Per joint: `X_T`'s rotation is a signed permutation (a URDF `rpy` in multiples of π/2,
-    /// up to the rounding of `cos(π/2)`): column `c` of `R_T` is `s e_k` for `(k, s)` in slot
-    /// `c`, so that `R_λ R_T` picks and signs columns of `R_λ` instead of a 3x3 product.
-    pub(crate) placement_permutation: Vec<Option<[(usize, f64); 3]>>,
-    /// The `q` indices of the joints for which [`Model::reads_chain_angle`] holds: the first pass
-    /// of CRBA, `M⁻¹` and the RNEA derivatives computes their sines and cosines ahead of the
-    /// chain, several at a time (four per AVX2 register, else two).
-    pub(crate) chain_angles: Vec<usize>,
-    /// Per joint, when `X_T`'s rotation is not a signed permutation: `Some((e_k, sin θ, cos θ))`
-    /// if it turns by `θ` about a coordinate axis `e_k` (a URDF `rpy` with one nonzero angle), so
-    /// that `R_λ R_T` turns two columns of `R_λ` (`rotate_about`) instead of a 3x3 product.
-    pub(crate) placement_turn: Vec<Option<(crate::spatial::Vec3, f64, f64)>>,
-    /// Per joint: `X_T`'s translation `t`, kept as `s e_k` when it lies on a coordinate axis
-    /// (`R_λ t` is then a scaled column of `R_λ`).
-    pub(crate) placement_translation: Vec<crate::spatial::ModelVec3>,
-    /// Per body: its inertia in the form that is cheapest to rotate
-    /// ([`PrincipalForm`](crate::mass::PrincipalForm)), `None` when it has none (see
-    /// [`PrincipalForm::new`](crate::mass::PrincipalForm::new)). Derived from `inertias` by
-    /// [`Model::refresh_inertia_forms`].
-    pub(crate) principal: Vec<Option<crate::mass::PrincipalForm>>,
+    /// The speed caches, derived from `joints` and `inertias` by [`Plan::new`] and rebuilt by
+    /// every method that changes them.
+    plan: Plan,
     pub(crate) nq: usize,
     pub(crate) nv: usize,
 }
 
 impl Model {
-    /// Whether the first pass of CRBA, `M⁻¹` and the RNEA derivatives (`root_frame_bodies`)
-    /// turns joint `i` by a sine and cosine computed ahead of the chain: a revolute joint that is
-    /// a root's child, or deeper with `X_T` unrotated, a signed permutation or a turn about one
-    /// coordinate axis. The one definition behind `chain_angles` and the pass's match arms.
-    pub(crate) fn reads_chain_angle(&self, i: usize) -> bool {
-        let j = &self.joints[i];
-        matches!(
-            j.kind,
-            JointType::Revolute { .. } | JointType::Continuous { .. }
-        ) && j.parent.is_some_and(|p| {
-            self.joints[p.0].parent.is_none()
-                || self.unrotated[i]
-                || self.placement_permutation[i].is_some()
-                || self.placement_turn[i].is_some()
-        })
+    /// A model of these parts, with its plan built (the builder's last step).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn from_parts(
+        name: String,
+        gravity: Vec3,
+        joints: Vec<Joint>,
+        inertias: Vec<SpatialInertia>,
+        frames: Vec<Frame>,
+        limits: [Vec<f64>; 4],
+        armature: Vec<f64>,
+        damping: Vec<f64>,
+        friction: Vec<f64>,
+    ) -> Self {
+        let [lower, upper, velocity_limit, effort_limit] = limits;
+        let (nq, nv) = joints
+            .last()
+            .map_or((0, 0), |j| (j.idx_q + j.nq, j.idx_v + j.nv));
+        let plan = Plan::new(&joints, &inertias);
+        Self {
+            name,
+            gravity,
+            joints,
+            inertias,
+            frames,
+            lower,
+            upper,
+            velocity_limit,
+            effort_limit,
+            armature,
+            damping,
+            friction,
+            plan,
+            nq,
+            nv,
+        }
     }
 
-    /// Recomputes what is derived from the body inertias; called whenever `inertias` changes.
-    pub(crate) fn refresh_inertia_forms(&mut self) {
-        self.principal = self
-            .inertias
-            .iter()
-            .map(crate::mass::PrincipalForm::new)
-            .collect();
+    /// The compiled plan of the fast algorithms.
+    #[inline(always)]
+    pub(crate) fn plan(&self) -> &Plan {
+        &self.plan
+    }
+
+    /// Replace the body inertias (one per joint, in the joints' order), rebuilding the plan.
+    ///
+    /// # Errors
+    /// A wrong number of inertias, or one that is not finite or has a negative mass
+    /// ([`ModelError::BadInertia`] names the body).
+    pub fn set_inertias(&mut self, inertias: &[SpatialInertia]) -> Result<(), ModelError> {
+        DimensionError::check("inertias", self.joints.len(), inertias.len()).map_err(|e| {
+            ModelError::Dimension {
+                joint: "<model>".into(),
+                source: e,
+            }
+        })?;
+        for (j, g) in self.joints.iter().zip(inertias) {
+            super::builder::check_inertia(&j.name, g, super::InertiaCheck::AsWritten)?;
+        }
+        self.replace_inertias(inertias.to_vec());
+        Ok(())
+    }
+
+    /// Replace the body inertias as they are (no check: identification's estimates may be
+    /// non-physical), rebuilding the plan. `inertias.len()` must be the number of joints.
+    pub(crate) fn replace_inertias(&mut self, inertias: Vec<SpatialInertia>) {
+        assert_eq!(inertias.len(), self.joints.len(), "one inertia per joint");
+        self.inertias = inertias;
+        self.plan = Plan::new(&self.joints, &self.inertias);
     }
 
     /// The model's name.
@@ -322,15 +368,18 @@ impl Model {
     pub fn friction(&self) -> &[f64] {
         &self.friction
     }
-    /// The motion-subspace column of degree of freedom `k`, in its body's frame.
+    /// The motion-subspace column of degree of freedom `k`, in its body's frame, at the neutral
+    /// configuration (the same at every `q` when the joint's
+    /// [`constant_subspace`](JointType::constant_subspace) holds; otherwise see
+    /// [`JointType::subspace`]).
     #[must_use]
     pub fn motion_subspace(&self, k: usize) -> Twist {
-        self.dof_S[k]
+        self.plan.dof_S[k]
     }
     /// The joint owning degree of freedom `k`.
     #[must_use]
     pub fn dof_joint(&self, k: usize) -> JointId {
-        JointId(self.dof_joint[k])
+        JointId(self.plan.dof_joint[k])
     }
     /// The moving bodies whose inertia is not physical, with the reason: zero mass, or a
     /// rotational inertia about the CoM violating the triangle inequality `λ1 + λ2 ≥ λ3`

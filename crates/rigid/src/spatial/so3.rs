@@ -178,3 +178,68 @@ pub fn orthonormalize(m: &Mat3) -> Mat3 {
     }
     u * d * vt
 }
+
+// --- quaternions (x, y, z, w), scalar last as in ROS: the joints' configuration kernels ---
+
+/// Quaternion `(x, y, z, w)` → rotation matrix, normalising first.
+#[inline]
+pub(crate) fn quat_to_rot(x: f64, y: f64, z: f64, w: f64) -> Mat3 {
+    let n2 = x * x + y * y + z * z + w * w;
+    let s = 2.0 / n2;
+    let (xx, yy, zz) = (x * x * s, y * y * s, z * z * s);
+    let (xy, xz, yz) = (x * y * s, x * z * s, y * z * s);
+    let (wx, wy, wz) = (w * x * s, w * y * s, w * z * s);
+    Mat3::new(
+        1.0 - yy - zz,
+        xy - wz,
+        xz + wy,
+        xy + wz,
+        1.0 - xx - zz,
+        yz - wx,
+        xz - wy,
+        yz + wx,
+        1.0 - xx - yy,
+    )
+}
+
+/// Hamilton product `a ⊗ b` of quaternions stored `(x, y, z, w)`.
+#[inline]
+pub(crate) fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    let [ax, ay, az, aw] = a;
+    let [bx, by, bz, bw] = b;
+    [
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+        aw * bw - ax * bx - ay * by - az * bz,
+    ]
+}
+
+/// `exp(ω/2)` as a unit quaternion `(x, y, z, w)`: the rotation `exp([ω])`.
+#[inline]
+pub(crate) fn quat_exp(w: &Vec3) -> [f64; 4] {
+    let t = w.norm();
+    let h = 0.5 * t;
+    let s = if t < 1e-4 {
+        0.5 - t * t / 48.0
+    } else {
+        h.sin() / t
+    };
+    [w.x * s, w.y * s, w.z * s, h.cos()]
+}
+
+/// Normalise a quaternion in place, with the sign `w ≥ 0`.
+#[inline]
+pub(crate) fn quat_normalize(q: &mut [f64]) {
+    let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
+    let s = if q[3] < 0.0 { -1.0 / n } else { 1.0 / n };
+    for x in q.iter_mut().take(4) {
+        *x *= s;
+    }
+}
+
+/// The quaternion norm `|q|` of the four numbers `q[0..4]`.
+#[inline]
+pub(crate) fn quat_norm(q: &[f64]) -> f64 {
+    (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt()
+}

@@ -18,7 +18,7 @@
 //! with their meshes (~190 MB, too much to check in): the tests that read them are live only,
 //! run when `RIGID_CROSSCHECK=1` (with `RIGID_PYTHON`, or `python3`, finding the packages).
 
-use rigid::io::urdf::doctor::{BodyReport, Cause, Doctor, Status};
+use rigid::doctor::{BodyReport, Cause, Doctor, Status};
 use rigid::io::urdf::{parse_urdf_file, UrdfInertial, UrdfRobot};
 use rigid::mass::{Consistency, RotationalInertia, SpatialInertia, Verdict};
 use rigid::spatial::Transform;

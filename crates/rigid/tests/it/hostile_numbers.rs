@@ -62,8 +62,7 @@ fn hostile_tree(seed: u64, n: usize) -> Model {
         };
         let axis = Vec3::new(rng.normal(), rng.normal(), rng.normal()).normalize();
         let kind = match rng.next_u64() % 5 {
-            0 => JointType::Revolute { axis },
-            1 => JointType::Continuous { axis },
+            0 | 1 => JointType::Revolute { axis },
             2 => JointType::Prismatic { axis },
             3 => JointType::Spherical,
             _ => JointType::Planar,
@@ -93,10 +92,7 @@ fn hostile_tree(seed: u64, n: usize) -> Model {
 fn hostile_state(model: &Model, rng: &mut Rng) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     let mut q = random_configuration(model, rng);
     for j in model.joints() {
-        if matches!(
-            j.kind,
-            JointType::Revolute { .. } | JointType::Continuous { .. }
-        ) {
+        if matches!(j.kind, JointType::Revolute { .. }) {
             q[j.idx_q] = rng.uniform(-1e6, 1e6);
         }
     }

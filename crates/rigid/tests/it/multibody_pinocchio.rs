@@ -25,8 +25,7 @@ fn build(fx: &Value) -> Model {
         let axis = Vec3::from_column_slice(&vec_of(&j["axis"]));
         let kind = match j["type"].as_str().unwrap() {
             "free_flyer" => JointType::FreeFlyer,
-            "revolute" => JointType::Revolute { axis },
-            "continuous" => JointType::Continuous { axis },
+            "revolute" | "continuous" => JointType::Revolute { axis },
             "prismatic" => JointType::Prismatic { axis },
             "spherical" => JointType::Spherical,
             "planar" => JointType::Planar,
@@ -43,8 +42,12 @@ fn build(fx: &Value) -> Model {
             Vec3::from_column_slice(&vec_of(&j["com"])),
             RotationalInertia::from_matrix_unchecked(&mat3(&j["inertia_com"])),
         );
-        b.add_joint(parent, j["name"].as_str().unwrap(), kind, placement, G)
+        let id = b
+            .add_joint(parent, j["name"].as_str().unwrap(), kind, placement, G)
             .unwrap();
+        if j["type"] == "continuous" {
+            b.set_continuous(id).unwrap();
+        }
     }
     let mut m = b.build().unwrap();
     m.set_armature(&vec_of(&fx["armature"])).unwrap();

@@ -8,7 +8,7 @@ Loads the robot's URDF from the PyPI package example-robot-data with `pin.buildM
 JSON object with Pinocchio's rnea, crba, aba, computeMinverse, nle, generalized gravity, kinetic
 and potential energy, centre of mass, total mass and the joint placements data.oMi.
 
-Everything printed is already in rigid's conventions (shared/CONVENTIONS.md):
+Everything printed is already in rigid's conventions (docs/conventions.md):
 - free-flyer velocity, acceleration and force: Pinocchio stores (v, w) / (f, m), linear first;
   rigid stores (w, v) / (m, f), angular first: the two halves are swapped, in vectors and in the
   rows and columns of M;

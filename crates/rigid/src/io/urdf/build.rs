@@ -1,11 +1,11 @@
 //! [`UrdfRobot`] to [`Model`]: depth-first from the root link, children in file order (or by
 //! name), fixed joints merged into their parent body, non-physical inertias under a policy.
 
-use super::doctor::Doctor;
 use super::{
     parse_urdf_file, parse_urdf_str, InertiaIssueKind, InertiaPolicy, SiblingOrder, UrdfError,
     UrdfJointKind, UrdfOptions, UrdfRobot, UrdfWarning,
 };
+use crate::doctor::Doctor;
 use crate::error::InertiaError;
 use crate::mass::SpatialInertia;
 use crate::multibody::{
@@ -326,8 +326,9 @@ fn add_joints(
                     .map_err(at_joint)?;
                 continue;
             }
-            UrdfJointKind::Revolute => JointType::Revolute { axis: joint.axis },
-            UrdfJointKind::Continuous => JointType::Continuous { axis: joint.axis },
+            UrdfJointKind::Revolute | UrdfJointKind::Continuous => {
+                JointType::Revolute { axis: joint.axis }
+            }
             UrdfJointKind::Prismatic => JointType::Prismatic { axis: joint.axis },
             UrdfJointKind::Floating => JointType::FreeFlyer,
             UrdfJointKind::Planar => JointType::Planar,
@@ -344,6 +345,9 @@ fn add_joints(
                 ),
             })?;
         debug_assert_eq!(id.0, k);
+        if joint.kind == UrdfJointKind::Continuous {
+            b.set_continuous(id).map_err(at_joint)?;
+        }
         if let (Some(l), 1) = (joint.limit, kind.nq()) {
             let (lower, upper) = match joint.kind {
                 UrdfJointKind::Revolute | UrdfJointKind::Prismatic => (l.lower, l.upper),

@@ -1,8 +1,8 @@
 //! Rewriting the `<inertial>` blocks of a URDF text, everything else left byte for byte: the
 //! doctor's repairs (`rigid doctor --fix`) and identified body inertias (`rigid identify --out`).
 
-use super::doctor::InertialParams;
 use super::{UrdfJointKind, UrdfRobot, ROOT_JOINT_NAME};
+use crate::doctor::InertialParams;
 use crate::mass::{RotationalInertia, SpatialInertia};
 use crate::multibody::Model;
 use crate::spatial::Vec3;
@@ -84,7 +84,7 @@ fn indent_at(text: &str, at: usize) -> String {
 ///
 /// ```
 /// use rigid::io::urdf::{edit_inertials, parse_urdf_str, InertialEdit};
-/// use rigid::io::urdf::doctor::InertialParams;
+/// use rigid::doctor::InertialParams;
 /// use rigid::mass::RotationalInertia;
 /// use rigid::spatial::Vec3;
 /// let text = "<robot name=\"r\">\n  <link name=\"a\"/>\n</robot>\n";

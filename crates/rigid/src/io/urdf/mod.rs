@@ -46,7 +46,7 @@
 //! but its mass matrix is singular and ABA is undefined: [`UrdfRobot::inertia_report`] lists it.
 
 mod build;
-pub mod doctor;
+
 mod elements;
 mod inertials;
 mod mesh_path;

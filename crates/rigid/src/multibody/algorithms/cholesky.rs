@@ -9,12 +9,12 @@ use nalgebra::DVector;
 /// `λ(k), λ(λ(k)), …`.
 #[inline]
 fn dof_parent(model: &Model, k: usize) -> Option<usize> {
-    let j = &model.joints[model.dof_joint[k]];
+    let j = &model.joints()[model.plan().dof_joint[k]];
     if k > j.idx_v {
         return Some(k - 1);
     }
     j.parent.map(|p| {
-        let pj = &model.joints[p.0];
+        let pj = &model.joints()[p.0];
         pj.idx_v + pj.nv - 1
     })
 }
@@ -23,10 +23,10 @@ fn dof_parent(model: &Model, k: usize) -> Option<usize> {
 /// factorisation `M = Lᵀ L` that follows the tree (Featherstone 2008, §6.5, Table 6.3, "LTL":
 /// fill-in stays on each dof's chain of ancestors `λ(k)`, so it costs O(Σ_k depth(k)²) rather than
 /// O(nv³)), and the two sparse triangular solves `y = L⁻ᵀ (τ - nle)`, `q̈ = L⁻¹ y`. No
-/// allocation. A cross-check of [`aba`]. Returns `data.ddq`.
+/// allocation. A cross-check of [`aba`](crate::multibody::aba). Returns `data.ddq`.
 ///
 /// # Errors
-/// As [`aba`], or [`MultibodyError::NotPositiveDefinite`].
+/// As [`aba`](crate::multibody::aba), or [`MultibodyError::NotPositiveDefinite`].
 pub fn forward_dynamics_cholesky<'a>(
     model: &Model,
     data: &'a mut Data,

@@ -1,7 +1,7 @@
 //! The Coriolis matrix `C(q, v)` with `c(q, v) = C v` and `Ṁ - 2C` skew-symmetric: the
 //! Christoffel-symbol matrix, computed as Pinocchio's `computeCoriolisMatrix`.
 
-use super::{compute_joint_jacobians_time_variation, inertia_to_parent};
+use super::compute_joint_jacobians_time_variation;
 use crate::multibody::{Data, Model, MultibodyError};
 use crate::spatial::{skew, Mat6, Twist, Vec6, Wrench};
 use nalgebra::DMatrix;
@@ -48,15 +48,15 @@ pub fn coriolis_matrix<'a>(
     v: &[f64],
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     compute_joint_jacobians_time_variation(model, data, q, v)?;
-    let n = model.joints.len();
+    let n = model.njoints();
     for i in 0..n {
-        let Gs = inertia_to_parent(&model.inertias[i], &data.placements[i]);
+        let Gs = model.inertias()[i].transformed(&data.placements[i]);
         let Vs = data.spatial_velocities[i];
         data.world_inertias[i] = Gs;
         data.world_b[i] = body_b(&Gs.matrix(), &Vs, &Gs.momentum(&Vs));
     }
     for i in (0..n).rev() {
-        if let Some(p) = model.joints[i].parent {
+        if let Some(p) = model.joints()[i].parent {
             let (g, b) = (data.world_inertias[i], data.world_b[i]);
             data.world_inertias[p.0] += g;
             data.world_b[p.0] += b;
@@ -76,13 +76,13 @@ pub fn coriolis_matrix<'a>(
             let dJk = col(&data.jacobian_dot, k);
             Gc.momentum(&dJk) + Wrench::from_vector(&(Bc * Jk.to_vector()))
         };
-        let ji = &model.joints[i];
+        let ji = &model.joints()[i];
         for k in ji.idx_v..ji.idx_v + ji.nv {
             let Yk = Y(k);
             let Jk = col(&data.jacobian, k);
             let mut j = Some(i);
             while let Some(a) = j {
-                let ja = &model.joints[a];
+                let ja = &model.joints()[a];
                 for l in ja.idx_v..ja.idx_v + ja.nv {
                     let Jl = col(&data.jacobian, l);
                     C[(l, k)] = Jl.dot(&Yk);

@@ -1,6 +1,19 @@
 //! The composite-rigid-body algorithm for the joint-space mass matrix (Featherstone 2008,
 //! Table 6.2), with the composite inertias accumulated in one frame per tree (the root body's),
 //! so that no force is carried up the chain.
+//!
+//! Read [`reference::crba`](crate::multibody::reference::crba) first (spatial_v2's `HandC.m`).
+//! Line by line, this is the same algorithm expressed in the root body's frame {r}:
+//!
+//! | `HandC.m` | here |
+//! | --- | --- |
+//! | `IC{λ(i)} += Xup{i}' * IC{i} * Xup{i}` | `rG_i` computed once per body by `root_frame_bodies` ([`SpatialInertia::transformed`](crate::mass::SpatialInertia::transformed) or its principal-form variant), then `Ic_λ(i) += Ic_i`: a plain sum, every term already in {r} |
+//! | `fh = IC{i} * S{i}` | `F_k = Ic_i J_k`, `J_k = [Ad_{rMi}] S_k` |
+//! | `fh = Xup{j}' * fh; H(i,j) = S{j}' * fh` | `M_kl = J_kᵀ F_l`: no force carried up, `J_k` already in {r} |
+//!
+//! `root_frame_bodies` composes `rMi = rM_λ(i) X_T X_J(q_i)` with the shortcuts of the
+//! [plan](crate::multibody) (`X_T` a signed permutation or a turn about a coordinate axis, sines
+//! ahead of the chain); a free-flyer root's 6x6 block is `Ic` itself.
 
 use super::root_frame_bodies;
 use crate::multibody::{check_data, check_q, Data, JointType, Model, MultibodyError};
@@ -59,14 +72,14 @@ pub fn crba<'a>(
         &mut data.composite_inertias,
         &mut data.sin_cos,
     );
-    let n = model.joints.len();
+    let n = model.njoints();
     let nv = model.nv;
     let M = data.mass_matrix.as_mut_slice(); // column-major, M[(k, l)] = M[l * nv + k]
     for i in (0..n).rev() {
-        let ji = &model.joints[i];
+        let ji = &model.joints()[i];
         let Ic = data.composite_inertias[i];
         let end_v = {
-            let last = &model.joints[ji.subtree_end - 1];
+            let last = &model.joints()[ji.subtree_end - 1];
             last.idx_v + last.nv
         };
         let dofs = ji.idx_v..ji.idx_v + ji.nv;

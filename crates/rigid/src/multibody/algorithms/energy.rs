@@ -19,7 +19,7 @@ pub fn kinetic_energy(
 ) -> Result<f64, MultibodyError> {
     forward_kinematics_qv(model, data, q, v)?;
     let bodies: f64 = model
-        .inertias
+        .inertias()
         .iter()
         .zip(&data.velocities)
         .map(|(G, V)| G.kinetic_energy(V))
@@ -44,7 +44,7 @@ pub fn potential_energy(model: &Model, data: &mut Data, q: &[f64]) -> Result<f64
     placements_unchecked(model, data, q);
     let g = model.gravity;
     Ok(model
-        .inertias
+        .inertias()
         .iter()
         .zip(&data.placements)
         .map(|(G, oMi)| -g.dot(&(oMi.rotation * G.first_moment() + oMi.translation * G.mass())))
@@ -62,7 +62,7 @@ pub fn center_of_mass(model: &Model, data: &mut Data, q: &[f64]) -> Result<Vec3,
     placements_unchecked(model, data, q);
     let mut h = Vec3::zeros();
     let mut m = 0.0;
-    for (G, oMi) in model.inertias.iter().zip(&data.placements) {
+    for (G, oMi) in model.inertias().iter().zip(&data.placements) {
         h += oMi.rotation * G.first_moment() + oMi.translation * G.mass();
         m += G.mass();
     }

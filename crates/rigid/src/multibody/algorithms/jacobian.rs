@@ -31,14 +31,15 @@ pub fn compute_joint_jacobians<'a>(
     check_q(model, q)?;
     check_data(model, data)?;
     placements_unchecked(model, data, q);
+    super::update_subspaces(model, q, &mut data.S);
     fill_jacobian(model, data);
     Ok(&data.jacobian)
 }
 
 fn fill_jacobian(model: &Model, data: &mut Data) {
     for k in 0..model.nv {
-        let oMi = &data.placements[model.dof_joint[k]];
-        set_col(&mut data.jacobian, k, &oMi.act_twist(&model.dof_S[k]));
+        let oMi = &data.placements[model.plan().dof_joint[k]];
+        set_col(&mut data.jacobian, k, &oMi.act_twist(&data.S[k]));
     }
 }
 
@@ -67,20 +68,22 @@ fn col(m: &DMatrix<f64>, k: usize) -> Twist {
 /// `data.jacobian`, `data.jacobian_dot`, `placements`, `velocities`.
 ///
 /// # Errors
-/// Wrong lengths, non-finite entries, or a non-unit quaternion.
+/// Wrong lengths, non-finite entries, a non-unit quaternion, or a joint whose motion subspace
+/// depends on `q` ([`MultibodyError::Unsupported`]: `J̇` would need `Ṡ`).
 pub fn compute_joint_jacobians_time_variation<'a>(
     model: &Model,
     data: &'a mut Data,
     q: &[f64],
     v: &[f64],
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
+    super::require_constant_subspaces(model, "the Jacobian's time derivative")?;
     forward_kinematics_qv(model, data, q, v)?;
     fill_jacobian(model, data);
-    for i in 0..model.joints.len() {
+    for i in 0..model.njoints() {
         data.spatial_velocities[i] = data.placements[i].act_twist(&data.velocities[i]);
     }
     for k in 0..model.nv {
-        let Vs = data.spatial_velocities[model.dof_joint[k]];
+        let Vs = data.spatial_velocities[model.plan().dof_joint[k]];
         let Jk = col(&data.jacobian, k);
         set_col(&mut data.jacobian_dot, k, &Vs.cross(&Jk));
     }
@@ -99,7 +102,7 @@ fn express(
     data.frame_jacobian.fill(0.0);
     let mut j = body;
     while let Some(i) = j {
-        let ji = &model.joints[i];
+        let ji = &model.joints()[i];
         for k in ji.idx_v..ji.idx_v + ji.nv {
             let Js = col(&data.jacobian, k);
             let t = match rf {
@@ -130,7 +133,7 @@ fn express_dot(
     let pdot = Vs.v + Vs.w.cross(&p);
     let mut j = body;
     while let Some(i) = j {
-        let ji = &model.joints[i];
+        let ji = &model.joints()[i];
         for k in ji.idx_v..ji.idx_v + ji.nv {
             let Js = col(&data.jacobian, k);
             let dJs = col(&data.jacobian_dot, k);

@@ -1,7 +1,7 @@
 //! Forward kinematics: placements, body velocities and accelerations (Featherstone 2008, §3.5 and
 //! the first pass of Table 5.1; Lynch & Park §8.3.2).
 
-use super::{compose, joint_motion, parent_placement};
+use super::{compose, joint_bias, joint_motion, parent_placement, update_subspaces};
 use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::Twist;
 
@@ -22,10 +22,10 @@ pub fn forward_kinematics_q(
 }
 
 pub(crate) fn placements_unchecked(model: &Model, data: &mut Data, q: &[f64]) {
-    for i in 0..model.joints.len() {
+    for i in 0..model.njoints() {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
-        data.placements[i] = match model.joints[i].parent {
+        data.placements[i] = match model.joints()[i].parent {
             Some(p) => compose(&data.placements[p.0], &liMi),
             None => liMi,
         };
@@ -45,11 +45,12 @@ pub fn forward_kinematics_qv(
     check_q(model, q)?;
     check_data(model, data)?;
     check_v(model, "v", v)?;
-    for i in 0..model.joints.len() {
+    update_subspaces(model, q, &mut data.S);
+    for i in 0..model.njoints() {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
-        let vJ = joint_motion(model, i, v);
-        let (oMp, Vp) = match model.joints[i].parent {
+        let vJ = joint_motion(model, &data.S, i, v);
+        let (oMp, Vp) = match model.joints()[i].parent {
             Some(p) => (data.placements[p.0], data.velocities[p.0]),
             None => (crate::spatial::Transform::identity(), Twist::zero()),
         };
@@ -63,7 +64,7 @@ pub fn forward_kinematics_qv(
 ///
 /// - `liMi = X_T X_J(q_i)`, `oMi = oM_{λ(i)} liMi`
 /// - `V_i = [Ad_{liMi⁻¹}] V_{λ(i)} + S_i q̇_i`
-/// - `A_i = [Ad_{liMi⁻¹}] A_{λ(i)} + S_i q̈_i + [ad_{V_i}] S_i q̇_i` (`c_J = 0` for every joint)
+/// - `A_i = [Ad_{liMi⁻¹}] A_{λ(i)} + S_i q̈_i + c_J + [ad_{V_i}] S_i q̇_i`
 ///
 /// with `V_0 = A_0 = 0` for the world (Featherstone 2008, Table 5.1, first loop, without gravity).
 /// Fills `data.parent_placements`, `placements`, `velocities`, `accelerations`.
@@ -81,12 +82,16 @@ pub fn forward_kinematics(
     check_data(model, data)?;
     check_v(model, "v", v)?;
     check_v(model, "a", a)?;
-    for i in 0..model.joints.len() {
+    update_subspaces(model, q, &mut data.S);
+    for i in 0..model.njoints() {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
-        let vJ = joint_motion(model, i, v);
-        let aJ = joint_motion(model, i, a);
-        let (oMp, Vp, Ap) = match model.joints[i].parent {
+        let vJ = joint_motion(model, &data.S, i, v);
+        let mut aJ = joint_motion(model, &data.S, i, a);
+        if let Some(cJ) = joint_bias(model, i, q, v) {
+            aJ += cJ;
+        }
+        let (oMp, Vp, Ap) = match model.joints()[i].parent {
             Some(p) => (
                 data.placements[p.0],
                 data.velocities[p.0],

@@ -3,9 +3,9 @@
 //! frame per tree (the root body's, as [`crba`](super::crba)) so that no spatial transform is
 //! applied on the way.
 
-use super::aba::mat6_twist;
 use super::root_frame_bodies;
 use crate::multibody::{check_data, check_q, Data, Model, MultibodyError};
+use crate::spatial::mat6_twist;
 use crate::spatial::{Mat6, Twist, Wrench};
 use nalgebra::DMatrix;
 
@@ -72,7 +72,7 @@ pub fn compute_minverse<'a>(
 }
 
 /// [`compute_minverse`] on checked inputs: fills `data.minv`, and `data.root_placements`,
-/// `data.dof_J`, `data.world_inertias` (every body in its tree's root frame).
+/// `data.dof_J`, `data.root_frame_inertias` (every body in its tree's root frame).
 pub(crate) fn minverse_unchecked(
     model: &Model,
     data: &mut Data,
@@ -83,14 +83,14 @@ pub(crate) fn minverse_unchecked(
         q,
         &mut data.root_placements,
         &mut data.dof_J,
-        &mut data.world_inertias,
+        &mut data.root_frame_inertias,
         &mut data.sin_cos,
     );
-    let n = model.joints.len();
+    let n = model.njoints();
     let nv = model.nv;
     for i in 0..n {
-        data.ia[i] = data.world_inertias[i].matrix();
-        data.minv_depth[i] = model.joints[i]
+        data.ia[i] = data.root_frame_inertias[i].matrix();
+        data.minv_depth[i] = model.joints()[i]
             .parent
             .map_or(0, |p| data.minv_depth[p.0] + 1);
     }
@@ -98,8 +98,8 @@ pub(crate) fn minverse_unchecked(
     // c ≥ idx_v(joint of k): the "upper triangle" is computed in the lower one's storage.
     let minv = data.minv.as_mut_slice();
     for i in (0..n).rev() {
-        let j = &model.joints[i];
-        let last = &model.joints[j.subtree_end - 1];
+        let j = &model.joints()[i];
+        let last = &model.joints()[j.subtree_end - 1];
         let end = last.idx_v + last.nv;
         let (head, tail) = data.ia.split_at_mut(i);
         let parent_ia = j.parent.map(|p| &mut head[p.0]);
@@ -125,8 +125,8 @@ pub(crate) fn minverse_unchecked(
         }?;
     }
     for i in 0..n {
-        let j = &model.joints[i];
-        let last = &model.joints[j.subtree_end - 1];
+        let j = &model.joints()[i];
+        let last = &model.joints()[j.subtree_end - 1];
         let end = last.idx_v + last.nv;
         let d = data.minv_depth[i];
         // rows of the depth stack: A of the joint being processed at depth d, its parent at d - 1

@@ -18,10 +18,10 @@ pub use cholesky::forward_dynamics_cholesky;
 pub use coriolis::coriolis_matrix;
 pub use crba::crba;
 pub use derivatives::{
-    aba_derivatives, aba_derivatives_with_external, difference_jacobians,
-    frame_kinematics_derivatives, gravity_derivatives, integrate_jacobians,
-    joint_kinematics_derivatives, rnea_derivatives, rnea_derivatives_with_external, AbaDerivatives,
-    Derivatives, KinematicsDerivatives, RneaDerivatives,
+    aba_derivatives, aba_derivatives_with_external, frame_kinematics_derivatives,
+    gravity_derivatives, joint_kinematics_derivatives, rnea_derivatives,
+    rnea_derivatives_with_external, AbaDerivatives, Derivatives, KinematicsDerivatives,
+    RneaDerivatives,
 };
 pub use energy::{center_of_mass, kinetic_energy, potential_energy};
 pub use jacobian::{
@@ -36,32 +36,71 @@ pub(crate) use minverse::minverse_unchecked;
 pub(crate) use rnea::check_fext;
 pub use rnea::{gravity_torques, nonlinear_effects, rnea, rnea_with_external};
 
-use super::joint::rotate_about_sc;
-use super::{JointType, Model};
+use super::joint::Shape;
+use super::plan::PlacementKind;
+use super::Model;
 use crate::mass::SpatialInertia;
-use crate::spatial::{mat3_vec, Mat3, Transform, Twist, Vec3};
+use crate::spatial::{compose, mat3_vec, rotate_about_sc, trig, Mat3, Transform, Twist, Vec3};
 
-/// `S_i q̇_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame).
+/// `S_i x_i = Σ_k S_k x_k` over the degrees of freedom of joint `i` (child frame), with `S` the
+/// motion-subspace columns at the current `q` (`Data::S`).
 #[inline]
-pub(crate) fn joint_motion(model: &Model, i: usize, x: &[f64]) -> Twist {
-    let j = &model.joints[i];
+pub(crate) fn joint_motion(model: &Model, S: &[Twist], i: usize, x: &[f64]) -> Twist {
+    let r = model.joints()[i].dofs();
     let mut t = Twist::zero();
-    let r = j.idx_v..j.idx_v + j.nv;
-    for (S, xk) in model.dof_S[r.clone()].iter().zip(&x[r]) {
+    for (S, xk) in S[r.clone()].iter().zip(&x[r]) {
         t += *S * *xk;
     }
     t
+}
+
+/// Writes `S(q)` of the joints whose motion subspace depends on `q` (`Plan::variable_subspace`)
+/// into `S`; the other columns are constant and `Data::new` set them. The first thing every
+/// algorithm that reads `Data::S` does.
+#[inline]
+pub(crate) fn update_subspaces(model: &Model, q: &[f64], S: &mut [Twist]) {
+    for &i in &model.plan().variable_subspace {
+        let j = &model.joints()[i];
+        j.kind.subspace(&q[j.coordinates()], &mut S[j.dofs()]);
+    }
+}
+
+/// `c_J = Ṡ q̇` of joint `i`, or `None` when its motion subspace is constant (then `c_J = 0`).
+#[inline(always)]
+pub(crate) fn joint_bias(model: &Model, i: usize, q: &[f64], v: &[f64]) -> Option<Twist> {
+    if !model.plan().varies[i] {
+        return None;
+    }
+    let j = &model.joints()[i];
+    Some(j.kind.bias(&q[j.coordinates()], &v[j.dofs()]))
+}
+
+/// `Err(Unsupported)` naming the first joint whose motion subspace depends on `q`, for the
+/// algorithms that assume a constant `S` in body coordinates (the analytical derivatives, `J̇`
+/// and the Coriolis matrix).
+pub(crate) fn require_constant_subspaces(
+    model: &Model,
+    algorithm: &'static str,
+) -> Result<(), crate::multibody::MultibodyError> {
+    match model.plan().variable_subspace.first() {
+        Some(&i) => Err(crate::multibody::MultibodyError::Unsupported {
+            joint: model.joints()[i].name.clone(),
+            kind: model.joints()[i].kind.name(),
+            algorithm,
+        }),
+        None => Ok(()),
+    }
 }
 
 /// For a one-dof joint whose motion subspace is a coordinate axis (`S = s e_c`, angular first,
 /// `Model::dof_axis`): `(c, s x_i)`, the one nonzero component of the joint twist `S x_i`.
 #[inline(always)]
 pub(crate) fn axis_motion(model: &Model, i: usize, x: &[f64]) -> Option<(usize, f64)> {
-    let j = &model.joints[i];
+    let j = &model.joints()[i];
     if j.nv != 1 {
         return None;
     }
-    model.dof_axis[j.idx_v].map(|(c, s)| (c, s * x[j.idx_v]))
+    model.plan().dof_axis[j.idx_v].map(|(c, s)| (c, s * x[j.idx_v]))
 }
 
 /// `T + x e_c`: adds the joint twist of [`axis_motion`] (component `c`, angular first).
@@ -125,60 +164,57 @@ pub(crate) fn root_frame_bodies(
     G: &mut [SpatialInertia],
     sc: &mut [[f64; 2]],
 ) {
-    super::sincos::sin_cos_at(q, &model.chain_angles, sc);
-    for i in 0..model.joints.len() {
-        let j = &model.joints[i];
+    let plan = model.plan();
+    let joints = model.joints();
+    trig::sin_cos_at(q, &plan.chain_angles, sc);
+    for (i, j) in joints.iter().enumerate() {
         // the joint's precomputed (sin q, cos q): read only by the arms `reads_chain_angle` names
         let angle = || {
             debug_assert!(
-                model.reads_chain_angle(i),
+                plan.reads_chain_angle(joints, i),
                 "joint {i} has no precomputed angle"
             );
             let [s, c] = sc[j.idx_q];
             (s, c)
         };
+        let shape = j.kind.shape();
         let rMi = match j.parent {
             None => {
-                G[i] = model.inertias[i];
-                let r = j.idx_v..j.idx_v + j.nv;
-                J[r.clone()].copy_from_slice(&model.dof_S[r]);
+                G[i] = model.inertias()[i];
+                J[j.dofs()].copy_from_slice(&plan.dof_S[j.dofs()]);
                 rM[i] = Transform::identity();
+                if !j.kind.constant_subspace() {
+                    j.kind.subspace(&q[j.coordinates()], &mut J[j.dofs()]);
+                }
                 continue;
             }
             // a root's child: rMi = liMi = X_T X_J(q)
-            Some(p) if model.joints[p.0].parent.is_none() => match j.kind {
-                JointType::Revolute { axis } | JointType::Continuous { axis } => {
+            Some(p) if joints[p.0].parent.is_none() => match shape {
+                Shape::Revolute(axis) => {
                     let (s, c) = angle();
                     Transform::new(
                         rotate_about_sc(&j.placement.rotation, &axis, s, c),
                         j.placement.translation,
                     )
                 }
-                _ => parent_placement(model, i, q),
+                Shape::Prismatic(_) | Shape::FreeFlyer | Shape::General => {
+                    parent_placement(model, i, q)
+                }
             },
             Some(p) => {
                 let rMp = &rM[p.0];
-                match (
-                    j.kind,
-                    model.unrotated[i],
-                    model.placement_permutation[i],
-                    model.placement_turn[i],
-                ) {
+                let t = plan.placement_translation[i];
+                match (shape, plan.placement[i]) {
                     // X_T without rotation: R_λ exp([a] q) turns two columns of R_λ
-                    (JointType::Revolute { axis } | JointType::Continuous { axis }, true, ..) => {
+                    (Shape::Revolute(axis), PlacementKind::Identity) => {
                         let (s, c) = angle();
                         Transform::new(
                             rotate_about_sc(&rMp.rotation, &axis, s, c),
-                            model.placement_translation[i].rotated(&rMp.rotation) + rMp.translation,
+                            t.rotated(&rMp.rotation) + rMp.translation,
                         )
                     }
                     // R_T a signed permutation: R_λ R_T picks and signs columns of R_λ
-                    (
-                        JointType::Revolute { axis } | JointType::Continuous { axis },
-                        false,
-                        Some(perm),
-                        _,
-                    ) => {
+                    (Shape::Revolute(axis), PlacementKind::SignedPermutation(perm)) => {
                         let R = &rMp.rotation;
                         let RT = Mat3::from_columns(&[
                             R.column(perm[0].0) * perm[0].1,
@@ -188,67 +224,83 @@ pub(crate) fn root_frame_bodies(
                         let (s, c) = angle();
                         Transform::new(
                             rotate_about_sc(&RT, &axis, s, c),
-                            model.placement_translation[i].rotated(R) + rMp.translation,
+                            t.rotated(R) + rMp.translation,
                         )
                     }
                     // R_T a turn about e_k: R_λ R_T turns two columns of R_λ, then the joint two
                     (
-                        JointType::Revolute { axis } | JointType::Continuous { axis },
-                        false,
-                        None,
-                        Some((e, sT, cT)),
+                        Shape::Revolute(axis),
+                        PlacementKind::AxisTurn {
+                            axis: e,
+                            s: sT,
+                            c: cT,
+                        },
                     ) => {
                         let (s, c) = angle();
                         let RT = rotate_about_sc(&rMp.rotation, &e, sT, cT);
                         Transform::new(
                             rotate_about_sc(&RT, &axis, s, c),
-                            model.placement_translation[i].rotated(&rMp.rotation) + rMp.translation,
+                            t.rotated(&rMp.rotation) + rMp.translation,
                         )
                     }
                     // the same for a prismatic joint: R = R_λ R_T, p = p_λ + R_λ t + R (a q)
-                    (JointType::Prismatic { axis }, false, None, Some((e, sT, cT))) => {
+                    (
+                        Shape::Prismatic(axis),
+                        PlacementKind::AxisTurn {
+                            axis: e,
+                            s: sT,
+                            c: cT,
+                        },
+                    ) => {
                         let R = rotate_about_sc(&rMp.rotation, &e, sT, cT);
-                        let p = model.placement_translation[i].rotated(&rMp.rotation)
+                        let p = t.rotated(&rMp.rotation)
                             + mat3_vec(&R, &(axis * q[j.idx_q]))
                             + rMp.translation;
                         Transform::new(R, p)
                     }
                     // X_T without rotation: R = R_λ, p = p_λ + R_λ (t + a q)
-                    (JointType::Prismatic { axis }, true, ..) => Transform::new(
+                    (Shape::Prismatic(axis), PlacementKind::Identity) => Transform::new(
                         rMp.rotation,
                         mat3_vec(
                             &rMp.rotation,
                             &(j.placement.translation + axis * q[j.idx_q]),
                         ) + rMp.translation,
                     ),
-                    _ => compose(rMp, &parent_placement(model, i, q)),
+                    (Shape::Revolute(_), PlacementKind::General)
+                    | (
+                        Shape::Prismatic(_),
+                        PlacementKind::SignedPermutation(_) | PlacementKind::General,
+                    )
+                    | (Shape::FreeFlyer | Shape::General, _) => {
+                        compose(rMp, &parent_placement(model, i, q))
+                    }
                 }
             }
         };
         rM[i] = rMi;
-        G[i] = match &model.principal[i] {
+        G[i] = match &plan.principal[i] {
             Some(form) => form.transformed(&rMi),
-            None => inertia_to_parent(&model.inertias[i], &rMi),
+            None => model.inertias()[i].transformed(&rMi),
         };
-        match j.kind {
+        match shape {
             // S = (a, 0): J = (R a, p × R a), without the product R 0 of the general path
-            JointType::Revolute { axis } | JointType::Continuous { axis } => {
-                let w = match model.dof_axis[j.idx_v] {
+            Shape::Revolute(axis) => {
+                let w = match plan.dof_axis[j.idx_v] {
                     Some((c, s)) => rMi.rotation.column(c) * s, // R (s e_c)
                     None => mat3_vec(&rMi.rotation, &axis),
                 };
                 J[j.idx_v] = Twist::new(w, rMi.translation.cross(&w));
             }
             // S = (0, a): J = (0, R a)
-            JointType::Prismatic { axis } => {
-                let u = match model.dof_axis[j.idx_v] {
+            Shape::Prismatic(axis) => {
+                let u = match plan.dof_axis[j.idx_v] {
                     Some((c, s)) => rMi.rotation.column(c - 3) * s, // R (s e_(c-3))
                     None => mat3_vec(&rMi.rotation, &axis),
                 };
                 J[j.idx_v] = Twist::new(Vec3::zeros(), u);
             }
             // S_k = (e_k, 0) for k < 3, (0, e_(k-3)) after: columns of R, no products
-            JointType::FreeFlyer => {
+            Shape::FreeFlyer => {
                 let (R, p) = (&rMi.rotation, &rMi.translation);
                 for c in 0..3 {
                     let r: Vec3 = R.column(c).into();
@@ -256,10 +308,14 @@ pub(crate) fn root_frame_bodies(
                     J[j.idx_v + 3 + c] = Twist::new(Vec3::zeros(), r);
                 }
             }
-            _ => {
-                let r = j.idx_v..j.idx_v + j.nv;
-                for (Jk, S) in J[r.clone()].iter_mut().zip(&model.dof_S[r]) {
-                    *Jk = rMi.act_twist(S);
+            Shape::General => {
+                let Jj = &mut J[j.dofs()];
+                Jj.copy_from_slice(&plan.dof_S[j.dofs()]);
+                if !j.kind.constant_subspace() {
+                    j.kind.subspace(&q[j.coordinates()], Jj);
+                }
+                for Jk in Jj {
+                    *Jk = rMi.act_twist(Jk);
                 }
             }
         }
@@ -270,64 +326,9 @@ pub(crate) fn root_frame_bodies(
 /// Always inlined: out of line, the 96-byte `Transform` goes back through memory.
 #[inline(always)]
 pub(crate) fn parent_placement(model: &Model, i: usize, q: &[f64]) -> Transform {
-    let j = &model.joints[i];
+    let j = &model.joints()[i];
     j.kind
         .placed_transform(&j.placement, &q[j.idx_q..j.idx_q + j.nq])
-}
-
-/// `R_a R_b` written out (nalgebra's generic 3x3 product is not fully unrolled).
-#[inline(always)]
-pub(crate) fn mat3_mul(a: &Mat3, b: &Mat3) -> Mat3 {
-    let a = a.as_slice();
-    let b = b.as_slice();
-    let mut c = [0.0; 9];
-    // column-major: c[j*3 + i] = Σ_k a[k*3 + i] b[j*3 + k]
-    for j in 0..3 {
-        for i in 0..3 {
-            c[j * 3 + i] = a[i] * b[j * 3] + a[3 + i] * b[j * 3 + 1] + a[6 + i] * b[j * 3 + 2];
-        }
-    }
-    Mat3::from_column_slice(&c)
-}
-
-/// `T_a T_b = (R_a R_b, R_a p_b + p_a)` with [`mat3_mul`].
-#[inline(always)]
-pub(crate) fn compose(a: &Transform, b: &Transform) -> Transform {
-    Transform::new(
-        mat3_mul(&a.rotation, &b.rotation),
-        crate::spatial::mat3_vec(&a.rotation, &b.translation) + a.translation,
-    )
-}
-
-/// `G_a = [Ad_{T⁻¹}]ᵀ G_b [Ad_{T⁻¹}]` for `T = T_ab = (R, p)` (an inertia of body b expressed in
-/// frame a), as [`SpatialInertia::transformed`] but with the skew products written out:
-/// with `h' = R h`, `I_a = R I Rᵀ + 2(h'·p) 1 - (p h'ᵀ + h' pᵀ) + m (|p|² 1 - p pᵀ)`
-/// `= R I Rᵀ + 2(g·p) 1 - (p gᵀ + g pᵀ)` with `g = h' + ½ m p`,
-/// `h_a = h' + m p` (from `[x][y] = y xᵀ - (x·y) 1`).
-#[inline]
-pub(crate) fn inertia_to_parent(G: &SpatialInertia, T: &Transform) -> SpatialInertia {
-    let R = &T.rotation;
-    let p = &T.translation;
-    let m = G.mass();
-    let h = crate::spatial::mat3_vec(R, &G.first_moment());
-    let RI = mat3_mul(R, G.inertia_origin_matrix());
-    // with g = h' + ½ m p: p h'ᵀ + h' pᵀ + m p pᵀ = p gᵀ + g pᵀ and 2(h'·p) + m|p|² = 2 g·p
-    let g = h + p * (0.5 * m);
-    let d = 2.0 * g.dot(p);
-    let (r, ri) = (R.as_slice(), RI.as_slice()); // column-major
-    let (p, g) = ([p.x, p.y, p.z], [g.x, g.y, g.z]);
-    let mut out = [0.0; 9];
-    for i in 0..3 {
-        for j in i..3 {
-            // (R I Rᵀ)_ij = Σ_k (RI)_ik R_jk
-            let rir = ri[i] * r[j] + ri[3 + i] * r[3 + j] + ri[6 + i] * r[6 + j];
-            let x = rir - p[i] * g[j] - g[i] * p[j];
-            out[j * 3 + i] = x;
-            out[i * 3 + j] = x;
-        }
-        out[i * 4] += d;
-    }
-    SpatialInertia::from_raw_parts(m, h + T.translation * m, Mat3::from_column_slice(&out))
 }
 
 #[cfg(test)]

@@ -1,7 +1,15 @@
 //! The recursive Newton-Euler algorithm for inverse dynamics (Featherstone 2008, Table 5.1;
 //! Lynch & Park §8.3.2), in body coordinates, with gravity as a fictitious base acceleration.
+//!
+//! Read [`reference::rnea`](crate::multibody::reference::rnea) first (spatial_v2's `ID.m`): this
+//! is the same two loops with `Xup{i} * v` as [`Transform::inv_act_twist`](crate::spatial::Transform::inv_act_twist)
+//! (no 6x6 matrix), `I{i} * a` as [`SpatialInertia::momentum`](crate::mass::SpatialInertia::momentum),
+//! `crm(v) * vJ` written out for a joint whose `S` is a coordinate axis (`cross_axis`), and
+//! `Xup{i}' * f{i}` as [`Transform::act_wrench`](crate::spatial::Transform::act_wrench).
 
-use super::{add_axis, axis_motion, cross_axis, joint_motion, parent_placement};
+use super::{
+    add_axis, axis_motion, cross_axis, joint_bias, joint_motion, parent_placement, update_subspaces,
+};
 use crate::error::DimensionError;
 use crate::multibody::{check_data, check_q, check_v, Data, Model, MultibodyError};
 use crate::spatial::{Twist, Wrench};
@@ -11,7 +19,7 @@ use nalgebra::DVector;
 ///
 /// forward, for i = 1..n (λ(i) the parent, world = 0 with `V_0 = 0`, `A_0 = -g`):
 /// - `liMi = X_T X_J(q_i)`, `V_i = [Ad_{liMi⁻¹}] V_{λ(i)} + S_i q̇_i`
-/// - `A_i = [Ad_{liMi⁻¹}] A_{λ(i)} + S_i q̈_i + [ad_{V_i}] S_i q̇_i`
+/// - `A_i = [Ad_{liMi⁻¹}] A_{λ(i)} + S_i q̈_i + [ad_{V_i}] S_i q̇_i + c_J`
 /// - `F_i = G_i A_i - [ad_{V_i}]ᵀ G_i V_i - F_i^ext`
 ///
 /// backward, for i = n..1: `τ_i = S_iᵀ F_i + armature_i q̈_i`, `F_{λ(i)} += [Ad_{liMi⁻¹}]ᵀ F_i`
@@ -26,20 +34,21 @@ fn rnea_impl(
     out: Out,
 ) {
     let a_world = Twist::new(crate::spatial::Vec3::zeros(), -model.gravity);
-    let n = model.joints.len();
+    let n = model.njoints();
+    update_subspaces(model, q, &mut data.S);
     for i in 0..n {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
-        let (Vp, Ap) = match model.joints[i].parent {
+        let (Vp, Ap) = match model.joints()[i].parent {
             Some(p) => (data.velocities[p.0], data.accelerations_gravity[p.0]),
             None => (Twist::zero(), a_world),
         };
-        let G = &model.inertias[i];
+        let G = &model.inertias()[i];
         let mut A = liMi.inv_act_twist(&Ap);
         if let Some(a) = a {
             match axis_motion(model, i, a) {
                 Some((c, x)) => add_axis(&mut A, c, x),
-                None => A += joint_motion(model, i, a),
+                None => A += joint_motion(model, &data.S, i, a),
             }
         }
         let mut F;
@@ -51,10 +60,13 @@ fn rnea_impl(
                     A += cross_axis(&V, c, x);
                 }
                 None => {
-                    let vJ = joint_motion(model, i, v);
+                    let vJ = joint_motion(model, &data.S, i, v);
                     V += vJ;
                     A += V.cross(&vJ);
                 }
+            }
+            if let Some(cJ) = joint_bias(model, i, q, v) {
+                A += cJ;
             }
             data.velocities[i] = V;
             F = G.momentum(&A) - V.ad_transpose(&G.momentum(&V));
@@ -74,10 +86,10 @@ fn rnea_impl(
         Out::G => &mut data.g,
     };
     for i in (0..n).rev() {
-        let j = &model.joints[i];
+        let j = &model.joints()[i];
         let F = data.forces[i];
         for k in j.idx_v..j.idx_v + j.nv {
-            tau[k] = model.dof_S[k].dot(&F);
+            tau[k] = data.S[k].dot(&F);
             if let Some(a) = a {
                 tau[k] += model.armature[k] * a[k];
             }

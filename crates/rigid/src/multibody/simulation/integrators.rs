@@ -4,10 +4,10 @@
 #![allow(clippy::too_many_arguments)]
 
 use super::control::Control;
-use super::lie::{dexp, dexp_inv};
 use super::momentum::momentum;
 use super::simulator::Dynamics;
 use super::SimulationError;
+use crate::multibody::configuration::{dexp, dexp_inv};
 use crate::multibody::integrate;
 
 /// Buffers of the steppers, allocated once.

@@ -31,7 +31,7 @@
 mod batch;
 mod control;
 mod integrators;
-mod lie;
+
 mod momentum;
 mod simulator;
 mod trajectory;

@@ -11,7 +11,7 @@
 //! `W = 0`: `K` does not depend on where the robot is, the symmetry behind momentum
 //! conservation.
 
-use crate::multibody::algorithms::{joint_motion, parent_placement};
+use crate::multibody::algorithms::{joint_motion, parent_placement, update_subspaces};
 use crate::multibody::{Data, Model};
 use crate::spatial::{Twist, Wrench};
 
@@ -26,28 +26,29 @@ pub(crate) fn momentum(
     p: &mut [f64],
     mut grad: Option<&mut [f64]>,
 ) {
-    let n = model.joints.len();
+    let n = model.njoints();
+    update_subspaces(model, q, &mut data.S);
     for i in 0..n {
         let liMi = parent_placement(model, i, q);
         data.parent_placements[i] = liMi;
-        let W = match model.joints[i].parent {
+        let W = match model.joints()[i].parent {
             Some(pj) => liMi.inv_act_twist(&data.velocities[pj.0]),
             None => Twist::zero(),
         };
-        let V = W + joint_motion(model, i, v);
+        let V = W + joint_motion(model, &data.S, i, v);
         data.c_bias[i] = W;
         data.velocities[i] = V;
-        data.forces[i] = model.inertias[i].momentum(&V);
+        data.forces[i] = model.inertias()[i].momentum(&V);
     }
     for i in (0..n).rev() {
-        let j = &model.joints[i];
+        let j = &model.joints()[i];
         let H = data.forces[i];
         let adH = match grad {
             Some(_) => data.c_bias[i].ad_transpose(&H),
             None => Wrench::zero(),
         };
         for k in j.idx_v..j.idx_v + j.nv {
-            let S = &model.dof_S[k];
+            let S = &data.S[k];
             p[k] = S.dot(&H) + model.armature[k] * v[k];
             if let Some(g) = grad.as_deref_mut() {
                 g[k] = S.dot(&adH);

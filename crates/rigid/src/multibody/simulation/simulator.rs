@@ -49,7 +49,7 @@ impl<C: Control> Dynamics<C> {
             damping_ratio: zeta,
         } = opts.limits
         {
-            for j in &m.joints {
+            for j in m.joints() {
                 if j.nq != 1 || j.nv != 1 {
                     continue;
                 }
@@ -176,7 +176,7 @@ impl<C: Control> Simulator<C> {
         aba(model, &mut data, q0, &zeros, &zeros)?;
         let limit_inertia = (0..nv)
             .map(|k| {
-                let j = &model.joints[model.dof_joint[k]];
+                let j = &model.joints()[model.plan().dof_joint[k]];
                 if j.nv == 1 {
                     1.0 / data.d_inv_1[k]
                 } else {
@@ -351,7 +351,7 @@ impl<C: Control> Simulator<C> {
         if !w.to_vector().iter().all(|x| x.is_finite()) {
             return Err(SimulationError::Invalid(format!(
                 "external wrench on '{}' is not finite",
-                d.model.joints[joint.0].name
+                d.model.joints()[joint.0].name
             )));
         }
         d.fext[joint.0] = w;
@@ -402,7 +402,7 @@ impl<C: Control> Simulator<C> {
         let mut h = Wrench::zero();
         for i in 0..d.model.njoints() {
             h += d.data.placements[i]
-                .act_wrench(&d.model.inertias[i].momentum(&d.data.velocities[i]));
+                .act_wrench(&d.model.inertias()[i].momentum(&d.data.velocities[i]));
         }
         Ok(h)
     }

@@ -164,7 +164,7 @@ impl JointTrajectory {
             "trajectory sampled with buffers of another model"
         );
         let (s, ds, dds) = self.scaling.eval(t, self.duration);
-        for j in &model.joints {
+        for j in model.joints() {
             let (iq, iv) = (j.idx_q..j.idx_q + j.nq, j.idx_v..j.idx_v + j.nv);
             j.kind
                 .integrate(&self.start[iq.clone()], &self.delta[iv], s, &mut q[iq]);

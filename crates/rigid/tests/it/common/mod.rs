@@ -88,7 +88,8 @@ pub fn random_tree(seed: u64, n: usize, armature: bool) -> Model {
             0 => JointType::Revolute {
                 axis: unit(&mut rng),
             },
-            1 => JointType::Continuous {
+            // a URDF `continuous` joint: revolute, marked below
+            1 => JointType::Revolute {
                 axis: unit(&mut rng),
             },
             2 => JointType::Prismatic {
@@ -106,6 +107,9 @@ pub fn random_tree(seed: u64, n: usize, armature: bool) -> Model {
         let id = b
             .add_joint(Some(parent), &format!("j{k}"), kind, x_t, inertia(&mut rng))
             .unwrap();
+        if pick == 1 {
+            b.set_continuous(id).unwrap();
+        }
         if armature {
             let arm: Vec<f64> = (0..kind.nv()).map(|_| rng.uniform(0.0, 0.5)).collect();
             b.set_armature(id, &arm).unwrap();

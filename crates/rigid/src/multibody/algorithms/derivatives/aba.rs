@@ -56,6 +56,7 @@ pub fn aba_derivatives<'a>(
     v: &[f64],
     tau: &[f64],
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     check_aba_inputs(model, data, q, v, tau)?;
     aba_derivatives_unchecked(model, data, q, v, tau, None)
 }
@@ -84,6 +85,7 @@ pub fn aba_derivatives_with_external<'a>(
     tau: &[f64],
     fext: &[Wrench],
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     check_aba_inputs(model, data, q, v, tau)?;
     check_fext(model, fext)?;
     aba_derivatives_unchecked(model, data, q, v, tau, Some(fext))
@@ -98,8 +100,6 @@ fn aba_derivatives_unchecked<'a>(
     fext: Option<&[Wrench]>,
 ) -> Result<AbaDerivatives<'a>, MultibodyError> {
     minverse_unchecked(model, data, q)?;
-    data.composite_inertias
-        .copy_from_slice(&data.world_inertias);
     forward_velocity(model, data, q, Some(v), fext);
     bias_torques(model, data);
     // q̈ = M⁻¹ (τ - b)

@@ -63,6 +63,7 @@ pub fn frame_kinematics_derivatives<'a>(
     frame: FrameId,
     rf: ReferenceFrame,
 ) -> Result<KinematicsDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     let f = model
         .frames
         .get(frame.0)
@@ -103,6 +104,7 @@ pub fn joint_kinematics_derivatives<'a>(
     joint: JointId,
     rf: ReferenceFrame,
 ) -> Result<KinematicsDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     if joint.0 >= model.njoints() {
         return Err(MultibodyError::OutOfRange {
             what: "joint",
@@ -165,13 +167,13 @@ fn fill(model: &Model, data: &mut Data, body: Option<usize>, oMf: &Transform, rf
     }
     let mut j = body;
     while let Some(i) = j {
-        let ji = &model.joints[i];
+        let ji = &model.joints()[i];
         let parent = ji.parent.map(|p| p.0);
         let (Vp, Ap) = spatial(oM, V, A, parent);
         let (Vi, _) = spatial(oM, V, A, Some(i));
         let oMi = &oM[i];
         for k in ji.idx_v..ji.idx_v + ji.nv {
-            let Jk = oMi.act_twist(&model.dof_S[k]);
+            let Jk = oMi.act_twist(&model.plan().dof_S[k]);
             // world-frame derivatives of the body's spatial twist and acceleration
             let dVq_rel = Vp.cross(&Jk);
             let dVq = Jk.cross(&Vs) + dVq_rel;

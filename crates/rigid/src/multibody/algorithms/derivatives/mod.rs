@@ -31,7 +31,7 @@
 //! | `∂g/∂q` | [`gravity_derivatives`] | the same at `v = a = 0`; Pinocchio `computeGeneralizedGravityDerivatives` |
 //! | `∂q̈/∂q = -M⁻¹ ∂τ/∂q`, `∂q̈/∂v = -M⁻¹ ∂τ/∂v`, `∂q̈/∂τ = M⁻¹` | [`aba_derivatives`], [`aba_derivatives_with_external`] | Carpentier & Mansard 2018, §V; Pinocchio `computeABADerivatives` |
 //! | `∂V/∂q`, `∂V/∂v`, `∂A/∂(q, v, a)` of a frame; placement: `J` | [`frame_kinematics_derivatives`], [`joint_kinematics_derivatives`] | Carpentier & Mansard 2018, §III; Pinocchio `getFrameAccelerationDerivatives` |
-//! | `∂(q ⊕ v)/∂q`, `∂(q ⊕ v)/∂v`, `∂(q₁ ⊖ q₀)/∂q₀`, `∂(q₁ ⊖ q₀)/∂q₁` | [`integrate_jacobians`], [`difference_jacobians`] | right Jacobians of SO(3), SE(3), SE(2) (Barfoot 2017, §7.1; Solà et al. 2018) |
+//! | `∂(q ⊕ v)/∂q`, `∂(q ⊕ v)/∂v`, `∂(q₁ ⊖ q₀)/∂q₀`, `∂(q₁ ⊖ q₀)/∂q₁` | [`integrate_jacobians`](crate::multibody::integrate_jacobians), [`difference_jacobians`](crate::multibody::difference_jacobians) | right Jacobians of SO(3), SE(3), SE(2) (Barfoot 2017, §7.1; Solà et al. 2018) |
 //! | many states at once | [`batch`](crate::multibody::batch) (`rnea_derivatives_batch`, `aba_derivatives_batch`) | rayon |
 //!
 //! The buffers live in [`Data::derivatives`](crate::multibody::Data::derivatives) (a
@@ -39,14 +39,12 @@
 //! allocated per call.
 
 mod aba;
-mod configuration;
 mod kinematics;
 mod passes;
 mod product;
 mod rnea;
 
 pub use aba::{aba_derivatives, aba_derivatives_with_external, AbaDerivatives};
-pub use configuration::{difference_jacobians, integrate_jacobians};
 pub use kinematics::{
     frame_kinematics_derivatives, joint_kinematics_derivatives, KinematicsDerivatives,
 };

@@ -25,7 +25,7 @@ pub(crate) enum Output {
 /// (`a_g` at the root), `f⁰_i = G_i A⁰_i + V_i ×* G_i V_i - F_i^ext`, `h_i = G_i V_i` and the
 /// symmetric part of `B_i`; per dof `∂V/∂q_k = V_λ × J_k` and `∂A/∂v_k = (V_i + V_λ) × J_k`.
 /// Needs `data.dof_J`, `data.root_placements` and the root-frame inertias in
-/// `data.composite_inertias` (`root_frame_bodies`). `v = None`: at rest.
+/// `data.root_frame_inertias` (`root_frame_bodies`). `v = None`: at rest.
 pub(crate) fn forward_velocity(
     model: &Model,
     data: &mut Data,
@@ -35,8 +35,8 @@ pub(crate) fn forward_velocity(
 ) {
     let d = &mut data.derivatives;
     let J = &data.dof_J;
-    for i in 0..model.joints.len() {
-        let j = &model.joints[i];
+    for i in 0..model.njoints() {
+        let j = &model.joints()[i];
         let (Vp, Ap) = match j.parent {
             Some(p) => (d.vel[p.0], d.acc0[p.0]),
             None => {
@@ -47,7 +47,7 @@ pub(crate) fn forward_velocity(
                 (Twist::zero(), Twist::new(Vec3::zeros(), g))
             }
         };
-        let G = &data.composite_inertias[i];
+        let G = &data.root_frame_inertias[i];
         let dofs = j.idx_v..j.idx_v + j.nv;
         let Some(v) = v else {
             d.vel[i] = Twist::zero();
@@ -85,8 +85,8 @@ pub(crate) fn forward_velocity(
 pub(crate) fn forward_acceleration(model: &Model, data: &mut Data, a: Option<&[f64]>) {
     let d = &mut data.derivatives;
     let J = &data.dof_J;
-    for i in 0..model.joints.len() {
-        let j = &model.joints[i];
+    for i in 0..model.njoints() {
+        let j = &model.joints()[i];
         let (Ap, Aap, Vp) = match j.parent {
             Some(p) => (d.acc[p.0], d.acc_a[p.0], d.vel[p.0]),
             None => (
@@ -101,7 +101,7 @@ pub(crate) fn forward_acceleration(model: &Model, data: &mut Data, a: Option<&[f
             for k in dofs.clone() {
                 Aa += J[k] * a[k];
             }
-            d.force[i] += data.composite_inertias[i].momentum(&Aa);
+            d.force[i] += data.root_frame_inertias[i].momentum(&Aa);
         }
         d.acc_a[i] = Aa;
         d.acc[i] = d.acc0[i] + Aa;
@@ -122,8 +122,8 @@ pub(crate) fn forward_acceleration(model: &Model, data: &mut Data, a: Option<&[f
 pub(crate) fn bias_torques(model: &Model, data: &mut Data) {
     let d = &mut data.derivatives;
     d.bias.copy_from_slice(&d.force);
-    for i in (0..model.joints.len()).rev() {
-        let j = &model.joints[i];
+    for i in (0..model.njoints()).rev() {
+        let j = &model.joints()[i];
         let F = d.bias[i];
         for k in j.idx_v..j.idx_v + j.nv {
             d.tau_bias[k] = data.dof_J[k].dot(&F);
@@ -183,6 +183,9 @@ fn array(w: &Wrench) -> [f64; 6] {
 /// columns of each joint's dofs. Column-major outputs: entry (row r, column c) at `c nv + r`.
 pub(crate) fn backward(model: &Model, data: &mut Data, a: Option<&[f64]>, out: Output) {
     let nv = model.nv;
+    // the composites start as the bodies' own root-frame inertias and are summed in place
+    data.composite_inertias
+        .copy_from_slice(&data.root_frame_inertias);
     let Data {
         derivatives: d,
         dof_J: J,
@@ -224,8 +227,8 @@ pub(crate) fn backward(model: &Model, data: &mut Data, a: Option<&[f64]>, out: O
     };
     let dv = dtau_dv.as_mut_slice();
     let M = mass_matrix.as_mut_slice();
-    for i in (0..model.joints.len()).rev() {
-        let j = &model.joints[i];
+    for i in (0..model.njoints()).rev() {
+        let j = &model.joints()[i];
         let (Y, F) = (Ic[i], force[i]);
         let (iv, own) = (j.idx_v, j.idx_v + j.nv);
         let end = dof_end[iv];

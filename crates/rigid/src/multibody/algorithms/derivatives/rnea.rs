@@ -75,6 +75,7 @@ pub fn rnea_derivatives<'a>(
     v: &[f64],
     a: &[f64],
 ) -> Result<RneaDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     check_q(model, q)?;
     check_data(model, data)?;
     check_v(model, "v", v)?;
@@ -108,6 +109,7 @@ pub fn rnea_derivatives_with_external<'a>(
     a: &[f64],
     fext: &[Wrench],
 ) -> Result<RneaDerivatives<'a>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     check_q(model, q)?;
     check_data(model, data)?;
     check_v(model, "v", v)?;
@@ -145,6 +147,7 @@ pub fn gravity_derivatives<'a>(
     data: &'a mut Data,
     q: &[f64],
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
+    crate::multibody::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
     check_q(model, q)?;
     check_data(model, data)?;
     derivatives_unchecked(model, data, q, None, None);
@@ -164,7 +167,7 @@ fn derivatives_unchecked(
         q,
         &mut data.root_placements,
         &mut data.dof_J,
-        &mut data.composite_inertias,
+        &mut data.root_frame_inertias,
         &mut data.sin_cos,
     );
     let (v, a) = (va.map(|x| x.0), va.map(|x| x.1));

@@ -18,13 +18,15 @@
 //! and sine ([`PinocchioLayout::q_to_pinocchio`], [`PinocchioLayout::q_from_pinocchio`]).
 //!
 //! ```
-//! use rigid::multibody::{layout::PinocchioLayout, JointType, ModelBuilder};
+//! use rigid::interop::PinocchioLayout;
+//! use rigid::multibody::{JointType, ModelBuilder};
 //! use rigid::mass::SpatialInertia;
 //! use rigid::spatial::{Transform, Vec3};
 //! let mut b = ModelBuilder::new("wheel");
 //! let g = SpatialInertia::from_com(1.0, Vec3::zeros(), rigid::mass::RotationalInertia::diagonal(1.0, 1.0, 1.0));
 //! let base = b.add_joint(None, "base", JointType::FreeFlyer, Transform::identity(), g)?;
-//! b.add_joint(Some(base), "wheel", JointType::Continuous { axis: Vec3::y() }, Transform::identity(), g)?;
+//! let wheel = b.add_joint(Some(base), "wheel", JointType::Revolute { axis: Vec3::y() }, Transform::identity(), g)?;
+//! b.set_continuous(wheel)?; // a URDF `continuous` joint
 //! let model = b.build()?;
 //! let layout = PinocchioLayout::new(&model);
 //! assert_eq!((model.nq(), layout.nq()), (8, 9));
@@ -35,12 +37,12 @@
 //! # Ok::<(), rigid::multibody::ModelError>(())
 //! ```
 
-use super::{JointType, Model, MultibodyError};
 use crate::error::DimensionError;
+use crate::multibody::{Model, MultibodyError, PinocchioCoords};
 use thiserror::Error;
 
 /// Largest accepted `|√(c² + s²) - 1|` for the `(cos θ, sin θ)` pair of a continuous or planar
-/// joint in Pinocchio's layout (as [`QUATERNION_TOLERANCE`](super::QUATERNION_TOLERANCE)).
+/// joint in Pinocchio's layout (as [`QUATERNION_TOLERANCE`](crate::multibody::QUATERNION_TOLERANCE)).
 pub const COS_SIN_TOLERANCE: f64 = 1e-6;
 
 /// A Pinocchio-layout configuration that rigid cannot read.
@@ -66,25 +68,10 @@ pub enum LayoutError {
     },
 }
 
-/// How one joint's coordinates differ between the layouts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Coords {
-    /// The same coordinates.
-    Same,
-    /// `θ` ↔ `(cos θ, sin θ)`.
-    Continuous,
-    /// `(x, y, θ)` ↔ `(x, y, cos θ, sin θ)`.
-    Planar,
-    /// `(ω, v)` ↔ `(v, ω)` in velocity space; `q` the same.
-    FreeFlyer,
-    /// `q` a quaternion, the same; only [`PinocchioLayout::integrate_signs`] cares.
-    Spherical,
-}
-
 /// One joint: its kind of difference and where its coordinates start in each layout.
 #[derive(Clone, Copy, Debug)]
 struct JointMap {
-    coords: Coords,
+    coords: PinocchioCoords,
     /// First index in rigid's `q`.
     idx_q: usize,
     /// Number of rigid configuration coordinates.
@@ -98,7 +85,7 @@ struct JointMap {
 }
 
 /// The map between rigid's layout of a [`Model`]'s vectors and Pinocchio's (see the
-/// [module](self) documentation). Made once per model; the conversions allocate nothing.
+/// [module](crate::interop) documentation). Made once per model; the conversions allocate nothing.
 #[derive(Clone, Debug)]
 pub struct PinocchioLayout {
     joints: Vec<JointMap>,
@@ -117,14 +104,9 @@ impl PinocchioLayout {
         let mut perm: Vec<usize> = (0..model.nv()).collect();
         let mut pin_idx_q = 0;
         for j in model.joints() {
-            let (coords, pin_nq) = match j.kind {
-                JointType::Continuous { .. } => (Coords::Continuous, 2),
-                JointType::Planar => (Coords::Planar, 4),
-                JointType::FreeFlyer => (Coords::FreeFlyer, 7),
-                JointType::Spherical => (Coords::Spherical, 4),
-                JointType::Revolute { .. } | JointType::Prismatic { .. } => (Coords::Same, j.nq),
-            };
-            if coords == Coords::FreeFlyer {
+            let coords = j.kind.pinocchio_coords(j.continuous);
+            let pin_nq = coords.nq(j.nq);
+            if coords == PinocchioCoords::FreeFlyer {
                 for k in 0..3 {
                     perm.swap(j.idx_v + k, j.idx_v + 3 + k);
                 }
@@ -166,7 +148,7 @@ impl PinocchioLayout {
     pub fn is_identity(&self) -> bool {
         self.joints
             .iter()
-            .all(|j| matches!(j.coords, Coords::Same | Coords::Spherical))
+            .all(|j| matches!(j.coords, PinocchioCoords::Same | PinocchioCoords::Spherical))
     }
 
     /// `(idx_q, nq)` of joint `i` (model order) in Pinocchio's `q`.
@@ -202,13 +184,15 @@ impl PinocchioLayout {
         for j in &self.joints {
             let (src, dst) = (&q[j.idx_q..j.idx_q + j.nq], &mut q_pin[j.pin_idx_q..]);
             match j.coords {
-                Coords::Continuous => (dst[1], dst[0]) = src[0].sin_cos(),
-                Coords::Planar => {
+                PinocchioCoords::CosSin => (dst[1], dst[0]) = src[0].sin_cos(),
+                PinocchioCoords::Planar => {
                     dst[0] = src[0];
                     dst[1] = src[1];
                     (dst[3], dst[2]) = src[2].sin_cos();
                 }
-                _ => dst[..j.nq].copy_from_slice(src),
+                PinocchioCoords::Same | PinocchioCoords::FreeFlyer | PinocchioCoords::Spherical => {
+                    dst[..j.nq].copy_from_slice(src)
+                }
             }
         }
     }
@@ -240,13 +224,15 @@ impl PinocchioLayout {
                 Ok(s.atan2(c))
             };
             match j.coords {
-                Coords::Continuous => dst[0] = angle(src[0], src[1])?,
-                Coords::Planar => {
+                PinocchioCoords::CosSin => dst[0] = angle(src[0], src[1])?,
+                PinocchioCoords::Planar => {
                     dst[0] = src[0];
                     dst[1] = src[1];
                     dst[2] = angle(src[2], src[3])?;
                 }
-                _ => dst.copy_from_slice(src),
+                PinocchioCoords::Same | PinocchioCoords::FreeFlyer | PinocchioCoords::Spherical => {
+                    dst.copy_from_slice(src)
+                }
             }
         }
         Ok(())
@@ -254,14 +240,16 @@ impl PinocchioLayout {
 
     /// Moves each continuous and planar angle of `q1` by a multiple of 2π to within π of `q0`'s
     /// (`θ1 ← θ0 + atan2(sin(θ1 - θ0), cos(θ1 - θ0))`), so that rigid's
-    /// [`difference`](super::difference)`(q0, q1)` is Pinocchio's, whose angles are points on
+    /// [`difference`](crate::multibody::difference)`(q0, q1)` is Pinocchio's, whose angles are points on
     /// the circle (the shortest way round).
     pub fn nearest_angles(&self, q0: &[f64], q1: &mut [f64]) {
         for j in &self.joints {
             let k = match j.coords {
-                Coords::Continuous => j.idx_q,
-                Coords::Planar => j.idx_q + 2,
-                _ => continue,
+                PinocchioCoords::CosSin => j.idx_q,
+                PinocchioCoords::Planar => j.idx_q + 2,
+                PinocchioCoords::Same | PinocchioCoords::FreeFlyer | PinocchioCoords::Spherical => {
+                    continue
+                }
             };
             let d = q1[k] - q0[k];
             q1[k] = q0[k] + d.sin().atan2(d.cos());
@@ -269,7 +257,7 @@ impl PinocchioLayout {
     }
 
     /// Gives each quaternion of `q_out = integrate(q, v)` Pinocchio's sign (rigid's
-    /// [`integrate`](super::integrate) returns `w ≥ 0`): for a free-flyer, the one with
+    /// [`integrate`](crate::multibody::integrate) returns `w ≥ 0`): for a free-flyer, the one with
     /// `q_out · q ≥ 0` (Pinocchio's SE(3) integration keeps the hemisphere); for a spherical
     /// joint, that of the product `q ⊗ exp(ω dt / 2)`, whose dot product with `q` is
     /// `cos(|ω| dt / 2)` (Pinocchio's SO(3) integration does not change the sign). `q`, `v` and
@@ -277,13 +265,15 @@ impl PinocchioLayout {
     pub fn integrate_signs(&self, q: &[f64], v: &[f64], dt: f64, q_out: &mut [f64]) {
         for j in &self.joints {
             let (o, cos_half) = match j.coords {
-                Coords::FreeFlyer => (j.idx_q + 3, 1.0),
-                Coords::Spherical => {
+                PinocchioCoords::FreeFlyer => (j.idx_q + 3, 1.0),
+                PinocchioCoords::Spherical => {
                     let w = &v[j.idx_v..j.idx_v + 3];
                     let angle = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt() * dt;
                     (j.idx_q, (0.5 * angle).cos())
                 }
-                _ => continue,
+                PinocchioCoords::Same | PinocchioCoords::CosSin | PinocchioCoords::Planar => {
+                    continue
+                }
             };
             let dot: f64 = (o..o + 4).map(|k| q[k] * q_out[k]).sum();
             if dot * cos_half < 0.0 {
@@ -344,7 +334,7 @@ mod tests {
         l.permute_v(&p, &mut back);
         assert_eq!(back, v);
         let root = &model.joints()[0];
-        assert_eq!(root.kind, JointType::FreeFlyer);
+        assert_eq!(root.kind, crate::multibody::JointType::FreeFlyer);
         assert_eq!(&p[..6], &[3.0, 4.0, 5.0, 0.0, 1.0, 2.0]);
     }
 

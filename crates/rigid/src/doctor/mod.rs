@@ -30,7 +30,7 @@
 //! repaired, when no cause is found.
 //!
 //! Geometry: meshes are read from disk (STL, OBJ, COLLADA; `package://` resolved by
-//! [`resolve_mesh_path`](super::resolve_mesh_path)); a mesh that cannot be found is noted and
+//! [`resolve_mesh_path`](crate::io::urdf::resolve_mesh_path)); a mesh that cannot be found is noted and
 //! skipped, and a link without readable shapes gets the physical checks only.
 
 pub mod checks;
@@ -42,7 +42,7 @@ pub use checks::{Evaluation, Finding, InertialParams};
 pub use diagnose::{Cause, Diagnosis, Hypothesis};
 pub use fix::fixed_urdf;
 
-use super::UrdfRobot;
+use crate::io::urdf::UrdfRobot;
 use crate::mass::{nearest_consistent, RotationalInertia, Verdict};
 use crate::spatial::{Mat3, Vec3};
 use geometry::{link_geometry, LinkGeometry, MeshCache};
@@ -206,7 +206,8 @@ impl Doctor {
     /// Examines every link of `robot` that has an `<inertial>`.
     ///
     /// ```
-    /// use rigid::io::urdf::{doctor::{Cause, Doctor, Status}, parse_urdf_str};
+    /// use rigid::doctor::{Cause, Doctor, Status};
+    /// use rigid::io::urdf::parse_urdf_str;
     /// // a 2 kg box 0.2 x 0.1 x 0.1 m whose mass was written in grams
     /// let robot = parse_urdf_str(r#"<robot name="r"><link name="box">
     ///   <inertial><mass value="2000"/>
