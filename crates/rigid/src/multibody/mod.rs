@@ -54,6 +54,7 @@ mod textbook;
 mod model;
 pub(crate) mod plan;
 pub mod reference;
+mod serialize;
 pub mod simulation;
 
 pub use algorithms::*;
@@ -154,6 +155,12 @@ pub enum ModelError {
     /// Non-finite gravity.
     #[error("gravity must be finite")]
     BadGravity,
+    /// A model file (the serialised form) that does not describe a valid model.
+    #[error("model file: {what}")]
+    InvalidFile {
+        /// What is wrong.
+        what: String,
+    },
     /// A builder input that does not describe a supported joint (e.g. a helical screw axis).
     #[error("joint {index}: {reason}")]
     Unsupported {

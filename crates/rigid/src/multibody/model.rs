@@ -8,7 +8,10 @@ use crate::mass::SpatialInertia;
 use crate::spatial::{Transform, Twist, Vec3};
 
 /// The depth-first index of a moving joint (0-based); it also names the body the joint moves.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(transparent)]
 pub struct JointId(pub usize);
 
 /// The index of a named frame in [`Model::frames`].
@@ -16,7 +19,8 @@ pub struct JointId(pub usize);
 pub struct FrameId(pub usize);
 
 /// One moving joint and the body it carries.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Joint {
     /// The joint's name.
     pub name: String,
@@ -74,7 +78,8 @@ impl Joint {
 /// What a named frame stands for. Frame names are unique within a kind, and joint names among the
 /// joints; a URDF link and a joint may share a name (links and joints are two namespaces in URDF,
 /// as in Pinocchio, whose frames carry their type too).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum FrameKind {
     /// A body's own frame (a URDF link): the link moved by a joint, or a link welded to its parent
     /// by a fixed joint (its inertia merged into the parent's).
@@ -117,7 +122,8 @@ pub enum FrameLookupError {
 }
 
 /// A named frame fixed in a moving body (or in the world).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Frame {
     /// The frame's name.
     pub name: String,

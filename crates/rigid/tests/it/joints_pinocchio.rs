@@ -9,7 +9,7 @@
 
 use crate::common;
 
-use common::{inertia, rel_err_m, rel_err_v, transform, unit};
+use common::{every_joint_tree, inertia, rel_err_m, rel_err_v, transform, unit};
 use nalgebra::{DMatrix, DVector};
 use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::multibody::*;
@@ -141,62 +141,6 @@ fn helical_and_universal_joints_equal_pinocchio_to_1e12() {
             assert!(e < tol, "{tree}: difference {e:e}");
         }
     }
-}
-
-/// A free-flyer root and `n` joints drawn from every joint type, helical and universal
-/// included, with random axes, pitches, placements, inertias and armature.
-fn every_joint_tree(seed: u64, n: usize) -> Model {
-    let mut rng = Rng::new(seed);
-    let mut b = ModelBuilder::new(&format!("every_joint_{seed}"));
-    b.set_gravity(Vec3::new(0.3, -0.2, -9.81));
-    let root = b
-        .add_joint(
-            None,
-            "root",
-            JointType::FreeFlyer,
-            transform(&mut rng),
-            inertia(&mut rng),
-        )
-        .unwrap();
-    let mut stack = vec![root];
-    for k in 0..n {
-        stack.truncate((1 + (rng.next_u64() as usize) % stack.len()).max(1));
-        let kind = match k % 7 {
-            0 => JointType::Helical {
-                axis: unit(&mut rng),
-                pitch: rng.uniform(-0.3, 0.3),
-            },
-            1 => JointType::Universal {
-                axis1: unit(&mut rng),
-                axis2: unit(&mut rng),
-            },
-            2 => JointType::Revolute {
-                axis: unit(&mut rng),
-            },
-            3 => JointType::Prismatic {
-                axis: unit(&mut rng),
-            },
-            4 => JointType::Spherical,
-            5 => JointType::Planar,
-            _ => JointType::Universal {
-                axis1: Vec3::x(),
-                axis2: Vec3::z(),
-            },
-        };
-        let id = b
-            .add_joint(
-                Some(*stack.last().unwrap()),
-                &format!("j{k}"),
-                kind,
-                transform(&mut rng),
-                inertia(&mut rng),
-            )
-            .unwrap();
-        let arm: Vec<f64> = (0..kind.nv()).map(|_| rng.uniform(0.0, 0.2)).collect();
-        b.set_armature(id, &arm).unwrap();
-        stack.push(id);
-    }
-    b.build().unwrap()
 }
 
 #[test]

@@ -47,6 +47,7 @@ mod multibody_puma560;
 mod pinocchio;
 mod pinocchio_packages;
 mod reference;
+mod serialize;
 mod shapes;
 mod simulation;
 mod spatial;
