@@ -131,7 +131,7 @@ pub fn run(args: &IdentifyArgs) -> Result<(), String> {
             "rigid identify: least-squares estimate (base parameters; the rest from the model)"
         };
         let written = with_body_inertials(&urdf_text, &robot, &model, &bodies(est), note)?;
-        crate::write_atomic(out, written.as_bytes())?;
+        crate::util::write_atomic(out, written.as_bytes())?;
     }
     let report = Report {
         model: &model,

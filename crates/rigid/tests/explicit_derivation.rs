@@ -174,7 +174,10 @@ fn models_without_an_explicit_form_get_an_error_that_says_why() {
     .unwrap();
     let e = ExplicitModel::derive(&b.build().unwrap()).unwrap_err();
     assert!(matches!(e, ExplicitError::UnsupportedJoint { .. }));
-    assert!(e.to_string().contains("'root' is of type free_flyer"), "{e}");
+    assert!(
+        e.to_string().contains("'root' is of type free_flyer"),
+        "{e}"
+    );
     // a spherical joint
     let mut b = ModelBuilder::new("ball");
     b.add_joint(

@@ -80,7 +80,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
 
     let mut csv = match &args.csv {
         Some(path) => {
-            let mut f = crate::AtomicFile::create(path)?;
+            let mut f = crate::util::AtomicFile::create(path)?;
             let w = f.writer();
             writeln!(w, "{CSV_HEADER}").map_err(|e| e.to_string())?;
             write_row(w, 0.0, &x0, &r).map_err(|e| e.to_string())?;
@@ -141,7 +141,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             }
         );
         scene.info = format!("{integrator}, dt = {} s, {} s", args.dt, args.duration);
-        crate::write_atomic(path, scene.html(&rec).as_bytes())?;
+        crate::util::write_atomic(path, scene.html(&rec).as_bytes())?;
     }
     if let Some(e) = failure {
         return Err(e);

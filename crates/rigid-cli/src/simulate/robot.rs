@@ -130,7 +130,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let (nq, nv) = (model.nq(), model.nv());
 
     let mut csv = match &args.csv {
-        Some(path) => Some(crate::AtomicFile::create(path)?),
+        Some(path) => Some(crate::util::AtomicFile::create(path)?),
         None => None,
     };
     let tau_row = |sim: &mut Simulator| -> Result<Vec<f64>, String> {
@@ -223,7 +223,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         if let Some(e) = &failure {
             scene.warnings.push(format!("stopped: {e}"));
         }
-        crate::write_atomic(path, scene.html(&rec).as_bytes())?;
+        crate::util::write_atomic(path, scene.html(&rec).as_bytes())?;
         for w in &scene.warnings {
             eprintln!("warning: replay: {w}");
         }
