@@ -139,13 +139,9 @@ fn example_robot_data() -> Option<PathBuf> {
     if std::env::var("RIGID_SKIP_PINOCCHIO").is_ok_and(|v| v == "1") {
         return None;
     }
-    let script =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../rigid/tests/pinocchio/packages.py");
-    let py = std::env::var("RIGID_PYTHON").unwrap_or_else(|_| "python3".into());
-    let out = Command::new(py).arg(script).arg("roots").output().unwrap();
-    assert!(out.status.success(), "run `bash scripts/test.sh` first");
-    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
-    Some(PathBuf::from(v["example-robot-data"].as_str()?))
+    let erd = rigid::io::robots::example_robot_data();
+    assert!(erd.is_some(), "run `bash scripts/test.sh` first");
+    erd
 }
 
 #[test]

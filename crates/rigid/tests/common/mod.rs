@@ -212,22 +212,8 @@ pub fn step(model: &Model, q: &[f64], v: &[f64], dt: f64) -> Vec<f64> {
     out
 }
 
-/// The `robots/` folder of example-robot-data: `$EXAMPLE_ROBOT_DATA`, or the
-/// `cmeel.prefix/share/example-robot-data/robots` folder of `python3`'s site-packages (where
-/// `bash scripts/test.sh` pip-installs it); `None` if neither exists.
+/// The `robots/` folder of example-robot-data ([`rigid::io::robots::example_robot_data`]);
+/// `None` if it is not installed.
 pub fn example_robot_data() -> Option<std::path::PathBuf> {
-    if let Some(d) = std::env::var_os("EXAMPLE_ROBOT_DATA") {
-        return Some(d.into());
-    }
-    let out = std::process::Command::new(std::env::var("RIGID_PYTHON").unwrap_or("python3".into()))
-        .args([
-            "-c",
-            "import site, sysconfig; print('\\n'.join(site.getsitepackages() + [sysconfig.get_paths()['purelib']]))",
-        ])
-        .output()
-        .ok()?;
-    String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .map(|sp| std::path::PathBuf::from(sp).join("cmeel.prefix/share/example-robot-data/robots"))
-        .find(|p| p.is_dir())
+    rigid::io::robots::example_robot_data()
 }

@@ -12,20 +12,9 @@ use rigid::spatial::{so3, Transform, Vec3};
 use std::path::PathBuf;
 use std::process::Command;
 
-/// The `robots/` folder of example-robot-data: `$EXAMPLE_ROBOT_DATA`, or the `cmeel.prefix` of
-/// `python3`'s site-packages (installed by `scripts/test.sh`).
+/// The `robots/` folder of example-robot-data ([`rigid::io::robots::example_robot_data`]).
 pub fn robots_dir() -> PathBuf {
-    if let Some(d) = std::env::var_os("EXAMPLE_ROBOT_DATA") {
-        return d.into();
-    }
-    let out = Command::new("python3")
-        .args(["-c", "import site, sysconfig; print('\\n'.join(site.getsitepackages() + [sysconfig.get_paths()['purelib']]))"])
-        .output()
-        .expect("python3 runs (install it, then `bash scripts/test.sh`)");
-    String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .map(|sp| PathBuf::from(sp).join("cmeel.prefix/share/example-robot-data/robots"))
-        .find(|p| p.is_dir())
+    rigid::io::robots::example_robot_data()
         .expect("example-robot-data not found: run `bash scripts/test.sh` (it pip-installs it) or set EXAMPLE_ROBOT_DATA")
 }
 
