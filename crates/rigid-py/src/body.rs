@@ -11,6 +11,7 @@ use rigid::io::spec::{parse_spec, read_spec, SpecError};
 use rigid::mass::{
     Compound, MassProperties, RotationalInertia, SpatialInertia, DEFAULT_INERTIA_TOLERANCE,
 };
+use rigid::multibody::simulation::step_count;
 use rigid::spatial::{so3, Mat3, Transform, Twist, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -268,19 +269,7 @@ pub fn simulate_body<'py>(
     );
     let pivot = pivot.map(|p| vec3(p, F, "pivot")).transpose()?;
     let integrator: Integrator = integrator.parse().map_err(|e| value_error(F, e))?;
-    if !(dt.is_finite() && dt > 0.0 && duration.is_finite() && duration > 0.0) {
-        return Err(value_error(
-            F,
-            format!("dt and duration must be positive and finite, got {dt} and {duration}"),
-        ));
-    }
-    let steps = (duration / dt).round().max(1.0);
-    if steps > 1e8 {
-        return Err(value_error(
-            F,
-            format!("{steps:.0} steps is too many (at most 1e8): raise dt"),
-        ));
-    }
+    let steps = step_count(duration, dt).map_err(|e| value_error(F, e))?;
     let p = properties(F, &compound(F, spec)?)?;
     let err = |e: rigid::body::BodyError| value_error(F, e);
     // integrated in a frame {b} with the spec frame's axes, at the CoM (free) or at the pivot
@@ -309,10 +298,12 @@ pub fn simulate_body<'py>(
     let body = body.and_then(|b| b.with_gravity(g)).map_err(err)?;
     let x0 = State::new(Transform::identity(), Twist::new(w0, v0));
     let mut sim = Simulator::new(body, x0, integrator, dt).map_err(err)?;
-    let n = steps as usize + 1;
-    let (mut t, mut energy) = (Vec::with_capacity(n), Vec::with_capacity(n));
-    let (mut pos, mut quat) = (Vec::with_capacity(3 * n), Vec::with_capacity(4 * n));
-    let (mut w, mut v) = (Vec::with_capacity(3 * n), Vec::with_capacity(3 * n));
+    let n = usize::try_from(steps).map_err(|e| value_error(F, e))? + 1;
+    // reserved up front up to a million rows; a longer run grows the arrays as it goes
+    let r = n.min(1 << 20);
+    let (mut t, mut energy) = (Vec::with_capacity(r), Vec::with_capacity(r));
+    let (mut pos, mut quat) = (Vec::with_capacity(3 * r), Vec::with_capacity(4 * r));
+    let (mut w, mut v) = (Vec::with_capacity(3 * r), Vec::with_capacity(3 * r));
     let t_bc = Transform::from_translation(r);
     let mut record = |time: f64, x: &State, e: f64| {
         // the frame at the CoM with the spec frame's axes, and its body twist

@@ -37,7 +37,7 @@ mod simulator;
 mod trajectory;
 
 pub use batch::simulate_batch;
-pub use control::{Control, ControlLaw, Controller};
+pub use control::{Control, ControlKind, ControlLaw, Controller};
 pub use simulator::Simulator;
 pub use trajectory::{JointTrajectory, TimeScaling};
 
@@ -55,6 +55,56 @@ pub enum SimulationError {
     /// A bad option or parameter (the message says which).
     #[error("{0}")]
     Invalid(String),
+    /// A controller name that is not one of [`ControlKind`]'s.
+    #[error("unknown controller {name:?}: expected none, gravity, pd or track")]
+    UnknownController {
+        /// The name given.
+        name: String,
+    },
+    /// A built-in controller that needs a target ([`ControlKind::needs_target`]) was given none.
+    #[error("controller {controller} needs a target configuration (nq = {nq} numbers)")]
+    MissingTarget {
+        /// The controller.
+        controller: ControlKind,
+        /// The length of the target it needs.
+        nq: usize,
+    },
+    /// An integrator name that is not one of [`Integrator`]'s.
+    #[error("unknown integrator {name:?}: expected semi-implicit, rk4 or variational")]
+    UnknownIntegrator {
+        /// The name given.
+        name: String,
+    },
+    /// A name of joint limits that is not one of [`JointLimits`]'s (`spring`, `ignored`).
+    #[error("unknown joint limits {name:?}: expected spring or ignored")]
+    UnknownLimits {
+        /// The name given.
+        name: String,
+    },
+    /// A time-scaling name that is not one of [`TimeScaling`]'s.
+    #[error("unknown time scaling {name:?}: expected quintic or trapezoidal")]
+    UnknownTimeScaling {
+        /// The name given.
+        name: String,
+    },
+    /// A time step that is not positive and finite.
+    #[error("time step dt must be positive and finite, got {dt}")]
+    TimeStep {
+        /// The step given (s).
+        dt: f64,
+    },
+    /// A duration that is not positive and finite ([`step_count`]).
+    #[error("duration must be positive and finite, got {duration}")]
+    Duration {
+        /// The duration given (s).
+        duration: f64,
+    },
+    /// A run of more than [`MAX_STEPS`] steps ([`step_count`]).
+    #[error("{steps:.0} steps is too many (at most {MAX_STEPS}): raise the time step")]
+    TooManySteps {
+        /// `duration / dt`.
+        steps: f64,
+    },
     /// The fixed-point iteration of the variational integrator did not converge.
     #[error("the implicit step did not converge in {iterations} iterations (change {residual:.3e}); reduce the time step")]
     NoConvergence {
@@ -114,17 +164,46 @@ impl fmt::Display for Integrator {
 }
 
 impl FromStr for Integrator {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = SimulationError;
+    fn from_str(s: &str) -> Result<Self, SimulationError> {
         match s {
             "semi-implicit" => Ok(Self::SemiImplicitEuler),
             "rk4" => Ok(Self::Rk4),
             "variational" => Ok(Self::Variational),
-            _ => Err(format!(
-                "unknown integrator {s:?}: expected semi-implicit, rk4 or variational"
-            )),
+            _ => Err(SimulationError::UnknownIntegrator { name: s.into() }),
         }
     }
+}
+
+/// Most steps a run may take ([`step_count`]): 10⁹, a day of simulated time at 0.1 ms, hours of
+/// computing for a robot.
+pub const MAX_STEPS: u64 = 1_000_000_000;
+
+/// The number of fixed steps of `dt` in `duration` (rounded, at least one), as `rigid simulate`
+/// and Python's `simulate` and `simulate_body` take them.
+///
+/// ```
+/// use rigid::multibody::simulation::{step_count, SimulationError};
+/// assert_eq!(step_count(1.0, 1e-3)?, 1000);
+/// assert!(matches!(step_count(1e6, 1e-6), Err(SimulationError::TooManySteps { .. })));
+/// # Ok::<(), SimulationError>(())
+/// ```
+///
+/// # Errors
+/// [`SimulationError::TimeStep`] or [`SimulationError::Duration`] unless both are positive and
+/// finite; [`SimulationError::TooManySteps`] above [`MAX_STEPS`].
+pub fn step_count(duration: f64, dt: f64) -> Result<u64, SimulationError> {
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(SimulationError::TimeStep { dt });
+    }
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(SimulationError::Duration { duration });
+    }
+    let steps = (duration / dt).round().max(1.0);
+    if steps > MAX_STEPS as f64 {
+        return Err(SimulationError::TooManySteps { steps });
+    }
+    Ok(steps as u64)
 }
 
 /// What happens at a joint's position limits.
@@ -151,6 +230,18 @@ impl Default for JointLimits {
         Self::Spring {
             time_constant: 0.02,
             damping_ratio: 1.0,
+        }
+    }
+}
+
+impl FromStr for JointLimits {
+    type Err = SimulationError;
+    /// `spring` (the default spring-damper, [`JointLimits::default`]) or `ignored`.
+    fn from_str(s: &str) -> Result<Self, SimulationError> {
+        match s {
+            "spring" => Ok(Self::default()),
+            "ignored" => Ok(Self::Ignored),
+            _ => Err(SimulationError::UnknownLimits { name: s.into() }),
         }
     }
 }
@@ -200,10 +291,7 @@ impl SimulationOptions {
     fn check(&self) -> Result<(), SimulationError> {
         let bad = |m: String| Err(SimulationError::Invalid(m));
         if !(self.dt.is_finite() && self.dt > 0.0) {
-            return bad(format!(
-                "time step must be positive and finite, got {}",
-                self.dt
-            ));
+            return Err(SimulationError::TimeStep { dt: self.dt });
         }
         if !(self.friction_speed.is_finite() && self.friction_speed > 0.0) {
             return bad(format!(
