@@ -4,7 +4,7 @@
 use super::{robot_plot::Samples, Numbers, SimulateArgs, PLOT_POINTS};
 use crate::load::{load_model, urdf_path};
 use rigid::multibody::simulation::{
-    ControlLaw, Controller, Integrator, JointLimits, SimulationError, SimulationOptions, Simulator,
+    ControlLaw, Controller, JointLimits, SimulationError, SimulationOptions, Simulator,
 };
 use rigid::multibody::{column_names, neutral, Data, Model};
 use rigid_replay::{robot_nodes, Recording};
@@ -57,15 +57,9 @@ fn joint_list(model: &Model) -> String {
 }
 
 fn options(args: &SimulateArgs) -> Result<SimulationOptions, String> {
-    let integrator: Integrator = args
-        .integrator
-        .as_deref()
-        .unwrap_or("rk4")
-        .parse()
-        .map_err(|e: SimulationError| e.to_string())?;
     Ok(SimulationOptions {
         dt: args.dt,
-        integrator,
+        integrator: args.integrator,
         limits: args.limits,
         joint_dynamics: !args.no_joint_dynamics,
         ..SimulationOptions::default()

@@ -9,6 +9,7 @@
 //! | `v⁺ = v + h q̈(q, v)`, `q⁺ = q ⊕ h v⁺` | [`Integrator::SemiImplicitEuler`] | symplectic Euler |
 //! | RK4 on the joint groups, `Θ̇ = dexp⁻¹_{-Θ}(v)` | [`Integrator::Rk4`] | Munthe-Kaas 1999 (RKMK) |
 //! | discrete Euler-Lagrange, 4th order by composition | [`Integrator::Variational`] | Marsden & West 2001; Suzuki 1990 |
+//! | one rigid body: discrete Moser-Veselov on SO(3) | [`Integrator::Lgvi`] ([`body::Simulator`](crate::body::Simulator)) | Lee, Leok & McClamroch 2007 |
 //! | `τ = -b v - F_c tanh(v / v_s)` | [`SimulationOptions::joint_dynamics`] | URDF `<dynamics>` |
 //! | `τ = -D (e/τ_c² + 2ζ v/τ_c)` past a limit | [`JointLimits::Spring`] | MuJoCo's soft limits (`solref`) |
 //! | quintic / trapezoidal `s(t)` | [`TimeScaling`] | Lynch & Park §9.2 |
@@ -70,10 +71,20 @@ pub enum SimulationError {
         nq: usize,
     },
     /// An integrator name that is not one of [`Integrator`]'s.
-    #[error("unknown integrator {name:?}: expected semi-implicit, rk4 or variational")]
+    #[error("unknown integrator {name:?}: expected semi-implicit, rk4, variational or lgvi")]
     UnknownIntegrator {
         /// The name given.
         name: String,
+    },
+    /// An integrator a multibody [`Simulator`] does not take ([`Integrator::Lgvi`], which steps
+    /// one rigid body).
+    #[error(
+        "the {integrator} integrator steps one rigid body (a body spec; rigid::body::Simulator): \
+         a multibody model takes semi-implicit, rk4 or variational"
+    )]
+    UnsupportedIntegrator {
+        /// The integrator given.
+        integrator: Integrator,
     },
     /// A name of joint limits that is not one of [`JointLimits`]'s (`spring`, `ignored`).
     #[error("unknown joint limits {name:?}: expected spring or ignored")]
@@ -122,15 +133,38 @@ pub enum SimulationError {
     },
 }
 
-/// The time stepper.
+/// The time stepper: one vocabulary for robots ([`Simulator`]) and single bodies
+/// ([`body::Simulator`](crate::body::Simulator), whose free body or body on a pivot is the
+/// one-joint case of a multibody model, stepped by the same code). Three steppers work on every
+/// model; [`Lgvi`](Self::Lgvi) is the one that only a single body takes.
+///
+/// The default is [`Rk4`](Self::Rk4), for bodies and robots alike: it is explicit and 4th-order
+/// accurate, costs four force evaluations a step, and takes every force as it comes (control
+/// laws, limit springs, friction, an applied wrench that depends on time or velocity), so it is
+/// the right first choice for both. Its energy and momentum drift slowly (`O(t h⁴)`); for long
+/// conservative runs where they must not drift, choose [`Variational`](Self::Variational) (or,
+/// for one body, [`Lgvi`](Self::Lgvi)).
+///
+/// | name | method | order | force evaluations per step | conserves |
+/// | --- | --- | --- | --- | --- |
+/// | `semi-implicit` | symplectic Euler | 1 | 1 | energy bounded |
+/// | `rk4` (default) | Runge-Kutta-Munthe-Kaas | 4 | 4 | (drifts as `O(t h⁴)`) |
+/// | `variational` | Störmer-Verlet on the joint groups, Suzuki's composition | 4 | ~100 passes | momentum maps exactly, energy bounded |
+/// | `lgvi` | Lee-Leok-McClamroch, one rigid body only | 2 | 2 (3x3 Newton solve) | momentum exactly, energy bounded |
+///
+/// Until the vocabulary was shared, `variational` on a single body (`rigid simulate SPEC.toml
+/// --integrator variational`, Python's `simulate_body`) named the 2nd-order LGVI, which is now
+/// `lgvi`; `variational` is accepted there as before and runs the 4th-order variational
+/// integrator, as for a robot.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Integrator {
     /// `semi-implicit`: symplectic Euler, `v⁺ = v + h q̈(q, v)`, `q⁺ = q ⊕ h v⁺`. One ABA per
     /// step, first order, bounded energy error for conservative systems.
     SemiImplicitEuler,
     /// `rk4`: the classical Runge-Kutta method lifted to the joint groups
-    /// (Runge-Kutta-Munthe-Kaas): the stages are `q₀ ⊕ Θᵢ` with `Θ̇ = dexp⁻¹_{-Θ}(v)`. Four ABA
-    /// per step, 4th order.
+    /// (Runge-Kutta-Munthe-Kaas): the stages are `q₀ ⊕ Θᵢ` with `Θ̇ = dexp⁻¹_{-Θ}(v)`
+    /// ([`JointType::dexp`](crate::multibody::JointType) and its inverse, the one home of
+    /// `dexp`). Four ABA per step, 4th order. The default.
     #[default]
     Rk4,
     /// `variational`: a variational (discrete Euler-Lagrange) integrator on the joint groups, in
@@ -143,16 +177,42 @@ pub enum Integrator {
     /// momentum `[Ad_{T⁻¹}]ᵀ p_base` is carried by `p₁ = [Ad_{exp ξ}]ᵀ p₀` at round-off. Energy
     /// error bounded (no drift). About 100 O(n) passes per step: for accuracy, not speed.
     Variational,
+    /// `lgvi`: the Lie-group variational integrator of Lee, Leok & McClamroch (2007) for one
+    /// rigid body (free, or on a pivot), [`body::Simulator`](crate::body::Simulator) only: the
+    /// rotation about the CoM or the pivot by the discrete Moser-Veselov map (a 3x3 Newton solve
+    /// per step), the CoM by velocity Verlet. 2nd order, symplectic; the world angular momentum
+    /// of a torque-free body is kept to round-off, and so is its energy. Two force evaluations
+    /// per step. A multibody [`Simulator`] refuses it
+    /// ([`SimulationError::UnsupportedIntegrator`]).
+    Lgvi,
 }
 
 impl Integrator {
-    /// The command-line name: `semi-implicit`, `rk4`, `variational`.
+    /// Every integrator, in the order of the command line's help.
+    pub const ALL: [Integrator; 4] = [
+        Self::SemiImplicitEuler,
+        Self::Rk4,
+        Self::Variational,
+        Self::Lgvi,
+    ];
+
+    /// The command-line name: `semi-implicit`, `rk4`, `variational`, `lgvi`.
     #[must_use]
     pub fn name(&self) -> &'static str {
         match self {
             Self::SemiImplicitEuler => "semi-implicit",
             Self::Rk4 => "rk4",
             Self::Variational => "variational",
+            Self::Lgvi => "lgvi",
+        }
+    }
+
+    /// Whether a multibody [`Simulator`] takes it (every integrator but [`Lgvi`](Self::Lgvi)).
+    #[must_use]
+    pub fn steps_multibody(&self) -> bool {
+        match self {
+            Self::SemiImplicitEuler | Self::Rk4 | Self::Variational => true,
+            Self::Lgvi => false,
         }
     }
 }
@@ -166,12 +226,10 @@ impl fmt::Display for Integrator {
 impl FromStr for Integrator {
     type Err = SimulationError;
     fn from_str(s: &str) -> Result<Self, SimulationError> {
-        match s {
-            "semi-implicit" => Ok(Self::SemiImplicitEuler),
-            "rk4" => Ok(Self::Rk4),
-            "variational" => Ok(Self::Variational),
-            _ => Err(SimulationError::UnknownIntegrator { name: s.into() }),
-        }
+        Self::ALL
+            .into_iter()
+            .find(|i| i.name() == s)
+            .ok_or_else(|| SimulationError::UnknownIntegrator { name: s.into() })
     }
 }
 
@@ -292,6 +350,11 @@ impl SimulationOptions {
         let bad = |m: String| Err(SimulationError::Invalid(m));
         if !(self.dt.is_finite() && self.dt > 0.0) {
             return Err(SimulationError::TimeStep { dt: self.dt });
+        }
+        if !self.integrator.steps_multibody() {
+            return Err(SimulationError::UnsupportedIntegrator {
+                integrator: self.integrator,
+            });
         }
         if !(self.friction_speed.is_finite() && self.friction_speed > 0.0) {
             return bad(format!(
