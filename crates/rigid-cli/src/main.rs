@@ -6,7 +6,6 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod bench;
-mod bench_batch;
 mod doctor;
 mod eval;
 mod excite;

@@ -16,6 +16,7 @@
 //! | [`io`] | URDF import into a multibody `Model` (inertia policy, warnings); `rigid doctor` ([`doctor`]) |
 //! | [`explicit`] | the explicit dynamic model of a robot (Armstrong, Khatib & Burdick 1986): `M(q)`, Coriolis, centrifugal and gravity terms as abbreviated expressions, pruned with a proven bound, and generated code |
 //! | [`identification`] | inertial parameters from measured motion: joint-torque regressor, base parameters, least squares, physically consistent estimate (semidefinite program), exciting trajectories |
+//! | [`timing`] | how fast the multibody algorithms and their batches run on a model (`rigid bench`) |
 #![warn(missing_docs)]
 #![allow(non_snake_case)]
 
@@ -31,3 +32,4 @@ pub mod io;
 pub mod mass;
 pub mod multibody;
 pub mod spatial;
+pub mod timing;
