@@ -23,13 +23,13 @@
 //! ```
 
 use crate::error::DimensionError;
+use crate::multibody::batch::QvxFn;
 use crate::multibody::{
     aba, aba_derivatives, batch, compute_joint_jacobians, compute_minverse, crba,
     forward_dynamics_cholesky, forward_kinematics, forward_kinematics_q, gravity_torques,
     nonlinear_effects, random_configuration, rnea, rnea_derivatives, Data, Model, MultibodyError,
     Rng,
 };
-use nalgebra::DVector;
 use std::hint::black_box;
 use std::time::Instant;
 use thiserror::Error;
@@ -231,15 +231,6 @@ impl Rows {
 type Kernel = fn(&mut batch::Batch, &Model, &Rows, &mut [f64]) -> Result<(), MultibodyError>;
 /// A loop of single calls with one workspace.
 type Single = fn(&Model, &Rows, &mut [f64], &mut Data) -> Result<(), MultibodyError>;
-
-/// `rnea` and `aba` share one shape: `(q, v, x) ↦ nv-vector`.
-type QvxFn = for<'a> fn(
-    &Model,
-    &'a mut Data,
-    &[f64],
-    &[f64],
-    &[f64],
-) -> Result<&'a DVector<f64>, MultibodyError>;
 
 /// A loop of single calls of `f` over the states, the third input taken from `r.as_`.
 fn loop_qvx(

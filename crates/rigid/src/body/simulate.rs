@@ -359,17 +359,22 @@ mod tests {
 
     const G: Vec3 = Vec3::new(0.0, 0.0, -9.81);
 
-    /// Principal moments 1, 2, 3 in rotated axes, the frame {b} away from the CoM.
+    /// A tumbling body (its frame {b} away from the CoM, axes off the principal ones).
     fn asymmetric() -> SpatialInertia {
-        let i = RotationalInertia::diagonal(1.0, 2.0, 3.0)
-            .rotated_by(&so3::exp(&Vec3::new(0.1, -0.2, 0.05)));
-        SpatialInertia::from_com(2.0, Vec3::new(0.2, -0.1, 0.3), i)
+        let r = so3::exp(&Vec3::new(-0.3, 0.1, 0.2));
+        let i = RotationalInertia::diagonal(0.4, 0.7, 0.9).rotated_by(&r);
+        SpatialInertia::from_com(1.5, Vec3::new(-0.1, 0.25, 0.05), i)
     }
 
+    /// A pose and a twist with every component non-zero.
     fn start() -> State {
+        let pose = Transform::new(
+            so3::exp(&Vec3::new(0.4, 0.2, -0.6)),
+            Vec3::new(0.5, -0.2, 1.0),
+        );
         State::new(
-            Transform::from_xyz_rpy([0.1, 0.2, 0.3], [0.3, -0.2, 0.5]),
-            Twist::new(Vec3::new(1.0, 0.5, -0.7), Vec3::new(0.3, 0.0, -0.1)),
+            pose,
+            Twist::new(Vec3::new(-0.8, 1.2, 0.6), Vec3::new(0.1, 0.4, -0.3)),
         )
     }
 
