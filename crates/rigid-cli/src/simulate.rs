@@ -70,7 +70,7 @@ pub struct SimulateArgs {
     #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
     pub dt: f64,
     /// `rk4` (the default for bodies and robots: explicit, 4th order, any force), `variational`
-    /// (4th order, symplectic: no energy or momentum drift, ~25x the cost), `semi-implicit`
+    /// (4th order, symplectic: no energy or momentum drift, 10-40 times the cost), `semi-implicit`
     /// (symplectic Euler, 1st order) or, for a body only, `lgvi` (the 2nd-order Lie-group
     /// variational integrator, which `variational` named for a body before: momentum and energy
     /// of a torque-free body to round-off).
