@@ -400,6 +400,37 @@ impl Model {
             .collect()
     }
 
+    /// The joints whose whole subtree is massless (the body they move and every body below it
+    /// weigh nothing): their rows of the mass matrix are zero, so `M` is singular and ABA is
+    /// undefined. The model-level twin of the URDF check
+    /// [`InertiaIssueKind::ZeroMassMovingLink`](crate::io::urdf::InertiaIssueKind), for models
+    /// not read from a URDF file.
+    ///
+    /// ```
+    /// use rigid::mass::SpatialInertia;
+    /// use rigid::multibody::{JointId, JointType, ModelBuilder};
+    /// use rigid::spatial::{Transform, Vec3};
+    /// let mut b = ModelBuilder::new("arm");
+    /// let g = SpatialInertia::from_com(1.0, Vec3::zeros(), rigid::mass::RotationalInertia::diagonal(1.0, 1.0, 1.0));
+    /// let z = JointType::Revolute { axis: Vec3::z() };
+    /// let shoulder = b.add_joint(None, "shoulder", z, Transform::identity(), g)?;
+    /// b.add_joint(Some(shoulder), "wrist", z, Transform::identity(), SpatialInertia::zero())?;
+    /// let model = b.build()?;
+    /// assert_eq!(model.massless_subtrees(), vec![JointId(1)]);
+    /// # Ok::<(), rigid::multibody::ModelError>(())
+    /// ```
+    #[must_use]
+    pub fn massless_subtrees(&self) -> Vec<JointId> {
+        (0..self.joints.len())
+            .filter(|&i| {
+                self.inertias[i..self.joints[i].subtree_end]
+                    .iter()
+                    .all(|g| g.mass() == 0.0)
+            })
+            .map(JointId)
+            .collect()
+    }
+
     /// A copy of this model with gravity `g`.
     #[must_use]
     pub fn with_gravity(mut self, g: Vec3) -> Self {

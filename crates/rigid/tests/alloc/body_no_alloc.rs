@@ -25,7 +25,7 @@ fn simulator_steps_do_not_allocate() {
     );
     for body in [RigidBody::free(g).unwrap(), RigidBody::pivot(g).unwrap()] {
         let body = body.with_gravity(gravity).unwrap();
-        for integrator in [Integrator::Rk4, Integrator::Variational] {
+        for integrator in [Integrator::Rk4, Integrator::Lgvi] {
             let mut sim = Simulator::new(body.clone(), x0, integrator, 1e-3).unwrap();
             let before = allocations();
             for _ in 0..5000 {

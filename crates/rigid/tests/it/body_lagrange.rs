@@ -102,7 +102,7 @@ fn rod_lagrangian_and_pivot_simulator_trajectories_agree() {
     let body = ROD.pivot_body(1e-4).unwrap();
     let e0 = lagrange::energy(&ROD, &q, &qd);
     assert!((body.energy(&RodOnPivot::state(&q, &qd)) - e0).abs() < 1e-12);
-    let mut sims = [Integrator::Rk4, Integrator::Variational]
+    let mut sims = [Integrator::Rk4, Integrator::Lgvi]
         .map(|i| Simulator::new(body.clone(), RodOnPivot::state(&q, &qd), i, h).unwrap());
     let mut worst = [0.0f64; 2];
     for k in 1..=n {

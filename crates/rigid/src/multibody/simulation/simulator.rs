@@ -247,6 +247,10 @@ impl<C: Control> Simulator<C> {
                 &self.q,
                 &self.p,
             ),
+            // refused by `new`, and options cannot change after it
+            integrator @ super::Integrator::Lgvi => {
+                Err(SimulationError::UnsupportedIntegrator { integrator })
+            }
         };
         let time = self.t + h;
         match ok {
@@ -311,6 +315,11 @@ impl<C: Control> Simulator<C> {
     #[must_use]
     pub fn options(&self) -> &SimulationOptions {
         &self.dynamics.options
+    }
+    /// The control law.
+    #[must_use]
+    pub fn control(&self) -> &C {
+        &self.dynamics.control
     }
     /// The control law.
     pub fn control_mut(&mut self) -> &mut C {

@@ -1,101 +1,19 @@
-//! Time steppers on SE(3) for `Ṫ = T [V_b]`, `V̇_b = f(t, T, V_b)`.
+//! The Lie-group variational integrator of one rigid body ([`Integrator::Lgvi`]): Lee, Leok &
+//! McClamroch, "Lie group variational integrators for the full body problem" (CMAME 2007), for
+//! the rotation about the CoM (free body) or the pivot, with the translation of the CoM by
+//! velocity Verlet. With `Π = J ω`, `M` the moment about that point and `F = exp([f])`:
+//! `h Π_k + h²/2 M_k = (sin|f|/|f|) J f + ((1 - cos|f|)/|f|²) f × J f` (solved by Newton),
+//! `R_{k+1} = R_k F`, `Π_{k+1} = Fᵀ (Π_k + h/2 M_k) + h/2 M_{k+1}`.
 //!
-//! Both update the pose by right-multiplying with an exponential, `T' = T exp(Θ)`, so the
-//! rotation stays orthonormal to round-off with no re-normalisation, and neither allocates.
+//! The pose is updated by right-multiplying with an exponential, `R' = R F`, so the rotation
+//! stays orthonormal to round-off with no re-normalisation; a step allocates nothing.
 
 use super::rigid_body::{RigidBody, State, Support, WrenchFn};
 use super::BodyError;
+#[cfg(doc)]
+use super::Integrator;
 use crate::mass::RotationalInertia;
 use crate::spatial::{skew, so3, Mat3, Transform, Twist, Vec3};
-use std::fmt;
-use std::str::FromStr;
-
-/// Which time stepper to use.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Integrator {
-    /// `rk4`: the classical 4-stage Runge-Kutta method lifted to SE(3) by Runge-Kutta-Munthe-Kaas
-    /// (RKMK): `T(t) = T₀ exp(Θ(t))` with `Θ̇ = dexp⁻¹_{-Θ}(V_b) = V + ½[Θ, V] + ¹⁄₁₂[Θ, [Θ, V]]`
-    /// (the series truncated after the terms that matter at order 4), integrated by RK4 together
-    /// with `V̇_b`. Explicit, 4th order, four force evaluations per step; energy and momentum
-    /// drift slowly (error `O(t h⁴)`).
-    Rk4,
-    /// `variational`: the Lie-group variational integrator of Lee, Leok & McClamroch (2007),
-    /// for the rotation about the CoM (free body) or the pivot, with the translation of the CoM
-    /// by velocity Verlet. With `Π = J ω`, `M` the moment about that point and `F = exp([f])`:
-    /// `h Π_k + h²/2 M_k = (sin|f|/|f|) J f + ((1 - cos|f|)/|f|²) f × J f` (solved by Newton),
-    /// `R_{k+1} = R_k F`, `Π_{k+1} = Fᵀ (Π_k + h/2 M_k) + h/2 M_{k+1}`. Symplectic and
-    /// momentum-preserving: the world angular momentum `R Π` of a torque-free body is kept to
-    /// round-off and the energy error stays bounded (2nd order). Implicit (a 3x3 Newton solve),
-    /// two force evaluations per step. Exact discrete Lagrange-d'Alembert for wrenches that
-    /// depend on `(t, T)` only; a velocity-dependent wrench is evaluated at the end of the step
-    /// with the predicted velocity `J⁻¹ Fᵀ (Π_k + h M_k)`.
-    Variational,
-}
-
-impl Integrator {
-    /// The name used on the command line (`rk4`, `variational`).
-    #[must_use]
-    pub fn name(&self) -> &'static str {
-        match self {
-            Integrator::Rk4 => "rk4",
-            Integrator::Variational => "variational",
-        }
-    }
-}
-
-impl fmt::Display for Integrator {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Integrator {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "rk4" => Ok(Integrator::Rk4),
-            "variational" => Ok(Integrator::Variational),
-            _ => Err(format!(
-                "unknown integrator {s:?}: expected \"rk4\" or \"variational\""
-            )),
-        }
-    }
-}
-
-/// `dexp⁻¹_{-Θ}(V) ≈ V + ½[Θ, V] + ¹⁄₁₂[Θ, [Θ, V]]` (Bernoulli numbers; the `ad⁴` term is
-/// `O(h⁴)` and enters the local error at order 5).
-#[inline]
-fn dexp_inv(theta: &Twist, v: &Twist) -> Twist {
-    let tv = theta.cross(v);
-    *v + tv * 0.5 + theta.cross(&tv) * (1.0 / 12.0)
-}
-
-/// One RKMK4 step of `Ṫ = T [V]`, `V̇ = a(t, T, V)` from `(t, x)` with step `h`.
-pub(crate) fn rkmk4_step<W: WrenchFn>(body: &RigidBody<W>, t: f64, x: &State, h: f64) -> State {
-    let (t0, v0) = (x.pose, x.twist);
-    let stage = |theta: &Twist, v: &Twist| State::new(t0 * Transform::exp(theta), *v);
-    // Stage 1 at Θ = 0.
-    let k1 = v0;
-    let a1 = body.acceleration(t, x);
-    // Stage 2.
-    let th2 = k1 * (0.5 * h);
-    let v2 = v0 + a1 * (0.5 * h);
-    let k2 = dexp_inv(&th2, &v2);
-    let a2 = body.acceleration(t + 0.5 * h, &stage(&th2, &v2));
-    // Stage 3.
-    let th3 = k2 * (0.5 * h);
-    let v3 = v0 + a2 * (0.5 * h);
-    let k3 = dexp_inv(&th3, &v3);
-    let a3 = body.acceleration(t + 0.5 * h, &stage(&th3, &v3));
-    // Stage 4.
-    let th4 = k3 * h;
-    let v4 = v0 + a3 * h;
-    let k4 = dexp_inv(&th4, &v4);
-    let a4 = body.acceleration(t + h, &stage(&th4, &v4));
-    let theta = (k1 + (k2 + k3) * 2.0 + k4) * (h / 6.0);
-    let v = v0 + (a1 + (a2 + a3) * 2.0 + a4) * (h / 6.0);
-    State::new(t0 * Transform::exp(&theta), v)
-}
 
 /// Coefficients of the LGVI map `Φ(f) = a J f + b f × J f` and of its Jacobian:
 /// `a = sin x / x`, `b = (1 - cos x)/x²`, `a'/x = (x cos x - sin x)/x³`,
@@ -189,9 +107,9 @@ impl Momenta {
     }
 }
 
-/// One step of the Lie-group variational integrator (see [`Integrator::Variational`]) from the
-/// state `x` whose momenta are `k`.
-pub(crate) fn variational_step<W: WrenchFn>(
+/// One step of the Lie-group variational integrator (see [`Integrator::Lgvi`]) from the state
+/// `x` whose momenta are `k`.
+pub(crate) fn lgvi_step<W: WrenchFn>(
     body: &RigidBody<W>,
     t: f64,
     x: &State,
