@@ -287,3 +287,51 @@ fn derivatives_and_the_coriolis_matrix_refuse_a_universal_joint_by_name() {
         .unwrap_err();
     assert!(e.to_string().contains("parallel"), "{e}");
 }
+
+/// The simulator steps a tree with universal and helical joints (RK4 keeps its energy when
+/// nothing but gravity acts), and the variational integrator, whose configuration gradient of
+/// the kinetic energy assumes constant motion subspaces, refuses it by name.
+#[test]
+fn the_simulator_takes_every_joint_type_and_the_variational_integrator_says_what_it_cannot() {
+    use rigid::multibody::simulation::{Controller, Integrator, SimulationOptions, Simulator};
+    let model = every_joint_tree(2, 8);
+    let mut rng = Rng::new(4);
+    let q0 = random_configuration(&model, &mut rng);
+    let v0: Vec<f64> = (0..model.nv()).map(|_| rng.uniform(-0.5, 0.5)).collect();
+    let options = |integrator| SimulationOptions {
+        integrator,
+        dt: 1e-3,
+        ..SimulationOptions::default()
+    };
+    let e = Simulator::new(
+        &model,
+        &q0,
+        &v0,
+        options(Integrator::Variational),
+        Controller::none(&model),
+    )
+    .err()
+    .expect("refused");
+    assert!(e.to_string().contains("universal"), "{e}");
+    let mut sim = Simulator::new(
+        &model,
+        &q0,
+        &v0,
+        options(Integrator::Rk4),
+        Controller::none(&model),
+    )
+    .unwrap();
+    let mut d = Data::new(&model);
+    let energy = |d: &mut Data, q: &[f64], v: &[f64]| {
+        kinetic_energy(&model, d, q, v).unwrap() + potential_energy(&model, d, q).unwrap()
+    };
+    let e0 = energy(&mut d, &q0, &v0);
+    for _ in 0..500 {
+        sim.step().unwrap();
+    }
+    let e1 = energy(&mut d, sim.q(), sim.v());
+    assert!(
+        (e1 - e0).abs() < 1e-6 * e0.abs().max(1.0),
+        "energy {e0} → {e1}"
+    );
+}
