@@ -311,7 +311,7 @@ fn the_simulator_takes_every_joint_type_and_the_variational_integrator_says_what
         Controller::none(&model),
     )
     .err()
-    .expect("refused");
+    .expect("refused"); // Simulator is not Debug
     assert!(e.to_string().contains("universal"), "{e}");
     let mut sim = Simulator::new(
         &model,
