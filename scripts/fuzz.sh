@@ -10,7 +10,7 @@
 # inputs of the working corpus that reach code the seeds do not (edge coverage, libFuzzer's
 # `-merge=1 -use_counters=0`: a few hundred files per target instead of thousands); a crash is saved
 # in fuzz/artifacts/TARGET/: copy it to fuzz/regressions/TARGET/, fix the bug, and the test suite
-# replays it from then on (crates/rigid/tests/fuzz_replay.rs). The executions of each run are
+# replays it from then on (crates/rigid/tests/it/fuzz_replay.rs). The executions of each run are
 # appended to fuzz/runs.log (target, seconds, executions, crashes), which RELIABILITY.md sums up.
 set -euo pipefail
 cd "$(dirname "$0")/../fuzz"

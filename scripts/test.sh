@@ -1,13 +1,38 @@
 #!/usr/bin/env bash
-# Runs every test of rigid. Installs the Python packages the cross-checks need (Pinocchio,
-# example-robot-data and pytest from PyPI) if they are missing, runs the Rust test suite, then
-# builds and installs the Python module (`pip install ./crates/rigid-py`, the README's command)
-# and runs its tests against Pinocchio.
+# Runs every test of rigid, the live cross-checks included.
+#
+# `cargo test --workspace` alone needs nothing but Rust: the cross-checks against Pinocchio,
+# SciPy and the robot-description packages read checked-in fixtures. This script also turns on
+# the live checks (RIGID_CROSSCHECK=1): it creates a virtual environment (target/test-venv, on
+# its first run; `python3 -m venv`) with the Python packages they need
+# (scripts/requirements-test.txt: Pinocchio, example-robot-data, SciPy, pytest, the description
+# packages), points RIGID_PYTHON at it, runs the Rust tests, then builds and installs the Python
+# module into the same environment (`pip install ./crates/rigid-py`, the README's command) and
+# runs its tests against Pinocchio. Nothing is installed into the system's Python. The live
+# checks also use a C compiler, rustfmt and a browser (`chromium`, which .ci/run installs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-export PIP_ROOT_USER_ACTION=ignore PIP_DISABLE_PIP_VERSION_CHECK=1
-pip() { python3 -m pip --quiet "$@"; }
-pip install -r scripts/requirements-test.txt
+export PIP_DISABLE_PIP_VERSION_CHECK=1
+venv=target/test-venv
+requirements=scripts/requirements-test.txt
+if [ ! -x "$venv/bin/python" ]; then
+    echo "creating the test environment $venv (python3 -m venv)"
+    rm -rf "$venv"
+    mkdir -p target
+    python3 -m venv "$venv" || {
+        echo "error: python3 -m venv failed: install Python 3 with venv (Debian:" \
+            "apt-get install python3-venv)" >&2
+        exit 1
+    }
+fi
+python="$PWD/$venv/bin/python"
+# (re)install the pinned packages when the requirements changed since the last install
+stamp="$venv/requirements.sha256"
+if ! sha256sum --status -c "$stamp" 2>/dev/null; then
+    "$python" -m pip install --quiet -r "$requirements"
+    sha256sum "$requirements" > "$stamp"
+fi
+export RIGID_PYTHON="$python" RIGID_CROSSCHECK=1
 # the physically consistent identification (crate feature `sdp`) links OpenBLAS from the system:
 # tested when it is there (.ci/run installs it)
 features=()
@@ -20,7 +45,7 @@ else
 fi
 cargo test --workspace ${features[@]+"${features[@]}"}
 start=$(date +%s)
-pip install ./crates/rigid-py
+"$python" -m pip install --quiet ./crates/rigid-py
 echo "pip install ./crates/rigid-py: $(($(date +%s) - start)) s"
 # from the tests' folder, so that `import rigid` is the installed module
-(cd crates/rigid-py/tests && python3 -m pytest -q -p no:cacheprovider .)
+(cd crates/rigid-py/tests && "$python" -m pytest -q -p no:cacheprovider .)

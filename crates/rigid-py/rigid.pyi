@@ -1,6 +1,6 @@
 """rigid: rigid-body dynamics from Rust, with Pinocchio's verbs and numpy arrays.
 
-Conventions (rigid's layout, the default; see CONVENTIONS.md):
+Conventions (rigid's layout, the default; see docs/conventions.md):
 
 - SI units: kg, m, s, N, N·m, rad. Every result is a fresh float64 numpy array.
 - Twists and wrenches **angular first**: V = (ω, v), F = (m, f); Jacobian rows (ω, v).
@@ -301,11 +301,15 @@ def spatial_inertia(mass: float, com: ArrayLike | None = None,
 def simulate_body(spec: Spec, omega: ArrayLike | None = None, velocity: ArrayLike | None = None,
                   gravity: ArrayLike | None = None, pivot: ArrayLike | None = None,
                   duration: float = 10.0, dt: float = 1e-3,
-                  integrator: Literal["variational", "rk4"] = "variational") -> dict[str, Vector]:
+                  integrator: Literal["rk4", "variational", "semi-implicit", "lgvi"] = "rk4",
+                  ) -> dict[str, Vector]:
     """One rigid body (a spec, as for ``mass_properties``), free or on a spherical pivot (a point
     of the spec frame fixed at the world origin), integrated on SE(3) (``rigid simulate``):
     initial body angular velocity ``omega`` (rad/s) and CoM velocity ``velocity`` (m/s), spec-frame
-    axes; world ``gravity`` (m/s², none by default). Returns arrays of N + 1 rows: ``t`` (s),
+    axes; world ``gravity`` (m/s², none by default). ``integrator``: those of ``simulate`` (the
+    body is the one-joint case of a robot; ``"rk4"`` by default, as there), or ``"lgvi"``, the
+    2nd-order Lie-group variational integrator of one body (momentum and energy of a torque-free
+    body to round-off), which ``"variational"`` named here before. Returns arrays of N + 1 rows: ``t`` (s),
     ``position`` (N+1, 3) and ``quaternion`` (N+1, 4, x-y-z-w) of the frame at the CoM with the
     spec frame's axes, its body twist ``omega`` and ``velocity`` (N+1, 3), and the total
     ``energy`` (J)."""

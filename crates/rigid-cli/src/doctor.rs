@@ -31,7 +31,7 @@ pub fn run(args: &DoctorArgs) -> Result<(), String> {
     let report = Doctor::new().examine(&robot);
     if let Some(out) = &args.fix {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        crate::write_atomic(out, fixed_urdf(&text, &robot, &report).as_bytes())?;
+        crate::util::write_atomic(out, fixed_urdf(&text, &robot, &report).as_bytes())?;
     }
     if args.json {
         println!(

@@ -1,5 +1,5 @@
 //! `rigid eval MODEL --cases CASES.json [--floating] [--json] [--derivatives]`: the dynamics of a model at given
-//! states, for scripts and cross-checks (the contract is in `CONVENTIONS.md`).
+//! states, for scripts and cross-checks (the contract is in `docs/conventions.md`).
 
 use crate::load::load_model;
 use clap::Args;
@@ -223,10 +223,10 @@ fn result_to_pinocchio(l: &PinocchioLayout, r: &mut CaseResult) {
         *x = y;
     }
     let permute = |m: &mut Vec<Vec<f64>>| {
-        let n = m.len();
-        *m = (0..n)
-            .map(|i| (0..n).map(|k| m[l.v_index(i)][l.v_index(k)]).collect())
-            .collect();
+        let (n, rigid) = (m.len(), m.concat());
+        let mut pin = vec![0.0; rigid.len()];
+        l.permute_matrix(&rigid, &mut pin);
+        *m = pin.chunks_exact(n.max(1)).map(<[f64]>::to_vec).collect();
     };
     permute(&mut r.mass_matrix);
     if let Some(d) = &mut r.rnea_derivatives {

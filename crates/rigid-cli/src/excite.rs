@@ -74,7 +74,7 @@ pub fn run(args: &ExciteArgs) -> Result<(), String> {
     let samples = traj
         .samples(&model, 1.0 / args.rate)
         .map_err(|e| e.to_string())?;
-    crate::write_atomic(&args.out, samples.to_csv(&model).as_bytes())?;
+    crate::util::write_atomic(&args.out, samples.to_csv(&model).as_bytes())?;
     println!(
         "wrote {}: {} samples at {} Hz over {} s (t, q, v, a, tau; tau is what the model \
          predicts: replace it with the measured torques); condition number of the base \

@@ -130,8 +130,8 @@ pub fn run(args: &IdentifyArgs) -> Result<(), String> {
         } else {
             "rigid identify: least-squares estimate (base parameters; the rest from the model)"
         };
-        let written = with_body_inertials(&urdf_text, &robot, &model, &bodies(est), note)?;
-        crate::write_atomic(out, written.as_bytes())?;
+        let written = with_body_inertials(&urdf_text, &robot, &model, &bodies(&id, est), note)?;
+        crate::util::write_atomic(out, written.as_bytes())?;
     }
     let report = Report {
         model: &model,
@@ -163,14 +163,9 @@ pub fn run(args: &IdentifyArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// The body inertias of an estimate.
-fn bodies(est: &Estimate) -> Vec<SpatialInertia> {
-    est.parameters
-        .as_slice()
-        .chunks(10)
-        .take_while(|c| c.len() == 10)
-        .map(|c| SpatialInertia::from_parameters(c.try_into().expect("ten")))
-        .collect()
+/// The body inertias of an estimate ([`rigid::identification::ParameterLayout::body_inertias`]).
+fn bodies(id: &Identification, est: &Estimate) -> Vec<SpatialInertia> {
+    id.layout.body_inertias(est.parameters.as_slice())
 }
 
 struct Report<'a> {
@@ -206,7 +201,7 @@ fn body_json(g: &SpatialInertia) -> Value {
     })
 }
 
-fn estimate_json(e: &Estimate) -> Value {
+fn estimate_json(id: &Identification, e: &Estimate) -> Value {
     json!({
         "base": e.base.as_slice(),
         "base_std": e.base_std.as_slice(),
@@ -215,7 +210,7 @@ fn estimate_json(e: &Estimate) -> Value {
         "residual_rms_per_dof": e.residual_rms_per_dof,
         "relative_residual": e.relative_residual,
         "condition_number": e.condition_number,
-        "bodies": bodies(e).iter().map(body_json).collect::<Vec<_>>(),
+        "bodies": bodies(id, e).iter().map(body_json).collect::<Vec<_>>(),
     })
 }
 
@@ -230,9 +225,9 @@ impl Report<'_> {
             "parameter_names": base.names,
             "base_parameters": (0..base.len()).map(|i| base.expression(i)).collect::<Vec<_>>(),
             "weighted": self.weighted,
-            "model_values": estimate_json(self.prior),
-            "least_squares": estimate_json(self.ls),
-            "physical": self.pc.map(estimate_json),
+            "model_values": estimate_json(self.id, self.prior),
+            "least_squares": estimate_json(self.id, self.ls),
+            "physical": self.pc.map(|e| estimate_json(self.id, e)),
         })
     }
 
@@ -317,7 +312,7 @@ impl Report<'_> {
             );
         }
         println!("\nbodies (least squares: base parameters, the rest from the model):");
-        let (lsb, pcb) = (bodies(self.ls), self.pc.map(bodies));
+        let (lsb, pcb) = (bodies(id, self.ls), self.pc.map(|e| bodies(id, e)));
         for (k, j) in self.model.joints().iter().enumerate() {
             let g = &lsb[k];
             print!(

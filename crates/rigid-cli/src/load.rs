@@ -2,6 +2,7 @@
 //! loading options every model command shares (`--floating`, `--inertia`).
 
 use clap::Args;
+use rigid::io::robots;
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, Model};
 use std::path::Path;
@@ -75,7 +76,7 @@ pub fn load_model_with_warnings(
         return Ok((model, warnings.iter().map(ToString::to_string).collect()));
     }
     let model = builtin(spec).ok_or_else(|| {
-        let erd = if ROBOTS.iter().any(|(n, _)| *n == spec) {
+        let erd = if robots::robot(spec).is_some() {
             " (it is a robot of example-robot-data, which was not found: `pip install \
              example-robot-data`, or set EXAMPLE_ROBOT_DATA to its robots/ folder)"
         } else {
@@ -85,7 +86,11 @@ pub fn load_model_with_warnings(
             "unknown model \"{spec}\": not a file, and not a built-in model ({}, or {} with \
              example-robot-data){erd}",
             builtin_names().join(", "),
-            ROBOTS.iter().map(|r| r.0).collect::<Vec<_>>().join(", ")
+            robots::ROBOTS
+                .iter()
+                .map(|r| r.name)
+                .collect::<Vec<_>>()
+                .join(", ")
         )
     })?;
     if args.floating {
@@ -96,50 +101,9 @@ pub fn load_model_with_warnings(
     Ok((model, Vec::new()))
 }
 
-/// Robots of example-robot-data known by name: `(name, URDF path under its robots/ folder)`.
-pub const ROBOTS: &[(&str, &str)] = &[
-    ("ur5", "ur_description/urdf/ur5_robot.urdf"),
-    ("ur10", "ur_description/urdf/ur10_robot.urdf"),
-    ("panda", "panda_description/urdf/panda.urdf"),
-    ("talos", "talos_data/robots/talos_reduced.urdf"),
-    ("talos_full", "talos_data/robots/talos_full_v2.urdf"),
-    ("solo12", "solo_description/robots/solo12.urdf"),
-    ("anymal", "anymal_b_simple_description/robots/anymal.urdf"),
-    ("tiago", "tiago_description/robots/tiago.urdf"),
-];
-
-/// example-robot-data's `robots/` folder: `EXAMPLE_ROBOT_DATA`, else `share/example-robot-data/
-/// robots` under `AMENT_PREFIX_PATH` or `CMAKE_PREFIX_PATH`, else under the `cmeel.prefix` of
-/// Python's site-packages (where `pip install example-robot-data` puts it).
-fn example_robot_data() -> Option<std::path::PathBuf> {
-    if let Some(p) = std::env::var_os("EXAMPLE_ROBOT_DATA") {
-        return Some(p.into());
-    }
-    let share = |prefix: &Path| prefix.join("share/example-robot-data/robots");
-    for var in ["AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH"] {
-        if let Some(paths) = std::env::var_os(var) {
-            if let Some(p) = std::env::split_paths(&paths)
-                .map(|p| share(&p))
-                .find(|p| p.is_dir())
-            {
-                return Some(p);
-            }
-        }
-    }
-    let out = std::process::Command::new("python3")
-        .args([
-            "-c",
-            "import sysconfig; print(sysconfig.get_paths()['purelib'])",
-        ])
-        .output()
-        .ok()?;
-    let site = String::from_utf8(out.stdout).ok()?;
-    let p = share(&Path::new(site.trim()).join("cmeel.prefix"));
-    p.is_dir().then_some(p)
-}
-
 /// The URDF file `spec` names: itself if it is a file (or looks like a path), the file of a
-/// robot of example-robot-data known by name ([`ROBOTS`]), else `None` (a built-in model).
+/// robot of example-robot-data known by name ([`robots::ROBOTS`]), else `None` (a built-in
+/// model).
 pub fn urdf_path(spec: &str) -> Option<std::path::PathBuf> {
     if is_file(spec) {
         return Some(spec.into());
@@ -147,7 +111,5 @@ pub fn urdf_path(spec: &str) -> Option<std::path::PathBuf> {
     if builtin(spec).is_some() {
         return None;
     }
-    let rel = ROBOTS.iter().find(|(n, _)| *n == spec)?.1;
-    let p = example_robot_data()?.join(rel);
-    p.is_file().then_some(p)
+    robots::robot(spec)?.urdf()
 }

@@ -1,12 +1,11 @@
 //! The `rigid` command-line tool. Each subcommand lives in its own module; this file only
 //! parses the command line and dispatches. The contract of `mass` and `eval` output is in
-//! `CONVENTIONS.md` ("The command-line contract").
+//! `docs/conventions.md` ("The command-line contract").
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod bench;
-mod bench_batch;
 mod doctor;
 mod eval;
 mod eval_constraints;
@@ -18,6 +17,7 @@ mod mass;
 mod model;
 mod plotting;
 mod simulate;
+mod util;
 mod view;
 
 /// Rigid-body dynamics from the command line.
@@ -74,85 +74,6 @@ fn one_line(text: &str) -> String {
         .map(|l| l.trim_start_matches("error:").trim())
         .collect::<Vec<_>>()
         .join("; ")
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so that an
-/// output is never left half-written.
-///
-/// # Errors
-/// The file cannot be written (the message names it).
-pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), String> {
-    let tmp = temp_path(path);
-    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(format!("cannot write {}: {e}", path.display()));
-    }
-    Ok(())
-}
-
-/// The temporary file next to `path` that an atomic write goes through.
-fn temp_path(path: &std::path::Path) -> std::path::PathBuf {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(std::path::Path::new("."));
-    let name = path
-        .file_name()
-        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    dir.join(format!(".{name}.{}.tmp", std::process::id()))
-}
-
-/// A file written through a temporary file in the same folder, renamed into place by
-/// [`commit`](Self::commit) (removed if dropped before): for outputs written as they are
-/// produced (a CSV row per step).
-pub struct AtomicFile {
-    tmp: std::path::PathBuf,
-    path: std::path::PathBuf,
-    out: Option<std::io::BufWriter<std::fs::File>>,
-}
-
-impl AtomicFile {
-    /// Opens the temporary file for `path`.
-    ///
-    /// # Errors
-    /// The folder cannot be written (the message names the file).
-    pub fn create(path: &std::path::Path) -> Result<Self, String> {
-        let tmp = temp_path(path);
-        let f = std::fs::File::create(&tmp)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        Ok(Self {
-            tmp,
-            path: path.to_path_buf(),
-            out: Some(std::io::BufWriter::new(f)),
-        })
-    }
-
-    /// The buffered writer.
-    pub fn writer(&mut self) -> &mut std::io::BufWriter<std::fs::File> {
-        self.out.as_mut().expect("not committed")
-    }
-
-    /// Flushes and renames the file into place.
-    ///
-    /// # Errors
-    /// The file cannot be written.
-    pub fn commit(mut self) -> Result<(), String> {
-        use std::io::Write;
-        let mut out = self.out.take().expect("committed once");
-        let err = |e: std::io::Error| format!("cannot write {}: {e}", self.path.display());
-        out.flush().map_err(err)?;
-        drop(out);
-        std::fs::rename(&self.tmp, &self.path).map_err(err)
-    }
-}
-
-impl Drop for AtomicFile {
-    fn drop(&mut self) {
-        if self.out.take().is_some() {
-            let _ = std::fs::remove_file(&self.tmp);
-        }
-    }
 }
 
 fn main() -> ExitCode {

@@ -1,4 +1,4 @@
-//! `rigid mass SPEC.toml [--json]`: mass properties of a compound body (CONVENTIONS.md, "The
+//! `rigid mass SPEC.toml [--json]`: mass properties of a compound body (docs/conventions.md, "The
 //! command-line contract").
 
 use clap::Args;

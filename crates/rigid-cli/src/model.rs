@@ -143,22 +143,18 @@ fn body_report(model: &Model) -> Vec<String> {
         .collect()
 }
 
-/// Moving joints whose whole subtree is massless: the mass matrix is singular.
+/// Moving joints whose whole subtree is massless ([`Model::massless_subtrees`]).
 fn massless_subtrees(model: &Model) -> Vec<String> {
     let joints = model.joints();
-    let mut out = Vec::new();
-    for (i, j) in joints.iter().enumerate() {
-        let m: f64 = model.inertias()[i..j.subtree_end]
-            .iter()
-            .map(|g| g.mass())
-            .sum();
-        if m == 0.0 {
-            out.push(format!(
+    model
+        .massless_subtrees()
+        .into_iter()
+        .map(|j| {
+            format!(
                 "warning: joint \"{}\" moves bodies of zero total mass (singular mass matrix, ABA \
                  undefined)",
-                j.name
-            ));
-        }
-    }
-    out
+                joints[j.0].name
+            )
+        })
+        .collect()
 }

@@ -194,5 +194,5 @@ pub fn save(path: &Path, t: &[f64], panels: &[Panel]) -> Result<(), String> {
         .map_err(err)?;
         s.into_bytes()
     };
-    crate::write_atomic(path, &bytes)
+    crate::util::write_atomic(path, &bytes)
 }

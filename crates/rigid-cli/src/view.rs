@@ -39,7 +39,7 @@ pub fn run(args: &ViewArgs) -> Result<(), String> {
     let mut rec = Recording::default();
     let mut data = Data::new(&model);
     rec.record_model(&scene, &model, &mut data, 0.0, &q, true)?;
-    crate::write_atomic(&args.html, scene.html(&rec).as_bytes())?;
+    crate::util::write_atomic(&args.html, scene.html(&rec).as_bytes())?;
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }

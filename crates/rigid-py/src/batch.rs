@@ -186,16 +186,12 @@ pub fn crba_batch<'py>(
                 mb::crba(&core.model, d, q).map(|_| ())
             })
         })?;
-    if core.convert_v {
-        // M_pin[r][c] = M[p(r)][p(c)] in every state (M symmetric: column-major = row-major)
+    if let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) {
+        // M_pin[r][c] = M[p(r)][p(c)] in every state
         let mut m = vec![0.0; nv * nv];
         for block in out.chunks_exact_mut(nv * nv) {
             m.copy_from_slice(block);
-            for r in 0..nv {
-                for c in 0..nv {
-                    block[r * nv + c] = m[core.v_index(r) * nv + core.v_index(c)];
-                }
-            }
+            l.permute_matrix(&m, block);
         }
     }
     numpy::PyArray1::from_vec(py, out).reshape([n, nv, nv])

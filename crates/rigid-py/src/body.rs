@@ -3,15 +3,16 @@
 //! inertia doctor of a URDF file, `doctor`.
 
 use crate::convert::{array1, array2, io_error, rows_array, value_error, vec3};
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use rigid::body::{Integrator, RigidBody, Simulator, State};
+use rigid::body::{Integrator, Setup, Simulator, State};
 use rigid::io::spec::{parse_spec, read_spec, SpecError};
 use rigid::mass::{
     Compound, MassProperties, RotationalInertia, SpatialInertia, DEFAULT_INERTIA_TOLERANCE,
 };
-use rigid::spatial::{so3, Mat3, Transform, Twist, Vec3};
+use rigid::multibody::simulation::step_count;
+use rigid::spatial::{so3, Mat3, Vec3};
 use std::path::{Path, PathBuf};
 
 /// A Python value of a spec as TOML (`at` names it in messages).
@@ -245,7 +246,7 @@ pub fn spatial_inertia<'py>(
 /// Simulates one rigid body, free or on a pivot, and returns its trajectory.
 #[pyfunction]
 #[pyo3(signature = (spec, omega = None, velocity = None, gravity = None, pivot = None,
-                    duration = 10.0, dt = 1e-3, integrator = "variational"))]
+                    duration = 10.0, dt = 1e-3, integrator = "rk4"))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_body<'py>(
     py: Python<'py>,
@@ -268,56 +269,21 @@ pub fn simulate_body<'py>(
     );
     let pivot = pivot.map(|p| vec3(p, F, "pivot")).transpose()?;
     let integrator: Integrator = integrator.parse().map_err(|e| value_error(F, e))?;
-    if !(dt.is_finite() && dt > 0.0 && duration.is_finite() && duration > 0.0) {
-        return Err(value_error(
-            F,
-            format!("dt and duration must be positive and finite, got {dt} and {duration}"),
-        ));
-    }
-    let steps = (duration / dt).round().max(1.0);
-    if steps > 1e8 {
-        return Err(value_error(
-            F,
-            format!("{steps:.0} steps is too many (at most 1e8): raise dt"),
-        ));
-    }
+    let steps = step_count(duration, dt).map_err(|e| value_error(F, e))?;
     let p = properties(F, &compound(F, spec)?)?;
     let err = |e: rigid::body::BodyError| value_error(F, e);
     // integrated in a frame {b} with the spec frame's axes, at the CoM (free) or at the pivot
-    let (body, r) = match pivot {
-        None => (
-            RigidBody::free(SpatialInertia::from_com(
-                p.mass,
-                Vec3::zeros(),
-                p.inertia_com,
-            )),
-            Vec3::zeros(),
-        ),
-        Some(o) => {
-            if v0 != Vec3::zeros() {
-                return Err(PyValueError::new_err(format!(
-                    "{F}: velocity must be zero on a pivot"
-                )));
-            }
-            let r = p.com - o;
-            (
-                RigidBody::pivot(SpatialInertia::from_com(p.mass, r, p.inertia_com)),
-                r,
-            )
-        }
-    };
-    let body = body.and_then(|b| b.with_gravity(g)).map_err(err)?;
-    let x0 = State::new(Transform::identity(), Twist::new(w0, v0));
-    let mut sim = Simulator::new(body, x0, integrator, dt).map_err(err)?;
-    let n = steps as usize + 1;
-    let (mut t, mut energy) = (Vec::with_capacity(n), Vec::with_capacity(n));
-    let (mut pos, mut quat) = (Vec::with_capacity(3 * n), Vec::with_capacity(4 * n));
-    let (mut w, mut v) = (Vec::with_capacity(3 * n), Vec::with_capacity(3 * n));
-    let t_bc = Transform::from_translation(r);
+    let setup = Setup::new(&p, pivot, w0, v0, g).map_err(err)?;
+    let mut sim = Simulator::new(setup.body.clone(), setup.x0, integrator, dt).map_err(err)?;
+    let n = usize::try_from(steps).map_err(|e| value_error(F, e))? + 1;
+    // reserved up front up to a million rows; a longer run grows the arrays as it goes
+    let r = n.min(1 << 20);
+    let (mut t, mut energy) = (Vec::with_capacity(r), Vec::with_capacity(r));
+    let (mut pos, mut quat) = (Vec::with_capacity(3 * r), Vec::with_capacity(4 * r));
+    let (mut w, mut v) = (Vec::with_capacity(3 * r), Vec::with_capacity(3 * r));
     let mut record = |time: f64, x: &State, e: f64| {
         // the frame at the CoM with the spec frame's axes, and its body twist
-        let pose = x.pose * t_bc;
-        let twist = t_bc.inv_act_twist(&x.twist);
+        let (pose, twist) = setup.com_frame(x);
         t.push(time);
         energy.push(e);
         pos.extend_from_slice(pose.translation.as_slice());

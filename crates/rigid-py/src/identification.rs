@@ -19,7 +19,7 @@ use rigid::identification::{
     model_parameters, Estimate, Identification, JointTerms, PhysicalOptions, Regressor, Samples,
     Weighting,
 };
-use rigid::mass::{Consistency, SpatialInertia};
+use rigid::mass::Consistency;
 
 /// `Y(q, v, a)` (`nv × 10·nb`) with `τ = Y π` (`π`: [`dynamic_parameters`]), gravity included.
 #[pyfunction]
@@ -171,7 +171,11 @@ fn read_samples(core: &ModelCore, samples: &Bound<'_, PyAny>, window: f64) -> Py
         .map_err(|e| value_error(func, format!("{}: {e}", path.display())))
 }
 
-fn estimate_dict<'py>(py: Python<'py>, e: &Estimate) -> PyResult<Bound<'py, PyDict>> {
+fn estimate_dict<'py>(
+    py: Python<'py>,
+    id: &Identification,
+    e: &Estimate,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("base", array1(py, e.base.as_slice()))?;
     d.set_item("base_std", array1(py, e.base_std.as_slice()))?;
@@ -180,14 +184,11 @@ fn estimate_dict<'py>(py: Python<'py>, e: &Estimate) -> PyResult<Bound<'py, PyDi
     d.set_item("residual_rms_per_dof", array1(py, &e.residual_rms_per_dof))?;
     d.set_item("relative_residual", e.relative_residual)?;
     d.set_item("condition_number", e.condition_number)?;
-    let consistent: Vec<bool> = e
-        .parameters
-        .as_slice()
-        .chunks_exact(10)
-        .map(|c| {
-            Consistency::of(&SpatialInertia::from_parameters(c.try_into().expect("ten")))
-                .is_consistent()
-        })
+    let consistent: Vec<bool> = id
+        .layout
+        .body_inertias(e.parameters.as_slice())
+        .iter()
+        .map(|g| Consistency::of(g).is_consistent())
         .collect();
     d.set_item("consistent", consistent)?;
     Ok(d)
@@ -252,13 +253,8 @@ pub fn identify<'py>(
             let pc = if physical {
                 let opts = PhysicalOptions {
                     regularization,
-                    mass_bounds: mass_tolerance.map(|f| {
-                        core.model
-                            .inertias()
-                            .iter()
-                            .map(|g| ((1.0 - f) * g.mass(), (1.0 + f) * g.mass()))
-                            .collect()
-                    }),
+                    mass_bounds: mass_tolerance
+                        .map(|f| PhysicalOptions::mass_bounds_within(&core.model, f)),
                     ..PhysicalOptions::default()
                 };
                 Some(id.physically_consistent(&opts)?)
@@ -273,10 +269,10 @@ pub fn identify<'py>(
     d.set_item("parameter_names", id.base.names.clone())?;
     let exprs: Vec<String> = (0..id.base.len()).map(|i| id.base.expression(i)).collect();
     d.set_item("base_parameters", exprs)?;
-    d.set_item("model_values", estimate_dict(py, &prior)?)?;
-    d.set_item("least_squares", estimate_dict(py, &ls)?)?;
+    d.set_item("model_values", estimate_dict(py, &id, &prior)?)?;
+    d.set_item("least_squares", estimate_dict(py, &id, &ls)?)?;
     match &pc {
-        Some(p) => d.set_item("physical", estimate_dict(py, p)?)?,
+        Some(p) => d.set_item("physical", estimate_dict(py, &id, p)?)?,
         None => d.set_item("physical", py.None())?,
     }
     Ok(d)

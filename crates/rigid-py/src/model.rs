@@ -187,10 +187,16 @@ impl ModelCore {
         py: Python<'py>,
         m: &nalgebra::DMatrix<f64>,
     ) -> Bound<'py, PyArray2<f64>> {
-        let n = m.nrows();
-        array2(py, n, m.ncols(), |r, c| {
-            m[(self.v_index(r), self.v_index(c))]
-        })
+        let (rows, cols) = m.shape();
+        match &self.layout {
+            Some(l) if self.convert_v => {
+                // column-major in and out
+                let mut out = nalgebra::DMatrix::zeros(rows, cols);
+                l.permute_matrix(m.as_slice(), out.as_mut_slice());
+                array2(py, rows, cols, |r, c| out[(r, c)])
+            }
+            _ => array2(py, rows, cols, |r, c| m[(r, c)]),
+        }
     }
 
     /// A `6 × nv` Jacobian as a fresh array: rows `(ω, v)` in rigid's layout, `(v, ω)` and

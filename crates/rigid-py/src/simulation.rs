@@ -9,8 +9,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rigid::multibody::simulation::{
-    Control, ControlLaw, Controller, Integrator, JointLimits, SimulationError, SimulationOptions,
-    Simulator, TimeScaling,
+    step_count, Control, ControlKind, ControlLaw, Controller, Integrator, JointLimits,
+    SimulationError, SimulationOptions, Simulator, TimeScaling,
 };
 use rigid::multibody::{Data, Model as RigidModel, MultibodyError};
 use std::path::PathBuf;
@@ -144,17 +144,9 @@ pub fn simulate<'py>(
     let core: &ModelCore = &model.inner;
     let m = &core.model;
     let err = |e: SimulationError| value_error(func, e);
-    if !(dt.is_finite() && dt > 0.0 && duration.is_finite() && duration > 0.0) {
-        return Err(PyValueError::new_err(format!(
-            "simulate: dt and duration must be positive and finite, got dt = {dt}, duration = \
-             {duration}"
-        )));
-    }
-    let steps = (duration / dt).round().max(1.0);
-    if steps > 1e9 || every == 0 {
-        return Err(PyValueError::new_err(
-            "simulate: at most 1e9 steps, and every >= 1",
-        ));
+    let steps = step_count(duration, dt).map_err(err)?;
+    if every == 0 {
+        return Err(PyValueError::new_err("simulate: every must be at least 1"));
     }
     let q0 = match q0 {
         Some(x) => q_arg(core, func, "q0", x)?,
@@ -167,19 +159,8 @@ pub fn simulate<'py>(
     let target = target.map(|x| q_arg(core, func, "target", x)).transpose()?;
     let opts = SimulationOptions {
         dt,
-        integrator: integrator
-            .parse::<Integrator>()
-            .map_err(|e| value_error(func, e))?,
-        limits: match limits {
-            "spring" => JointLimits::default(),
-            "ignored" => JointLimits::Ignored,
-            other => {
-                return Err(value_error(
-                    func,
-                    format!("limits {other:?}: expected \"spring\" or \"ignored\""),
-                ))
-            }
-        },
+        integrator: integrator.parse::<Integrator>().map_err(err)?,
+        limits: limits.parse::<JointLimits>().map_err(err)?,
         joint_dynamics,
         ..SimulationOptions::default()
     };
@@ -197,7 +178,7 @@ pub fn simulate<'py>(
                 error: None,
             };
             let mut sim = Simulator::new(m, &q0, &v0, opts, law).map_err(err)?;
-            let result = run(&mut sim, steps as u64, every, &mut rec);
+            let result = run(&mut sim, steps, every, &mut rec);
             if let Some(e) = sim.control_mut().error.take() {
                 return Err(e);
             }
@@ -205,12 +186,13 @@ pub fn simulate<'py>(
         }
         None => {
             let scaling: TimeScaling = profile.parse().map_err(err)?;
+            let kind: ControlKind = controller.parse().map_err(err)?;
             let time = move_time.unwrap_or(0.5 * duration);
-            let law = ControlLaw::named(m, controller, &q0, target.as_deref(), time, scaling)
-                .map_err(err)?;
+            let law =
+                ControlLaw::builtin(m, kind, &q0, target.as_deref(), time, scaling).map_err(err)?;
             let ctrl = Controller::new(m, law).map_err(err)?;
             let mut sim = Simulator::new(m, &q0, &v0, opts, ctrl).map_err(err)?;
-            py.detach(|| run(&mut sim, steps as u64, every, &mut rec))
+            py.detach(|| run(&mut sim, steps, every, &mut rec))
                 .map_err(err)?;
         }
     }

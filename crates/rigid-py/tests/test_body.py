@@ -11,7 +11,7 @@ import rigid
 from conftest import ROOT, cli, every_urdf
 
 COMPOUND = os.path.join(ROOT, "examples", "compound.toml")
-# CONVENTIONS.md, "The command-line contract": the keys of `rigid mass --json`
+# docs/conventions.md, "The command-line contract": the keys of `rigid mass --json`
 MASS_KEYS = {"mass", "com", "inertia_com", "inertia_origin", "principal_moments",
              "principal_axes", "spatial_inertia_origin"}
 

@@ -10,7 +10,7 @@
 //!
 //! `cargo bench -p rigid --bench explicit`. The generated files are committed in
 //! `benches/explicit/` (the test `explicit_bench_files_are_up_to_date` regenerates them and
-//! says how). The UR5 comes from example-robot-data (`scripts/test.sh` installs it).
+//! says how). The UR5 comes from example-robot-data (its copy under `tests/fixtures/robots/`).
 //!
 //! With `EXPLICIT_JSON=1` the bench skips criterion and times like `rigid bench` (the median of
 //! 21 passes over the 1000 states, the algorithms taking turns pass by pass) and prints one JSON
@@ -25,7 +25,7 @@ use std::hint::black_box;
 
 #[path = "explicit/puma560.rs"]
 mod puma560;
-#[path = "../tests/explicit_support/mod.rs"]
+#[path = "../tests/it/explicit_support/mod.rs"]
 mod support;
 #[path = "explicit/ur5.rs"]
 mod ur5;

@@ -4,8 +4,8 @@
 //!
 //! `cargo bench -p rigid --bench multibody [-- FILTER]`. Models: the built-in `puma560` and the
 //! robots of `example-robot-data` (UR5, Panda; Solo-12, ANYmal and Talos with a free-flyer
-//! root), found under `$EXAMPLE_ROBOT_DATA` (the `robots/` folder) or through `python3`'s
-//! `cmeel.prefix`; a robot whose URDF is not found is skipped with a note on stderr.
+//! root), found by [`rigid::io::robots::example_robot_data`]; a robot whose URDF is not found
+//! is skipped with a note on stderr.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use rigid::multibody::*;
@@ -34,45 +34,17 @@ fn models() -> Vec<(String, Model)> {
 }
 
 mod robots {
-    //! The example-robot-data URDFs: `$EXAMPLE_ROBOT_DATA` (its `robots/` folder), or the
-    //! `cmeel.prefix/share/example-robot-data/robots` folder of `python3`'s site-packages.
+    //! The example-robot-data URDFs ([`rigid::io::robots`]).
+    use rigid::io::robots::{example_robot_data, robot};
     use rigid::io::urdf::load_urdf;
     use rigid::multibody::Model;
-    use std::path::PathBuf;
 
-    /// `(name, file under robots/, free-flyer root)`.
-    const ROBOTS: [(&str, &str, bool); 5] = [
-        ("ur5", "ur_description/urdf/ur5_robot.urdf", false),
-        ("panda", "panda_description/urdf/panda.urdf", false),
-        ("solo12", "solo_description/robots/solo12.urdf", true),
-        (
-            "anymal",
-            "anymal_b_simple_description/robots/anymal.urdf",
-            true,
-        ),
-        ("talos", "talos_data/robots/talos_reduced.urdf", true),
-    ];
-
-    fn robots_dir() -> Option<PathBuf> {
-        if let Some(d) = std::env::var_os("EXAMPLE_ROBOT_DATA") {
-            return Some(d.into());
-        }
-        let out = std::process::Command::new("python3")
-            .args([
-                "-c",
-                "import site, sysconfig; print('\\n'.join(site.getsitepackages() + [sysconfig.get_paths()['purelib']]))",
-            ])
-            .output()
-            .ok()?;
-        String::from_utf8_lossy(&out.stdout)
-            .lines()
-            .map(|sp| PathBuf::from(sp).join("cmeel.prefix/share/example-robot-data/robots"))
-            .find(|p| p.is_dir())
-    }
+    /// The robots timed (Solo-12, ANYmal and Talos with a free-flyer root).
+    const ROBOTS: [&str; 5] = ["ur5", "panda", "solo12", "anymal", "talos"];
 
     /// `(name, model)` of every robot found; notes on stderr for the others.
     pub fn load_all() -> Vec<(String, Model)> {
-        let Some(dir) = robots_dir() else {
+        let Some(dir) = example_robot_data() else {
             eprintln!(
                 "note: example-robot-data not found (set EXAMPLE_ROBOT_DATA): robots skipped"
             );
@@ -80,15 +52,14 @@ mod robots {
         };
         ROBOTS
             .iter()
-            .filter_map(
-                |&(name, file, floating)| match load_urdf(dir.join(file), floating) {
-                    Ok(m) => Some((name.to_string(), m)),
-                    Err(e) => {
-                        eprintln!("note: {name} skipped: {e}");
-                        None
-                    }
-                },
-            )
+            .filter_map(|&name| robot(name))
+            .filter_map(|r| match load_urdf(dir.join(r.file), r.floating) {
+                Ok(m) => Some((r.name.to_string(), m)),
+                Err(e) => {
+                    eprintln!("note: {} skipped: {e}", r.name);
+                    None
+                }
+            })
             .collect()
     }
 }

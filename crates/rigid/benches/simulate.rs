@@ -48,7 +48,7 @@ fn steps_per_second(c: &mut Criterion) {
     let mut group = c.benchmark_group("simulate");
     group.throughput(Throughput::Elements(STEPS));
     for (name, body, x0) in bodies() {
-        for integrator in [Integrator::Rk4, Integrator::Variational] {
+        for integrator in [Integrator::Rk4, Integrator::Lgvi, Integrator::Variational] {
             group.bench_with_input(BenchmarkId::new(integrator.name(), name), &x0, |b, x0| {
                 b.iter(|| {
                     let mut sim = Simulator::new(body.clone(), *x0, integrator, 1e-3).unwrap();

@@ -3,9 +3,8 @@
 //! Run with `cargo run --release -p rigid --example multibody_timing [MODEL [ALGORITHM]]`;
 //! `bench/pinocchio/ur5_dh.cpp` times Pinocchio on the same "ur5" model.
 //!
-//! Measured 2026-11-21 on the shared 2-vCPU dev machine, alternating runs, ns/call rigid vs
-//! Pinocchio 4.1 (PyPI wheel, -O3): fk 420 vs 590, jacobians 280 vs 360, rnea 580 vs 930,
-//! crba 555 vs 500, aba 1125 vs 1970.
+//! A quick local check, not the measurement of record: the timings against Pinocchio, their
+//! machine and commit, and how to re-run them are in BENCHMARKS.md.
 #![allow(non_snake_case)]
 
 use rigid::mass::{RotationalInertia, SpatialInertia};

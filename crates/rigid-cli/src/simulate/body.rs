@@ -1,9 +1,8 @@
 //! `rigid simulate SPEC.toml`: one rigid body, free or on a pivot, integrated on SE(3).
 
 use super::{plot, SimulateArgs};
-use rigid::body::{BodyError, Integrator, RigidBody, Simulator, State};
-use rigid::mass::{RotationalInertia, SpatialInertia};
-use rigid::spatial::{so3, Transform, Twist, Vec3};
+use rigid::body::{BodyError, Setup, Simulator, State};
+use rigid::spatial::{so3, Transform};
 use rigid_replay::{body_box, Recording};
 use std::io::Write;
 use std::path::Path;
@@ -14,49 +13,22 @@ pub const CSV_HEADER: &str = "t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz";
 
 use super::PLOT_POINTS;
 
-/// Mass, CoM (spec frame) and inertia about the CoM (spec-frame axes) of the body in `path`.
-fn load_body(path: &Path) -> Result<(f64, Vec3, RotationalInertia), String> {
-    let p = crate::mass::load_mass_properties(path)?;
-    Ok((p.mass, p.com, p.inertia_com))
+/// The body of the spec and its initial state ([`Setup`]): in a frame {b} at the CoM (free) or
+/// at the pivot, with the axes of the spec frame.
+fn setup(args: &SimulateArgs) -> Result<Setup, String> {
+    let props = crate::mass::load_mass_properties(Path::new(&args.model))?;
+    let gravity = args.gravity.unwrap_or_default();
+    Setup::new(&props, args.pivot, args.omega, args.velocity, gravity).map_err(|e| match e {
+        BodyError::PivotMoves { .. } => {
+            "--velocity cannot be used with --pivot: the pivot point is fixed".into()
+        }
+        e => e.to_string(),
+    })
 }
 
-/// The body and its initial state, in the frame {b} the simulator integrates: at the CoM (free)
-/// or at the pivot, with the axes of the spec frame. Also returns `r`: the CoM in {b}.
-fn setup(args: &SimulateArgs) -> Result<(RigidBody, State, Vec3), String> {
-    let (mass, com, inertia_com) = load_body(Path::new(&args.model))?;
-    let err = |e: BodyError| e.to_string();
-    let (body, r, v_b) = match args.pivot {
-        None => {
-            let g = SpatialInertia::from_com(mass, Vec3::zeros(), inertia_com);
-            (
-                RigidBody::free(g).map_err(err)?,
-                Vec3::zeros(),
-                args.velocity,
-            )
-        }
-        Some(p) => {
-            if args.velocity != Vec3::zeros() {
-                return Err(
-                    "--velocity cannot be used with --pivot: the pivot point is fixed".into(),
-                );
-            }
-            let r = com - p;
-            let g = SpatialInertia::from_com(mass, r, inertia_com);
-            (RigidBody::pivot(g).map_err(err)?, r, Vec3::zeros())
-        }
-    };
-    let body = body
-        .with_gravity(args.gravity.unwrap_or_default())
-        .map_err(err)?;
-    let x0 = State::new(Transform::identity(), Twist::new(args.omega, v_b));
-    Ok((body, x0, r))
-}
-
-/// One CSV row: the CoM frame `T_sc = T_sb (I, r)` and its body twist `V_c = [Ad_{T_cb}] V_b`.
-fn write_row(out: &mut impl Write, t: f64, x: &State, r: &Vec3) -> std::io::Result<()> {
-    let t_bc = Transform::from_translation(*r);
-    let pose = x.pose * t_bc;
-    let v = t_bc.inv_act_twist(&x.twist);
+/// One CSV row: the CoM frame's pose and body twist ([`Setup::com_frame`]).
+fn write_row(out: &mut impl Write, t: f64, x: &State, s: &Setup) -> std::io::Result<()> {
+    let (pose, v) = s.com_frame(x);
     let p = pose.translation;
     let [qx, qy, qz, qw] = so3::to_quaternion(&pose.rotation);
     writeln!(
@@ -69,21 +41,19 @@ fn write_row(out: &mut impl Write, t: f64, x: &State, r: &Vec3) -> std::io::Resu
 /// Runs `rigid simulate`.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let steps = super::step_count(args)?;
-    let integrator: Integrator = args
-        .integrator
-        .as_deref()
-        .unwrap_or("variational")
-        .parse()?;
-    let (body, x0, r) = setup(args)?;
+    let integrator = args.integrator;
+    let setup = setup(args)?;
+    let (x0, body) = (setup.x0, &setup.body);
     let (mass, inertia) = (body.inertia().mass(), body.inertia().inertia_com());
-    let mut sim = Simulator::new(body, x0, integrator, args.dt).map_err(|e| e.to_string())?;
+    let mut sim =
+        Simulator::new(body.clone(), x0, integrator, args.dt).map_err(|e| e.to_string())?;
 
     let mut csv = match &args.csv {
         Some(path) => {
-            let mut f = crate::AtomicFile::create(path)?;
+            let mut f = crate::util::AtomicFile::create(path)?;
             let w = f.writer();
             writeln!(w, "{CSV_HEADER}").map_err(|e| e.to_string())?;
-            write_row(w, 0.0, &x0, &r).map_err(|e| e.to_string())?;
+            write_row(w, 0.0, &x0, &setup).map_err(|e| e.to_string())?;
             Some(f)
         }
         None => None,
@@ -91,7 +61,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     // the replay: the inertia-equivalent box at the CoM
     let mut scene = body_box(mass, &inertia);
     let mut rec = Recording::default();
-    let com_pose = |x: &State| x.pose * Transform::from_translation(r);
+    let com_pose = |x: &State| -> Transform { setup.com_frame(x).0 };
     if args.html.is_some() {
         let p = com_pose(&x0);
         rec.push(0.0, [p], p.translation);
@@ -110,7 +80,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             break;
         }
         if let Some(f) = csv.as_mut() {
-            write_row(f.writer(), sim.time(), sim.state(), &r).map_err(|e| e.to_string())?;
+            write_row(f.writer(), sim.time(), sim.state(), &setup).map_err(|e| e.to_string())?;
         }
         if args.html.is_some() && (rec.due(sim.time()) || k == steps) {
             let p = com_pose(sim.state());
@@ -141,7 +111,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             }
         );
         scene.info = format!("{integrator}, dt = {} s, {} s", args.dt, args.duration);
-        crate::write_atomic(path, scene.html(&rec).as_bytes())?;
+        crate::util::write_atomic(path, scene.html(&rec).as_bytes())?;
     }
     if let Some(e) = failure {
         return Err(e);

@@ -4,8 +4,7 @@
 use super::{robot_plot::Samples, Numbers, SimulateArgs, PLOT_POINTS};
 use crate::load::{load_model, urdf_path};
 use rigid::multibody::simulation::{
-    ControlLaw, Controller, Integrator, JointLimits, SimulationError, SimulationOptions, Simulator,
-    TimeScaling,
+    ControlLaw, Controller, JointLimits, SimulationError, SimulationOptions, Simulator,
 };
 use rigid::multibody::{column_names, neutral, Data, Model};
 use rigid_replay::{robot_nodes, Recording};
@@ -58,16 +57,10 @@ fn joint_list(model: &Model) -> String {
 }
 
 fn options(args: &SimulateArgs) -> Result<SimulationOptions, String> {
-    let integrator: Integrator = args.integrator.as_deref().unwrap_or("rk4").parse()?;
-    let limits = match args.limits.as_str() {
-        "spring" => JointLimits::default(),
-        "ignored" => JointLimits::Ignored,
-        other => return Err(format!("--limits {other:?}: expected spring or ignored")),
-    };
     Ok(SimulationOptions {
         dt: args.dt,
-        integrator,
-        limits,
+        integrator: args.integrator,
+        limits: args.limits,
         joint_dynamics: !args.no_joint_dynamics,
         ..SimulationOptions::default()
     })
@@ -78,27 +71,18 @@ fn controller(args: &SimulateArgs, model: &Model, q0: &[f64]) -> Result<Controll
         Some(_) => Some(configuration(model, "target", &args.target)?),
         None => None,
     };
-    let scaling: TimeScaling = args
-        .profile
-        .parse()
-        .map_err(|e| format!("--profile: {e}"))?;
     let time = args.move_time.unwrap_or(0.5 * args.duration);
-    let law = ControlLaw::named(
+    let law = ControlLaw::builtin(
         model,
-        &args.controller,
+        args.controller,
         q0,
         target.as_deref(),
         time,
-        scaling,
+        args.profile,
     )
     .map_err(|e| match e {
-        SimulationError::Invalid(m) if m.contains("needs a target") => format!(
-            "--controller {} needs --target (nq = {} numbers)",
-            args.controller,
-            model.nq()
-        ),
-        SimulationError::Invalid(m) if m.starts_with("unknown controller") => {
-            format!("--controller: {m}")
+        SimulationError::MissingTarget { controller, nq } => {
+            format!("--controller {controller} needs --target (nq = {nq} numbers)")
         }
         e => format!("--target: {e}"),
     })?;
@@ -130,7 +114,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let (nq, nv) = (model.nq(), model.nv());
 
     let mut csv = match &args.csv {
-        Some(path) => Some(crate::AtomicFile::create(path)?),
+        Some(path) => Some(crate::util::AtomicFile::create(path)?),
         None => None,
     };
     let tau_row = |sim: &mut Simulator| -> Result<Vec<f64>, String> {
@@ -223,7 +207,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         if let Some(e) = &failure {
             scene.warnings.push(format!("stopped: {e}"));
         }
-        crate::write_atomic(path, scene.html(&rec).as_bytes())?;
+        crate::util::write_atomic(path, scene.html(&rec).as_bytes())?;
         for w in &scene.warnings {
             eprintln!("warning: replay: {w}");
         }

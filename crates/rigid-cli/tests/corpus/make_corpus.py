@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the malformed-input corpus of crates/rigid-cli/tests/corpus.rs (run from anywhere:
+"""Writes the malformed-input corpus of crates/rigid-cli/tests/it/corpus.rs (run from anywhere:
 `python3 make_corpus.py [OUT_DIR]`; the files are committed, this script says how each was
 made, and the test checks that it still writes exactly them).
 

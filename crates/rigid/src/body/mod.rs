@@ -1,6 +1,6 @@
 //! One rigid body in motion: Newton-Euler equations in both directions, Euler's equations,
-//! a simulator on SE(3) (free body or body on a pivot) with a Lie-group RK4 and a Lie-group
-//! variational integrator, and Lagrange's equations from energies by automatic differentiation.
+//! a simulator on SE(3) (free body or body on a pivot), and Lagrange's equations from energies by
+//! automatic differentiation.
 //!
 //! | notes | code |
 //! | --- | --- |
@@ -9,27 +9,39 @@
 //! | `m = I ω̇ + ω × I ω` about the CoM or a fixed point (002) | [`euler_moment`], [`euler_acceleration`] |
 //! | gravity at the CoM, force at a point | [`gravity_wrench`], [`world_force_at_point`] |
 //! | `Ṫ = T [V_b]`, `V̇_b = f(t, T, V_b)` | [`RigidBody`], [`Simulator`], [`Integrator`] |
+//! | a `rigid mass` body set up for simulation | [`Setup`] |
 //! | `M(q) q̈ + c(q, q̇) + g(q) = τ` from `K`, `U` | [`lagrange`] |
+//!
+//! The simulator speaks the multibody simulator's vocabulary ([`Integrator`] is
+//! [`multibody::simulation::Integrator`](crate::multibody::simulation::Integrator), with the same
+//! default, `rk4`): a free body is the one-joint case of a multibody model (a free-flyer), a body
+//! on a pivot too (a spherical joint), and `semi-implicit`, `rk4` and `variational` step that
+//! model with the multibody code. The Lie-group variational integrator of Lee, Leok &
+//! McClamroch ([`Integrator::Lgvi`]) is the one stepper of its own here.
 //!
 //! Sources: Lynch & Park, *Modern Robotics*, §8.2 (twist-wrench form); Munthe-Kaas, "High order
 //! Runge-Kutta methods on manifolds" (1999) for RKMK; Lee, Leok & McClamroch, "Lie group
-//! variational integrators for the full body problem" (CMAME 2007) for the variational scheme.
+//! variational integrators for the full body problem" (CMAME 2007) for the LGVI.
 
-mod integrators;
 pub mod lagrange;
+mod lgvi;
 mod newton_euler;
 mod rigid_body;
+mod setup;
 mod simulate;
 
-pub use integrators::Integrator;
+pub use crate::multibody::simulation::Integrator;
 pub use newton_euler::{
     euler_acceleration, euler_moment, forward_dynamics, gravity_wrench, inverse_dynamics,
     world_force_at_point, InverseInertia, InverseRotationalInertia,
 };
 pub use rigid_body::{no_wrench, RigidBody, State, Support, WrenchFn};
+pub use setup::Setup;
 pub use simulate::{Simulator, Summary};
 
 use crate::error::InertiaError;
+use crate::multibody::simulation::SimulationError;
+use crate::multibody::ModelError;
 use thiserror::Error;
 
 /// What can go wrong when setting up or stepping a body.
@@ -89,4 +101,10 @@ pub enum BodyError {
     /// A mass matrix `M(q)` that is not positive definite (a coordinate singularity).
     #[error("mass matrix M(q) is not positive definite (coordinate singularity?)")]
     SingularMassMatrix,
+    /// The body's one-joint model could not be built (a body that is not physical).
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// Another error of the multibody simulator that steps the body's one-joint model.
+    #[error(transparent)]
+    Simulation(SimulationError),
 }

@@ -177,12 +177,19 @@ impl<W: WrenchFn> RigidBody<W> {
         (self.point, &self.j, &self.inv_j)
     }
 
+    /// The applied wrench `W(t, state)` alone (in {b}, about the origin of {b}), without gravity.
+    #[must_use]
+    #[inline]
+    pub(crate) fn applied_wrench(&self, t: f64, x: &State) -> Wrench {
+        (self.wrench)(t, x)
+    }
+
     /// The total wrench `F_b` on the body in {b}: applied plus gravity (without the reaction of
     /// a pivot).
     #[must_use]
     #[inline]
     pub fn wrench(&self, t: f64, x: &State) -> Wrench {
-        (self.wrench)(t, x) + gravity_wrench(&self.inertia, &x.pose, &self.gravity)
+        self.applied_wrench(t, x) + gravity_wrench(&self.inertia, &x.pose, &self.gravity)
     }
 
     /// The body acceleration `V̇_b`: forward Newton-Euler for a free body, Euler's equations

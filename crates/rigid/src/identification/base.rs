@@ -3,7 +3,7 @@
 //! the combinations of them that joint torques determine.
 
 use super::regressor::Regressor;
-use crate::mass::PARAMETER_NAMES;
+use crate::mass::{SpatialInertia, PARAMETER_NAMES};
 use crate::multibody::{random_configuration, Model, MultibodyError, Rng};
 use nalgebra::{DMatrix, DVector};
 use std::fmt;
@@ -63,6 +63,28 @@ impl ParameterLayout {
     #[must_use]
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+
+    /// The spatial inertia of each body from the parameters `pi` in this layout: its first
+    /// `10 n` entries, ten per body (the joint terms after them are not bodies).
+    ///
+    /// ```
+    /// use rigid::identification::{model_parameters, JointTerms, ParameterLayout};
+    /// let model = rigid::multibody::builtin("puma560").unwrap();
+    /// let layout = ParameterLayout::new(&model, JointTerms { friction: true, rotor_inertia: true });
+    /// let mut pi = model_parameters(&model).as_slice().to_vec();
+    /// pi.resize(layout.len(), 0.0); // 60 inertial parameters, then 3 x 6 joint terms
+    /// assert_eq!(layout.body_inertias(&pi), model.inertias());
+    /// ```
+    ///
+    /// # Panics
+    /// If `pi` has fewer than `10 n` entries.
+    #[must_use]
+    pub fn body_inertias(&self, pi: &[f64]) -> Vec<SpatialInertia> {
+        pi[..10 * self.bodies]
+            .chunks_exact(10)
+            .map(|p| SpatialInertia::from_parameters(p.try_into().expect("chunks of ten")))
+            .collect()
     }
 
     /// Index of the first friction parameter (`f_v` of the first dof; `f_c` follows it).

@@ -175,6 +175,20 @@ impl PinocchioLayout {
         }
     }
 
+    /// `M_pin[(r, c)] = M[(v_index(r), v_index(c))]`: an `nv x nv` matrix of velocity space (`M`,
+    /// `M⁻¹`, `C`, the derivatives of `τ` or `q̈`) with its rows and columns permuted, stored in
+    /// `m` row-major or column-major (`out` in the same order). Also rigid's from Pinocchio's:
+    /// the map is its own inverse.
+    ///
+    /// # Panics
+    /// If `m` or `out` is shorter than `nv²`.
+    pub fn permute_matrix(&self, m: &[f64], out: &mut [f64]) {
+        let n = self.perm.len();
+        for (row, &p) in out.chunks_exact_mut(n.max(1)).take(n).zip(&self.perm) {
+            self.permute_v(&m[p * n..(p + 1) * n], row);
+        }
+    }
+
     /// Pinocchio's configuration of rigid's `q`: `(cos θ, sin θ)` for each angle of a continuous
     /// or planar joint, other coordinates copied.
     ///
@@ -336,6 +350,29 @@ mod tests {
         let root = &model.joints()[0];
         assert_eq!(root.kind, crate::multibody::JointType::FreeFlyer);
         assert_eq!(&p[..6], &[3.0, 4.0, 5.0, 0.0, 1.0, 2.0]);
+    }
+
+    #[test]
+    fn matrix_map_permutes_rows_and_columns_as_the_vectors() {
+        let model = all_joints();
+        let l = PinocchioLayout::new(&model);
+        let n = model.nv();
+        // M_pin x_pin = (M x)_pin for every x: the matrix map is the vector map on both sides
+        let m: Vec<f64> = (0..n * n).map(|k| (k * 7 % 13) as f64 - 6.0).collect();
+        let x: Vec<f64> = (0..n).map(|k| k as f64 + 0.5).collect();
+        let mul = |m: &[f64], x: &[f64]| -> Vec<f64> {
+            m.chunks_exact(n)
+                .map(|row| row.iter().zip(x).map(|(a, b)| a * b).sum())
+                .collect()
+        };
+        let (mut m_pin, mut x_pin, mut y_pin) = (vec![0.0; n * n], vec![0.0; n], vec![0.0; n]);
+        l.permute_matrix(&m, &mut m_pin);
+        l.permute_v(&x, &mut x_pin);
+        l.permute_v(&mul(&m, &x), &mut y_pin);
+        assert_eq!(mul(&m_pin, &x_pin), y_pin);
+        let mut back = vec![0.0; n * n];
+        l.permute_matrix(&m_pin, &mut back);
+        assert_eq!(back, m);
     }
 
     #[test]

@@ -1,4 +1,4 @@
-//! The body spec of `rigid mass SPEC.toml` (see CONVENTIONS.md, "The command-line contract"):
+//! The body spec of `rigid mass SPEC.toml` (see docs/conventions.md, "The command-line contract"):
 //! a list of `[[part]]` tables, read into a [`Compound`].
 //!
 //! ```toml

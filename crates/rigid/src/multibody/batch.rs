@@ -27,8 +27,9 @@ use crate::error::DimensionError;
 use nalgebra::DVector;
 use rayon::prelude::*;
 
-/// `rnea` and `aba` share one shape: `(q, v, x) ↦ nv-vector`.
-type QvxFn = for<'a> fn(
+/// `rnea` and `aba` share one shape: `(q, v, x) ↦ nv-vector` (also used by
+/// [`crate::timing`]'s loops of single calls).
+pub(crate) type QvxFn = for<'a> fn(
     &Model,
     &'a mut Data,
     &[f64],

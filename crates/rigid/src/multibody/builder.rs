@@ -53,7 +53,7 @@ pub struct ModelBuilder {
     stack: Vec<usize>,
 }
 
-fn check_placement(name: &str, t: &Transform) -> Result<(), ModelError> {
+pub(crate) fn check_placement(name: &str, t: &Transform) -> Result<(), ModelError> {
     let finite = t
         .rotation
         .iter()

@@ -2,7 +2,7 @@
 //! the classic recursive algorithms (forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`,
 //! energies, Coriolis matrix).
 //!
-//! Conventions (see `CONVENTIONS.md`): joints are numbered depth-first from the root; twists and
+//! Conventions (see docs/conventions.md): joints are numbered depth-first from the root; twists and
 //! wrenches are angular first; every body's quantities are expressed in its own joint frame
 //! (the joint frame moved by the joint, "local" coordinates, Featherstone's body coordinates);
 //! [`Data::placements`] holds the world pose `oMi` of each moved joint frame. Free-flyer
@@ -55,6 +55,7 @@ mod textbook;
 mod model;
 pub(crate) mod plan;
 pub mod reference;
+mod serialize;
 pub mod simulation;
 
 pub use algorithms::*;
@@ -155,6 +156,12 @@ pub enum ModelError {
     /// Non-finite gravity.
     #[error("gravity must be finite")]
     BadGravity,
+    /// A model file (the serialised form) that does not describe a valid model.
+    #[error("model file: {what}")]
+    InvalidFile {
+        /// What is wrong.
+        what: String,
+    },
     /// A builder input that does not describe a supported joint (e.g. a helical screw axis).
     #[error("joint {index}: {reason}")]
     Unsupported {

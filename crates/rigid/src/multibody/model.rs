@@ -8,7 +8,10 @@ use crate::mass::SpatialInertia;
 use crate::spatial::{Transform, Twist, Vec3};
 
 /// The depth-first index of a moving joint (0-based); it also names the body the joint moves.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(transparent)]
 pub struct JointId(pub usize);
 
 /// The index of a named frame in [`Model::frames`].
@@ -16,7 +19,8 @@ pub struct JointId(pub usize);
 pub struct FrameId(pub usize);
 
 /// One moving joint and the body it carries.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Joint {
     /// The joint's name.
     pub name: String,
@@ -74,7 +78,8 @@ impl Joint {
 /// What a named frame stands for. Frame names are unique within a kind, and joint names among the
 /// joints; a URDF link and a joint may share a name (links and joints are two namespaces in URDF,
 /// as in Pinocchio, whose frames carry their type too).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum FrameKind {
     /// A body's own frame (a URDF link): the link moved by a joint, or a link welded to its parent
     /// by a fixed joint (its inertia merged into the parent's).
@@ -117,7 +122,8 @@ pub enum FrameLookupError {
 }
 
 /// A named frame fixed in a moving body (or in the world).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Frame {
     /// The frame's name.
     pub name: String,
@@ -391,6 +397,37 @@ impl Model {
             .iter()
             .enumerate()
             .filter_map(|(i, g)| g.validate(1e-6).err().map(|e| (JointId(i), e)))
+            .collect()
+    }
+
+    /// The joints whose whole subtree is massless (the body they move and every body below it
+    /// weigh nothing): their rows of the mass matrix are zero, so `M` is singular and ABA is
+    /// undefined. The model-level twin of the URDF check
+    /// [`InertiaIssueKind::ZeroMassMovingLink`](crate::io::urdf::InertiaIssueKind), for models
+    /// not read from a URDF file.
+    ///
+    /// ```
+    /// use rigid::mass::SpatialInertia;
+    /// use rigid::multibody::{JointId, JointType, ModelBuilder};
+    /// use rigid::spatial::{Transform, Vec3};
+    /// let mut b = ModelBuilder::new("arm");
+    /// let g = SpatialInertia::from_com(1.0, Vec3::zeros(), rigid::mass::RotationalInertia::diagonal(1.0, 1.0, 1.0));
+    /// let z = JointType::Revolute { axis: Vec3::z() };
+    /// let shoulder = b.add_joint(None, "shoulder", z, Transform::identity(), g)?;
+    /// b.add_joint(Some(shoulder), "wrist", z, Transform::identity(), SpatialInertia::zero())?;
+    /// let model = b.build()?;
+    /// assert_eq!(model.massless_subtrees(), vec![JointId(1)]);
+    /// # Ok::<(), rigid::multibody::ModelError>(())
+    /// ```
+    #[must_use]
+    pub fn massless_subtrees(&self) -> Vec<JointId> {
+        (0..self.joints.len())
+            .filter(|&i| {
+                self.inertias[i..self.joints[i].subtree_end]
+                    .iter()
+                    .all(|g| g.mass() == 0.0)
+            })
+            .map(JointId)
             .collect()
     }
 

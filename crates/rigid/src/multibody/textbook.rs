@@ -62,7 +62,7 @@ fn tx(a: f64) -> Transform {
 /// A serial chain from a DH table; joints are named `joint1..jointN`, and a frame `link{i}` is
 /// kept for each DH frame {i} (the last one is the flange).
 ///
-/// Joint frames (the model's placements) follow `CONVENTIONS.md`:
+/// Joint frames (the model's placements) follow `docs/conventions.md`:
 /// - standard: joint i's frame is frame {i-1} rotated by `Rz(q_i + offset)` (revolute) or moved
 ///   by `Rz(θ_i) Tz(d_i + q_i)` (prismatic); link i's frame is then
 ///   `{i} = J_i Tz(d_i) Tx(a_i) Rx(α_i)` (revolute) or `J_i Tx(a_i) Rx(α_i)` (prismatic);

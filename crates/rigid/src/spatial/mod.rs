@@ -19,6 +19,7 @@ pub mod so3;
 mod transform;
 pub(crate) mod trig;
 mod twist;
+pub(crate) mod wire;
 mod wrench;
 
 pub use transform::Transform;

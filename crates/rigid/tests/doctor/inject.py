@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
-"""Fault-injection corpus for `rigid doctor` (crates/rigid/tests/doctor.rs).
+"""Fault-injection corpus for `rigid doctor` (crates/rigid/tests/it/doctor.rs).
 
 Usage: python3 inject.py [--per-code N] [--seed S] > corpus.json
+
+The committed corpus.json is this script's output with the defaults; the live run of the tests
+(RIGID_CROSSCHECK=1) runs it again and compares, the numbers to 1e-9 relative (numpy may round
+differently on another machine).
 
 Takes the real URDF files of the robot-description packages of scripts/requirements-test.txt
 (example-robot-data, icub-models, ...), picks links and injects into each one fault of the

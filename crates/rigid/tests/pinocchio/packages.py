@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Pinocchio reference values for every URDF file of whole robot-description packages
-(crates/rigid/tests/pinocchio_packages.rs).
+(crates/rigid/tests/it/pinocchio_packages.rs).
 
 Usage: python3 packages.py PACKAGE [--states N] [--seed S]
        python3 packages.py list
@@ -16,6 +16,9 @@ One JSON object per line is printed:
   seed), q, v, a, tau and Pinocchio's rnea, crba (symmetrised) and aba, in rigid's conventions
   (see reference.py: angular-first free-flyer blocks, one angle per continuous joint). `aba` is
   null when Pinocchio's M is singular (a massless moving subtree) or its result is not finite.
+
+The live cross-check (RIGID_CROSSCHECK=1) runs this script on every file; every run reads
+packages.json, the fixture gen_packages.py writes with it for a few checked-in files.
 """
 
 import glob

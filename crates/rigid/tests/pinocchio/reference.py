@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Pinocchio reference values for rigid's cross-check (crates/rigid/tests/pinocchio.rs).
+"""Pinocchio reference values for rigid's cross-check (crates/rigid/tests/it/pinocchio.rs).
 
 Usage: python3 reference.py ROBOT [--states N] [--seed S] [--derivatives]   (ROBOT: see ROBOTS, or "list")
 
@@ -8,7 +8,7 @@ Loads the robot's URDF from the PyPI package example-robot-data with `pin.buildM
 JSON object with Pinocchio's rnea, crba, aba, computeMinverse, nle, generalized gravity, kinetic
 and potential energy, centre of mass, total mass and the joint placements data.oMi.
 
-Everything printed is already in rigid's conventions (shared/CONVENTIONS.md):
+Everything printed is already in rigid's conventions (docs/conventions.md):
 - free-flyer velocity, acceleration and force: Pinocchio stores (v, w) / (f, m), linear first;
   rigid stores (w, v) / (m, f), angular first: the two halves are swapped, in vectors and in the
   rows and columns of M;
@@ -25,6 +25,8 @@ order): each joint is listed with its name and its slices in the vectors printed
 Rust test matches joints by name.
 
 Requirements: pip install -r scripts/requirements-test.txt (pin, example-robot-data).
+The live cross-check (RIGID_CROSSCHECK=1) runs this script; every run reads reference.json, the
+fixture gen_reference.py writes with it.
 """
 
 import glob
@@ -157,20 +159,9 @@ def reference_derivatives(model, data, joints, p, rs, q, v, a, tau):
     return out
 
 
-def main():
-    args = sys.argv[1:]
-    if not args or args[0] in ("-h", "--help"):
-        print(__doc__)
-        return
-    if args[0] == "list":
-        print(json.dumps(sorted(ROBOTS)))
-        return
-    name = args[0]
-    states = int(args[args.index("--states") + 1]) if "--states" in args else 5
-    seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
-    derivatives = "--derivatives" in args
-    if name not in ROBOTS:
-        sys.exit(f"unknown robot {name!r}; known: {', '.join(sorted(ROBOTS))}")
+def reference(name, states=5, seed=0, derivatives=False):
+    """Pinocchio's results on robot `name` (a key of ROBOTS) at `states` random states drawn with
+    `seed`, in rigid's conventions: the JSON object this script prints."""
     rel, floating = ROBOTS[name]
     if rel.startswith("local:"):
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), rel[len("local:"):])
@@ -228,7 +219,7 @@ def main():
         }
         out_states.append(st)
 
-    print(json.dumps(plain(dict(
+    return plain(dict(
         robot=name,
         urdf=path,
         floating=floating,
@@ -240,7 +231,24 @@ def main():
         total_mass=pin.computeTotalMass(model),
         joints=joints,
         states=out_states,
-    ))))
+    ))
+
+
+def main():
+    args = sys.argv[1:]
+    if not args or args[0] in ("-h", "--help"):
+        print(__doc__)
+        return
+    if args[0] == "list":
+        print(json.dumps(sorted(ROBOTS)))
+        return
+    name = args[0]
+    states = int(args[args.index("--states") + 1]) if "--states" in args else 5
+    seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
+    derivatives = "--derivatives" in args
+    if name not in ROBOTS:
+        sys.exit(f"unknown robot {name!r}; known: {', '.join(sorted(ROBOTS))}")
+    print(json.dumps(reference(name, states, seed, derivatives)))
 
 
 if __name__ == "__main__":

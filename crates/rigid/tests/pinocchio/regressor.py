@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Pinocchio's joint-torque regressor for every URDF file of a robot-description package
-(crates/rigid/tests/identification_packages.rs).
+(crates/rigid/tests/it/identification_packages.rs).
 
 Usage: python3 regressor.py PACKAGE [--states N] [--seed S]
 
@@ -12,6 +12,9 @@ conventions, see reference.py) and `regressor`: `pin.computeJointTorqueRegressor
 its rows in rigid's order (free-flyer rows angular first) and its columns in Pinocchio's joint
 order (10 per joint, `Inertia.toDynamicParameters` order), and `parameters`: the 10 dynamic
 parameters of each of Pinocchio's joints, in the same order.
+
+The live cross-check (RIGID_CROSSCHECK=1) runs this script on every file; every run reads
+regressor.json, the fixture gen_packages.py writes with it for a few checked-in files.
 """
 
 import os

@@ -1,4 +1,4 @@
-"""Reference trajectory of rigid's built-in `double_pendulum` by SciPy, for tests/simulation.rs.
+"""Reference trajectory of rigid's built-in `double_pendulum` by SciPy, for tests/it/simulation.rs.
 
 Two uniform thin rods (m = 1 kg, l = 1 m) hanging along -z, joints about y, the second at the tip
 of the first; q2 is the relative angle. With a = l/2 and I = m l^2/12 (about the CoM, the rods'
@@ -13,6 +13,9 @@ integrated by solve_ivp (DOP853, rtol = atol = 1e-12). Prints JSON: {"t": [...],
 "v": [[...]]} at the requested sample times.
 
     python3 double_pendulum.py Q1 Q2 V1 V2 DURATION SAMPLES
+
+The live cross-check (RIGID_CROSSCHECK=1) runs it; every run reads double_pendulum.json, the
+fixture gen_double_pendulum.py writes with it.
 """
 
 import json

@@ -420,7 +420,8 @@ pub enum InertiaIssueKind {
     Invalid(InertiaError),
     /// The moving joint `joint` carries no mass at all (its child link and everything below it
     /// are massless): the mass matrix is singular and ABA is undefined (Pinocchio returns NaN).
-    /// A warning: the model is still built.
+    /// A warning: the model is still built. (The same check on a built model, with no file and
+    /// lines to name: [`Model::massless_subtrees`](crate::multibody::Model::massless_subtrees).)
     ZeroMassMovingLink {
         /// The joint that moves the massless subtree.
         joint: String,

@@ -1,6 +1,6 @@
 //! The Lie group of each joint's configuration ([`Group`]): `q ⊕ v dt`, `q₁ ⊖ q₀`, their
-//! Jacobians in tangent coordinates, the bracket `ad` and the differential of the exponential
-//! `dexp` with its inverse. Vector joints (`ℝⁿ`) are abelian: `ad = 0`, `dexp = 1`.
+//! Jacobians in tangent coordinates, and the differential of the exponential `dexp` with its
+//! inverse. Vector joints (`ℝⁿ`) are abelian: `ad = 0`, `dexp = 1`.
 //!
 //! Sources: right Jacobians of SO(3), SE(3) and SE(2) from Barfoot 2017, "State Estimation for
 //! Robotics", §7.1.5 and §7.2.5, and Solà, Deray & Atchuthan 2018, "A micro Lie theory for state
@@ -10,8 +10,7 @@
 
 use super::{quat_log_between, Group, JointType};
 use crate::spatial::{quat_exp, quat_mul, quat_normalize, quat_to_rot, skew, Mat3, Mat6};
-use crate::spatial::{Transform, Twist, Vec3, Wrench};
-use nalgebra::{SMatrix, SVector};
+use crate::spatial::{Transform, Twist, Vec3};
 
 impl JointType {
     /// `q_out = q ⊕ v dt`: the configuration reached from `q` moving with the constant joint
@@ -155,99 +154,32 @@ impl JointType {
         m
     }
 
-    /// `out = ad_x y` (`transpose = false`) or `out = ad_xᵀ y` (`transpose = true`) in the Lie
-    /// algebra: so(3) (`ad_ω η = ω × η`), se(3) (angular first, [`Twist::cross`] and
-    /// [`Twist::ad_transpose`]), se(2) (`(v_x, v_y, ω)`), zero for vector joints.
-    fn ad(&self, x: &[f64], y: &[f64], transpose: bool, out: &mut [f64]) {
-        match self.group() {
-            Group::Vector => out[..self.nv()].fill(0.0),
-            Group::SO3 => {
-                let (w, e) = (Vec3::new(x[0], x[1], x[2]), Vec3::new(y[0], y[1], y[2]));
-                // ad_ωᵀ = [ω]ᵀ = -[ω]
-                let r = if transpose { e.cross(&w) } else { w.cross(&e) };
-                out[..3].copy_from_slice(r.as_slice());
-            }
-            Group::SE3 => {
-                let t = Twist::from_slice(&x[..6]);
-                let r = if transpose {
-                    t.ad_transpose(&Wrench::from_slice(&y[..6])).to_vector()
-                } else {
-                    t.cross(&Twist::from_slice(&y[..6])).to_vector()
-                };
-                out[..6].copy_from_slice(r.as_slice());
-            }
-            Group::SE2 => {
-                // ad_x = [[0, -ω, v_y], [ω, 0, -v_x], [0, 0, 0]] for x = (v_x, v_y, ω)
-                let (vx, vy, w) = (x[0], x[1], x[2]);
-                if transpose {
-                    out[0] = w * y[1];
-                    out[1] = -w * y[0];
-                    out[2] = vy * y[0] - vx * y[1];
-                } else {
-                    out[0] = -w * y[1] + vy * y[2];
-                    out[1] = w * y[0] - vx * y[2];
-                    out[2] = 0.0;
-                }
-            }
-        }
-    }
-
-    /// `out = dexp_x y` or `dexp_xᵀ y`, `dexp_x = Σ_{k≥0} ad_xᵏ / (k + 1)!`, by summing the
-    /// series until a term is below round-off (an entire function: it converges for every `x`).
+    /// `out = dexp_x y` or `dexp_xᵀ y`, `dexp_x = Σ_{k≥0} ad_xᵏ / (k + 1)!` (the left Jacobian
+    /// of the group's exponential, `J_l(x) = J_r(-x)`), in closed form: SO(3)'s and SE(3)'s right
+    /// Jacobians at `-x` (SE(2) the rows and columns of SE(3)'s); the identity for a vector joint.
     pub(crate) fn dexp(&self, x: &[f64], y: &[f64], transpose: bool, out: &mut [f64]) {
-        /// Most terms of the series: `|x|ᵏ/(k + 1)!` is below round-off long before for the
-        /// steps a simulation takes (`|x| = |v| dt`).
-        const MAX_TERMS: usize = 60;
-        let n = self.nv();
-        out[..n].copy_from_slice(&y[..n]);
-        if self.group() == Group::Vector {
-            return;
-        }
-        let mut term = [0.0; 6];
-        let mut next = [0.0; 6];
-        term[..n].copy_from_slice(&y[..n]);
-        for k in 1..MAX_TERMS {
-            self.ad(x, &term[..n], transpose, &mut next[..n]);
-            let scale = 1.0 / (k as f64 + 1.0);
-            let mut size = 0.0f64;
-            let mut total = 0.0f64;
-            for i in 0..n {
-                term[i] = next[i] * scale;
-                out[i] += term[i];
-                size = size.max(term[i].abs());
-                total = total.max(out[i].abs());
-            }
-            if size <= 1e-18 * total || size == 0.0 {
-                break;
-            }
+        match self.tangent_twist(x) {
+            None => out[..self.nv()].copy_from_slice(&y[..self.nv()]),
+            Some(xi) => self.apply(&self.restrict(&se3_jr(&-xi)), y, transpose, out),
         }
     }
 
-    /// Solve `dexp_x z = y` (or `dexp_xᵀ z = y`): the `n x n` matrix of `dexp_x` (n ≤ 6), built
-    /// column by column, then an LU solve on the stack.
+    /// `out = dexp_x⁻¹ y` (or `dexp_x⁻ᵀ y`): the inverse right Jacobian at `-x` in closed form
+    /// ([`so3_jr_inv`] finite for rotations below 2π); the identity for a vector joint.
     pub(crate) fn dexp_inv(&self, x: &[f64], y: &[f64], transpose: bool, out: &mut [f64]) {
+        match self.tangent_twist(x) {
+            None => out[..self.nv()].copy_from_slice(&y[..self.nv()]),
+            Some(xi) => self.apply(&self.restrict(&se3_jr_inv(&-xi)), y, transpose, out),
+        }
+    }
+
+    /// `out = A y` or `Aᵀ y` for the joint's `nv x nv` block `A` (top-left) of a 6x6.
+    fn apply(&self, a: &Mat6, y: &[f64], transpose: bool, out: &mut [f64]) {
         let n = self.nv();
-        if self.group() == Group::Vector {
-            out[..n].copy_from_slice(&y[..n]);
-            return;
-        }
-        let mut a = SMatrix::<f64, 6, 6>::identity();
-        let mut e = [0.0; 6];
-        let mut col = [0.0; 6];
-        for c in 0..n {
-            e.fill(0.0);
-            e[c] = 1.0;
-            self.dexp(x, &e[..n], transpose, &mut col[..n]);
-            for r in 0..n {
-                a[(r, c)] = col[r];
-            }
-        }
-        let mut b = SVector::<f64, 6>::zeros();
-        b.as_mut_slice()[..n].copy_from_slice(&y[..n]);
-        // the unused block is the identity: the solve leaves its zeros alone
-        match a.lu().solve(&b) {
-            Some(z) => out[..n].copy_from_slice(&z.as_slice()[..n]),
-            None => out[..n].copy_from_slice(&y[..n]),
+        for (r, o) in out.iter_mut().enumerate().take(n) {
+            *o = (0..n)
+                .map(|c| if transpose { a[(c, r)] } else { a[(r, c)] } * y[c])
+                .sum();
         }
     }
 }

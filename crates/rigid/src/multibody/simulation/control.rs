@@ -1,11 +1,14 @@
 //! Control laws `τ = u(t, q, v)`: a closure, or a built-in [`Controller`] (none, gravity
-//! compensation, joint PD to a target, computed torque along a [`JointTrajectory`]).
+//! compensation, joint PD to a target, computed torque along a [`JointTrajectory`]), named by a
+//! [`ControlKind`].
 
 use super::{JointTrajectory, SimulationError, TimeScaling};
 use crate::error::DimensionError;
 use crate::multibody::{
     check_q, crba, difference, gravity_torques, rnea, Data, Model, MultibodyError,
 };
+use std::fmt;
+use std::str::FromStr;
 
 /// A control law `τ = u(t, q, v)`, evaluated by the integrators at every stage (so it should be
 /// a function of its arguments: the RK4 stages are not in time order). Implemented by
@@ -73,8 +76,70 @@ pub enum ControlLaw {
     },
 }
 
+/// The built-in control laws by name, as `rigid simulate --controller` and Python's
+/// `rigid.simulate(controller=...)` take them: `none`, `gravity`, `pd` and `track` (see
+/// [`ControlLaw::builtin`] for the law and gains each stands for).
+///
+/// ```
+/// use rigid::multibody::simulation::{ControlKind, SimulationError};
+/// assert_eq!("pd".parse::<ControlKind>()?, ControlKind::Pd);
+/// assert_eq!(ControlKind::Track.to_string(), "track");
+/// assert!(matches!("fly".parse::<ControlKind>(), Err(SimulationError::UnknownController { .. })));
+/// # Ok::<(), SimulationError>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ControlKind {
+    /// `none`: [`ControlLaw::None`].
+    #[default]
+    None,
+    /// `gravity`: [`ControlLaw::GravityCompensation`].
+    Gravity,
+    /// `pd`: [`ControlLaw::Pd`] to a target.
+    Pd,
+    /// `track`: [`ControlLaw::ComputedTorque`] along a motion to a target.
+    Track,
+}
+
+impl ControlKind {
+    /// Every kind, in the order of the command line's help.
+    pub const ALL: [ControlKind; 4] = [Self::None, Self::Gravity, Self::Pd, Self::Track];
+
+    /// The name on the command line and in Python: `none`, `gravity`, `pd`, `track`.
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Gravity => "gravity",
+            Self::Pd => "pd",
+            Self::Track => "track",
+        }
+    }
+
+    /// Whether the law needs a target configuration (`pd` and `track`).
+    #[must_use]
+    pub fn needs_target(&self) -> bool {
+        matches!(self, Self::Pd | Self::Track)
+    }
+}
+
+impl fmt::Display for ControlKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for ControlKind {
+    type Err = SimulationError;
+    fn from_str(s: &str) -> Result<Self, SimulationError> {
+        Self::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| SimulationError::UnknownController { name: s.into() })
+    }
+}
+
 impl ControlLaw {
-    /// The built-in laws by name, with the gains `rigid simulate` and Python's `rigid.simulate`
+    /// The built-in law `kind`, with the gains `rigid simulate` and Python's `rigid.simulate`
     /// use: `none`; `gravity` (compensation); `pd`, joint PD with gravity compensation to
     /// `target`, every joint alone at 2 Hz and critically damped ([`ControlLaw::pd`] with
     /// `ω = 4π`, `ζ = 1`); `track`, computed torque along a straight joint-space motion from
@@ -82,43 +147,39 @@ impl ControlLaw {
     /// `ë + 20 ė + 100 e = 0` (critically damped at 10 rad/s).
     ///
     /// ```
-    /// use rigid::multibody::{builtin, simulation::{ControlLaw, TimeScaling}};
+    /// use rigid::multibody::{builtin, simulation::{ControlKind, ControlLaw, TimeScaling}};
     /// let model = builtin("pendulum").unwrap();
-    /// let law = ControlLaw::named(&model, "track", &[0.0], Some(&[1.0]), 2.0, TimeScaling::Quintic)?;
+    /// let law = ControlLaw::builtin(&model, ControlKind::Track, &[0.0], Some(&[1.0]), 2.0, TimeScaling::Quintic)?;
     /// assert!(matches!(law, ControlLaw::ComputedTorque { kp, .. } if kp == 100.0));
     /// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
     /// ```
     ///
     /// # Errors
-    /// An unknown name, `pd` or `track` without a target, a bad target or start.
-    pub fn named(
+    /// [`SimulationError::MissingTarget`] for `pd` or `track` without a target; a bad target or
+    /// start.
+    pub fn builtin(
         model: &Model,
-        name: &str,
+        kind: ControlKind,
         q0: &[f64],
         target: Option<&[f64]>,
         move_time: f64,
         scaling: TimeScaling,
     ) -> Result<Self, SimulationError> {
         let target = || {
-            target.ok_or_else(|| {
-                SimulationError::Invalid(format!(
-                    "controller {name} needs a target configuration (nq = {} numbers)",
-                    model.nq
-                ))
+            target.ok_or(SimulationError::MissingTarget {
+                controller: kind,
+                nq: model.nq,
             })
         };
-        match name {
-            "none" => Ok(Self::None),
-            "gravity" => Ok(Self::GravityCompensation),
-            "pd" => Self::pd(model, target()?, 4.0 * std::f64::consts::PI, 1.0),
-            "track" => Ok(Self::ComputedTorque {
+        match kind {
+            ControlKind::None => Ok(Self::None),
+            ControlKind::Gravity => Ok(Self::GravityCompensation),
+            ControlKind::Pd => Self::pd(model, target()?, 4.0 * std::f64::consts::PI, 1.0),
+            ControlKind::Track => Ok(Self::ComputedTorque {
                 trajectory: JointTrajectory::new(model, q0, target()?, move_time, scaling)?,
                 kp: 100.0,
                 kd: 20.0,
             }),
-            other => Err(SimulationError::Invalid(format!(
-                "unknown controller {other:?}: expected none, gravity, pd or track"
-            ))),
         }
     }
 

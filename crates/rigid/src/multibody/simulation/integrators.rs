@@ -75,7 +75,8 @@ pub(crate) fn semi_implicit_euler<C: Control>(
 /// RKMK4: stages at `q₀ ⊕ Θᵢ` with `Θ₂ = h/2 Θ̇₁`, `Θ₃ = h/2 Θ̇₂`, `Θ₄ = h Θ̇₃`,
 /// `Θ̇ᵢ = dexp⁻¹_{-Θᵢ}(vᵢ)`, `vᵢ = v₀ + cᵢ h aᵢ₋₁`; then
 /// `q⁺ = q₀ ⊕ h/6 (Θ̇₁ + 2Θ̇₂ + 2Θ̇₃ + Θ̇₄)`, `v⁺ = v₀ + h/6 (a₁ + 2a₂ + 2a₃ + a₄)`
-/// (Munthe-Kaas 1999; the body simulator's `rk4` on SE(3)).
+/// (Munthe-Kaas 1999). A single body's `rk4` ([`crate::body::Simulator`]) is this on its one-joint
+/// model.
 pub(crate) fn rk4<C: Control>(
     d: &mut Dynamics<C>,
     ws: &mut Workspace,

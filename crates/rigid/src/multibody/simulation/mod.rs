@@ -9,6 +9,7 @@
 //! | `v⁺ = v + h q̈(q, v)`, `q⁺ = q ⊕ h v⁺` | [`Integrator::SemiImplicitEuler`] | symplectic Euler |
 //! | RK4 on the joint groups, `Θ̇ = dexp⁻¹_{-Θ}(v)` | [`Integrator::Rk4`] | Munthe-Kaas 1999 (RKMK) |
 //! | discrete Euler-Lagrange, 4th order by composition | [`Integrator::Variational`] | Marsden & West 2001; Suzuki 1990 |
+//! | one rigid body: discrete Moser-Veselov on SO(3) | [`Integrator::Lgvi`] ([`body::Simulator`](crate::body::Simulator)) | Lee, Leok & McClamroch 2007 |
 //! | `τ = -b v - F_c tanh(v / v_s)` | [`SimulationOptions::joint_dynamics`] | URDF `<dynamics>` |
 //! | `τ = -D (e/τ_c² + 2ζ v/τ_c)` past a limit | [`JointLimits::Spring`] | MuJoCo's soft limits (`solref`) |
 //! | quintic / trapezoidal `s(t)` | [`TimeScaling`] | Lynch & Park §9.2 |
@@ -37,7 +38,7 @@ mod simulator;
 mod trajectory;
 
 pub use batch::simulate_batch;
-pub use control::{Control, ControlLaw, Controller};
+pub use control::{Control, ControlKind, ControlLaw, Controller};
 pub use simulator::Simulator;
 pub use trajectory::{JointTrajectory, TimeScaling};
 
@@ -55,6 +56,66 @@ pub enum SimulationError {
     /// A bad option or parameter (the message says which).
     #[error("{0}")]
     Invalid(String),
+    /// A controller name that is not one of [`ControlKind`]'s.
+    #[error("unknown controller {name:?}: expected none, gravity, pd or track")]
+    UnknownController {
+        /// The name given.
+        name: String,
+    },
+    /// A built-in controller that needs a target ([`ControlKind::needs_target`]) was given none.
+    #[error("controller {controller} needs a target configuration (nq = {nq} numbers)")]
+    MissingTarget {
+        /// The controller.
+        controller: ControlKind,
+        /// The length of the target it needs.
+        nq: usize,
+    },
+    /// An integrator name that is not one of [`Integrator`]'s.
+    #[error("unknown integrator {name:?}: expected semi-implicit, rk4, variational or lgvi")]
+    UnknownIntegrator {
+        /// The name given.
+        name: String,
+    },
+    /// An integrator a multibody [`Simulator`] does not take ([`Integrator::Lgvi`], which steps
+    /// one rigid body).
+    #[error(
+        "the {integrator} integrator steps one rigid body (a body spec; rigid::body::Simulator): \
+         a multibody model takes semi-implicit, rk4 or variational"
+    )]
+    UnsupportedIntegrator {
+        /// The integrator given.
+        integrator: Integrator,
+    },
+    /// A name of joint limits that is not one of [`JointLimits`]'s (`spring`, `ignored`).
+    #[error("unknown joint limits {name:?}: expected spring or ignored")]
+    UnknownLimits {
+        /// The name given.
+        name: String,
+    },
+    /// A time-scaling name that is not one of [`TimeScaling`]'s.
+    #[error("unknown time scaling {name:?}: expected quintic or trapezoidal")]
+    UnknownTimeScaling {
+        /// The name given.
+        name: String,
+    },
+    /// A time step that is not positive and finite.
+    #[error("time step dt must be positive and finite, got {dt}")]
+    TimeStep {
+        /// The step given (s).
+        dt: f64,
+    },
+    /// A duration that is not positive and finite ([`step_count`]).
+    #[error("duration must be positive and finite, got {duration}")]
+    Duration {
+        /// The duration given (s).
+        duration: f64,
+    },
+    /// A run of more than [`MAX_STEPS`] steps ([`step_count`]).
+    #[error("{steps:.0} steps is too many (at most {MAX_STEPS}): raise the time step")]
+    TooManySteps {
+        /// `duration / dt`.
+        steps: f64,
+    },
     /// The fixed-point iteration of the variational integrator did not converge.
     #[error("the implicit step did not converge in {iterations} iterations (change {residual:.3e}); reduce the time step")]
     NoConvergence {
@@ -72,15 +133,38 @@ pub enum SimulationError {
     },
 }
 
-/// The time stepper.
+/// The time stepper: one vocabulary for robots ([`Simulator`]) and single bodies
+/// ([`body::Simulator`](crate::body::Simulator), whose free body or body on a pivot is the
+/// one-joint case of a multibody model, stepped by the same code). Three steppers work on every
+/// model; [`Lgvi`](Self::Lgvi) is the one that only a single body takes.
+///
+/// The default is [`Rk4`](Self::Rk4), for bodies and robots alike: it is explicit and 4th-order
+/// accurate, costs four force evaluations a step, and takes every force as it comes (control
+/// laws, limit springs, friction, an applied wrench that depends on time or velocity), so it is
+/// the right first choice for both. Its energy and momentum drift slowly (`O(t h⁴)`); for long
+/// conservative runs where they must not drift, choose [`Variational`](Self::Variational) (or,
+/// for one body, [`Lgvi`](Self::Lgvi)).
+///
+/// | name | method | order | force evaluations per step | conserves |
+/// | --- | --- | --- | --- | --- |
+/// | `semi-implicit` | symplectic Euler | 1 | 1 | energy bounded |
+/// | `rk4` (default) | Runge-Kutta-Munthe-Kaas | 4 | 4 | (drifts as `O(t h⁴)`) |
+/// | `variational` | Störmer-Verlet on the joint groups, Suzuki's composition | 4 | ~100 passes | momentum maps exactly, energy bounded |
+/// | `lgvi` | Lee-Leok-McClamroch, one rigid body only | 2 | 2 (3x3 Newton solve) | momentum exactly, energy bounded |
+///
+/// Until the vocabulary was shared, `variational` on a single body (`rigid simulate SPEC.toml
+/// --integrator variational`, Python's `simulate_body`) named the 2nd-order LGVI, which is now
+/// `lgvi`; `variational` is accepted there as before and runs the 4th-order variational
+/// integrator, as for a robot.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Integrator {
     /// `semi-implicit`: symplectic Euler, `v⁺ = v + h q̈(q, v)`, `q⁺ = q ⊕ h v⁺`. One ABA per
     /// step, first order, bounded energy error for conservative systems.
     SemiImplicitEuler,
     /// `rk4`: the classical Runge-Kutta method lifted to the joint groups
-    /// (Runge-Kutta-Munthe-Kaas): the stages are `q₀ ⊕ Θᵢ` with `Θ̇ = dexp⁻¹_{-Θ}(v)`. Four ABA
-    /// per step, 4th order.
+    /// (Runge-Kutta-Munthe-Kaas): the stages are `q₀ ⊕ Θᵢ` with `Θ̇ = dexp⁻¹_{-Θ}(v)`
+    /// ([`JointType::dexp`](crate::multibody::JointType) and its inverse, the one home of
+    /// `dexp`). Four ABA per step, 4th order. The default.
     #[default]
     Rk4,
     /// `variational`: a variational (discrete Euler-Lagrange) integrator on the joint groups, in
@@ -93,16 +177,42 @@ pub enum Integrator {
     /// momentum `[Ad_{T⁻¹}]ᵀ p_base` is carried by `p₁ = [Ad_{exp ξ}]ᵀ p₀` at round-off. Energy
     /// error bounded (no drift). About 100 O(n) passes per step: for accuracy, not speed.
     Variational,
+    /// `lgvi`: the Lie-group variational integrator of Lee, Leok & McClamroch (2007) for one
+    /// rigid body (free, or on a pivot), [`body::Simulator`](crate::body::Simulator) only: the
+    /// rotation about the CoM or the pivot by the discrete Moser-Veselov map (a 3x3 Newton solve
+    /// per step), the CoM by velocity Verlet. 2nd order, symplectic; the world angular momentum
+    /// of a torque-free body is kept to round-off, and so is its energy. Two force evaluations
+    /// per step. A multibody [`Simulator`] refuses it
+    /// ([`SimulationError::UnsupportedIntegrator`]).
+    Lgvi,
 }
 
 impl Integrator {
-    /// The command-line name: `semi-implicit`, `rk4`, `variational`.
+    /// Every integrator, in the order of the command line's help.
+    pub const ALL: [Integrator; 4] = [
+        Self::SemiImplicitEuler,
+        Self::Rk4,
+        Self::Variational,
+        Self::Lgvi,
+    ];
+
+    /// The command-line name: `semi-implicit`, `rk4`, `variational`, `lgvi`.
     #[must_use]
     pub fn name(&self) -> &'static str {
         match self {
             Self::SemiImplicitEuler => "semi-implicit",
             Self::Rk4 => "rk4",
             Self::Variational => "variational",
+            Self::Lgvi => "lgvi",
+        }
+    }
+
+    /// Whether a multibody [`Simulator`] takes it (every integrator but [`Lgvi`](Self::Lgvi)).
+    #[must_use]
+    pub fn steps_multibody(&self) -> bool {
+        match self {
+            Self::SemiImplicitEuler | Self::Rk4 | Self::Variational => true,
+            Self::Lgvi => false,
         }
     }
 }
@@ -114,17 +224,44 @@ impl fmt::Display for Integrator {
 }
 
 impl FromStr for Integrator {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "semi-implicit" => Ok(Self::SemiImplicitEuler),
-            "rk4" => Ok(Self::Rk4),
-            "variational" => Ok(Self::Variational),
-            _ => Err(format!(
-                "unknown integrator {s:?}: expected semi-implicit, rk4 or variational"
-            )),
-        }
+    type Err = SimulationError;
+    fn from_str(s: &str) -> Result<Self, SimulationError> {
+        Self::ALL
+            .into_iter()
+            .find(|i| i.name() == s)
+            .ok_or_else(|| SimulationError::UnknownIntegrator { name: s.into() })
     }
+}
+
+/// Most steps a run may take ([`step_count`]): 10⁹, a day of simulated time at 0.1 ms, hours of
+/// computing for a robot.
+pub const MAX_STEPS: u64 = 1_000_000_000;
+
+/// The number of fixed steps of `dt` in `duration` (rounded, at least one), as `rigid simulate`
+/// and Python's `simulate` and `simulate_body` take them.
+///
+/// ```
+/// use rigid::multibody::simulation::{step_count, SimulationError};
+/// assert_eq!(step_count(1.0, 1e-3)?, 1000);
+/// assert!(matches!(step_count(1e6, 1e-6), Err(SimulationError::TooManySteps { .. })));
+/// # Ok::<(), SimulationError>(())
+/// ```
+///
+/// # Errors
+/// [`SimulationError::TimeStep`] or [`SimulationError::Duration`] unless both are positive and
+/// finite; [`SimulationError::TooManySteps`] above [`MAX_STEPS`].
+pub fn step_count(duration: f64, dt: f64) -> Result<u64, SimulationError> {
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(SimulationError::TimeStep { dt });
+    }
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(SimulationError::Duration { duration });
+    }
+    let steps = (duration / dt).round().max(1.0);
+    if steps > MAX_STEPS as f64 {
+        return Err(SimulationError::TooManySteps { steps });
+    }
+    Ok(steps as u64)
 }
 
 /// What happens at a joint's position limits.
@@ -151,6 +288,18 @@ impl Default for JointLimits {
         Self::Spring {
             time_constant: 0.02,
             damping_ratio: 1.0,
+        }
+    }
+}
+
+impl FromStr for JointLimits {
+    type Err = SimulationError;
+    /// `spring` (the default spring-damper, [`JointLimits::default`]) or `ignored`.
+    fn from_str(s: &str) -> Result<Self, SimulationError> {
+        match s {
+            "spring" => Ok(Self::default()),
+            "ignored" => Ok(Self::Ignored),
+            _ => Err(SimulationError::UnknownLimits { name: s.into() }),
         }
     }
 }
@@ -200,10 +349,12 @@ impl SimulationOptions {
     fn check(&self) -> Result<(), SimulationError> {
         let bad = |m: String| Err(SimulationError::Invalid(m));
         if !(self.dt.is_finite() && self.dt > 0.0) {
-            return bad(format!(
-                "time step must be positive and finite, got {}",
-                self.dt
-            ));
+            return Err(SimulationError::TimeStep { dt: self.dt });
+        }
+        if !self.integrator.steps_multibody() {
+            return Err(SimulationError::UnsupportedIntegrator {
+                integrator: self.integrator,
+            });
         }
         if !(self.friction_speed.is_finite() && self.friction_speed > 0.0) {
             return bad(format!(

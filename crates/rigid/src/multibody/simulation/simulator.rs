@@ -3,7 +3,7 @@
 
 use super::control::Control;
 use super::integrators::{self, Workspace};
-use super::{JointLimits, SimulationError, SimulationOptions};
+use super::{Integrator, JointLimits, SimulationError, SimulationOptions};
 use crate::error::DimensionError;
 use crate::multibody::{
     aba, aba_with_external, check_q, check_v, forward_kinematics_qv, gravity_torques,
@@ -169,6 +169,13 @@ impl<C: Control> Simulator<C> {
         options.check()?;
         check_q(model, q0)?;
         check_v(model, "v0", v0)?;
+        if options.integrator == Integrator::Variational {
+            // its ∇_q K (momentum.rs) assumes every S constant in body coordinates
+            crate::multibody::algorithms::require_constant_subspaces(
+                model,
+                "the variational integrator",
+            )?;
+        }
         let (nq, nv) = (model.nq, model.nv);
         let mut data = Data::new(model);
         // articulated inertia of each 1-dof joint at q0, for the limit springs
@@ -247,6 +254,10 @@ impl<C: Control> Simulator<C> {
                 &self.q,
                 &self.p,
             ),
+            // refused by `new`, and options cannot change after it
+            integrator @ super::Integrator::Lgvi => {
+                Err(SimulationError::UnsupportedIntegrator { integrator })
+            }
         };
         let time = self.t + h;
         match ok {
@@ -311,6 +322,11 @@ impl<C: Control> Simulator<C> {
     #[must_use]
     pub fn options(&self) -> &SimulationOptions {
         &self.dynamics.options
+    }
+    /// The control law.
+    #[must_use]
+    pub fn control(&self) -> &C {
+        &self.dynamics.control
     }
     /// The control law.
     pub fn control_mut(&mut self) -> &mut C {

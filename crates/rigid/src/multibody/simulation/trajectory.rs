@@ -31,9 +31,7 @@ impl std::str::FromStr for TimeScaling {
             "trapezoidal" => Ok(Self::Trapezoidal {
                 accel_fraction: 0.25,
             }),
-            other => Err(SimulationError::Invalid(format!(
-                "unknown time scaling {other:?}: expected quintic or trapezoidal"
-            ))),
+            other => Err(SimulationError::UnknownTimeScaling { name: other.into() }),
         }
     }
 }
