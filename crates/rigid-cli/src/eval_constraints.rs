@@ -5,9 +5,7 @@
 use rigid::interop::PinocchioLayout;
 use rigid::io::cases::Case;
 use rigid::io::constraints::parse_constraints;
-use rigid::multibody::constraints::{
-    constraint_dynamics, impulse_dynamics, ConstraintData, ConstraintKind, ConstraintModel,
-};
+use rigid::multibody::constraints::{constraint_dynamics, impulse_dynamics, ConstraintData};
 use rigid::multibody::{Data, Model};
 use serde::Serialize;
 use std::path::Path;
@@ -53,9 +51,13 @@ pub fn evaluate(
         }
         None => x.to_vec(),
     };
-    let w_out = |x: &[f64]| match layout {
-        Some(_) => force_first(&file.constraints, x),
-        None => x.to_vec(),
+    // wrenches force first in Pinocchio's layout
+    let w_out = |cd: &ConstraintData, x: &[f64]| {
+        let mut y = x.to_vec();
+        if layout.is_some() {
+            cd.force_first(x, &mut y);
+        }
+        y
     };
     let finite = |what: &str, x: &[f64]| {
         if x.iter().all(|v| v.is_finite()) {
@@ -104,28 +106,13 @@ pub fn evaluate(
             Ok((
                 ConstraintDynamics {
                     ddq: v_out(&ddq),
-                    lambda: w_out(&lambda),
+                    lambda: w_out(&cd, &lambda),
                 },
                 ImpulseDynamics {
                     dq_plus: v_out(&dq_plus),
-                    impulse: w_out(&impulse),
+                    impulse: w_out(&cd, &impulse),
                 },
             ))
         })
         .collect()
-}
-
-/// Each frame constraint's wrench `(m, f)` as Pinocchio's `(f, m)`; the rest as is.
-fn force_first(constraints: &[ConstraintModel], x: &[f64]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(x.len());
-    let mut r = 0;
-    for c in constraints {
-        let y = &x[r..r + c.dim()];
-        match c.kind {
-            ConstraintKind::Frame => out.extend(y[3..].iter().chain(&y[..3])),
-            _ => out.extend_from_slice(y),
-        }
-        r += c.dim();
-    }
-    out
 }

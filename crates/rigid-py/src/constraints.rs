@@ -236,14 +236,8 @@ impl ConstraintData {
         if self.model.layout.is_none() {
             return array1(py, x);
         }
-        let mut y = Vec::with_capacity(x.len());
-        for (i, c) in self.inner.constraints().iter().enumerate() {
-            let s = &x[self.inner.rows_of(i)];
-            match c.kind {
-                ConstraintKind::Frame => y.extend(s[3..].iter().chain(&s[..3])),
-                _ => y.extend_from_slice(s),
-            }
-        }
+        let mut y = vec![0.0; x.len()];
+        self.inner.force_first(x, &mut y);
         PyArray1::from_vec(py, y)
     }
 

@@ -145,6 +145,24 @@ impl ConstraintData {
         self.rows[i]..self.rows[i + 1]
     }
 
+    /// Per-constraint numbers (`λ`, an impulse, `γ`; `dim()` of them) in Pinocchio's order: each
+    /// frame constraint's `(m, f)` written `(f, m)`, linear first; the others as they are.
+    ///
+    /// # Panics
+    /// If `x` or `out` is shorter than [`dim`](Self::dim).
+    pub fn force_first(&self, x: &[f64], out: &mut [f64]) {
+        for (i, c) in self.constraints.iter().enumerate() {
+            let r = self.rows_of(i);
+            match c.kind {
+                super::ConstraintKind::Frame => {
+                    out[r.start..r.start + 3].copy_from_slice(&x[r.start + 3..r.end]);
+                    out[r.start + 3..r.end].copy_from_slice(&x[r.start..r.start + 3]);
+                }
+                _ => out[r.clone()].copy_from_slice(&x[r]),
+            }
+        }
+    }
+
     /// The largest constraint error `‖e‖∞` at the last `q` (m or rad).
     #[must_use]
     pub fn violation(&self) -> f64 {
