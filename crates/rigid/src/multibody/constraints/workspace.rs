@@ -34,10 +34,11 @@ pub struct ConstraintData {
     /// The drift `γ` (m) of the last [`constraint_dynamics`](super::constraint_dynamics):
     /// `J q̈ + γ = 0`, `γ = J̇ q̇ + kp e + kd ė` (Pinocchio's `-primal_rhs_contact`).
     pub gamma: DVector<f64>,
-    /// The constraint error `e` (m) at the last `q`: `−c1Mc2.translation`, `−log(c1Mc2)` or
-    /// `q_1 − p(q_2)`, in the constraint's reference frame.
+    /// The constraint error `e` (m) at the `q` of the last forward or inverse dynamics (and
+    /// of each simulator step): `−c1Mc2.translation`, `−log(c1Mc2)` or `q_1 − p(q_2)`, in the
+    /// constraint's reference frame.
     pub error: DVector<f64>,
-    /// The constraint velocity `J q̇` (m) at the last `(q, q̇)` of the forward dynamics.
+    /// The constraint velocity `J q̇` (m) at the last `(q, q̇)` (`J q̇⁻` after an impulse).
     pub velocity: DVector<f64>,
     /// `q̈` of [`constraint_dynamics`](super::constraint_dynamics).
     pub ddq: DVector<f64>,
@@ -163,7 +164,7 @@ impl ConstraintData {
         }
     }
 
-    /// The largest constraint error `‖e‖∞` at the last `q` (m or rad).
+    /// The largest constraint error `‖e‖∞` ([`error`](Self::error)), m or rad.
     #[must_use]
     pub fn violation(&self) -> f64 {
         self.error.amax()
