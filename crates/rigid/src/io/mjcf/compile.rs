@@ -171,6 +171,7 @@ pub(super) fn inertias(
                     mass: e.mass,
                     com: e.pos,
                     full,
+                    axes: None,
                 },
                 None => Inertial::principal(e.mass, &frame, &e.diag),
             }

@@ -29,7 +29,6 @@
 
 use super::mesh::MeshProps;
 use super::orientation::{to_mat3, to_matrix, Pose, Quat, EPS};
-use crate::mass::RotationalInertia;
 use crate::spatial::{Mat3, Vec3};
 use std::f64::consts::PI;
 
@@ -102,6 +101,7 @@ impl Solid {
                     mass: m,
                     com: [pose.pos[0] + c[0], pose.pos[1] + c[1], pose.pos[2] + c[2]],
                     full: rotated(&unit, &pose.quat),
+                    axes: Some(super::orientation::mul(&pose.quat, &p.quat)),
                 }
             }
             _ => Inertial::principal(m, pose, &self.inertia(m, shell)),
@@ -234,6 +234,9 @@ pub(super) struct Inertial {
     pub com: [f64; 3],
     /// Inertia about the centre of mass in the body frame's axes (kg·m²).
     pub full: [f64; 6],
+    /// The principal frame MuJoCo copies (one geom's frame, an `<inertial>`'s orientation), or
+    /// `None` when it diagonalises `full` ([`eig3`](super::orientation::eig3)).
+    pub axes: Option<Quat>,
 }
 
 impl Inertial {
@@ -242,6 +245,7 @@ impl Inertial {
         mass: 0.0,
         com: [0.0; 3],
         full: [0.0; 6],
+        axes: None,
     };
 
     /// Mass `m` at `frame` with principal moments `diag` along its axes.
@@ -250,7 +254,16 @@ impl Inertial {
             mass,
             com: frame.pos,
             full: global(diag, &frame.quat),
+            axes: Some(frame.quat),
         }
+    }
+
+    /// MuJoCo's principal frame (`body_iquat`).
+    pub fn frame(&self) -> Quat {
+        self.axes.unwrap_or_else(|| {
+            let f = &self.full;
+            super::orientation::eig3(&[f[0], f[3], f[4], f[3], f[1], f[5], f[4], f[5], f[2]]).1
+        })
     }
 
     /// The inertia about the centre of mass as rigid's matrix.
@@ -259,17 +272,12 @@ impl Inertial {
         Mat3::new(f[0], f[3], f[4], f[3], f[1], f[5], f[4], f[5], f[2])
     }
 
-    /// The principal moments (descending, as MuJoCo's `body_inertia`) and the rotation whose
-    /// columns are the principal axes.
+    /// The principal moments (MuJoCo's `body_inertia`) and the rotation whose columns are the
+    /// principal axes (MuJoCo's `body_iquat`).
     pub fn principal_axes(&self) -> ([f64; 3], Mat3) {
-        let (l, axes) = RotationalInertia::from_matrix_unchecked(&self.matrix()).principal();
-        // `principal` is ascending with right-handed axes: reverse both, keep it right-handed
-        let r = Mat3::from_columns(&[
-            axes.column(2).into(),
-            axes.column(1).into(),
-            -axes.column(0),
-        ]);
-        ([l[2], l[1], l[0]], r)
+        let r = to_mat3(&self.frame());
+        let d = r.transpose() * self.matrix() * r;
+        ([d[(0, 0)], d[(1, 1)], d[(2, 2)]], r)
     }
 
     /// The same inertia with principal moments `f(λ)` on the same axes.
@@ -319,9 +327,8 @@ fn global(d: &[f64; 3], q: &Quat) -> [f64; 6] {
 pub(super) fn rotated(full: &[f64; 6], q: &Quat) -> [f64; 6] {
     let r = to_mat3(q);
     let i = Inertial {
-        mass: 0.0,
-        com: [0.0; 3],
         full: *full,
+        ..Inertial::ZERO
     }
     .matrix();
     let m = r * i * r.transpose();
@@ -362,7 +369,12 @@ pub(super) fn from_geoms(geoms: &[Inertial]) -> Result<Option<Inertial>, String>
                 let shift = offcenter(g.mass, &d);
                 (0..6).for_each(|k| full[k] = full[k] + g.full[k] + shift[k]);
             }
-            Ok(Some(Inertial { mass, com, full }))
+            Ok(Some(Inertial {
+                mass,
+                com,
+                full,
+                axes: None,
+            }))
         }
     }
 }
@@ -386,9 +398,8 @@ fn offcenter(m: f64, d: &[f64; 3]) -> [f64; 6] {
 /// A smaller moment.
 pub(super) fn check_positive(full: &[f64; 6]) -> Result<(), String> {
     let i = Inertial {
-        mass: 1.0,
-        com: [0.0; 3],
         full: *full,
+        ..Inertial::ZERO
     };
     let (l, _) = i.principal_axes();
     if l[2] < EPS {

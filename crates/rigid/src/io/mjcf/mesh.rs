@@ -57,6 +57,8 @@ pub(super) struct MeshProps {
     pub com: [f64; 3],
     /// Inertia per unit density about the centre of mass, `(xx, yy, zz, xy, xz, yz)`.
     pub full: [f64; 6],
+    /// Its principal frame (MuJoCo's `mesh_quat`).
+    pub quat: Quat,
 }
 
 /// Reads a mesh file by extension (case-insensitive): `.stl`, `.obj`, `.msh`.
@@ -302,12 +304,9 @@ pub(super) fn props(
         }
     }
     let full = [p[1] + p[2], p[0] + p[2], p[0] + p[1], -p[3], -p[4], -p[5]];
-    let (l, _) = super::inertia::Inertial {
-        mass: volume,
-        com,
-        full,
-    }
-    .principal_axes();
+    let (l, quat) = super::orientation::eig3(&[
+        full[0], full[3], full[4], full[3], full[1], full[5], full[4], full[5], full[2],
+    ]);
     if l[2] <= 0.0 {
         return Err("the mesh inertia has a non-positive eigenvalue".into());
     }
@@ -315,7 +314,12 @@ pub(super) fn props(
     if bad(l[0], l[1], l[2]) || bad(l[0], l[2], l[1]) || bad(l[1], l[2], l[0]) {
         return Err("the mesh's principal moments violate A + B >= C".into());
     }
-    Ok(MeshProps { volume, com, full })
+    Ok(MeshProps {
+        volume,
+        com,
+        full,
+        quat,
+    })
 }
 
 #[cfg(test)]

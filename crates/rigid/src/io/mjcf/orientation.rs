@@ -289,6 +289,91 @@ impl Pose {
     }
 }
 
+/// The eigenvalues (descending) and eigenvector frame of the symmetric matrix `m` (row-major),
+/// by MuJoCo's cyclic Jacobi iteration (`mjuu_eig3`, `src/user/user_util.cc`): starting from the
+/// identity, each step zeroes the largest off-diagonal entry of `Rᵀ M R` by a rotation about the
+/// third axis, accumulated as a quaternion; the eigenvalues are then sorted by quarter turns. The
+/// frame MuJoCo reports (`body_iquat`, `mesh_quat`) is the one this reaches. MuJoCo 3 stopped at
+/// an absolute `1e-12` (or a rotation of about `1.4e-6` rad), MuJoCo 4 diagonalises to machine
+/// precision: here the iteration stops when the largest off-diagonal entry is at most
+/// `8 ε max|M|`, and the half-angle of each rotation is computed without cancellation.
+pub(super) fn eig3(m: &[f64; 9]) -> ([f64; 3], Quat) {
+    let scale = m.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let mut quat = IDENTITY;
+    let mut eigval = [m[0], m[4], m[8]];
+    for _ in 0..500 {
+        let d = rtmr(&to_matrix(&quat), m);
+        eigval = [d[0], d[4], d[8]];
+        let (rk, ck, rotk) = if d[1].abs() > d[2].abs() && d[1].abs() > d[5].abs() {
+            (0, 1, 2)
+        } else if d[2].abs() > d[5].abs() {
+            (0, 2, 1)
+        } else {
+            (1, 2, 0)
+        };
+        let off = d[3 * rk + ck];
+        if off.abs() <= 8.0 * f64::EPSILON * scale {
+            break;
+        }
+        let tau = (d[4 * ck] - d[4 * rk]) / (2.0 * off);
+        let t = if tau >= 0.0 {
+            1.0 / (tau + (1.0 + tau * tau).sqrt())
+        } else {
+            -1.0 / (-tau + (1.0 + tau * tau).sqrt())
+        };
+        let c = 1.0 / (1.0 + t * t).sqrt();
+        let mut step = [0.0; 4];
+        // sin(θ/2) with tan θ = t, as |s| / √(2 (1 + c)): MuJoCo 3's √(½ - ½ c) cancels to 0
+        // for the small last rotations
+        let half = t.abs() * c / (2.0 * (1.0 + c)).sqrt();
+        step[rotk + 1] = if tau >= 0.0 { -half } else { half };
+        if rotk == 1 {
+            step[rotk + 1] = -step[rotk + 1];
+        }
+        step[0] = (1.0 - step[rotk + 1] * step[rotk + 1]).sqrt();
+        normalize(&mut step);
+        quat = mul(&quat, &step);
+        normalize(&mut quat);
+    }
+    // descending order (bubble sort 0, 1, 0), each swap a quarter turn of the frame
+    for j in 0..3 {
+        let j1 = j % 2;
+        if eigval[j1] + 1e-12 < eigval[j1 + 1] {
+            eigval.swap(j1, j1 + 1);
+            let mut step = [0.0; 4];
+            #[allow(clippy::approx_constant)] // MuJoCo's literal (normalised just after)
+            {
+                step[0] = 0.707_106_781_186_548;
+            }
+            step[(j1 + 2) % 3 + 1] = step[0];
+            quat = mul(&quat, &step);
+            normalize(&mut quat);
+        }
+    }
+    (eigval, quat)
+}
+
+/// `Rᵀ M R` for row-major 3x3 matrices.
+fn rtmr(r: &[f64; 9], m: &[f64; 9]) -> [f64; 9] {
+    let mut rt = [0.0; 9];
+    for i in 0..3 {
+        for j in 0..3 {
+            rt[3 * i + j] = r[3 * j + i];
+        }
+    }
+    matmul(&matmul(&rt, m), r)
+}
+
+fn matmul(a: &[f64; 9], b: &[f64; 9]) -> [f64; 9] {
+    let mut out = [0.0; 9];
+    for i in 0..3 {
+        for j in 0..3 {
+            out[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -338,6 +423,27 @@ mod tests {
             assert!(resolve(&alt, true, b"xyz").is_err(), "{alt:?}");
         }
         assert!(resolve(&Alternative::Euler([1.0; 3]), true, b"xyw").is_err());
+    }
+
+    #[test]
+    fn eig3_diagonalises_to_round_off_with_mujocos_frame() {
+        let q = resolve(&Alternative::Euler([10.0, 20.0, 30.0]), true, b"xyz").unwrap();
+        let r = to_matrix(&q);
+        let d = [3.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 1.0];
+        let mut rt = [0.0; 9];
+        for i in 0..3 {
+            for j in 0..3 {
+                rt[3 * i + j] = r[3 * j + i];
+            }
+        }
+        let m = matmul(&matmul(&r, &d), &rt);
+        let (l, v) = eig3(&m);
+        assert!(close(&l, &[3.0, 2.0, 1.0], 1e-14), "{l:?}");
+        let back = rtmr(&to_matrix(&v), &m);
+        assert!(close(&back, &d, 1e-14), "{back:?}");
+        // the frame reached from the identity is the one the matrix was built with
+        let same = close(&v, &q, 1e-12) || close(&v, &q.map(|x| -x), 1e-12);
+        assert!(same, "{v:?} vs {q:?}");
     }
 
     #[test]

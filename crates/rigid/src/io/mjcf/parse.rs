@@ -611,6 +611,16 @@ fn tendon(e: &Element, r: &mut Reader, doc: &Document) -> Result<MjcfTendon, Mjc
             return Err(r.invalid(e, format!("unknown tendon <{other}>")));
         }
     };
+    let armature = scalar(r, e, &a, "armature", 0.0)?;
+    if armature != 0.0 {
+        r.warn(
+            e,
+            format!(
+                "tendon armature {armature}: MuJoCo adds the tendon's inertia to the mass matrix \
+                 and the bias; rigid models no tendons, so its M and bias leave it out"
+            ),
+        );
+    }
     let range = array(r, e, &a, "range", [0.0; 2])?;
     let limited = match keyword(r, e, &a, "limited", &["false", "true", "auto"], 2)? {
         0 => false,
@@ -623,7 +633,7 @@ fn tendon(e: &Element, r: &mut Reader, doc: &Document) -> Result<MjcfTendon, Mjc
         stiffness: scalar(r, e, &a, "stiffness", 0.0)?,
         damping: scalar(r, e, &a, "damping", 0.0)?,
         frictionloss: scalar(r, e, &a, "frictionloss", 0.0)?,
-        armature: scalar(r, e, &a, "armature", 0.0)?,
+        armature,
         range: limited.then_some(range),
         line: e.line,
     })
