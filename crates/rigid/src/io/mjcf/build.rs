@@ -286,6 +286,15 @@ fn build(
     let mut sites = Vec::new();
     for (k, body) in bodies.iter().enumerate() {
         let (parent, t) = frames[k];
+        // the last guard against numbers that overflow when composed (a huge position)
+        if let Some(g) = body
+            .geoms
+            .iter()
+            .chain(&body.sites)
+            .find(|g| !finite(&(t * g.pose.transform())))
+        {
+            return Err(r.invalid(&g.elem, "its placement is not finite".into()));
+        }
         for (g, m) in body.geoms.iter().zip(&compiled.geom_mass[k]) {
             geoms.push(MjcfGeom {
                 name: g.elem.attr("name").map(str::to_string),
@@ -328,6 +337,13 @@ fn build(
         warnings: r.warnings,
         path: None,
     })
+}
+
+fn finite(t: &Transform) -> bool {
+    t.rotation
+        .iter()
+        .chain(t.translation.iter())
+        .all(|x| x.is_finite())
 }
 
 /// MuJoCo's rules for the joints of one body: at most 6 degrees of freedom, no rotation after a

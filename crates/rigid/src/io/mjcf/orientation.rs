@@ -18,10 +18,12 @@ pub(super) type Quat = [f64; 4];
 pub(super) const IDENTITY: Quat = [1.0, 0.0, 0.0, 0.0];
 
 /// `mjuu_normvec`: scales `v` to unit length and returns its norm before; as MuJoCo, returns 0
-/// and leaves `v` when `‖v‖² < 1e-14`, and leaves `v` when `|‖v‖ - 1| ≤ 1e-14`.
+/// and leaves `v` when `‖v‖² < 1e-14`, and leaves `v` when `|‖v‖ - 1| ≤ 1e-14`. Unlike MuJoCo,
+/// a vector whose norm overflows (or holds a NaN) also returns 0, so that every caller's "too
+/// small" check refuses it instead of dividing by infinity.
 pub(super) fn normalize(v: &mut [f64]) -> f64 {
     let n2: f64 = v.iter().map(|x| x * x).sum();
-    if n2 < EPS {
+    if !(n2 >= EPS && n2.is_finite()) {
         return 0.0;
     }
     let n = n2.sqrt();
@@ -186,7 +188,7 @@ pub(super) fn resolve(alt: &Alternative, degree: bool, eulerseq: &[u8; 3]) -> Re
         Alternative::AxisAngle(a) => {
             let mut axis = [a[0], a[1], a[2]];
             if normalize(&mut axis) < EPS {
-                return Err("axisangle: the axis is too small".into());
+                return Err("axisangle: the axis is zero (or too long)".into());
             }
             let (s, c) = (0.5 * to_rad(a[3])).sin_cos();
             Ok([c, s * axis[0], s * axis[1], s * axis[2]])
@@ -194,12 +196,12 @@ pub(super) fn resolve(alt: &Alternative, degree: bool, eulerseq: &[u8; 3]) -> Re
         Alternative::XyAxes(v) => {
             let mut x = [v[0], v[1], v[2]];
             if normalize(&mut x) < EPS {
-                return Err("xyaxes: the x axis is too small".into());
+                return Err("xyaxes: the x axis is zero (or too long)".into());
             }
             let d = dot(&x, &[v[3], v[4], v[5]]);
             let mut y = [v[3] - x[0] * d, v[4] - x[1] * d, v[5] - x[2] * d];
             if normalize(&mut y) < EPS {
-                return Err("xyaxes: the y axis is too small (or parallel to x)".into());
+                return Err("xyaxes: the y axis is zero, parallel to x (or too long)".into());
             }
             let mut z = cross(&x, &y);
             if normalize(&mut z) < EPS {
@@ -210,7 +212,7 @@ pub(super) fn resolve(alt: &Alternative, degree: bool, eulerseq: &[u8; 3]) -> Re
         Alternative::ZAxis(v) => {
             let mut z = v;
             if normalize(&mut z) < EPS {
-                return Err("zaxis is too small".into());
+                return Err("zaxis is zero (or too long)".into());
             }
             Ok(z_to(&z))
         }

@@ -273,10 +273,9 @@ pub(super) fn orientation(
         return orientation::resolve(&alt, c.degree, &c.eulerseq).map_err(|m| r.invalid(e, m));
     }
     let mut q = array(r, e, attrs, "quat", orientation::IDENTITY)?;
-    if q == [0.0; 4] {
-        return Err(r.invalid(e, "zero quaternion".into()));
+    if orientation::normalize(&mut q) == 0.0 {
+        return Err(r.invalid(e, "zero quaternion (or too long to normalise)".into()));
     }
-    orientation::normalize(&mut q);
     Ok(q)
 }
 
@@ -489,10 +488,9 @@ fn mesh_asset(e: &Element, r: &mut Reader, doc: &Document) -> Result<MeshAsset, 
         _ => MeshInertia::Shell,
     };
     let mut refquat = array(r, e, &a, "refquat", orientation::IDENTITY)?;
-    if refquat == [0.0; 4] {
-        return Err(r.invalid(e, "zero refquat".into()));
+    if orientation::normalize(&mut refquat) == 0.0 {
+        return Err(r.invalid(e, "zero refquat (or too long to normalise)".into()));
     }
-    orientation::normalize(&mut refquat);
     Ok(MeshAsset {
         name,
         file: mesh_path(r, e, file, &doc.compiler),

@@ -378,7 +378,7 @@ fn joint(
             let mut ax =
                 orientation::rotate(&array(r, e, a, "axis", [0.0, 0.0, 1.0])?, &frame.quat);
             if orientation::normalize(&mut ax) < orientation::EPS {
-                return Err(r.invalid(e, "the joint axis is zero".into()));
+                return Err(r.invalid(e, "the joint axis is zero (or too long)".into()));
             }
             (add(&frame.pos, &orientation::rotate(&p, &frame.quat)), ax)
         }
@@ -524,6 +524,16 @@ fn inertial(e: &Element, r: &Reader, doc: &Document) -> Result<ExplicitInertial,
     let Some(pos) = parse::numbers(r, e, a.get("pos"), "pos", 3, true)? else {
         return Err(r.invalid(e, "<inertial> needs a \"pos\"".into()));
     };
+    if mass[0] < 0.0 {
+        return Err(r.invalid(
+            e,
+            format!(
+                "negative mass {} (MuJoCo raises it to boundmass and then refuses a massless \
+                 moving body)",
+                mass[0]
+            ),
+        ));
+    }
     let full = parse::numbers(r, e, a.get("fullinertia"), "fullinertia", 6, true)?;
     let diag = parse::numbers(r, e, a.get("diaginertia"), "diaginertia", 3, true)?;
     let mut fullinertia = None;
@@ -548,6 +558,9 @@ fn inertial(e: &Element, r: &Reader, doc: &Document) -> Result<ExplicitInertial,
         }
         (None, d) => {
             let d = d.map_or([0.0; 3], |d| [d[0], d[1], d[2]]);
+            if d.iter().any(|x| *x < 0.0) {
+                return Err(r.invalid(e, format!("negative diaginertia {d:?}")));
+            }
             (orientation(r, e, &a, &doc.compiler)?, d)
         }
     };

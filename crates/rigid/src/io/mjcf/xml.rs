@@ -13,6 +13,9 @@ use std::path::{Path, PathBuf};
 /// At most this many nested `<include>` levels (a loop is caught before; this bounds a chain).
 const MAX_INCLUDE_DEPTH: usize = 64;
 
+/// Elements nested deeper than this are refused (the conversion is recursive).
+const MAX_DEPTH: usize = 1000;
+
 /// One XML element, owned.
 #[derive(Clone, Debug)]
 pub(super) struct Element {
@@ -95,7 +98,7 @@ pub(super) fn read_document(
         });
     }
     let mut chain = vec![0usize];
-    let root = convert(&doc, root, 0, &mut sources, &mut chain)?;
+    let root = convert(&doc, root, 0, &mut sources, &mut chain, 0)?;
     Ok((root, sources))
 }
 
@@ -149,7 +152,16 @@ fn convert(
     file: usize,
     sources: &mut Sources,
     chain: &mut Vec<usize>,
+    depth: usize,
 ) -> Result<Element, MjcfError> {
+    if depth > MAX_DEPTH {
+        return Err(MjcfError::Invalid {
+            file: sources.name(file),
+            line: doc.line(node),
+            element: format!("<{}>", node.tag_name().name()),
+            message: format!("elements nested more than {MAX_DEPTH} deep"),
+        });
+    }
     let mut out = Element {
         tag: node.tag_name().name().to_string(),
         attrs: node
@@ -163,10 +175,10 @@ fn convert(
     for child in node.children().filter(Node::is_element) {
         if child.tag_name().name() == "include" {
             out.children
-                .extend(include(doc, child, file, sources, chain)?);
+                .extend(include(doc, child, file, sources, chain, depth + 1)?);
         } else {
             out.children
-                .push(convert(doc, child, file, sources, chain)?);
+                .push(convert(doc, child, file, sources, chain, depth + 1)?);
         }
     }
     Ok(out)
@@ -179,6 +191,7 @@ fn include(
     file: usize,
     sources: &mut Sources,
     chain: &mut Vec<usize>,
+    depth: usize,
 ) -> Result<Vec<Element>, MjcfError> {
     let line = doc.line(node);
     let err = |sources: &Sources, message: String| MjcfError::Invalid {
@@ -241,9 +254,9 @@ fn include(
     let mut out = Vec::new();
     for child in root.children().filter(Node::is_element) {
         if child.tag_name().name() == "include" {
-            out.extend(include(&inner, child, index, sources, chain)?);
+            out.extend(include(&inner, child, index, sources, chain, depth + 1)?);
         } else {
-            out.push(convert(&inner, child, index, sources, chain)?);
+            out.push(convert(&inner, child, index, sources, chain, depth + 1)?);
         }
     }
     chain.pop();
