@@ -133,7 +133,9 @@ urdf("origin_four_numbers", GOOD.replace('xyz="0 0 1"', 'xyz="0 0 1 1"'), "error
 urdf("origin_commas", GOOD.replace('xyz="0 0 1"', 'xyz="0,0,1"'), "error", 'joint "hinge"',
      "not a list")
 urdf("limit_lower_above_upper", GOOD.replace('lower="-1" upper="1"', 'lower="1" upper="-1"'),
-     "error", 'joint "hinge"', "limits")
+     "warning", 'joint "hinge"', "above upper", "no position limit")
+urdf("xml_declaration_after_blank_line", "\n" + GOOD, "warning", "line 2",
+     "XML declaration does not stand at the start")
 urdf("limit_nan", GOOD.replace('lower="-1"', 'lower="nan"'), "error", 'joint "hinge"',
      "non-finite")
 urdf("limit_negative_velocity", GOOD.replace('velocity="2"', 'velocity="-2"'), "error",
