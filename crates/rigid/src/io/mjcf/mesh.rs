@@ -97,6 +97,21 @@ pub(super) fn read(path: &Path) -> Result<MeshData, String> {
     }
 }
 
+/// A mesh file as the importer reads it (STL, OBJ or MSH, by the extension), as a triangle mesh
+/// (for drawing; its mass properties are MuJoCo's through the importer).
+///
+/// # Errors
+/// As [`read`]: a message saying what failed.
+pub fn read_trimesh(path: &Path) -> Result<crate::mass::TriMesh, String> {
+    let m = read(path)?;
+    let vertices = m
+        .vertices
+        .iter()
+        .map(|v| crate::spatial::Vec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2])))
+        .collect();
+    Ok(crate::mass::TriMesh::new(vertices, m.faces))
+}
+
 /// MuJoCo's binary MSH: four `i32` counts (vertices, normals, texture coordinates, faces), then
 /// `3 nv` floats of positions, `3 nn` of normals, `2 nt` of texture coordinates and `3 nf` `i32`
 /// vertex indices, all little-endian (`mjCMesh::LoadMSH`).
