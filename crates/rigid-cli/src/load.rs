@@ -82,6 +82,19 @@ pub struct Loaded {
     pub mjcf: Option<MjcfModel>,
 }
 
+impl Loaded {
+    /// The configuration the file describes: MuJoCo's `qpos0` for MJCF (each body where the
+    /// file puts it), rigid's neutral configuration otherwise.
+    pub fn home(&self) -> Vec<f64> {
+        let mut q = rigid::multibody::neutral(&self.model);
+        if let Some(m) = &self.mjcf {
+            // qpos0 has the model's length and finite entries: the conversion cannot fail
+            let _ = m.layout().q_from_mujoco(&m.qpos0, &mut q);
+        }
+        q
+    }
+}
+
 /// True when `spec` names an MJCF file: its extension is `.xml` (any case).
 pub fn is_mjcf(spec: &str) -> bool {
     Path::new(spec)
