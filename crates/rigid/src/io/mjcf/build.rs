@@ -17,7 +17,8 @@ use super::parse::{self, Document};
 use super::tree::{self, Body, Geom, GeomType};
 use super::xml::{self, Element};
 use super::{
-    MjcfBody, MjcfError, MjcfGeom, MjcfJoint, MjcfJointKind, MjcfModel, MjcfShape, MjcfSite, Reader,
+    MjcfBody, MjcfError, MjcfGeom, MjcfInertial, MjcfJoint, MjcfJointKind, MjcfModel, MjcfShape,
+    MjcfSite, Reader,
 };
 use crate::mass::{RotationalInertia, SpatialInertia};
 use crate::multibody::{FrameKind, JointId, JointType, ModelBuilder, ModelError};
@@ -162,7 +163,7 @@ fn build(
         placement: Transform::identity(),
         mass: 0.0,
         inertial: (Transform::identity(), Vec3::zeros()),
-        inertial_line: None,
+        given: None,
         gravcomp: 0.0,
         mocap: false,
         line: 0,
@@ -276,7 +277,7 @@ fn build(
             placement: frame.1,
             mass: i.mass,
             inertial: (Transform::new(axes, Vec3::from(i.com)), Vec3::from(d)),
-            inertial_line: body.inertial.as_ref().map(|e| e.elem.line),
+            given: body.inertial.as_ref().map(given),
             gravcomp: body.gravcomp,
             mocap: body.mocap,
             line: elem.line,
@@ -344,6 +345,50 @@ fn finite(t: &Transform) -> bool {
         .iter()
         .chain(t.translation.iter())
         .all(|x| x.is_finite())
+}
+
+/// An `<inertial>` as written.
+fn given(e: &tree::ExplicitInertial) -> MjcfInertial {
+    let a = |k: &str| {
+        e.elem
+            .attr(k)
+            .unwrap_or_default()
+            .split_whitespace()
+            .map(str::to_string)
+    };
+    let mut text: [String; 7] = Default::default();
+    text[0] = e.elem.attr("mass").unwrap_or_default().trim().to_string();
+    let (frame, inertia) = match e.full {
+        Some(f) => {
+            for (slot, t) in text[1..].iter_mut().zip(a("fullinertia")) {
+                *slot = t;
+            }
+            let i = RotationalInertia::new(f[0], f[1], f[2], f[3], f[4], f[5]);
+            (Transform::from_translation(Vec3::from(e.pos)), i)
+        }
+        None => {
+            for (slot, t) in text[1..4].iter_mut().zip(a("diaginertia")) {
+                *slot = t;
+            }
+            text[4..].iter_mut().for_each(|t| *t = "0".into());
+            let pose = Pose {
+                pos: e.pos,
+                quat: e.quat,
+            };
+            let d = e.diag;
+            (
+                pose.transform(),
+                RotationalInertia::diagonal(d[0], d[1], d[2]),
+            )
+        }
+    };
+    MjcfInertial {
+        mass: e.mass,
+        frame,
+        inertia,
+        text,
+        line: e.elem.line,
+    }
 }
 
 /// MuJoCo's rules for the joints of one body: at most 6 degrees of freedom, no rotation after a

@@ -179,14 +179,31 @@ pub struct MjcfBody {
     /// The compiled centre of mass and principal axes in the body frame, and principal moments
     /// (MuJoCo's `body_ipos`, `body_iquat` as a rotation, `body_inertia`).
     pub inertial: (Transform, Vec3),
-    /// Whether the file gives an `<inertial>` (its line).
-    pub inertial_line: Option<u32>,
+    /// The `<inertial>` the file gives, if any (as written: before `boundmass` and
+    /// `settotalmass`; for the doctor).
+    pub given: Option<MjcfInertial>,
     /// `gravcomp`: the fraction of its weight MuJoCo cancels by a passive force (not in
     /// `qfrc_bias`).
     pub gravcomp: f64,
     /// `mocap="true"`.
     pub mocap: bool,
     /// Line of the element (0 for the world).
+    pub line: u32,
+}
+
+/// An `<inertial>` as the file writes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfInertial {
+    /// `mass` (kg).
+    pub mass: f64,
+    /// `pos` and the orientation of the axes `inertia` is written in, in the body frame.
+    pub frame: Transform,
+    /// `diaginertia` (diagonal) or `fullinertia` (kg·m²) in those axes.
+    pub inertia: crate::mass::RotationalInertia,
+    /// The numbers as written: `mass`, then `ixx, iyy, izz, ixy, ixz, iyz` (the products `0`
+    /// for `diaginertia`).
+    pub text: [String; 7],
+    /// Line of the element.
     pub line: u32,
 }
 
