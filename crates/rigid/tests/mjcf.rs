@@ -213,6 +213,8 @@ fn every_package_model_that_mujoco_compiles_matches() {
     );
     let mut counts: BTreeMap<String, Counts> = BTreeMap::new();
     let (mut failures, mut explained) = (Vec::new(), Vec::new());
+    // the largest relative error among the matching files: without and with mesh inertia
+    let mut worst = [(0.0f64, String::new()), (0.0f64, String::new())];
     for line in String::from_utf8(out.stdout).unwrap().lines() {
         let row: Value = serde_json::from_str(line).unwrap();
         let package = row["package"].as_str().unwrap().to_string();
@@ -235,6 +237,10 @@ fn every_package_model_that_mujoco_compiles_matches() {
         let tol = tolerance(&row);
         if err <= tol {
             c.matching += 1;
+            let w = &mut worst[usize::from(tol > 1e-9)];
+            if err > w.0 {
+                *w = (err, format!("{file}: {what}"));
+            }
         } else if let Some(w) = m
             .warnings
             .iter()
@@ -254,6 +260,10 @@ fn every_package_model_that_mujoco_compiles_matches() {
             c.files, c.compiled, c.loaded, c.matching
         );
     }
+    println!(
+        "largest relative error where they match: {:.1e} ({}); with mesh inertia {:.1e} ({})",
+        worst[0].0, worst[0].1, worst[1].0, worst[1].1
+    );
     for e in &explained {
         println!("explained: {e}");
     }
