@@ -10,7 +10,7 @@
  *   crba_sparse  the same without mj_fullM (MuJoCo's own sparse M, ready to factor)
  *
  * Each path computes from q (and v, a) what it needs, as rigid's RNEA and CRBA do from q.
- * Built against the libmujoco of the pip wheel by bench/mujoco.py:
+ * Built against the libmujoco of the pip wheel by bench/compare_mujoco.py:
  *   cc -O2 timings.c -I$MUJOCO/include -L$MUJOCO -l:libmujoco.so.4.0.0 -Wl,-rpath,$MUJOCO -lm
  * Usage: timings MODEL.xml [states=1000] [repetitions=21] [seed=7]
  */

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """rigid vs MuJoCo on MJCF models, side by side, in one run (table in bench/MUJOCO.md).
 
-    python3 bench/mujoco.py                       # 7 rounds, humanoid, ant, panda, dog
-    python3 bench/mujoco.py --rounds 3 --models humanoid,dog
+    python3 bench/compare_mujoco.py                       # 7 rounds, humanoid, ant, panda, dog
+    python3 bench/compare_mujoco.py --rounds 3 --models humanoid,dog
 
 Both sides load the same MJCF file (rigid with its importer, whose mass matrix and bias equal
 MuJoCo's to round-off) and time the same work per state, from the configuration up:
