@@ -17,9 +17,9 @@ use crate::spatial::Transform;
 ///
 /// ```
 /// use rigid::io::mjcf::load_mjcf_str;
-/// // a 0.2 m box of 1 kg whose inertia was written for a 10 cm box
+/// // a 0.2 m box of 1 kg with 7.5 times the inertia it can hold
 /// let m = load_mjcf_str(r#"<mujoco><worldbody><body name="b"><joint/>
-///   <inertial pos="0 0 0" mass="1" diaginertia="0.0017 0.0017 0.0017"/>
+///   <inertial pos="0 0 0" mass="1" diaginertia="0.05 0.05 0.05"/>
 ///   <geom type="box" size="0.1 0.1 0.1"/></body></worldbody></mujoco>"#,
 ///   std::path::Path::new(".")).unwrap();
 /// let report = rigid::doctor::examine_mjcf(&m);
