@@ -37,6 +37,8 @@ pub(super) struct Compiler {
     pub autolimits: bool,
     /// `meshdir` (else `assetdir`).
     pub meshdir: Option<String>,
+    /// `strippath`: mesh file names lose their folders.
+    pub strippath: bool,
 }
 
 impl Default for Compiler {
@@ -53,6 +55,7 @@ impl Default for Compiler {
             alignfree: false,
             autolimits: true,
             meshdir: None,
+            strippath: false,
         }
     }
 }
@@ -388,6 +391,40 @@ fn compiler(e: &Element, r: &mut Reader, c: &mut Compiler) -> Result<(), MjcfErr
     if let Some(d) = a.get("meshdir") {
         c.meshdir = Some(d.to_string());
     }
+    c.strippath = boolean(r, e, &a, "strippath", c.strippath)?;
+    // read above, or without effect on the dynamics (rendering, threads, statistics)
+    const KNOWN: [&str; 22] = [
+        "angle",
+        "eulerseq",
+        "inertiafromgeom",
+        "inertiagrouprange",
+        "settotalmass",
+        "boundmass",
+        "boundinertia",
+        "balanceinertia",
+        "alignfree",
+        "autolimits",
+        "assetdir",
+        "meshdir",
+        "strippath",
+        "coordinate",
+        "texturedir",
+        "discardvisual",
+        "fusestatic",
+        "usethread",
+        "fitaabb",
+        "saveinertial",
+        "convexhull",
+        "conflict",
+    ];
+    for (k, _) in &e.attrs {
+        if !KNOWN.contains(&k.as_str()) {
+            r.warn(
+                e,
+                format!("compiler attribute \"{k}\" is not read by rigid"),
+            );
+        }
+    }
     if c.settotalmass > 0.0 {
         r.warn(
             e,
@@ -491,6 +528,11 @@ fn mesh_asset(e: &Element, r: &mut Reader, doc: &Document) -> Result<MeshAsset, 
     if orientation::normalize(&mut refquat) == 0.0 {
         return Err(r.invalid(e, "zero refquat (or too long to normalise)".into()));
     }
+    let file = if doc.compiler.strippath {
+        file.rsplit(['/', '\\']).next().unwrap_or(file)
+    } else {
+        file
+    };
     Ok(MeshAsset {
         name,
         file: mesh_path(r, e, file, &doc.compiler),
