@@ -53,6 +53,7 @@
 //! compiler reads degrees can overflow), the checks of MuJoCo's compiler (a free joint below the
 //! top level, a moving body without mass, an inertia violating `A + B ≥ C`).
 
+mod attrs;
 mod build;
 mod compile;
 pub mod defaults;
