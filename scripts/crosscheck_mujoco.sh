@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
-# MuJoCo's live cross-check of the MJCF importer (crates/rigid/tests/mjcf.rs with
-# RIGID_CROSSCHECK=1): installs MuJoCo and the description packages that ship MJCF files
-# (gymnasium, dm-control, robosuite, brax, mujoco-mjx, metaworld, gymnasium-robotics; --no-deps,
-# only their model files are read) into the Python of RIGID_PYTHON (default python3), then loads
-# every .xml file of them with MuJoCo and with rigid and compares M, qfrc_bias and the gravity
-# forces at random states, printing the counts per package and every file that fails.
+# MuJoCo's live cross-check of the MJCF importer alone (crates/rigid/tests/it/mjcf.rs with
+# RIGID_CROSSCHECK=1): loads every .xml file of the description packages that ship MJCF files
+# (scripts/requirements-mjcf.txt) with MuJoCo and with rigid and compares M, qfrc_bias and the
+# gravity forces at random states, printing the counts per package and every file that fails.
+# It uses the test environment of scripts/test.sh (target/test-venv; run that once first), or the
+# Python of RIGID_PYTHON. `bash scripts/test.sh` runs this check among all the others.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python=${RIGID_PYTHON:-python3}
-export PIP_ROOT_USER_ACTION=ignore PIP_DISABLE_PIP_VERSION_CHECK=1
-"$python" -m pip install --quiet mujoco==4.0.0 numpy
-"$python" -m pip install --quiet --no-deps gymnasium==1.4.0 dm-control==1.0.50 robosuite==1.5.2 \
-    brax==0.14.2 mujoco-mjx==3.17.0 metaworld==3.1.1 gymnasium-robotics==1.4.2
-RIGID_CROSSCHECK=1 RIGID_PYTHON="$python" cargo test -p rigid --test mjcf -- --nocapture
+python=${RIGID_PYTHON:-$PWD/target/test-venv/bin/python}
+if [ ! -x "$python" ]; then
+    echo "error: no test environment: run bash scripts/test.sh once (or set RIGID_PYTHON)" >&2
+    exit 1
+fi
+RIGID_CROSSCHECK=1 RIGID_PYTHON="$python" cargo test -p rigid --test it mjcf -- --nocapture

@@ -58,7 +58,7 @@
 //! ```
 
 use crate::error::DimensionError;
-use crate::multibody::{self, Data, Model, MultibodyError};
+use crate::multibody::{self, Data, Model, MujocoCoords, MultibodyError};
 use crate::spatial::{Mat3, Vec3};
 use nalgebra::{DMatrix, DVector};
 
@@ -119,12 +119,11 @@ impl MujocoLayout {
             .iter()
             .zip(reference)
             .map(|(j, &r)| JointMap {
-                coords: match j.kind {
-                    multibody::JointType::Revolute { .. }
-                    | multibody::JointType::Prismatic { .. } => Coords::Scalar(r),
-                    multibody::JointType::Spherical => Coords::Ball,
-                    multibody::JointType::FreeFlyer => Coords::Free,
-                    multibody::JointType::Planar => Coords::Same,
+                coords: match j.kind.mujoco_coords() {
+                    MujocoCoords::Scalar => Coords::Scalar(r),
+                    MujocoCoords::Ball => Coords::Ball,
+                    MujocoCoords::Free => Coords::Free,
+                    MujocoCoords::Same => Coords::Same,
                 },
                 idx_q: j.idx_q,
                 nq: j.nq,

@@ -66,7 +66,7 @@ pub use configuration::{
     random_configuration, Rng,
 };
 pub use data::Data;
-pub use joint::{column_names, JointType, PinocchioCoords};
+pub use joint::{column_names, JointType, MujocoCoords, PinocchioCoords};
 pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 pub use textbook::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 
