@@ -430,6 +430,11 @@ class ConstraintModel:
                          kd: float = 0.0) -> ConstraintModel:
         """``q_joint1 = Σ_k polycoef[k] q_joint2^k`` (at most 5 coefficients) for one-dof joints
         (MJCF ``<equality joint>``); ``λ`` the generalised force on joint1."""
+    @staticmethod
+    def from_mjcf(model: Model) -> list[ConstraintModel]:
+        """The ``<equality>`` elements of the MJCF file ``model`` was read from: ``connect`` a
+        point, ``weld`` a frame, ``joint`` a joint coordinate (hard, world-aligned); tendon and
+        inactive equalities are left out with an ``MjcfWarning`` naming the line."""
     @property
     def dim(self) -> int:
         """3, 6 or 1."""
