@@ -21,6 +21,7 @@ mod explicit_support;
 mod body_lagrange;
 mod body_newton_euler;
 mod body_simulate;
+mod centroidal;
 mod collada;
 mod compound;
 mod consistency;

@@ -230,6 +230,44 @@ pub fn frame_jacobian<'a>(
     Ok(&data.frame_jacobian)
 }
 
+/// The Jacobian (6 x nv) of joint `joint`'s moved frame in `rf`, from the spatial Jacobian and
+/// the placements already in `data` (those of the last [`compute_joint_jacobians`]): no
+/// kinematics is run. Pinocchio's `getJointJacobian`. Returns `data.frame_jacobian`.
+///
+/// # Errors
+/// `joint` out of range, or a `data` made for another model.
+pub fn stored_joint_jacobian<'a>(
+    model: &Model,
+    data: &'a mut Data,
+    joint: JointId,
+    rf: ReferenceFrame,
+) -> Result<&'a DMatrix<f64>, MultibodyError> {
+    check_joint(model, joint)?;
+    check_data(model, data)?;
+    let oMi = data.placements[joint.0];
+    express(model, data, Some(joint.0), &oMi, rf);
+    Ok(&data.frame_jacobian)
+}
+
+/// The Jacobian (6 x nv) of a named frame in `rf`, from the spatial Jacobian and the placements
+/// already in `data` (those of the last [`compute_joint_jacobians`]), with the frame's pose
+/// `oMf = oMi iMf`. Pinocchio's `getFrameJacobian`. Returns `data.frame_jacobian`.
+///
+/// # Errors
+/// `frame` out of range, or a `data` made for another model.
+pub fn stored_frame_jacobian<'a>(
+    model: &Model,
+    data: &'a mut Data,
+    frame: FrameId,
+    rf: ReferenceFrame,
+) -> Result<&'a DMatrix<f64>, MultibodyError> {
+    check_frame(model, frame)?;
+    check_data(model, data)?;
+    let (body, oMf) = frame_pose(model, data, frame);
+    express(model, data, body, &oMf, rf);
+    Ok(&data.frame_jacobian)
+}
+
 /// The time derivative `J̇(q, v)` of [`joint_jacobian`] (so that the frame's acceleration is
 /// `J a + J̇ v`). Returns `data.frame_jacobian_dot`; `data.frame_jacobian` holds `J`.
 ///
