@@ -12,6 +12,7 @@
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G`, pseudo-inertia and physical consistency |
 //! | [`io`] | reading files: triangle meshes (STL, OBJ, COLLADA), `rigid mass` body specs (TOML) |
 //! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis matrix, energies, analytical derivatives of the dynamics, DH and Modern Robotics builders, built-in robots, simulation |
+//! | [`kinematics`] | inverse kinematics: Newton / Levenberg-Marquardt on the SE(3) log error (`IKinBody`, `IKinSpace`), position or full pose, limits, restarts |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, Lagrange by autodiff, and its simulator (the one-joint case of the multibody simulator, plus the Lie-group variational integrator) |
 //! | [`io`] | URDF import into a multibody `Model` (inertia policy, warnings); `rigid doctor` ([`doctor`]) |
 //! | [`explicit`] | the explicit dynamic model of a robot (Armstrong, Khatib & Burdick 1986): `M(q)`, Coriolis, centrifugal and gravity terms as abbreviated expressions, pruned with a proven bound, and generated code |
@@ -29,6 +30,7 @@ pub mod fuzzing;
 pub mod identification;
 pub mod interop;
 pub mod io;
+pub mod kinematics;
 pub mod mass;
 pub mod multibody;
 pub mod spatial;

@@ -34,6 +34,7 @@ mod hostile_numbers;
 mod identification;
 mod identification_closed_loop;
 mod identification_packages;
+mod inverse_kinematics;
 mod joints_pinocchio;
 mod mesh;
 mod multibody_batch;
