@@ -11,6 +11,7 @@ mod eval;
 mod excite;
 mod explicit;
 mod identify;
+mod ik;
 mod load;
 mod mass;
 mod model;
@@ -42,6 +43,8 @@ enum Command {
     Identify(Box<identify::IdentifyArgs>),
     /// Write an exciting trajectory for identification (CSV).
     Excite(excite::ExciteArgs),
+    /// Inverse kinematics: joint positions that put a frame at a target position or pose.
+    Ik(ik::IkArgs),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
     /// The explicit dynamic model: M(q), Coriolis, centrifugal and gravity terms as abbreviated tables or code.
@@ -98,6 +101,7 @@ fn main() -> ExitCode {
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),
+        Command::Ik(args) => ik::run(&args),
         Command::Identify(args) => report(identify::run(&args)),
         Command::Excite(args) => report(excite::run(&args)),
         Command::Model(args) => report(model::run(&args)),
