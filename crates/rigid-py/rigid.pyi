@@ -15,6 +15,13 @@ q = (x, y, cos θ, sin θ), free-flyer velocity, acceleration and force **linear
 Jacobian rows (v, ω). Then q, v, a, τ, M, M⁻¹, C and Jacobians are Pinocchio's raw arrays, with
 no reordering. Everything else (placements, CoM, energies) is the same in both layouts.
 
+MuJoCo's layout (``layout="mujoco"``, for MJCF files and URDFs): q is MuJoCo's qpos (hinge and
+slide counted from their ``ref``, quaternions **w-x-y-z**), v its qvel (free joint: the world
+velocity of the body origin, then the body angular velocity), τ its qfrc; ``crba`` is
+``mj_fullM`` (armature included), ``nle`` is ``qfrc_bias``. For a model with a free joint the map
+from qvel depends on q, and only rnea, aba, nle, gravity, crba, minverse, jacobian (columns in
+qvel), kinetic_energy, com, potential_energy and forward_kinematics accept it.
+
 Inputs: any array-like of real numbers of the right length (a contiguous float64 numpy array is
 used in place, without a copy). A wrong length or shape is a ValueError naming the argument, the
 expected and the given length; complex numbers, strings and other non-numbers a TypeError; NaN
@@ -37,9 +44,13 @@ ArrayLike = npt.ArrayLike
 Vector = npt.NDArray[np.float64]
 Matrix = npt.NDArray[np.float64]
 Path = Union[str, PathLike[str]]
-Layout = Literal["rigid", "pinocchio"]
+Layout = Literal["rigid", "pinocchio", "mujoco"]
 Frame = Union[Literal["world_aligned", "body", "spatial", "local_world_aligned", "local",
                       "world"], Any]
+
+class MjcfWarning(UserWarning):
+    """Something in an MJCF file that rigid reads past or tolerates (actuators, sensors, gravity
+    compensation, ...): the model loads; the message names the element and the line."""
 
 class UrdfWarning(UserWarning):
     """Something in a URDF file that was tolerated (a non-physical inertia loaded as written, an
@@ -61,6 +72,19 @@ class Model:
         inertia: non-physical inertias are refused (``strict``), loaded as written with a
         ``UrdfWarning`` (``warn``), or replaced by the inertia doctor's repair (``repair``).
         layout: ``"rigid"`` or ``"pinocchio"`` (see the module documentation)."""
+    @staticmethod
+    def from_mjcf(path: Path, layout: Layout = "rigid") -> Model:
+        """Load an MJCF file (MuJoCo's XML) with MuJoCo's compiled inertias (mass matrix and bias
+        equal MuJoCo's to round-off); what rigid does not model is an ``MjcfWarning``."""
+    @staticmethod
+    def from_file(path: Path, layout: Layout = "rigid", floating: bool = False,
+                  inertia: Literal["strict", "warn", "repair"] = "warn") -> Model:
+        """``from_mjcf`` for a ``.xml`` file, ``from_urdf`` otherwise (``floating`` and
+        ``inertia`` apply to URDF only)."""
+    @property
+    def qpos0(self) -> Vector | None:
+        """MuJoCo's qpos0 (its layout: each body where the file puts it) for a model read from
+        MJCF; None otherwise."""
     @staticmethod
     def builtin(name: Literal["puma560", "puma560_armature", "pendulum", "double_pendulum"],
                 layout: Layout = "rigid") -> Model:
@@ -371,3 +395,106 @@ centerOfMass = com
 computeKineticEnergy = kinetic_energy
 computePotentialEnergy = potential_energy
 randomConfiguration = random_configuration
+
+# --- constrained dynamics (closed loops, rigid contacts) ---
+
+# kind: "point" (3 rows: two points coincide; Pinocchio's CONTACT_3D) or "frame" (6 rows: two
+# frames coincide; CONTACT_6D), or a pin.ContactType value. reference_frame: "local" (c1's axes,
+# Pinocchio's LOCAL) or "local_world_aligned" (the world's axes at c1's origin), or a
+# pin.ReferenceFrame value. A placement: (R, p), a 4 x 4 homogeneous matrix, or a pin.SE3.
+
+class ConstraintModel:
+    """A bilateral constraint between the frames ``c1 = oMi[joint1] · placement1`` and
+    ``c2 = oMi[joint2] · placement2`` (``"universe"``: the world; placements relative to the
+    joint frame, to the world for ``"universe"``): Pinocchio's ``RigidConstraintModel``.
+    ``λ`` is the force (point) or wrench (frame) the constraint applies to joint1's body, in c1's
+    axes (``"local"``) or the world's (``"local_world_aligned"``); joint2's body gets the
+    opposite. Baumgarte gains ``kp`` (1/s²), ``kd`` (1/s): the error obeys
+    ``ë = −kp e − kd ė``, with ``e = −c1Mc2.translation`` (point) or ``−log6(c1Mc2)``
+    (frame)."""
+
+    def __init__(self, model: Model, kind: Literal["point", "frame"] | Any, joint1: str,
+                 placement1: Any | None = None, joint2: str = "universe",
+                 placement2: Any | None = None,
+                 reference_frame: Literal["local", "local_world_aligned"] | Any = "local", kp: float = 0.0,
+                 kd: float = 0.0) -> None: ...
+    @staticmethod
+    def on_frames(model: Model, kind: Literal["point", "frame"] | Any, frame1: str, frame2: str = "universe",
+                  reference_frame: Literal["local", "local_world_aligned"] | Any = "local", kp: float = 0.0,
+                  kd: float = 0.0) -> ConstraintModel:
+        """Between two named frames (links, fixed joints), c1 and c2 at the frames;
+        ``"universe"`` is the world frame."""
+    @staticmethod
+    def joint_coordinate(model: Model, joint1: str, joint2: str | None = None,
+                         polycoef: Sequence[float] = (0.0, 1.0), kp: float = 0.0,
+                         kd: float = 0.0) -> ConstraintModel:
+        """``q_joint1 = Σ_k polycoef[k] q_joint2^k`` (at most 5 coefficients) for one-dof joints
+        (MJCF ``<equality joint>``); ``λ`` the generalised force on joint1."""
+    @property
+    def dim(self) -> int:
+        """3, 6 or 1."""
+
+class ConstraintData:
+    """The workspace of a constraint set on a model (Pinocchio's ``initConstraintDynamics`` and
+    its constraint datas), made once; no verb allocates afterwards."""
+
+    def __init__(self, model: Model, constraints: Sequence[ConstraintModel]) -> None: ...
+    @property
+    def dim(self) -> int:
+        """The number of constraint rows (3, 6 or 1 per constraint)."""
+    @property
+    def lambda_c(self) -> Vector:
+        """``λ`` of the last ``constraint_dynamics`` or ``contact_inverse_dynamics``, in the
+        constraints' order and reference frames: a wrench moment first in rigid's layout, force
+        first in Pinocchio's (Pinocchio's ``data.lambda_c``)."""
+    @property
+    def impulse_c(self) -> Vector:
+        """The impulse of the last ``impulse_dynamics`` (N·s; Pinocchio's ``data.impulse_c``)."""
+    @property
+    def gamma(self) -> Vector:
+        """The drift ``γ`` of the last ``constraint_dynamics``: ``J q̈ + γ = 0``, ``γ = J̇ q̇``
+        plus the Baumgarte terms ``kp e + kd ė``."""
+    @property
+    def jacobian(self) -> Matrix:
+        """The constraint Jacobian (dim, nv) at the last q, in the model's layout."""
+    @property
+    def violation(self) -> float:
+        """The largest constraint error ``‖e‖∞`` at the last q (m, rad)."""
+    @property
+    def stats(self) -> dict[str, Any]:
+        """The last solve: ``iterations``, ``absolute_residual`` (``‖J q̈ + γ‖∞``),
+        ``relative_residual`` (``‖λ_k − λ_{k−1}‖∞``), ``converged``, ``dynamics_residual``
+        (inverse dynamics)."""
+
+def constraint_dynamics(model: Model, data: Data, q: ArrayLike, v: ArrayLike, tau: ArrayLike,
+                        constraint_data: ConstraintData, mu: float = 0.0, max_iter: int = 100,
+                        accuracy: float = 1e-12) -> Vector:
+    """Forward dynamics with constraints: ``q̈`` with ``M q̈ + c + g = τ + Jᵀ λ`` and
+    ``J q̈ + γ = 0``, by the tree-sparse factorisation of M and the Delassus matrix
+    ``J M⁻¹ Jᵀ`` (Carpentier, Budhiraja & Mansard, RSS 2021); ``λ`` in
+    ``constraint_data.lambda_c``. ``mu > 0``: proximal iterations
+    ``(J M⁻¹ Jᵀ + μ I) λ_{k+1} = … + μ λ_k`` (redundant constraints; ``mu = 0``: one exact
+    solve, and redundant constraints are a ValueError). Pinocchio: ``constraintDynamics``."""
+
+def impulse_dynamics(model: Model, data: Data, q: ArrayLike, v: ArrayLike,
+                     constraint_data: ConstraintData, r_coeff: float = 0.0, mu: float = 0.0,
+                     max_iter: int = 100, accuracy: float = 1e-12) -> Vector:
+    """The velocity just after an impact that starts the constraints:
+    ``M (q̇⁺ − q̇⁻) = Jᵀ Λ``, ``J q̇⁺ = −r_coeff J q̇⁻`` (Newton's law, every constraint); ``Λ`` in
+    ``constraint_data.impulse_c``. Pinocchio: ``impulseDynamics``, whose right-hand side uses
+    joint1's velocity only: the same law when joint2 is the world, another one between two
+    moving bodies; with mu > 0 it does one regularised solve (``max_iter=1`` here)."""
+
+def contact_inverse_dynamics(model: Model, data: Data, q: ArrayLike, v: ArrayLike, a: ArrayLike,
+                             constraint_data: ConstraintData) -> Vector:
+    """Inverse dynamics with constraints: the least-norm ``(τ, λ)`` with
+    ``M a + c + g = τ + Jᵀ λ`` and τ zero on a free-flyer's six dofs (least squares when no
+    such pair exists, ``constraint_data.stats["dynamics_residual"]`` says how far); returns τ,
+    ``λ`` in ``constraint_data.lambda_c``. Not Pinocchio 4.1's ``contactInverseDynamics``, which
+    takes λ from a compliant point-contact law, ``λ = proj_cone(−(c_ref − μ λ_prev) / (R + μ))``
+    with ``c_ref = (J (v + dt a) + correction) / dt`` (no mass matrix), and returns
+    ``rnea(q, v, a) − Jᵀ λ``."""
+
+constraintDynamics = constraint_dynamics
+impulseDynamics = impulse_dynamics
+contactInverseDynamics = contact_inverse_dynamics

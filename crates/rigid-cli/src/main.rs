@@ -8,6 +8,7 @@ use std::process::ExitCode;
 mod bench;
 mod doctor;
 mod eval;
+mod eval_constraints;
 mod excite;
 mod explicit;
 mod identify;

@@ -9,6 +9,7 @@
 //! | `dynamics.rs` | `rnea`, `crba`, `aba`, `nle`, `gravity`, `minverse`, `coriolis_matrix`, `forward_kinematics`, `jacobian`, `com`, energies |
 //! | `configuration.rs` | `neutral`, `random_configuration`, `seed`, `integrate`, `difference` |
 //! | `derivatives.rs` | `rnea_derivatives`, `aba_derivatives`, `gravity_derivatives` |
+//! | `constraints.rs` | `ConstraintModel`, `ConstraintData`, `constraint_dynamics`, `impulse_dynamics`, `contact_inverse_dynamics` (and Pinocchio's names) |
 //! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch` (all cores, GIL released) |
 //! | `simulation.rs` | `simulate` (robot simulation, built-in or Python control laws), `replay_html` |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
@@ -16,6 +17,7 @@
 mod batch;
 mod body;
 mod configuration;
+mod constraints;
 mod convert;
 mod derivatives;
 mod dynamics;
@@ -63,6 +65,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::Model>()?;
     m.add_class::<model::Data>()?;
     m.add("UrdfWarning", m.py().get_type::<model::UrdfWarning>())?;
+    m.add("MjcfWarning", m.py().get_type::<model::MjcfWarning>())?;
     m.add_function(wrap_pyfunction!(dynamics::rnea, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::aba, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::crba, m)?)?;
@@ -105,6 +108,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(body::rod, m)?)?;
     m.add_function(wrap_pyfunction!(body::point, m)?)?;
     m.add_function(wrap_pyfunction!(body::mesh, m)?)?;
+    constraints::register(m)?;
     for (alias, name) in PINOCCHIO_ALIASES {
         m.add(alias, m.getattr(name)?)?;
     }

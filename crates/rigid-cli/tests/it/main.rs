@@ -12,6 +12,8 @@ mod bench_cli;
 mod corpus;
 mod doctor_cli;
 mod eval;
+mod eval_constraints;
+mod eval_mujoco;
 mod eval_parallel;
 mod eval_pinocchio;
 mod explicit_cli;

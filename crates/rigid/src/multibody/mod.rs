@@ -48,6 +48,7 @@ pub mod batch;
 mod builder;
 mod builtins;
 pub(crate) mod configuration;
+pub mod constraints;
 mod data;
 pub(crate) mod joint;
 mod textbook;
@@ -66,7 +67,7 @@ pub use configuration::{
     random_configuration, random_configuration_within, Rng,
 };
 pub use data::Data;
-pub use joint::{column_names, JointType, PinocchioCoords};
+pub use joint::{column_names, JointType, MujocoCoords, PinocchioCoords};
 pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 pub use textbook::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 

@@ -14,6 +14,7 @@ use std::cell::Cell;
 mod common;
 
 mod body_no_alloc;
+mod constraints_no_alloc;
 mod no_alloc;
 
 struct Counting;

@@ -47,8 +47,24 @@ pub(crate) fn ltl_solve<'a>(
     data: &'a mut Data,
     tau: &[f64],
 ) -> Result<&'a DVector<f64>, MultibodyError> {
+    ltl_factor(model, data)?;
+    let x = data.ddq.as_mut_slice();
+    for k in 0..model.nv {
+        x[k] = tau[k] - data.nle[k];
+    }
+    let (L, lambda) = (data.chol.as_slice(), &data.dof_parent);
+    ltl_solve_transposed(L, lambda, x);
+    ltl_solve_lower(L, lambda, x);
+    Ok(&data.ddq)
+}
+
+/// Factorises `M = data.mass_matrix` as `LᵀL` into `data.chol` (lower triangle, `L[(k, i)]` for
+/// `i` on the chain of `k`) and fills `data.dof_parent` with `λ(k)` (`usize::MAX` at a root).
+///
+/// # Errors
+/// [`MultibodyError::NotPositiveDefinite`] when a pivot is not positive.
+pub(crate) fn ltl_factor(model: &Model, data: &mut Data) -> Result<(), MultibodyError> {
     let n = model.nv;
-    const NONE: usize = usize::MAX;
     let lambda = &mut data.dof_parent;
     for (k, l) in lambda.iter_mut().enumerate() {
         *l = dof_parent(model, k).unwrap_or(NONE);
@@ -80,11 +96,17 @@ pub(crate) fn ltl_solve<'a>(
             i = lambda[i];
         }
     }
-    let x = data.ddq.as_mut_slice();
-    for k in 0..n {
-        x[k] = tau[k] - data.nle[k];
-    }
-    // y = L⁻ᵀ x
+    Ok(())
+}
+
+/// No parent dof (a root joint's first dof).
+pub(crate) const NONE: usize = usize::MAX;
+
+/// `x ← L⁻ᵀ x` for the factor of [`ltl_factor`] (`L` column-major `nv x nv`, `lambda` the
+/// parent dofs): back substitution from the last dof; fill-in stays on the chains of the
+/// nonzero entries of `x`.
+pub(crate) fn ltl_solve_transposed(L: &[f64], lambda: &[usize], x: &mut [f64]) {
+    let n = x.len();
     for k in (0..n).rev() {
         x[k] /= L[k * n + k];
         let xk = x[k];
@@ -94,7 +116,11 @@ pub(crate) fn ltl_solve<'a>(
             j = lambda[j];
         }
     }
-    // q̈ = L⁻¹ y
+}
+
+/// `x ← L⁻¹ x` for the factor of [`ltl_factor`].
+pub(crate) fn ltl_solve_lower(L: &[f64], lambda: &[usize], x: &mut [f64]) {
+    let n = x.len();
     for k in 0..n {
         let mut s = x[k];
         let mut j = lambda[k];
@@ -104,5 +130,4 @@ pub(crate) fn ltl_solve<'a>(
         }
         x[k] = s / L[k * n + k];
     }
-    Ok(&data.ddq)
 }

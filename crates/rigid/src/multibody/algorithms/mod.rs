@@ -20,6 +20,7 @@ pub use centroidal::{
     subtree_centers_of_mass, KinematicLevel,
 };
 pub use cholesky::forward_dynamics_cholesky;
+pub(crate) use cholesky::{ltl_factor, ltl_solve_lower, ltl_solve_transposed, NONE as NO_DOF};
 pub use coriolis::coriolis_matrix;
 pub use crba::crba;
 pub use derivatives::{

@@ -21,7 +21,7 @@
 mod coords;
 pub(crate) mod lie;
 
-pub use coords::{column_names, PinocchioCoords};
+pub use coords::{column_names, MujocoCoords, PinocchioCoords};
 
 use crate::spatial::{
     quat_norm, quat_normalize, quat_to_rot, rodrigues, rotate_about, so3, trig, Mat3, Transform,

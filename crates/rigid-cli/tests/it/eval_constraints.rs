@@ -1,0 +1,220 @@
+//! `rigid eval ... --constraints K.json` (docs/conventions.md): the fixture cases of the library's
+//! Pinocchio cross-check (`crates/rigid/tests/fixtures/constraints/pinocchio.json`, Pinocchio
+//! 4.1's `constraintDynamics` and `impulseDynamics`) run through the command line in Pinocchio's
+//! layout give Pinocchio's numbers; in rigid's layout a wrench is moment first; bad files are
+//! named errors.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::Command;
+
+fn fixtures() -> PathBuf {
+    crate::common::rigid_tests("fixtures/constraints")
+}
+
+fn temp_file(tag: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("rigid-cli-constraints-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(tag);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+fn rigid(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_rigid"))
+        .args(args)
+        .output()
+        .expect("run rigid")
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// `max |x − y| / max(1, ‖y‖∞)`.
+fn rel_err(x: &[f64], y: &[f64]) -> f64 {
+    assert_eq!(x.len(), y.len());
+    let scale = y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    x.iter()
+        .zip(y)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        / scale
+}
+
+/// Runs one fixture case through `rigid eval --layout pinocchio --constraints` and returns the
+/// output beside the case.
+fn run_case(name: &str, layout: &str) -> (Value, Value) {
+    let text = std::fs::read_to_string(fixtures().join("pinocchio.json")).unwrap();
+    let doc: Value = serde_json::from_str(&text).unwrap();
+    let case = doc["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["name"] == name)
+        .unwrap()
+        .clone();
+    let urdf = fixtures().join(case["urdf"].as_str().unwrap());
+    let states: Vec<Value> = case["states"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            // Pinocchio's free-flyer velocity is linear first, rigid's angular first
+            let swap = |x: &Value| {
+                let mut x = numbers(x);
+                if layout == "rigid" && case["floating"].as_bool().unwrap() {
+                    x[..6].rotate_left(3);
+                }
+                x
+            };
+            serde_json::json!({"q": s["q"], "v": swap(&s["v"]), "tau": swap(&s["tau"])})
+        })
+        .collect();
+    let cases = temp_file(
+        &format!("{name}-cases.json"),
+        &serde_json::json!({ "cases": states }).to_string(),
+    );
+    let k = temp_file(&format!("{name}-k.json"), &case.to_string());
+    let mut args = vec![
+        "eval",
+        urdf.to_str().unwrap(),
+        "--cases",
+        &cases,
+        "--constraints",
+        &k,
+        "--json",
+        "--layout",
+        layout,
+    ];
+    if case["floating"].as_bool().unwrap() {
+        args.push("--floating");
+    }
+    let out = rigid(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (serde_json::from_slice(&out.stdout).unwrap(), case)
+}
+
+#[test]
+fn eval_constraints_gives_pinocchio_numbers_in_its_layout() {
+    for name in [
+        "solo12_4_points_local_baumgarte",
+        "talos_2_frames_world_aligned",
+        "anymal_2_points_local",
+    ] {
+        let (out, case) = run_case(name, "pinocchio");
+        for (r, s) in out["results"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(case["states"].as_array().unwrap())
+        {
+            let cd = &r["constraint_dynamics"];
+            let id = &r["impulse_dynamics"];
+            for (got, want) in [
+                (&cd["ddq"], &s["ddq"]),
+                (&cd["lambda"], &s["lambda"]),
+                (&id["dq_plus"], &s["dq_plus"]),
+                (&id["impulse"], &s["impulse"]),
+            ] {
+                let e = rel_err(&numbers(got), &numbers(want));
+                assert!(e < 1e-9, "{name}: {e:e}");
+            }
+            assert!(
+                r["aba"].is_array() && r["rnea"].is_array(),
+                "the other keys stay"
+            );
+        }
+    }
+}
+
+/// In rigid's layout the free-flyer velocity is angular first and a wrench moment first (models
+/// whose sibling joints are in name order in the file, so that both layouts have one joint order).
+#[test]
+fn eval_constraints_in_rigid_layout_is_angular_first() {
+    let (pin, _) = run_case("closed_chain_frame_world_aligned_baumgarte", "pinocchio");
+    let (own, _) = run_case("closed_chain_frame_world_aligned_baumgarte", "rigid");
+    let (p, o) = (&pin["results"][0], &own["results"][0]);
+    let lambda = |r: &Value| numbers(&r["constraint_dynamics"]["lambda"]);
+    let (lp, lo) = (lambda(p), lambda(o));
+    assert_eq!((&lo[..3], &lo[3..]), (&lp[3..], &lp[..3]));
+    assert_eq!(
+        p["constraint_dynamics"]["ddq"],
+        o["constraint_dynamics"]["ddq"]
+    );
+    let (pin, _) = run_case("solo12_4_points_local_baumgarte", "pinocchio");
+    let (own, _) = run_case("solo12_4_points_local_baumgarte", "rigid");
+    let (p, o) = (&pin["results"][0], &own["results"][0]);
+    let ddq = |r: &Value| numbers(&r["constraint_dynamics"]["ddq"]);
+    let (dp, dd) = (ddq(p), ddq(o));
+    assert_eq!(
+        (&dd[..3], &dd[3..6], &dd[6..]),
+        (&dp[3..6], &dp[..3], &dp[6..])
+    );
+    assert_eq!(lambda(p), lambda(o));
+}
+
+#[test]
+fn eval_constraints_errors_name_the_file_and_the_constraint() {
+    let urdf = fixtures().join("fourbar.urdf");
+    let cases = temp_file("fb-cases.json", r#"{"cases": [{"q": [0.1, 0.2, 0.3]}]}"#);
+    let bad = temp_file(
+        "fb-bad.json",
+        r#"{"constraints": [{"type": "point", "joint1": "elbow"}]}"#,
+    );
+    let out = rigid(&[
+        "eval",
+        urdf.to_str().unwrap(),
+        "--cases",
+        &cases,
+        "--constraints",
+        &bad,
+        "--json",
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("fb-bad.json: constraint 0: \"joint1\": no joint named \"elbow\""),
+        "{err}"
+    );
+    // the planar loop closed by a 3D point is redundant: with mu = 0 it is refused, with mu > 0 solved
+    let k = r#"{"constraints": [{"type": "point", "joint1": "coupler_joint", "placement1": {"translation": [0.8, 0, 0]}, "joint2": "rocker_joint", "placement2": {"translation": [0.6, 0, 0]}}], "mu": MU}"#;
+    let exact = temp_file("fb-exact.json", &k.replace("MU", "0"));
+    let out = rigid(&[
+        "eval",
+        urdf.to_str().unwrap(),
+        "--cases",
+        &cases,
+        "--constraints",
+        &exact,
+        "--json",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success()
+            && err.contains("case 0: constraint_dynamics: the constraints are redundant"),
+        "{err}"
+    );
+    let prox = temp_file("fb-prox.json", &k.replace("MU", "1e-4"));
+    let out = rigid(&[
+        "eval",
+        urdf.to_str().unwrap(),
+        "--cases",
+        &cases,
+        "--constraints",
+        &prox,
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

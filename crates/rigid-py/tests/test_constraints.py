@@ -1,0 +1,96 @@
+"""Constrained dynamics against Pinocchio 4.1: rigid.constraint_dynamics / constraintDynamics,
+impulse_dynamics / impulseDynamics (layout="pinocchio": Pinocchio's raw arrays, lambda_c and
+impulse_c force first), and contact_inverse_dynamics checked on its own equation."""
+
+import os
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import rigid
+from conftest import ROOT, rel_err, TOL
+
+FIX = os.path.join(ROOT, "crates", "rigid", "tests", "fixtures")
+ERD = os.path.join(FIX, "robots", "example-robot-data", "robots")
+CASES = [
+    # (urdf, floating, kind, frames, reference frame, kp, kd)
+    (os.path.join(ERD, "solo_description/robots/solo12.urdf"), True, "point",
+     ["FL_FOOT", "FR_FOOT", "HL_FOOT", "HR_FOOT"], "local", 20.0, 5.0),
+    (os.path.join(ERD, "talos_data/robots/talos_reduced.urdf"), True, "frame",
+     ["left_sole_link", "right_sole_link"], "local_world_aligned", 10.0, 2.0),
+]
+PIN = {"point": pin.ContactType.CONTACT_3D, "frame": pin.ContactType.CONTACT_6D,
+       "local": pin.LOCAL, "local_world_aligned": pin.LOCAL_WORLD_ALIGNED}
+
+
+def state(pm, rng):
+    q = pin.neutral(pm)
+    q[:3] = rng.uniform(-0.5, 0.5, 3)
+    quat = rng.standard_normal(4)
+    q[3:7] = quat / np.linalg.norm(quat)
+    q[7:] = rng.uniform(-1, 1, pm.nq - 7)
+    return q, rng.uniform(-1, 1, pm.nv), rng.uniform(-5, 5, pm.nv)
+
+
+@pytest.mark.parametrize("case", CASES, ids=["solo12_points", "talos_frames"])
+def test_constraint_and_impulse_dynamics_equal_pinocchio(case):
+    urdf, floating, kind, frames, rf, kp, kd = case
+    pm = pin.buildModelFromUrdf(urdf, pin.JointModelFreeFlyer())
+    pd = pm.createData()
+    m = rigid.Model.from_urdf(urdf, floating=floating, layout="pinocchio")
+    d = m.create_data()
+    rng = np.random.default_rng(3)
+    pin.framesForwardKinematics(pm, pd, pin.neutral(pm))
+    cms, cs = [], []
+    for f in frames:
+        fr = pm.frames[pm.getFrameId(f)]
+        target = pd.oMf[pm.getFrameId(f)] * pin.exp6(pin.Motion(0.02 * rng.standard_normal(6)))
+        cm = pin.RigidConstraintModel(PIN[kind], pm, fr.parentJoint, fr.placement, 0, target, PIN[rf])
+        cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(kp, kd))
+        cms.append(cm)
+        # the same by joint name and placements, and by the frame's name (placement1 equal)
+        c = rigid.ConstraintModel(m, kind, pm.names[fr.parentJoint], fr.placement, "universe",
+                                  (target.rotation, target.translation), rf, kp, kd)
+        assert rigid.ConstraintModel.on_frames(m, PIN[kind], f).dim == c.dim
+        cs.append(c)
+    cds = [c.createData() for c in cms]
+    pin.initConstraintDynamics(pm, pd, cms, cds)
+    cd = rigid.ConstraintData(m, cs)
+    for _ in range(2):
+        q, v, tau = state(pm, rng)
+        ddq = pin.constraintDynamics(pm, pd, q, v, tau, cms, cds)
+        assert rel_err(rigid.constraintDynamics(m, d, q, v, tau, cd), ddq) < TOL
+        assert rel_err(cd.lambda_c, pd.lambda_c) < TOL
+        vp = pin.impulseDynamics(pm, pd, q, v, cms, cds, 0.3)
+        assert rel_err(rigid.impulse_dynamics(m, d, q, v, cd, r_coeff=0.3), vp) < TOL
+        assert rel_err(cd.impulse_c, pd.impulse_c) < TOL
+        # inverse: the least-norm (τ, λ), τ zero on the free-flyer, the equation of motion holds
+        a = rigid.constraint_dynamics(m, d, q, v, np.r_[np.zeros(6), tau[6:]], cd)
+        t = rigid.contact_inverse_dynamics(m, d, q, v, a, cd)
+        assert np.all(t[:6] == 0.0)
+        lhs = pin.rnea(pm, pd, q, v, a)
+        assert rel_err(t + cd.jacobian.T @ cd.lambda_c, lhs) < TOL
+        assert cd.stats["dynamics_residual"] < 1e-9
+
+
+def test_rigid_layout_wrench_is_moment_first_and_errors_are_value_errors():
+    urdf = CASES[1][0]
+    lam = {}
+    for layout in ["rigid", "pinocchio"]:
+        # at the neutral configuration, at rest, no torque: the same state in both joint orders
+        m = rigid.Model.from_urdf(urdf, floating=True, layout=layout)
+        c = rigid.ConstraintModel.on_frames(m, "frame", "left_sole_link", kp=0.0)
+        cd = rigid.ConstraintData(m, [c])
+        d = m.create_data()
+        q = rigid.neutral(m)
+        rigid.constraint_dynamics(m, d, q, np.zeros(m.nv), np.zeros(m.nv), cd)
+        lam[layout] = cd.lambda_c
+    assert rel_err(lam["rigid"], np.r_[lam["pinocchio"][3:], lam["pinocchio"][:3]]) < TOL
+    with pytest.raises(ValueError, match="no joint named"):
+        rigid.ConstraintModel(m, "point", "elbow")
+    with pytest.raises(ValueError, match="reference_frame must be"):
+        rigid.ConstraintModel.on_frames(m, "point", "left_sole_link", reference_frame="world")
+    other = rigid.Model.builtin("double_pendulum")
+    with pytest.raises(ValueError, match="another model"):
+        rigid.constraint_dynamics(other, other.create_data(), [0, 0], [0, 0], [0, 0], cd)

@@ -1,0 +1,337 @@
+//! The linear algebra of the constrained problems: the Delassus matrix through the tree-sparse
+//! factor `M = LᵀL`, a dense Cholesky, and the proximal iterations.
+//!
+//! With `M = LᵀL` (Featherstone 2008, §6.5: `L` keeps the tree's sparsity) and `Z = L⁻ᵀ Jᵀ`:
+//! `M⁻¹ = L⁻¹ L⁻ᵀ`, so the Delassus matrix is `K = J M⁻¹ Jᵀ = Zᵀ Z`, and for any `w = L⁻ᵀ f`
+//! the solution of `M x = f + Jᵀ λ` is `x = L⁻¹ (w + Z λ)`, with `J x = Zᵀ w + K λ`. The column
+//! of `Z` of a constraint row is nonzero only on the constraint's support (the chains of its two
+//! joints), so building `Z` costs O(m d²) and `K` O(m² d) for a depth d. This is the Schur
+//! complement form of the KKT system `[[M, −Jᵀ], [J, μ I]]` that Pinocchio's
+//! `ContactCholeskyDecomposition` factorises as a whole (Carpentier, Budhiraja & Mansard 2021).
+
+use super::workspace::ConstraintData;
+use super::{ConstraintError, ProximalSettings, SolverStats};
+use crate::multibody::algorithms::{ltl_solve_lower, NO_DOF};
+use crate::multibody::Data;
+use nalgebra::{DMatrix, DVector};
+
+/// `Z = L⁻ᵀ Jᵀ` and `K = Zᵀ Z` from `cd.jacobian` and the factor `L` in `data.chol`
+/// (`data.dof_parent` its parent dofs).
+pub(crate) fn delassus(data: &Data, cd: &mut ConstraintData) {
+    let nv = data.chol.nrows();
+    let m = cd.dim();
+    let (L, lambda) = (data.chol.as_slice(), &data.dof_parent);
+    let n = cd.placements.len();
+    // Z, column-major: column r = Z[r * nv..(r + 1) * nv]
+    let Z = cd.z.as_mut_slice();
+    for c in 0..n {
+        let support = &cd.support[c].cols;
+        let rows = cd.rows[c]..cd.rows[c + 1];
+        for r in rows.clone() {
+            for &(k, _, _) in support {
+                Z[r * nv + k] = cd.jacobian[(r, k)];
+            }
+        }
+        // back substitution on the support, from its deepest dof up (it is closed under taking
+        // parents, so the fill-in stays in it), the constraint's rows together so that each
+        // chain of parents is walked once
+        for &(k, _, _) in support.iter().rev() {
+            let d = L[k * nv + k];
+            for r in rows.clone() {
+                Z[r * nv + k] /= d;
+            }
+            let mut j = lambda[k];
+            while j != NO_DOF {
+                let l = L[j * nv + k];
+                for r in rows.clone() {
+                    Z[r * nv + j] -= l * Z[r * nv + k];
+                }
+                j = lambda[j];
+            }
+        }
+    }
+    // K[r, s] = Z_rᵀ Z_s over the span of r's constraint's support (Z_r is zero outside it)
+    let Z = cd.z.as_slice();
+    let K = cd.delassus.as_mut_slice();
+    for c in 0..n {
+        let span = match (cd.support[c].cols.first(), cd.support[c].cols.last()) {
+            (Some(a), Some(b)) => a.0..b.0 + 1,
+            _ => 0..0,
+        };
+        for r in cd.rows[c]..cd.rows[c + 1] {
+            let zr = &Z[r * nv..(r + 1) * nv][span.clone()];
+            for s in 0..=r {
+                let x = dot(zr, &Z[s * nv..(s + 1) * nv][span.clone()]);
+                K[s * m + r] = x;
+                K[r * m + s] = x;
+            }
+        }
+    }
+}
+
+/// `aᵀ b` with four partial sums (independent chains of additions).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut s = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ca
+        .remainder()
+        .iter()
+        .zip(cb.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        for i in 0..4 {
+            s[i] += x[i] * y[i];
+        }
+    }
+    (s[0] + s[1]) + (s[2] + s[3]) + tail
+}
+
+/// `y = Zᵀ x` over the supports (`y` of length m).
+pub(crate) fn z_transpose_times(cd: &ConstraintData, x: &DVector<f64>, y: &mut [f64]) {
+    for c in 0..cd.placements.len() {
+        for r in cd.rows[c]..cd.rows[c + 1] {
+            y[r] = cd.support[c]
+                .cols
+                .iter()
+                .map(|&(k, _, _)| cd.z[(k, r)] * x[k])
+                .sum();
+        }
+    }
+}
+
+/// `x ← L⁻¹ (x + Z λ)`: the primal solution from `x = w` and the multipliers.
+pub(crate) fn primal(data: &Data, cd: &ConstraintData, lambda: &DVector<f64>, x: &mut [f64]) {
+    for c in 0..cd.placements.len() {
+        for r in cd.rows[c]..cd.rows[c + 1] {
+            for &(k, _, _) in &cd.support[c].cols {
+                x[k] += cd.z[(k, r)] * lambda[r];
+            }
+        }
+    }
+    ltl_solve_lower(data.chol.as_slice(), &data.dof_parent, x);
+}
+
+/// In-place Cholesky `A = G Gᵀ` of the leading `n x n` block of `a` (lower triangle; the upper
+/// one is left as it was).
+///
+/// # Errors
+/// [`ConstraintError::Singular`] when a pivot is not positive (relative to the largest diagonal
+/// entry, 1e-14) or not finite.
+pub(crate) fn cholesky(a: &mut DMatrix<f64>, n: usize) -> Result<(), ConstraintError> {
+    let scale = (0..n).map(|i| a[(i, i)].abs()).fold(0.0, f64::max);
+    for j in 0..n {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= a[(j, k)] * a[(j, k)];
+        }
+        if d.is_nan() || d <= 1e-14 * scale || !d.is_finite() {
+            return Err(ConstraintError::Singular);
+        }
+        let d = d.sqrt();
+        a[(j, j)] = d;
+        for i in j + 1..n {
+            let mut s = a[(i, j)];
+            for k in 0..j {
+                s -= a[(i, k)] * a[(j, k)];
+            }
+            a[(i, j)] = s / d;
+        }
+    }
+    Ok(())
+}
+
+/// `x ← (G Gᵀ)⁻¹ x` with the factor of [`cholesky`] in the leading `n x n` block of `g`.
+pub(crate) fn cholesky_solve(g: &DMatrix<f64>, n: usize, x: &mut [f64]) {
+    for i in 0..n {
+        let mut s = x[i];
+        for k in 0..i {
+            s -= g[(i, k)] * x[k];
+        }
+        x[i] = s / g[(i, i)];
+    }
+    for i in (0..n).rev() {
+        let mut s = x[i];
+        for k in i + 1..n {
+            s -= g[(k, i)] * x[k];
+        }
+        x[i] = s / g[(i, i)];
+    }
+}
+
+/// The proximal iterations on `K λ = b` (`K` in `cd.delassus`, `b` in `cd.b`), from `λ_0 = 0`,
+/// into `cd.lambda` and `cd.stats` ([`proximal_solve`]).
+///
+/// # Errors
+/// [`ConstraintError::Singular`] when `K + μ I` is not positive definite.
+pub(crate) fn proximal(
+    cd: &mut ConstraintData,
+    settings: &ProximalSettings,
+) -> Result<(), ConstraintError> {
+    let m = cd.dim();
+    cd.stats = proximal_solve(
+        &cd.delassus,
+        &mut cd.chol,
+        &cd.b.as_slice()[..m],
+        cd.lambda.as_mut_slice(),
+        &mut cd.prev.as_mut_slice()[..m],
+        settings,
+    )?;
+    Ok(())
+}
+
+/// The proximal point iterations on a symmetric positive semi-definite system `K x = b`
+/// (`n = b.len()`), from `x_0 = 0`: `(K + μ I) x_{k+1} = b + μ x_k` until
+/// `‖K x − b‖∞ ≤ absolute_accuracy` or `‖x_{k+1} − x_k‖∞ ≤ relative_accuracy`, at most
+/// `max_iter` times (RSS 2021, Alg. 1: Rockafellar's proximal point method, which converges for
+/// any `μ > 0` when `b` is in the range of `K`, and then to the `x` of least norm, the iterates
+/// staying in that range). With `μ = 0` one exact solve. `chol` receives the factor of
+/// `K + μ I`; `prev` is scratch.
+///
+/// # Errors
+/// [`ConstraintError::Singular`] when `K + μ I` is not positive definite.
+pub(crate) fn proximal_solve(
+    K: &DMatrix<f64>,
+    chol: &mut DMatrix<f64>,
+    b: &[f64],
+    x: &mut [f64],
+    prev: &mut [f64],
+    settings: &ProximalSettings,
+) -> Result<SolverStats, ConstraintError> {
+    let n = b.len();
+    let mu = settings.mu;
+    for i in 0..n {
+        for k in 0..=i {
+            chol[(i, k)] = K[(i, k)];
+        }
+        chol[(i, i)] += mu;
+    }
+    cholesky(chol, n)?;
+    prev.fill(0.0);
+    let mut stats = SolverStats::default();
+    let max_iter = if mu == 0.0 { 1 } else { settings.max_iter };
+    for it in 1..=max_iter {
+        for i in 0..n {
+            x[i] = b[i] + mu * prev[i];
+        }
+        cholesky_solve(chol, n, &mut x[..n]);
+        let mut rel: f64 = 0.0;
+        let mut abs: f64 = 0.0;
+        for i in 0..n {
+            rel = rel.max((x[i] - prev[i]).abs());
+            let mut r = -b[i];
+            for k in 0..n {
+                r += K[(i, k)] * x[k];
+            }
+            abs = abs.max(r.abs());
+        }
+        prev.copy_from_slice(&x[..n]);
+        stats = SolverStats {
+            iterations: it,
+            absolute_residual: abs,
+            relative_residual: rel,
+            converged: mu == 0.0
+                || abs <= settings.absolute_accuracy
+                || rel <= settings.relative_accuracy,
+            dynamics_residual: 0.0,
+        };
+        if stats.converged {
+            break;
+        }
+    }
+    Ok(stats)
+}
+
+/// The minimum-norm least-squares solution `y = G⁺ b` of a symmetric positive semi-definite
+/// system (`n = b.len()`), by the Cholesky factorisation with complete (diagonal) pivoting
+/// `P G Pᵀ = L Lᵀ`, `L` n x r, stopped at the rank r where the largest remaining pivot is at most
+/// `1e-12` times the largest diagonal entry (Higham 2002, §10.3, LAPACK's `dpstrf`); then
+/// `G⁺ = Pᵀ L (LᵀL)⁻² Lᵀ P` (`Lᵀ` has full row rank). `c` receives `L`, `n2` the factor of
+/// `LᵀL`, `perm` the pivots; `y` the solution. Returns the rank.
+pub(crate) fn pinv_solve(
+    G: &DMatrix<f64>,
+    c: &mut DMatrix<f64>,
+    n2: &mut DMatrix<f64>,
+    perm: &mut [usize],
+    b: &[f64],
+    y: &mut [f64],
+) -> usize {
+    let n = b.len();
+    for i in 0..n {
+        perm[i] = i;
+        for k in 0..=i {
+            c[(i, k)] = G[(i, k)];
+        }
+    }
+    let tol = 1e-12 * (0..n).map(|i| G[(i, i)]).fold(0.0, f64::max);
+    let mut rank = n;
+    for j in 0..n {
+        let p = (j..n)
+            .max_by(|&a, &b| c[(a, a)].total_cmp(&c[(b, b)]))
+            .expect("j < n");
+        if c[(p, p)].is_nan() || c[(p, p)] <= tol {
+            rank = j;
+            break;
+        }
+        if p != j {
+            // symmetric swap of rows and columns j and p in the lower triangle
+            perm.swap(j, p);
+            for k in 0..j {
+                let t = c[(j, k)];
+                c[(j, k)] = c[(p, k)];
+                c[(p, k)] = t;
+            }
+            let t = c[(j, j)];
+            c[(j, j)] = c[(p, p)];
+            c[(p, p)] = t;
+            for i in j + 1..p {
+                let t = c[(i, j)];
+                c[(i, j)] = c[(p, i)];
+                c[(p, i)] = t;
+            }
+            for i in p + 1..n {
+                let t = c[(i, j)];
+                c[(i, j)] = c[(i, p)];
+                c[(i, p)] = t;
+            }
+        }
+        let d = c[(j, j)].sqrt();
+        c[(j, j)] = d;
+        for i in j + 1..n {
+            c[(i, j)] /= d;
+        }
+        for k in j + 1..n {
+            let ckj = c[(k, j)];
+            for i in k..n {
+                c[(i, k)] -= c[(i, j)] * ckj;
+            }
+        }
+    }
+    let r = rank;
+    // LᵀL (r x r) and its Cholesky factor
+    for i in 0..r {
+        for k in 0..=i {
+            n2[(i, k)] = (i..n).map(|l| c[(l, i)] * c[(l, k)]).sum();
+        }
+    }
+    cholesky(n2, r).expect("LᵀL is positive definite for the rank found");
+    // w = Lᵀ P b, solved twice with LᵀL, then y = Pᵀ L w
+    for i in 0..r {
+        y[i] = (i..n).map(|l| c[(l, i)] * b[perm[l]]).sum();
+    }
+    cholesky_solve(n2, r, &mut y[..r]);
+    cholesky_solve(n2, r, &mut y[..r]);
+    // z = L w (n), written from the last row up so that y[..r] is read before it is overwritten
+    for l in (0..n).rev() {
+        let z: f64 = (0..r.min(l + 1)).map(|i| c[(l, i)] * y[i]).sum();
+        y[l] = z;
+    }
+    // y ← Pᵀ z: y[perm[l]] = z[l]
+    for l in 0..n {
+        c[(l, 0)] = y[l]; // the factor is no longer needed: reuse its first column
+    }
+    for l in 0..n {
+        y[perm[l]] = c[(l, 0)];
+    }
+    rank
+}
