@@ -67,6 +67,10 @@ pub use configuration::{
     random_configuration, random_configuration_within, Rng,
 };
 pub use data::Data;
+pub use joint::lie::{
+    se3_jr as se3_right_jacobian, se3_jr_inv as se3_right_jacobian_inverse,
+    so3_jr as so3_right_jacobian, so3_jr_inv as so3_right_jacobian_inverse,
+};
 pub use joint::{column_names, JointType, MujocoCoords, PinocchioCoords};
 pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 pub use textbook::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
