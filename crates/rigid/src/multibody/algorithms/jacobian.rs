@@ -36,10 +36,25 @@ pub fn compute_joint_jacobians<'a>(
     Ok(&data.jacobian)
 }
 
+/// `J_k = [Ad_{oMi}] S_k` for every dof; when `S_k = s e_c` (a coordinate axis, `Plan::dof_axis`)
+/// the column is `(s R_c, p × s R_c)` (angular axis) or `(0, s R_(c-3))` (linear): a column of
+/// `R`, no product with `S`.
 fn fill_jacobian(model: &Model, data: &mut Data) {
+    let plan = model.plan();
     for k in 0..model.nv {
-        let oMi = &data.placements[model.plan().dof_joint[k]];
-        set_col(&mut data.jacobian, k, &oMi.act_twist(&data.S[k]));
+        let oMi = &data.placements[plan.dof_joint[k]];
+        let t = match plan.dof_axis[k] {
+            Some((c, s)) if c < 3 => {
+                let w: crate::spatial::Vec3 = oMi.rotation.column(c) * s;
+                Twist::new(w, oMi.translation.cross(&w))
+            }
+            Some((c, s)) => Twist::new(
+                crate::spatial::Vec3::zeros(),
+                oMi.rotation.column(c - 3) * s,
+            ),
+            None => oMi.act_twist(&data.S[k]),
+        };
+        set_col(&mut data.jacobian, k, &t);
     }
 }
 
