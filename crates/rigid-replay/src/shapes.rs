@@ -172,7 +172,7 @@ fn link_shapes(
 
 /// The nodes of `model`: the visual (else collision) geometry of each link of the URDF at
 /// `urdf`, placed at the link's body frame, or for an MJCF file (`.xml`) its geoms
-/// ([`crate::mjcf`]); a stick figure when there is no file or no link has any geometry.
+/// (the MJCF drawing); a stick figure when there is no file or no link has any geometry.
 pub fn robot_nodes(model: &Model, urdf: Option<&Path>) -> Scene {
     let mut scene = Scene {
         extent: model_extent(model),

@@ -37,11 +37,13 @@ pub mod checks;
 pub mod diagnose;
 mod fix;
 pub mod geometry;
+#[cfg(feature = "mjcf")]
 mod mjcf;
 
 pub use checks::{Evaluation, Finding, InertialParams};
 pub use diagnose::{Cause, Diagnosis, Hypothesis};
 pub use fix::fixed_urdf;
+#[cfg(feature = "mjcf")]
 pub use mjcf::{as_robot, examine_mjcf};
 
 use crate::io::urdf::UrdfRobot;

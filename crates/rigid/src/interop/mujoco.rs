@@ -84,7 +84,7 @@ struct JointMap {
 }
 
 /// The map between rigid's layout of a [`Model`]'s vectors and MuJoCo's (see the
-/// [module](self) documentation). Made once per model.
+/// [module](crate::interop) documentation). Made once per model.
 #[derive(Clone, Debug)]
 pub struct MujocoLayout {
     joints: Vec<JointMap>,

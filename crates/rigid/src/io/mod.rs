@@ -2,11 +2,18 @@
 //! URDF robots, MuJoCo's MJCF models, constraint files, and finding the robot files of
 //! example-robot-data ([`robots`]).
 
+#[cfg(feature = "serde")]
 pub mod cases;
+#[cfg(feature = "mesh")]
 pub mod collada;
+#[cfg(feature = "serde")]
 pub mod constraints;
+#[cfg(feature = "mesh")]
 pub mod mesh_file;
+#[cfg(feature = "mjcf")]
 pub mod mjcf;
 pub mod robots;
+#[cfg(feature = "spec")]
 pub mod spec;
+#[cfg(feature = "urdf")]
 pub mod urdf;

@@ -44,6 +44,7 @@
 //! ```
 
 pub mod algorithms;
+#[cfg(feature = "parallel")]
 pub mod batch;
 mod builder;
 mod builtins;
@@ -56,6 +57,7 @@ mod textbook;
 mod model;
 pub(crate) mod plan;
 pub mod reference;
+#[cfg(feature = "serde")]
 mod serialize;
 pub mod simulation;
 

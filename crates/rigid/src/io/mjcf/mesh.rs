@@ -101,7 +101,7 @@ pub(super) fn read(path: &Path) -> Result<MeshData, String> {
 /// (for drawing; its mass properties are MuJoCo's through the importer).
 ///
 /// # Errors
-/// As [`read`]: a message saying what failed.
+/// An unreadable or malformed file: a message saying what failed.
 pub fn read_trimesh(path: &Path) -> Result<crate::mass::TriMesh, String> {
     let m = read(path)?;
     let vertices = m

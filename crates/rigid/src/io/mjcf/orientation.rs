@@ -3,7 +3,7 @@
 //!
 //! Each function follows MuJoCo's compiler (`src/user/user_util.cc` and `ResolveOrientation` in
 //! `src/user/user_objects.cc`, read at commit a725507) operation for operation, so that the
-//! compiled frames agree to round-off: in particular [`normalize`] leaves a vector within `1e-14`
+//! compiled frames agree to round-off: in particular `normalize` leaves a vector within `1e-14`
 //! of unit length untouched.
 
 use crate::spatial::{Mat3, Transform, Vec3};

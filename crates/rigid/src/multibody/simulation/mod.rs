@@ -29,6 +29,7 @@
 // loops over several per-dof arrays at once read better indexed
 #![allow(clippy::needless_range_loop)]
 
+#[cfg(feature = "parallel")]
 mod batch;
 mod control;
 mod integrators;
@@ -37,6 +38,7 @@ mod momentum;
 mod simulator;
 mod trajectory;
 
+#[cfg(feature = "parallel")]
 pub use batch::simulate_batch;
 pub use control::{Control, ControlKind, ControlLaw, Controller};
 pub use simulator::Simulator;
