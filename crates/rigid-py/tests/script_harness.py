@@ -139,6 +139,13 @@ def _run(side, script, args, record_path):
         import runpy
 
         g = runpy.run_path(script, run_name="__main__")
+        # the rigid run computed with the layer: `pinocchio` is rigid.pinocchio and Pinocchio's
+        # own library was never loaded (else equal numbers would prove nothing)
+        assert sys.modules["pinocchio"] is pin, sys.modules["pinocchio"]
+        loaded = [k for k, m in list(sys.modules.items()) if "pinocchio_pywrap" in k
+                  or f"{os.sep}site-packages{os.sep}pinocchio{os.sep}"
+                  in (getattr(m, "__file__", None) or "")]
+        assert not loaded, f"Pinocchio's own modules were loaded in the rigid run: {loaded}"
     return {k: v for k, v in ((k, _plain(v)) for k, v in g.items() if not k.startswith("_"))
             if v is not None}
 

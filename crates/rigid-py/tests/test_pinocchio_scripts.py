@@ -1,7 +1,8 @@
 """Scripts written for Pinocchio (pinocchio_scripts/, in the style of Pinocchio's examples:
 overview, inverse dynamics, inverse kinematics, derivatives, centroidal terms, RobotWrapper) run
 unchanged under `python -m rigid.pinocchio`, and every number they compute equals Pinocchio's on
-the same inputs to 1e-9 (script_harness.py); skipped without Pinocchio."""
+the same inputs to 1e-9 (script_harness.py); so do Pinocchio's own examples of dynamics and
+kinematics (pinocchio_examples/, copied unchanged); skipped without Pinocchio."""
 
 import os
 import subprocess
@@ -49,6 +50,33 @@ def args_of(args):
 def test_script_numbers_equal_pinocchio(script, args):
     diffs, _ = compare(os.path.join(SCRIPTS, script), args_of(args))
     assert diffs, "no numbers compared"
+    bad = {k: e for k, e in diffs.items() if not e <= TOL}
+    assert not bad, f"{script}: " + ", ".join(f"{k} {e:.2e}" for k, e in bad.items())
+
+
+EXAMPLES = os.path.join(HERE, "pinocchio_examples")
+PINOCCHIO_EXAMPLES = sorted(f for f in os.listdir(EXAMPLES) if f.endswith(".py"))
+
+
+@pytest.fixture(scope="module")
+def examples_tree(tmp_path_factory):
+    """Pinocchio's source layout: examples/ beside models/example-robot-data (the installed one)."""
+    import shutil
+
+    root = tmp_path_factory.mktemp("pinocchio")
+    shutil.copytree(EXAMPLES, root / "examples")
+    robots = robot_path("ur5")[0].split("/robots/")[0]
+    (root / "models").mkdir()
+    (root / "models" / "example-robot-data").symlink_to(robots)
+    return root / "examples"
+
+
+@pytest.mark.parametrize("script", PINOCCHIO_EXAMPLES)
+def test_pinocchios_own_examples_equal_pinocchio(script, examples_tree):
+    """Pinocchio's own examples (pinocchio_examples/README.md), unchanged: every number within
+    1e-9 of Pinocchio's."""
+    diffs, _ = compare(str(examples_tree / script), [])
+    assert len(diffs) >= 2, f"{script}: only {sorted(diffs)} compared"
     bad = {k: e for k, e in diffs.items() if not e <= TOL}
     assert not bad, f"{script}: " + ", ".join(f"{k} {e:.2e}" for k, e in bad.items())
 
