@@ -19,12 +19,14 @@ Everything is computed by rigid (this module never imports Pinocchio). What is n
 import sys as _sys
 
 from .. import rigid as _r
-from . import algorithms, constraints, loaders, model, spatial, utils  # noqa: F401
+from . import algorithms, constraints, data, joints, loaders, model, spatial, utils  # noqa: F401
 from .algorithms import *  # noqa: F401,F403
 from .constraints import *  # noqa: F401,F403
 from .loaders import *  # noqa: F401,F403
+from .data import *  # noqa: F401,F403
+from .joints import *  # noqa: F401,F403
+from .joints import ArgumentPosition, JOINT_MODELS  # noqa: F401
 from .model import *  # noqa: F401,F403
-from .model import ArgumentPosition, JOINT_MODELS  # noqa: F401
 from .robot_wrapper import RobotWrapper  # noqa: F401
 from .spatial import *  # noqa: F401,F403
 
@@ -203,5 +205,5 @@ def __getattr__(name):
 
 
 COVERED = sorted(n for n in dir(_sys.modules[__name__]) if not n.startswith("_")
-                 and n not in ("algorithms", "constraints", "loaders", "model", "spatial",
-                               "utils"))
+                 and n not in ("algorithms", "constraints", "data", "joints", "loaders", "model",
+                               "spatial", "utils"))

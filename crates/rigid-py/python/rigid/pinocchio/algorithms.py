@@ -6,7 +6,7 @@ Pinocchio keeps in ``data``.
 import numpy as np
 
 from .. import rigid as _r
-from .model import KinematicLevel, ReferenceFrame
+from .joints import KinematicLevel, ReferenceFrame
 from .spatial import SE3, Force, Motion, _seed
 
 # ---------------------------------------------------------------- rigid's own functions

@@ -8,7 +8,7 @@ import enum
 import numpy as np
 
 from .. import rigid as _r
-from .model import ReferenceFrame
+from .joints import ReferenceFrame
 from .spatial import SE3
 
 __all__ = ["ContactType", "RigidConstraintModel", "RigidConstraintData", "ProximalSettings",

@@ -9,8 +9,8 @@ import warnings
 import numpy as np
 
 from .. import rigid as _r
-from .model import (JointModelFreeFlyer, JointModelRX, JointModelRY, JointModelRZ, Model,
-                    _frames_of)
+from .joints import JointModelFreeFlyer, JointModelRX, JointModelRY, JointModelRZ, _frames_of
+from .model import Model
 from .spatial import SE3, Inertia, _GEN, exp3
 
 __all__ = [
@@ -217,7 +217,7 @@ def _add_manipulator(model, root_joint_idx=0, Mroot=None, pre=""):
     model.addBodyFrame(pre + "effector_body", j, SE3(), -1)
     d = model.desc()
     for i, Y in inertias.items():
-        from .model import _inertia_json  # noqa: PLC0415
+        from .joints import _inertia_json  # noqa: PLC0415
 
         d["inertias"][i - 1] = _inertia_json(Y)
     model._rebuild(d)

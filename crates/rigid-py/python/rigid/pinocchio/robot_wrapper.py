@@ -5,7 +5,7 @@ import numpy as np
 
 from . import algorithms as alg
 from .loaders import GeometryModel, buildModelFromMJCF, buildModelFromUrdf
-from .model import ReferenceFrame
+from .joints import ReferenceFrame
 
 __all__ = ["RobotWrapper"]
 
