@@ -12,7 +12,9 @@
 //! | `constraints.rs` | `ConstraintModel`, `ConstraintData`, `constraint_dynamics`, `impulse_dynamics`, `contact_inverse_dynamics` (and Pinocchio's names) |
 //! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch` (all cores, GIL released) |
 //! | `simulation.rs` | `simulate` (robot simulation, built-in or Python control laws), `replay_html` |
-//! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, `inverse_kinematics`, private field accessors |
+//! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, private field accessors |
+//! | `inverse_kinematics.rs` | `inverse_kinematics` (`rigid::kinematics::inverse`: targets in, a dict out) |
+//! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_lie`) |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
 
 mod batch;
@@ -23,6 +25,8 @@ mod convert;
 mod derivatives;
 mod dynamics;
 mod identification;
+mod inverse_kinematics;
+mod lie;
 mod model;
 mod pinocchio;
 mod simulation;

@@ -1,20 +1,20 @@
 //! The verbs the Pinocchio layer (`rigid.pinocchio`, Python sources in `python/rigid/pinocchio/`)
 //! needs beyond the others: the spatial Jacobian of all joints, frame placements, the
 //! centre-of-mass Jacobian, the centroidal momentum and its matrix, kinematics derivatives,
-//! `interpolate`, `normalize`, inverse kinematics; and, private (`_` names), the fields of a
-//! `Data` in the model's layout, the Jacobians already in a `Data`, and SE(3)/SO(3) `exp`, `log`
-//! and their Jacobians. Every number is computed by the `rigid` crate; this file converts.
+//! `interpolate`, `normalize`; and, private (`_` names), the fields of a `Data` in the model's
+//! layout and the Jacobians already in a `Data`. Inverse kinematics is in inverse_kinematics.rs,
+//! SE(3)/SO(3) `exp`, `log` and their Jacobians in lie.rs. Every number is computed by the
+//! `rigid` crate; this file converts.
 
-use crate::convert::{self, array1, array2, matrix, value_error, vector};
+use crate::convert::{array1, array2, matrix, value_error, vector};
 use crate::dynamics::reference_frame;
 use crate::model::{Data, Model, ModelCore, Place};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
-use rigid::kinematics::{self, ErrorTwist, IkError, Options, Site, Target};
+use pyo3::types::PyString;
 use rigid::multibody::{self as mb, PinocchioCoords, ReferenceFrame};
-use rigid::spatial::{so3, Mat3, Mat6, Transform, Twist, Vec3, Wrench};
+use rigid::spatial::{Transform, Twist, Vec3, Wrench};
 
 type Array1<'py> = Bound<'py, PyArray1<f64>>;
 type Array2<'py> = Bound<'py, PyArray2<f64>>;
@@ -64,7 +64,7 @@ fn three_by_nv<'py>(py: Python<'py>, core: &ModelCore, m: &nalgebra::DMatrix<f64
     array2(py, 3, m.ncols(), |r, c| m[(r, core.v_index(c))])
 }
 
-fn refuse_mujoco(func: &str, core: &ModelCore) -> PyResult<()> {
+pub(crate) fn refuse_mujoco(func: &str, core: &ModelCore) -> PyResult<()> {
     if core.mujoco.is_some() {
         return Err(PyValueError::new_err(format!(
             "{func}: not available in the mujoco layout; load the model with layout=\"rigid\" or \
@@ -525,146 +525,6 @@ pub fn normalize<'py>(
     Ok(array1(py, &out))
 }
 
-/// A target of `inverse_kinematics`: a 3-vector (a position), a 4 x 4 homogeneous matrix, a pair
-/// `(R, p)`, or an object with a `homogeneous` attribute (Pinocchio's `SE3`).
-fn ik_target(x: &Bound<'_, PyAny>) -> PyResult<Target> {
-    const F: &str = "inverse_kinematics";
-    let x = if x.hasattr("homogeneous")? {
-        x.getattr("homogeneous")?
-    } else {
-        x.clone()
-    };
-    if let Ok((r, p)) = x.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() {
-        let r = matrix(&r, F, "target_pose[0] (R)", "3", 3)?;
-        if r.rows != 3 {
-            return Err(value_error(F, "target_pose[0] (R) must be 3 x 3"));
-        }
-        let s = r.as_slice();
-        let p = convert::vec3(&p, F, "target_pose[1] (p)")?;
-        return Ok(Target::Pose(Transform::new(Mat3::from_row_slice(s), p)));
-    }
-    if let Ok(m) = matrix(&x, F, "target_pose", "4", 4) {
-        if m.rows != 4 {
-            return Err(value_error(
-                F,
-                "target_pose must be a 4 x 4 homogeneous matrix",
-            ));
-        }
-        let s = m.as_slice();
-        let r = Mat3::new(s[0], s[1], s[2], s[4], s[5], s[6], s[8], s[9], s[10]);
-        return Ok(Target::Pose(Transform::new(
-            r,
-            Vec3::new(s[3], s[7], s[11]),
-        )));
-    }
-    let p = convert::vec3(&x, F, "target_pose").map_err(|_| {
-        PyValueError::new_err(
-            "inverse_kinematics: target_pose must be a position (3,), a 4 x 4 homogeneous \
-             matrix, a pair (R, p) or a pinocchio SE3",
-        )
-    })?;
-    Ok(Target::Position(p))
-}
-
-/// Inverse kinematics (`rigid::kinematics::inverse`): joint positions that put the joint or
-/// frame `frame` at `target_pose`, from `q0` (default neutral) then random restarts. Returns a
-/// dict: `q` (the model's layout), `converged`, `angular_error`, `linear_error`,
-/// `position_error`, `iterations`, `total_iterations`, `attempts`.
-#[pyfunction]
-#[pyo3(signature = (model, frame, target_pose, q0 = None, *, twist = "body", tolerance = 1e-9,
-    max_iterations = 100, damping = 1e-3, restarts = 20, seed = 0, respect_limits = true,
-    data = None))]
-#[allow(clippy::too_many_arguments)]
-pub fn inverse_kinematics<'py>(
-    py: Python<'py>,
-    model: PyRef<'py, Model>,
-    frame: &str,
-    target_pose: &Bound<'py, PyAny>,
-    q0: Option<&Bound<'py, PyAny>>,
-    twist: &str,
-    tolerance: f64,
-    max_iterations: usize,
-    damping: f64,
-    restarts: usize,
-    seed: u64,
-    respect_limits: bool,
-    data: Option<PyRefMut<'py, Data>>,
-) -> PyResult<Bound<'py, PyDict>> {
-    const F: &str = "inverse_kinematics";
-    let core = &*model.inner;
-    refuse_mujoco(F, core)?;
-    let m = &core.model;
-    let site = match core.lookup(F, frame)? {
-        Place::Joint(j) => Site::Joint(j),
-        Place::Frame(f) => Site::Frame(f),
-    };
-    let target = ik_target(target_pose)?;
-    let q0 = match q0 {
-        Some(x) => {
-            let x = vector(x, F, "q0", "nq", core.nq())?;
-            let mut out = Vec::new();
-            core.q_into(&x, &mut out, F, "q0")?;
-            out
-        }
-        None => mb::neutral(m),
-    };
-    let twist = match twist {
-        "body" => ErrorTwist::Body,
-        "space" => ErrorTwist::Space,
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "{F}: twist must be \"body\" or \"space\", got \"{twist}\""
-            )))
-        }
-    };
-    let options = Options {
-        twist,
-        angular_tolerance: tolerance,
-        linear_tolerance: tolerance,
-        max_iterations,
-        damping,
-        restarts,
-        seed,
-        respect_limits,
-    };
-    let result = match data {
-        Some(mut d) => {
-            core.check_data(F, &d)?;
-            kinematics::inverse(m, &mut d.inner, site, &target, &q0, &options)
-        }
-        None => kinematics::inverse(m, &mut mb::Data::new(m), site, &target, &q0, &options),
-    };
-    let s = match result {
-        Ok(s) => s,
-        Err(IkError::NotConverged { best }) => *best,
-        Err(IkError::BadOption {
-            name,
-            value,
-            reason,
-        }) => {
-            let name = match name {
-                "angular_tolerance" | "linear_tolerance" => "tolerance",
-                n => n,
-            };
-            return Err(PyValueError::new_err(format!(
-                "{F}: {name} = {value}: {reason}"
-            )));
-        }
-        Err(IkError::Input(e)) => return Err(value_error(F, format!("q0: {e}"))),
-        Err(e) => return Err(value_error(F, format!("target_pose: {e}"))),
-    };
-    let out = PyDict::new(py);
-    out.set_item("q", core.q_out(py, &s.q))?;
-    out.set_item("converged", s.converged)?;
-    out.set_item("angular_error", s.angular_error)?;
-    out.set_item("linear_error", s.linear_error)?;
-    out.set_item("position_error", s.position_error)?;
-    out.set_item("iterations", s.iterations)?;
-    out.set_item("total_iterations", s.total_iterations)?;
-    out.set_item("attempts", s.attempts)?;
-    Ok(out)
-}
-
 fn transforms<'py>(py: Python<'py>, ts: &[Transform]) -> PyResult<Bound<'py, PyAny>> {
     let mut out = Vec::with_capacity(ts.len() * 16);
     for t in ts {
@@ -768,77 +628,6 @@ pub fn _data_array<'py>(
     })
 }
 
-fn twist_in(x: &Bound<'_, PyAny>, func: &str) -> PyResult<Twist> {
-    let v = vector(x, func, "v", "6", 6)?;
-    let s = v.as_slice();
-    // linear first, as Pinocchio's Motion
-    Ok(Twist::new(
-        Vec3::new(s[3], s[4], s[5]),
-        Vec3::new(s[0], s[1], s[2]),
-    ))
-}
-
-fn rotation_in(x: &Bound<'_, PyAny>, func: &str) -> PyResult<Mat3> {
-    let r = matrix(x, func, "R", "3", 3)?;
-    if r.rows != 3 {
-        return Err(value_error(func, "R must be 3 x 3"));
-    }
-    Ok(Mat3::from_row_slice(r.as_slice()))
-}
-
-/// A 6 x 6 matrix of rigid's (angular first) in Pinocchio's order (linear first).
-fn mat6_linear_first<'py>(py: Python<'py>, m: &Mat6) -> Array2<'py> {
-    array2(py, 6, 6, |r, c| m[((r + 3) % 6, (c + 3) % 6)])
-}
-
-/// SE(3) and SO(3) maps for the Pinocchio layer (twists linear first, as Pinocchio's `Motion`):
-/// `("exp6", v)` → 4 x 4, `("log6", R, p)` → (6,), `("Jexp6", v)`, `("Jlog6", R, p)` → 6 x 6,
-/// `("exp3", w)` → 3 x 3, `("log3", R)` → (3,), `("Jexp3", w)`, `("Jlog3", R)` → 3 x 3.
-#[pyfunction]
-#[pyo3(signature = (op, x, p = None))]
-pub fn _lie<'py>(
-    py: Python<'py>,
-    op: &str,
-    x: &Bound<'py, PyAny>,
-    p: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let se3 = |x: &Bound<'py, PyAny>, p: Option<&Bound<'py, PyAny>>| -> PyResult<Transform> {
-        let r = rotation_in(x, op)?;
-        let p = p.ok_or_else(|| PyValueError::new_err(format!("{op}: needs R and p")))?;
-        Ok(Transform::new(r, convert::vec3(p, op, "p")?))
-    };
-    let m3 = |m: &Mat3| array2(py, 3, 3, |r, c| m[(r, c)]).into_any();
-    Ok(match op {
-        "exp6" => {
-            let t = Transform::exp(&twist_in(x, op)?);
-            let h = t.to_homogeneous();
-            array2(py, 4, 4, |r, c| h[(r, c)]).into_any()
-        }
-        "log6" => {
-            let t = se3(x, p)?.log();
-            array1(py, &[t.v.x, t.v.y, t.v.z, t.w.x, t.w.y, t.w.z]).into_any()
-        }
-        "Jexp6" => mat6_linear_first(py, &mb::se3_right_jacobian(&twist_in(x, op)?)).into_any(),
-        "Jlog6" => {
-            mat6_linear_first(py, &mb::se3_right_jacobian_inverse(&se3(x, p)?.log())).into_any()
-        }
-        "exp3" => m3(&so3::exp(&convert::vec3(x, op, "w")?)),
-        "log3" => {
-            let w = so3::log(&rotation_in(x, op)?);
-            array1(py, &[w.x, w.y, w.z]).into_any()
-        }
-        "Jexp3" => m3(&mb::so3_right_jacobian(&convert::vec3(x, op, "w")?)),
-        "Jlog3" => m3(&mb::so3_right_jacobian_inverse(&so3::log(&rotation_in(
-            x, op,
-        )?))),
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "_lie: unknown operation {op}"
-            )))
-        }
-    })
-}
-
 /// Registers this file's functions, and Pinocchio's names of the public ones.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compute_joint_jacobians, m)?)?;
@@ -850,11 +639,14 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(kinematics_derivatives, m)?)?;
     m.add_function(wrap_pyfunction!(interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(normalize, m)?)?;
-    m.add_function(wrap_pyfunction!(inverse_kinematics, m)?)?;
+    m.add_function(wrap_pyfunction!(
+        crate::inverse_kinematics::inverse_kinematics,
+        m
+    )?)?;
     m.add_function(wrap_pyfunction!(_subtree_centers_of_mass, m)?)?;
     m.add_function(wrap_pyfunction!(_stored_jacobian, m)?)?;
     m.add_function(wrap_pyfunction!(_data_array, m)?)?;
-    m.add_function(wrap_pyfunction!(_lie, m)?)?;
+    m.add_function(wrap_pyfunction!(crate::lie::_lie, m)?)?;
     m.add_function(wrap_pyfunction!(_model_assign, m)?)?;
     m.add_function(wrap_pyfunction!(_bounds_to_rigid, m)?)?;
     for (alias, name) in [
