@@ -429,6 +429,36 @@ def test_robot_wrapper_and_loaders_equal_pinocchio():
     r.check()
 
 
+ROOTS = [("JointModelRX", ()), ("JointModelPZ", ()), ("JointModelRUBZ", ()),
+         ("JointModelPlanar", ()), ("JointModelSpherical", ()),
+         ("JointModelRevoluteUnaligned", (0.0, 0.6, 0.8)), ("JointModelFreeFlyer", ())]
+
+
+@pytest.mark.parametrize("robot", ["ur5", "solo12"])
+def test_urdf_on_any_root_joint_equals_pinocchio(robot):
+    """buildModelFromUrdf(path, root_joint, root_joint_name) with each kind of root joint: the
+    tree, limits (Pinocchio's root joint has none), frames and the dynamics equal Pinocchio's."""
+    path, _ = robot_path(robot)
+    r = Report(f"{robot} roots")
+    rng = np.random.default_rng(5)
+    for J, args in ROOTS:
+        pm = pin.buildModelFromUrdf(path, getattr(pin, J)(*args), "base_root")
+        rm = R.buildModelFromUrdf(path, getattr(R, J)(*args), "base_root")
+        pd, rd = pm.createData(), rm.createData()
+        r.same(f"{J} names, nq, nv", (list(rm.names), rm.nq, rm.nv), (list(pm.names), pm.nq, pm.nv))
+        r.same(f"{J} frames", [(f.name, f.parentJoint, int(f.type)) for f in rm.frames],
+               [(f.name, f.parentJoint, int(f.type)) for f in pm.frames])
+        for k in ("lowerPositionLimit", "upperPositionLimit", "velocityLimit", "effortLimit"):
+            r.same(f"{J} {k}", np.array_equal(getattr(rm, k), getattr(pm, k)), True)
+        q = pin.randomConfiguration(pm, np.full(pm.nq, -1.0), np.full(pm.nq, 1.0))
+        v, a = rng.uniform(-1, 1, pm.nv), rng.uniform(-1, 1, pm.nv)
+        r(f"{J} rnea", R.rnea(rm, rd, q, v, a), pin.rnea(pm, pd, q, v, a))
+        r(f"{J} crba", R.crba(rm, rd, q), pin.crba(pm, pd, q))
+        r(f"{J} computeJointJacobians", R.computeJointJacobians(rm, rd, q),
+          pin.computeJointJacobians(pm, pd, q))
+    r.check()
+
+
 def test_sample_models_have_pinocchios_kinematics_and_inertias():
     r = Report("sample models")
     for name in ("buildSampleModelManipulator", "buildSampleModelHumanoid"):
@@ -507,6 +537,8 @@ def test_what_is_not_covered_raises_not_implemented_naming_it():
         R.computeCollisions(None, None)
     with pytest.raises(NotImplementedError, match="JointModelSphericalZYX"):
         R.JointModelSphericalZYX()
+    with pytest.raises(NotImplementedError, match=r"buildModelFromUrdf\(filename, model\)"):
+        R.buildModelFromUrdf(robot_path("ur5")[0], R.Model())
     with pytest.raises(NotImplementedError, match="viewer"):
         R.RobotWrapper.BuildFromURDF(robot_path("ur5")[0]).initViewer()
     with pytest.raises(NotImplementedError, match="dIntegrate"):

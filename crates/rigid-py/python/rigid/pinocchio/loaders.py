@@ -2,6 +2,7 @@
 kinematics and inertias (``buildSampleModelManipulator``, ``buildSampleModelHumanoid``; the
 random humanoid draws its placements and inertias from rigid.pinocchio's generator, ``seed``)."""
 
+import json
 import os
 import tempfile
 import warnings
@@ -9,7 +10,7 @@ import warnings
 import numpy as np
 
 from .. import rigid as _r
-from .joints import JointModelFreeFlyer, JointModelRX, JointModelRY, JointModelRZ, _frames_of
+from .joints import JointModel, JointModelFreeFlyer, JointModelRX, JointModelRY, JointModelRZ
 from .model import Model
 from .spatial import SE3, Inertia, _GEN, exp3
 
@@ -71,28 +72,57 @@ class GeometryModel:
         return 0
 
 
+# rigid's number of position coordinates of each kind of joint
+_NQ_RIGID = {"revolute": 1, "prismatic": 1, "helical": 1, "universal": 2, "spherical": 4,
+             "free_flyer": 7, "planar": 3}
+
+
 def _root(root_joint, func):
+    """Whether the URDF is read on a root joint (a free-flyer, replaced by `root_joint` after)."""
     if root_joint is None:
         return False
-    if isinstance(root_joint, JointModelFreeFlyer):
-        return True
     if isinstance(root_joint, Model):
         raise NotImplementedError(f"{func}(filename, model): pass the root joint or nothing; the "
                                   "model is returned")
+    if isinstance(root_joint, JointModel) and root_joint._kind()["type"] in _NQ_RIGID:
+        return True
     raise NotImplementedError(
-        f"{func}: root joint {type(root_joint).__name__}: rigid.pinocchio loads a URDF fixed to "
-        "the world or on a free-flyer (pin.JointModelFreeFlyer())")
+        f"{func}: root joint {type(root_joint).__name__}: rigid.pinocchio has no such joint")
 
 
-def _model_of(m, path, floating, root_joint_name=None):
-    """The layer's model of a native one read from a file."""
+def _root_kind(d, root_joint):
+    """Makes the free-flyer root of the serialised model `d` the joint `root_joint` (same place,
+    same body; Pinocchio's root joint has no limits)."""
+    r = d["joints"][0]
+    kind = root_joint._kind()
+    nq, nv = _NQ_RIGID[kind["type"]], root_joint.nv
+    dq, dv = nq - r["nq"], nv - r["nv"]
+    r.update(kind=kind, nq=nq, nv=nv, continuous=bool(root_joint._continuous))
+    for j in d["joints"][1:]:
+        j["idx_q"] += dq
+        j["idx_v"] += dv
+    for k, n0, n in (("lower", 7, nq), ("upper", 7, nq)):
+        d[k] = [None] * n + d[k][n0:]
+    for k in ("velocity_limit", "effort_limit"):
+        d[k] = [None] * nv + d[k][6:]
+    for k in ("armature", "damping", "friction"):
+        d[k] = [0.0] * nv + d[k][6:]
+
+
+def _model_of(m, path, floating, root_joint_name=None, root_joint=None):
+    """The layer's model of a native one read from a file (on a free-flyer root when
+    `floating`, which becomes `root_joint` if that is another joint)."""
     origins = ["root" if floating and i == 0 else "urdf" for i in range(m.njoints)]
     model = Model(m.to_json(), _warnings=m.warnings, _source=path, _origins=origins)
-    if root_joint_name is not None and floating and root_joint_name != "root_joint":
+    other = floating and root_joint is not None and not isinstance(root_joint,
+                                                                    JointModelFreeFlyer)
+    if other or (root_joint_name is not None and floating and root_joint_name != "root_joint"):
         d = model.desc()
-        d["joints"][0]["name"] = root_joint_name
-        model._rebuild(d)
-        model._frames = _frames_of(model.desc())
+        if other:
+            _root_kind(d, root_joint)
+        if root_joint_name is not None:
+            d["joints"][0]["name"] = root_joint_name
+        model = Model(json.dumps(d), _warnings=m.warnings, _source=path, _origins=origins)
     return model
 
 
@@ -111,7 +141,7 @@ def buildModelFromUrdf(filename, root_joint=None, root_joint_name=None, verbose=
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", _r.UrdfWarning)
         m = _r.Model.from_urdf(path, floating=floating, inertia="warn", layout="pinocchio")
-    return _model_of(m, path, floating, root_joint_name)
+    return _model_of(m, path, floating, root_joint_name, root_joint)
 
 
 def buildModelFromXML(xml, root_joint=None, root_joint_name=None, verbose=False, mimic=False):
