@@ -233,7 +233,9 @@ impl ModelCore {
         }
     }
 
-    /// An `nv × nv` matrix (`M`, `M⁻¹`, `C`) as a fresh array in this layout.
+    /// An `nv × nv` matrix (`M`, `M⁻¹`, `C`) as a fresh array in this layout:
+    /// `out[(r, c)] = m[(v_index(r), v_index(c))]`, written straight into the array (no
+    /// intermediate matrix).
     pub fn matrix_out<'py>(
         &self,
         py: Python<'py>,
@@ -242,10 +244,7 @@ impl ModelCore {
         let (rows, cols) = m.shape();
         match &self.layout {
             Some(l) if self.convert_v => {
-                // column-major in and out
-                let mut out = nalgebra::DMatrix::zeros(rows, cols);
-                l.permute_matrix(m.as_slice(), out.as_mut_slice());
-                array2(py, rows, cols, |r, c| out[(r, c)])
+                array2(py, rows, cols, |r, c| m[(l.v_index(r), l.v_index(c))])
             }
             _ => array2(py, rows, cols, |r, c| m[(r, c)]),
         }
