@@ -19,11 +19,13 @@ Everything is computed by rigid (this module never imports Pinocchio). What is n
 import sys as _sys
 
 from .. import rigid as _r
-from . import algorithms, constraints, data, joints, loaders, model, spatial, utils  # noqa: F401
+from . import (algorithms, constraints, data, explog, joints, loaders, model,  # noqa: F401
+               spatial, utils)
 from .algorithms import *  # noqa: F401,F403
 from .constraints import *  # noqa: F401,F403
 from .loaders import *  # noqa: F401,F403
 from .data import *  # noqa: F401,F403
+from .explog import *  # noqa: F401,F403
 from .joints import *  # noqa: F401,F403
 from .joints import ArgumentPosition, JOINT_MODELS  # noqa: F401
 from .model import *  # noqa: F401,F403
@@ -205,5 +207,5 @@ def __getattr__(name):
 
 
 COVERED = sorted(n for n in dir(_sys.modules[__name__]) if not n.startswith("_")
-                 and n not in ("algorithms", "constraints", "data", "joints", "loaders", "model",
-                               "spatial", "utils"))
+                 and n not in ("algorithms", "constraints", "data", "explog", "joints", "loaders",
+                               "model", "spatial", "utils"))

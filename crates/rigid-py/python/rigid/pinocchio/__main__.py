@@ -18,7 +18,7 @@ import types
 
 LAYER = "rigid.pinocchio"
 _SUBMODULES = {"utils": "utils", "robot_wrapper": "robot_wrapper", "shortcuts": "loaders",
-               "explog": "spatial", "rpy": None, "deprecated": None, "deprecation": None}
+               "explog": "explog", "rpy": None, "deprecated": None, "deprecation": None}
 
 
 class _Alias(importlib.abc.Loader):

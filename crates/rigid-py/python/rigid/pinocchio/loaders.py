@@ -12,7 +12,8 @@ import numpy as np
 from .. import rigid as _r
 from .joints import JointModel, JointModelFreeFlyer, JointModelRX, JointModelRY, JointModelRZ
 from .model import Model
-from .spatial import SE3, Inertia, _GEN, exp3
+from .explog import exp3
+from .spatial import SE3, Inertia, _GEN
 
 __all__ = [
     "buildModelFromUrdf", "buildModelsFromUrdf", "buildModelFromXML", "buildModelFromMJCF",

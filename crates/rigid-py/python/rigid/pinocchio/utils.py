@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from .spatial import SE3ToXYZQUAT, XYZQUATToSE3, rpy, skew
+from .explog import SE3ToXYZQUAT, XYZQUATToSE3, rpy
+from .spatial import skew
 
 __all__ = ["zero", "rand", "eye", "skew", "cross", "isapprox", "npToTuple", "npToTTuple",
            "mprint", "rotate", "rpyToMatrix", "matrixToRpy", "fromListToVectorOfString",
