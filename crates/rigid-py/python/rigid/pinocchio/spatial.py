@@ -78,7 +78,7 @@ class SE3:
                 R, p = H[:3, :3].copy(), H[:3, 3].copy()
         elif len(args) == 2:
             R, p = args
-            if hasattr(R, "toRotationMatrix"):  # a Quaternion (or AngleAxis)
+            if not isinstance(R, np.ndarray) and hasattr(R, "toRotationMatrix"):  # a Quaternion
                 R = R.toRotationMatrix()
             R = np.array(R, dtype=float)
             if R.shape != (3, 3):
