@@ -5,8 +5,9 @@ impulse_c force first), and contact_inverse_dynamics checked on its own equation
 import os
 
 import numpy as np
-import pinocchio as pin
 import pytest
+
+pin = pytest.importorskip("pinocchio")
 
 import rigid
 from conftest import ROOT, rel_err, TOL
