@@ -13,6 +13,7 @@
 //! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch` (all cores, GIL released) |
 //! | `simulation.rs` | `simulate` (robot simulation, built-in or Python control laws), `replay_html` |
 //! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, `inverse_kinematics`, private field accessors |
+//! | `scale.rs` | `threads=` pools, `regressor_batch`, `simulate_batch`, `Model.with_dynamic_parameters`, the refusal of dask arrays |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
 
 mod batch;
@@ -25,6 +26,7 @@ mod dynamics;
 mod identification;
 mod model;
 mod pinocchio;
+mod scale;
 mod simulation;
 
 use pyo3::prelude::*;
@@ -112,6 +114,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(body::mesh, m)?)?;
     constraints::register(m)?;
     pinocchio::register(m)?;
+    scale::register(m)?;
     for (alias, name) in PINOCCHIO_ALIASES {
         m.add(alias, m.getattr(name)?)?;
     }

@@ -411,6 +411,12 @@ impl Model {
         (rebuild, args).into_pyobject(py).map(Bound::into_any)
     }
 
+    /// A new model whose body inertias are `pi` (ten per body, `dynamic_parameters`' order),
+    /// each checked to be physical (a clear `ValueError` names the first body that is not).
+    fn with_dynamic_parameters(&self, pi: &Bound<'_, PyAny>) -> PyResult<Self> {
+        crate::scale::with_dynamic_parameters(self, pi)
+    }
+
     /// `copy.copy`: the same (constant) model, shared.
     fn __copy__<'py>(slf: &Bound<'py, Self>) -> Bound<'py, Self> {
         slf.clone()
