@@ -21,7 +21,12 @@ import numpy as np
 
 import rigid
 
-from example_robot_data.path import EXAMPLE_ROBOT_DATA_MODEL_DIR as ERD
+import glob
+import site
+import sys
+
+ERD = next(h for root in [sys.prefix] + site.getsitepackages() for h in glob.glob(
+    os.path.join(root, "cmeel.prefix/share/example-robot-data/robots")))
 
 
 def load(rel, floating):

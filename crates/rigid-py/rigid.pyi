@@ -73,11 +73,12 @@ class Model:
         """The stable serialised form: joints, placements, inertias, frames, limits (null for
         none), armature, damping, friction, gravity, in rigid's layout (JSON)."""
 
-    def with_dynamic_parameters(self, pi: ArrayLike) -> Model:
+    def with_dynamic_parameters(self, pi: ArrayLike, *, check: bool = True) -> Model:
         """A new model (same layout) whose body inertias are ``pi`` (10·nb, as
         ``dynamic_parameters``), each checked to be physical: finite, mass ≥ 0, inertia about the
         CoM positive semi-definite with the triangle inequality; ``ValueError`` names the first
-        body that is not."""
+        body that is not. ``check=False`` takes them as they are (a model whose own bodies are
+        not physical, e.g. a massless rotor inertia)."""
 
     @staticmethod
     def from_urdf(path: Path, floating: bool = False,

@@ -38,14 +38,13 @@ ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 
 def default_model():
     """TALOS on a free-flyer from example-robot-data, or the repository's test robot."""
-    try:
-        from example_robot_data.path import EXAMPLE_ROBOT_DATA_MODEL_DIR as d
+    import glob
+    import site
 
-        path = os.path.join(d, "talos_data", "robots", "talos_reduced.urdf")
-        if os.path.exists(path):
+    for root in [sys.prefix] + site.getsitepackages():
+        pattern = "cmeel.prefix/share/example-robot-data/robots/talos_data/robots/talos_reduced.urdf"
+        for path in glob.glob(os.path.join(root, pattern)):
             return path
-    except ImportError:
-        pass
     return os.path.join(ROOT, "crates", "rigid", "tests", "pinocchio", "all_joints.urdf")
 
 

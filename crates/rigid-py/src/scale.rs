@@ -115,14 +115,29 @@ pub fn regressor_batch<'py>(
 }
 
 /// `model.with_dynamic_parameters(pi)`: a new model (same layout, source, warnings) whose body
-/// inertias are `pi`, each checked to be physical.
-pub fn with_dynamic_parameters(model: &Model, pi: &Bound<'_, PyAny>) -> PyResult<Model> {
+/// inertias are `pi`, each checked to be physical (unless `check` is false).
+pub fn with_dynamic_parameters(
+    model: &Model,
+    pi: &Bound<'_, PyAny>,
+    check: bool,
+) -> PyResult<Model> {
     const F: &str = "with_dynamic_parameters";
     let core = &*model.inner;
     let n = 10 * core.model.njoints();
     let p = vector(pi, F, "pi", "10·nbodies", n)?;
-    let m = rigid::identification::model_with_checked_parameters(&core.model, p.as_slice())
-        .map_err(|e| value_error(F, e))?;
+    let m = if check {
+        rigid::identification::model_with_checked_parameters(&core.model, p.as_slice()).map_err(
+            |e| {
+                value_error(
+                    F,
+                    format!("{e}; check=False takes the parameters as they are"),
+                )
+            },
+        )?
+    } else {
+        rigid::identification::model_with_parameters(&core.model, p.as_slice())
+            .map_err(|e| value_error(F, e))?
+    };
     let mut new = ModelCore::new(m, core.layout.is_some(), core.warnings.clone());
     new.source.clone_from(&core.source);
     new.mujoco.clone_from(&core.mujoco);

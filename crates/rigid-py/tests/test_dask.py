@@ -37,6 +37,11 @@ def model():
             floating=True, layout="pinocchio")
 
 
+def run(client, x):
+    """x computed on the cluster, bounded in time (a hung cluster fails the test)."""
+    return client.compute(x).result(timeout=120)
+
+
 def states(m, n, seed=0):
     rigid.seed(seed)
     rng = np.random.default_rng(seed)
@@ -55,15 +60,15 @@ def test_every_verb_equals_the_plain_batch_bit_for_bit(client, model):
     assert isinstance(tau, da.Array) and tau.chunks[0] == chunks[0]
     assert tau.shape == (1000, model.nv) and tau.dtype == np.float64
     ref = rigid.rnea_batch(model, Q, V, A)
-    assert tau.compute().tobytes() == ref.tobytes()
-    assert rd.aba(model, dQ, dV, dA).compute().tobytes() == \
+    assert run(client, tau).tobytes() == ref.tobytes()
+    assert run(client, rd.aba(model, dQ, dV, dA)).tobytes() == \
         rigid.aba_batch(model, Q, V, A).tobytes()
     M = rd.crba(model, dQ)
     assert M.shape == (1000, model.nv, model.nv)
-    assert M.compute().tobytes() == rigid.crba_batch(model, Q).tobytes()
+    assert run(client, M).tobytes() == rigid.crba_batch(model, Q).tobytes()
     Y = rd.regressor(model, dQ, dV, dA, threads=1)
     assert Y.shape == (1000, model.nv, 10 * model.njoints)
-    assert Y.compute().tobytes() == rigid.regressor_batch(model, Q, V, A).tobytes()
+    assert run(client, Y).tobytes() == rigid.regressor_batch(model, Q, V, A).tobytes()
 
 
 def test_simulate_equals_simulate_batch(client):
@@ -73,7 +78,7 @@ def test_simulate_equals_simulate_batch(client):
     q = rd.simulate(m, da.from_array(Q0, chunks=(4, -1)), **opts)
     ref = rigid.simulate_batch(m, Q0, **opts)["q"]
     assert q.shape == ref.shape
-    assert q.compute().tobytes() == ref.tobytes()
+    assert run(client, q).tobytes() == ref.tobytes()
 
 
 def test_model_is_in_the_graph_once(client, model):
@@ -87,12 +92,12 @@ def test_model_is_in_the_graph_once(client, model):
     blob = pickle.dumps(dict(tau.__dask_graph__()))
     marker = model.to_json()[:300].encode()
     assert blob.count(marker) == 1
-    assert tau.compute().tobytes() == rigid.rnea_batch(model, Q, V, A).tobytes()
+    assert run(client, tau).tobytes() == rigid.rnea_batch(model, Q, V, A).tobytes()
 
 
 def test_numpy_inputs_and_errors(client, model):
     Q, V, A = states(model, 7)
-    assert rd.rnea(model, Q, V, A).compute().tobytes() == \
+    assert run(client, rd.rnea(model, Q, V, A)).tobytes() == \
         rigid.rnea_batch(model, Q, V, A).tobytes()
     with pytest.raises(ValueError, match="V has 6 rows, Q has 7"):
         rd.rnea(model, da.from_array(Q), da.from_array(V[:6]), A)
@@ -107,4 +112,4 @@ def test_zero_rows(client, model):
     Q, V, A = states(model, 0)
     Q = Q.reshape(0, model.nq)
     tau = rd.rnea(model, da.from_array(Q, chunks=(1, -1)), V, A)
-    assert tau.compute().shape == (0, model.nv)
+    assert run(client, tau).shape == (0, model.nv)
