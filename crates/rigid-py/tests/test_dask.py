@@ -84,12 +84,12 @@ def test_simulate_equals_simulate_batch(client):
 def test_model_is_in_the_graph_once(client, model):
     """40 chunks, one copy of the model in the pickled graph (its own task, on which every chunk
     task depends): the scheduler ships it once to each worker that runs a chunk."""
-    import pickle
+    import cloudpickle  # how distributed pickles a graph
 
     Q, V, A = states(model, 400)
     dQ = da.from_array(Q, chunks=(10, -1))  # 40 chunks
     tau = rd.rnea(model, dQ, V, A)
-    blob = pickle.dumps(dict(tau.__dask_graph__()))
+    blob = cloudpickle.dumps(dict(tau.__dask_graph__()))
     marker = model.to_json()[:300].encode()
     assert blob.count(marker) == 1
     assert run(client, tau).tobytes() == rigid.rnea_batch(model, Q, V, A).tobytes()

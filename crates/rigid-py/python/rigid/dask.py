@@ -58,6 +58,9 @@ def _rows(x, name, width, chunks=None):
     if x.ndim != 2 or x.shape[1] != width:
         raise ValueError(f"rigid.dask: {name} must be a 2-D array of shape (N, {width}), "
                          f"got shape {x.shape}")
+    if chunks is not None and x.shape[0] != sum(chunks):
+        raise ValueError(f"rigid.dask: {name} has {x.shape[0]} rows, Q has {sum(chunks)} "
+                         "(one state per row)")
     if x.dtype != np.float64:
         x = x.astype(np.float64)
     want = (chunks if chunks is not None else x.chunks[0], (width,))
@@ -74,11 +77,7 @@ def _align(model, q, others):
                          "first")
     out = []
     for name, x in others:
-        x = _rows(x, name, model.nv, q.chunks[0])
-        if x.shape[0] != q.shape[0]:
-            raise ValueError(f"rigid.dask: {name} has {x.shape[0]} rows, Q has {q.shape[0]} "
-                             "(one state per row)")
-        out.append(x)
+        out.append(_rows(x, name, model.nv, q.chunks[0]))
     return q, out
 
 
