@@ -73,6 +73,13 @@ class Model:
         """The stable serialised form: joints, placements, inertias, frames, limits (null for
         none), armature, damping, friction, gravity, in rigid's layout (JSON)."""
 
+    def with_dynamic_parameters(self, pi: ArrayLike, *, check: bool = True) -> Model:
+        """A new model (same layout) whose body inertias are ``pi`` (10·nb, as
+        ``dynamic_parameters``), each checked to be physical: finite, mass ≥ 0, inertia about the
+        CoM positive semi-definite with the triangle inequality; ``ValueError`` names the first
+        body that is not. ``check=False`` takes them as they are (a model whose own bodies are
+        not physical, e.g. a massless rotor inertia)."""
+
     @staticmethod
     def from_urdf(path: Path, floating: bool = False,
                   inertia: Literal["strict", "warn", "repair"] = "warn",
@@ -362,15 +369,39 @@ def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -
     as the result of ``simulate``) to one self-contained HTML file (WebGL; the URDF's visual
     geometry, or a stick figure), 60 frames per second; it opens offline, nothing is fetched."""
 
-def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike) -> Matrix:
-    """``rnea`` for every row: Q (N, nq), V and A (N, nv) → τ (N, nv), on every core with the GIL
-    released; each row equals the single call bit for bit. Not in Pinocchio's Python."""
+def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
+               threads: int | None = None) -> Matrix:
+    """``rnea`` for every row: Q (N, nq), V and A (N, nv) → τ (N, nv), on ``threads`` threads
+    (None: every core; a pool per size, made once) with the GIL released; each row equals the
+    single call bit for bit, for any ``threads``. Read-only arrays are accepted; a dask array is
+    refused (use ``rigid.dask``). Not in Pinocchio's Python."""
 
-def aba_batch(model: Model, Q: ArrayLike, V: ArrayLike, TAU: ArrayLike) -> Matrix:
-    """``aba`` for every row: (N, nv) accelerations, on every core, GIL released."""
+def aba_batch(model: Model, Q: ArrayLike, V: ArrayLike, TAU: ArrayLike, *,
+              threads: int | None = None) -> Matrix:
+    """``aba`` for every row: (N, nv) accelerations, on ``threads`` threads, GIL released."""
 
-def crba_batch(model: Model, Q: ArrayLike) -> npt.NDArray[np.float64]:
-    """``crba`` for every row: (N, nv, nv) mass matrices, on every core, GIL released."""
+def crba_batch(model: Model, Q: ArrayLike, *, threads: int | None = None
+               ) -> npt.NDArray[np.float64]:
+    """``crba`` for every row: (N, nv, nv) mass matrices, on ``threads`` threads, GIL released."""
+
+def regressor_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
+                    threads: int | None = None) -> npt.NDArray[np.float64]:
+    """``regressor`` for every row: (N, nv, 10·nb), so that ``Y @ π`` is τ for a parameter
+    vector ``π`` (``dynamic_parameters``' order; rigid's ``rnea`` adds ``armature ∘ a``) and
+    ``Y @ P.T`` (N, nv, K) for K of them. Each block equals ``regressor`` bit for bit."""
+
+def simulate_batch(models: Model | Sequence[Model], q0: ArrayLike | None = None,
+                   v0: ArrayLike | None = None, duration: float = 1.0, dt: float = 1e-3,
+                   integrator: str = "rk4", controller: str = "none",
+                   target: ArrayLike | None = None, move_time: float | None = None,
+                   profile: str = "quintic", limits: str = "spring",
+                   joint_dynamics: bool = True, every: int = 1, *,
+                   threads: int | None = None) -> dict[str, npt.NDArray[np.float64]]:
+    """Many rollouts in parallel with the GIL released: one per model of a list (one kinematic
+    structure, any parameters: MuJoCo's ``rollout``), or one model from each row of ``q0``
+    (M, nq). ``q0``, ``v0``, ``target``: one vector for all or one row per rollout. Built-in
+    controllers only. Returns ``t`` (T), ``q`` (M, T, nq), ``v``, ``tau`` (M, T, nv),
+    ``energy`` (M, T); rollout i equals ``simulate`` of its model bit for bit."""
 
 Spec = Union[Path, dict[str, Any], Sequence[dict[str, Any]]]
 

@@ -76,6 +76,10 @@ pub(crate) fn inputs(
                 .to_string(),
         ));
     }
+    crate::scale::refuse_dask(func, "Q", q)?;
+    for (name, x) in vs {
+        crate::scale::refuse_dask(func, name, x)?;
+    }
     let qm = matrix(q, func, "Q", "nq", core.nq())?;
     let n = qm.rows;
     let mut out = Vec::with_capacity(vs.len());
@@ -149,64 +153,94 @@ fn qvx_batch<'py>(
     f: Qvx,
     q: &Bound<'py, PyAny>,
     args: [(&str, &Bound<'py, PyAny>); 2],
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let py = q.py();
+    let pool = crate::scale::pool(func, threads)?;
     let core = &*model.inner;
     let (n, qs, vx) = inputs(core, func, q, &args)?;
     let nv = core.nv();
     let mut out = vec![0.0; n * nv];
     let (vs, xs) = (&vx[0], &vx[1]);
-    py.detach(|| f.batch(&core.model, &qs, vs, xs, &mut out))
-        .map_err(|e| {
-            state_error(core, func, e, &qs, |d, k, q| {
-                let r = k * nv..(k + 1) * nv;
-                f.single(&core.model, d, q, &vs[r.clone()], &xs[r])
-            })
-        })?;
+    crate::scale::detach(py, pool.as_deref(), || {
+        f.batch(&core.model, &qs, vs, xs, &mut out)
+    })
+    .map_err(|e| {
+        state_error(core, func, e, &qs, |d, k, q| {
+            let r = k * nv..(k + 1) * nv;
+            f.single(&core.model, d, q, &vs[r.clone()], &xs[r])
+        })
+    })?;
     permute_rows(core, &mut out);
     rows_array(py, out, n, nv)
 }
 
-/// Inverse dynamics for every row: `TAU[k] = rnea(Q[k], V[k], A[k])`, an `(N, nv)` array.
+/// Inverse dynamics for every row: `TAU[k] = rnea(Q[k], V[k], A[k])`, an `(N, nv)` array, on
+/// `threads` threads (None: every core).
 #[pyfunction]
+#[pyo3(signature = (model, q, v, a, *, threads = None))]
 pub fn rnea_batch<'py>(
     model: PyRef<'py, Model>,
     q: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
     a: &Bound<'py, PyAny>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    qvx_batch(&model, "rnea_batch", Qvx::Rnea, q, [("V", v), ("A", a)])
+    qvx_batch(
+        &model,
+        "rnea_batch",
+        Qvx::Rnea,
+        q,
+        [("V", v), ("A", a)],
+        threads,
+    )
 }
 
-/// Forward dynamics for every row: `DDQ[k] = aba(Q[k], V[k], TAU[k])`, an `(N, nv)` array.
+/// Forward dynamics for every row: `DDQ[k] = aba(Q[k], V[k], TAU[k])`, an `(N, nv)` array, on
+/// `threads` threads (None: every core).
 #[pyfunction]
+#[pyo3(signature = (model, q, v, tau, *, threads = None))]
 pub fn aba_batch<'py>(
     model: PyRef<'py, Model>,
     q: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
     tau: &Bound<'py, PyAny>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    qvx_batch(&model, "aba_batch", Qvx::Aba, q, [("V", v), ("TAU", tau)])
+    qvx_batch(
+        &model,
+        "aba_batch",
+        Qvx::Aba,
+        q,
+        [("V", v), ("TAU", tau)],
+        threads,
+    )
 }
 
-/// The mass matrix for every row: `M[k] = crba(Q[k])`, an `(N, nv, nv)` array.
+/// The mass matrix for every row: `M[k] = crba(Q[k])`, an `(N, nv, nv)` array, on `threads`
+/// threads (None: every core).
 #[pyfunction]
+#[pyo3(signature = (model, q, *, threads = None))]
 pub fn crba_batch<'py>(
     py: Python<'py>,
     model: PyRef<'py, Model>,
     q: &Bound<'py, PyAny>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     const F: &str = "crba_batch";
+    let pool = crate::scale::pool(F, threads)?;
     let core = &*model.inner;
     let (n, qs, _) = inputs(core, F, q, &[])?;
     let nv = core.nv();
     let mut out = vec![0.0; n * nv * nv];
-    py.detach(|| batch::crba_batch(&core.model, &qs, &mut out))
-        .map_err(|e| {
-            state_error(core, F, e, &qs, |d, _, q| {
-                mb::crba(&core.model, d, q).map(|_| ())
-            })
-        })?;
+    crate::scale::detach(py, pool.as_deref(), || {
+        batch::crba_batch(&core.model, &qs, &mut out)
+    })
+    .map_err(|e| {
+        state_error(core, F, e, &qs, |d, _, q| {
+            mb::crba(&core.model, d, q).map(|_| ())
+        })
+    })?;
     if let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) {
         // M_pin[r][c] = M[p(r)][p(c)] in every state
         let mut m = vec![0.0; nv * nv];

@@ -67,11 +67,12 @@ fn check_real(func: &str, name: &str, a: &Bound<'_, PyUntypedArray>) -> PyResult
     }
 }
 
-/// `numpy.ascontiguousarray(x, dtype=float64)` as a float64 array.
+/// `numpy.require(x, float64, "CA")`: a C-contiguous, aligned float64 array (copied when `x` is
+/// not one; an array unpickled by dask's or Ray's workers may be unaligned).
 fn as_float64<'py>(x: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
     let np = x.py().import("numpy")?;
     let f64_ = np.getattr("float64")?;
-    np.call_method1("ascontiguousarray", (x, f64_))
+    np.call_method1("require", (x, f64_, "CA"))
 }
 
 fn shape_text(shape: &[usize]) -> String {

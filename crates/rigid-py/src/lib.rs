@@ -15,6 +15,7 @@
 //! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, private field accessors |
 //! | `inverse_kinematics.rs` | `inverse_kinematics` (`rigid::kinematics::inverse`: targets in, a dict out) |
 //! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_lie`) |
+//! | `scale.rs` | `threads=` pools, `regressor_batch`, `simulate_batch`, `Model.with_dynamic_parameters`, the refusal of dask arrays |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
 
 mod batch;
@@ -29,6 +30,7 @@ mod inverse_kinematics;
 mod lie;
 mod model;
 mod pinocchio;
+mod scale;
 mod simulation;
 
 use pyo3::prelude::*;
@@ -116,6 +118,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(body::mesh, m)?)?;
     constraints::register(m)?;
     pinocchio::register(m)?;
+    scale::register(m)?;
     for (alias, name) in PINOCCHIO_ALIASES {
         m.add(alias, m.getattr(name)?)?;
     }

@@ -410,6 +410,14 @@ impl Model {
         (rebuild, args).into_pyobject(py).map(Bound::into_any)
     }
 
+    /// A new model whose body inertias are `pi` (ten per body, `dynamic_parameters`' order),
+    /// each checked to be physical (a clear `ValueError` names the first body that is not;
+    /// `check=False` takes them as they are).
+    #[pyo3(signature = (pi, *, check = true))]
+    fn with_dynamic_parameters(&self, pi: &Bound<'_, PyAny>, check: bool) -> PyResult<Self> {
+        crate::scale::with_dynamic_parameters(self, pi, check)
+    }
+
     /// `copy.copy`: the same (constant) model, shared.
     fn __copy__<'py>(slf: &Bound<'py, Self>) -> Bound<'py, Self> {
         slf.clone()

@@ -78,15 +78,15 @@ impl Control for PyControl<'_> {
 
 /// The recorded run: times and, per row, `q`, `v`, `τ` (the control's) and the energy.
 #[derive(Default)]
-struct Record {
-    t: Vec<f64>,
-    q: Vec<f64>,
-    v: Vec<f64>,
-    tau: Vec<f64>,
-    energy: Vec<f64>,
+pub(crate) struct Record {
+    pub t: Vec<f64>,
+    pub q: Vec<f64>,
+    pub v: Vec<f64>,
+    pub tau: Vec<f64>,
+    pub energy: Vec<f64>,
 }
 
-fn run<C: Control>(
+pub(crate) fn run<C: Control>(
     sim: &mut Simulator<C>,
     steps: u64,
     every: u64,

@@ -45,6 +45,7 @@
 //! ```
 
 mod base;
+mod batch;
 mod estimate;
 pub mod excitation;
 mod physical;
@@ -52,6 +53,7 @@ mod regressor;
 mod samples;
 
 pub use base::{BaseParameters, JointTerms, ParameterLayout};
+pub use batch::{model_with_checked_parameters, regressor_batch, ParameterError};
 pub use estimate::{Estimate, Identification, Weighting, RANK_TOLERANCE};
 pub use physical::PhysicalOptions;
 pub use regressor::{body_regressor, model_parameters, model_with_parameters, Regressor};

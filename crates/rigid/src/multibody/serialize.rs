@@ -110,7 +110,7 @@ impl TryFrom<ModelFile> for Model {
                     parent: format!("index {}", j.parent.map_or(0, |p| p.0)),
                 });
             }
-            if j.kind.normalized_axis() != Some(j.kind) {
+            if !unit_axes(&j.kind) {
                 return Err(ModelError::BadAxis {
                     name: j.name.clone(),
                 });
@@ -238,5 +238,32 @@ impl Model {
             what: format!("malformed model JSON: {e}"),
         })?;
         Model::try_from(file)
+    }
+}
+
+/// The joint's axes are unit vectors to round-off: a model normalises its axes once (`a / |a|`,
+/// whose norm is 1 within a few ulps, and normalising it again may move an ulp), and the file
+/// keeps them exactly as they are, so that a model reads back bit for bit.
+fn unit_axes(kind: &super::JointType) -> bool {
+    let Some(n) = kind.normalized_axis() else {
+        return false;
+    };
+    let close = |a: &crate::spatial::Vec3, b: &crate::spatial::Vec3| (a - b).amax() <= 1e-12;
+    use super::JointType as J;
+    match (kind, &n) {
+        (J::Revolute { axis: a }, J::Revolute { axis: b })
+        | (J::Prismatic { axis: a }, J::Prismatic { axis: b }) => close(a, b),
+        (J::Helical { axis: a, .. }, J::Helical { axis: b, .. }) => close(a, b),
+        (
+            J::Universal {
+                axis1: a1,
+                axis2: a2,
+            },
+            J::Universal {
+                axis1: b1,
+                axis2: b2,
+            },
+        ) => close(a1, b1) && close(a2, b2),
+        _ => n == *kind,
     }
 }

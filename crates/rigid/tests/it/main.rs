@@ -33,6 +33,7 @@ mod explicit_puma560;
 mod fuzz_replay;
 mod hostile_numbers;
 mod identification;
+mod identification_batch;
 mod identification_closed_loop;
 mod identification_packages;
 mod inverse_kinematics;

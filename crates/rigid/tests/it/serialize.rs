@@ -118,3 +118,24 @@ fn a_damaged_model_file_is_an_error_that_says_what_is_wrong() {
         assert!(e.contains(expected), "{path:?}: {e}");
     }
 }
+
+/// An axis that a second normalisation moves by an ulp (romeo's LThumb1 in example-robot-data)
+/// reads back as it is, bit for bit.
+#[test]
+fn an_axis_unit_to_round_off_reads_back_bit_for_bit() {
+    let urdf = r#"<robot name="thumb">
+  <link name="base"/>
+  <link name="a"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="LThumb1" type="revolute">
+    <origin rpy="-4.76837e-07 1.37881 -2.53073" xyz="0.07115 -0.02465 -0.01233"/>
+    <axis xyz="-0.573576 0.819152 1.05097e-07"/>
+    <parent link="base"/><child link="a"/>
+    <limit effort="0" lower="-1.06" upper="0" velocity="0"/>
+  </joint>
+</robot>"#;
+    let model = rigid::io::urdf::load_urdf_str(urdf, false).unwrap();
+    let json = model.to_json();
+    let back = Model::from_json(&json).unwrap();
+    assert_eq!(back.to_json(), json);
+    assert_eq!(back.joints(), model.joints());
+}
