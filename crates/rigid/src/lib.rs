@@ -12,6 +12,7 @@
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G`, pseudo-inertia and physical consistency |
 //! | [`io`] | reading files: triangle meshes (STL, OBJ, COLLADA), `rigid mass` body specs (TOML) |
 //! | [`multibody`] | kinematic trees: `Model`, `Data`, joints, forward kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis matrix, energies, analytical derivatives of the dynamics, DH and Modern Robotics builders, built-in robots, simulation |
+//! | [`collision`] | collision geometry (URDF `<collision>`, body parts, a ground plane) and contact points, on parry3d-f64 (feature `collision`, on by default) |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, Lagrange by autodiff, and its simulator (the one-joint case of the multibody simulator, plus the Lie-group variational integrator) |
 //! | [`io`] | URDF import into a multibody `Model` (inertia policy, warnings); `rigid doctor` ([`doctor`]) |
 //! | [`explicit`] | the explicit dynamic model of a robot (Armstrong, Khatib & Burdick 1986): `M(q)`, Coriolis, centrifugal and gravity terms as abbreviated expressions, pruned with a proven bound, and generated code |
@@ -21,6 +22,8 @@
 #![allow(non_snake_case)]
 
 pub mod body;
+#[cfg(feature = "collision")]
+pub mod collision;
 pub mod doctor;
 pub mod error;
 pub mod explicit;

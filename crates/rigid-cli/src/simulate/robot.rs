@@ -184,6 +184,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     }
     let limits = match opts.limits {
         JointLimits::Ignored => "ignored".to_string(),
+        JointLimits::Unilateral => "unilateral (an impulse stops a joint at its limit)".to_string(),
         JointLimits::Spring {
             time_constant,
             damping_ratio,

@@ -1,0 +1,1 @@
+//! Kinetic energy is never made by a contact.
