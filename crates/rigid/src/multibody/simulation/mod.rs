@@ -37,6 +37,7 @@ mod integrators;
 
 mod momentum;
 mod simulator;
+mod stance;
 mod trajectory;
 
 pub use batch::simulate_batch;
