@@ -5,8 +5,9 @@
 # SciPy and the robot-description packages read checked-in fixtures. This script also turns on
 # the live checks (RIGID_CROSSCHECK=1): it creates a virtual environment (target/test-venv, on
 # its first run; `python3 -m venv`) with the Python packages they need
-# (scripts/requirements-test.txt: Pinocchio, example-robot-data, SciPy, pytest, the description
-# packages), points RIGID_PYTHON at it, runs the Rust tests, then builds and installs the Python
+# (scripts/requirements-test.txt: Pinocchio, MuJoCo, example-robot-data, SciPy, pytest, the
+# description packages; scripts/requirements-mjcf.txt, without their dependencies: the packages
+# whose MJCF files MuJoCo's cross-check loads), points RIGID_PYTHON at it, runs the Rust tests, then builds and installs the Python
 # module into the same environment (`pip install ./crates/rigid-py`, the README's command) and
 # runs its tests against Pinocchio. Nothing is installed into the system's Python. The live
 # checks also use a C compiler, rustfmt and a browser (`chromium`, which .ci/run installs).
@@ -15,6 +16,7 @@ cd "$(dirname "$0")/.."
 export PIP_DISABLE_PIP_VERSION_CHECK=1
 venv=target/test-venv
 requirements=scripts/requirements-test.txt
+mjcf_packages=scripts/requirements-mjcf.txt
 if [ ! -x "$venv/bin/python" ]; then
     echo "creating the test environment $venv (python3 -m venv)"
     rm -rf "$venv"
@@ -30,7 +32,8 @@ python="$PWD/$venv/bin/python"
 stamp="$venv/requirements.sha256"
 if ! sha256sum --status -c "$stamp" 2>/dev/null; then
     "$python" -m pip install --quiet -r "$requirements"
-    sha256sum "$requirements" > "$stamp"
+    "$python" -m pip install --quiet --no-deps -r "$mjcf_packages"
+    sha256sum "$requirements" "$mjcf_packages" > "$stamp"
 fi
 export RIGID_PYTHON="$python" RIGID_CROSSCHECK=1
 # the physically consistent identification (crate feature `sdp`) links OpenBLAS from the system:

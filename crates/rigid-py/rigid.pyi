@@ -15,6 +15,13 @@ q = (x, y, cos θ, sin θ), free-flyer velocity, acceleration and force **linear
 Jacobian rows (v, ω). Then q, v, a, τ, M, M⁻¹, C and Jacobians are Pinocchio's raw arrays, with
 no reordering. Everything else (placements, CoM, energies) is the same in both layouts.
 
+MuJoCo's layout (``layout="mujoco"``, for MJCF files and URDFs): q is MuJoCo's qpos (hinge and
+slide counted from their ``ref``, quaternions **w-x-y-z**), v its qvel (free joint: the world
+velocity of the body origin, then the body angular velocity), τ its qfrc; ``crba`` is
+``mj_fullM`` (armature included), ``nle`` is ``qfrc_bias``. For a model with a free joint the map
+from qvel depends on q, and only rnea, aba, nle, gravity, crba, minverse, jacobian (columns in
+qvel), kinetic_energy, com, potential_energy and forward_kinematics accept it.
+
 Inputs: any array-like of real numbers of the right length (a contiguous float64 numpy array is
 used in place, without a copy). A wrong length or shape is a ValueError naming the argument, the
 expected and the given length; complex numbers, strings and other non-numbers a TypeError; NaN
@@ -37,9 +44,13 @@ ArrayLike = npt.ArrayLike
 Vector = npt.NDArray[np.float64]
 Matrix = npt.NDArray[np.float64]
 Path = Union[str, PathLike[str]]
-Layout = Literal["rigid", "pinocchio"]
+Layout = Literal["rigid", "pinocchio", "mujoco"]
 Frame = Union[Literal["world_aligned", "body", "spatial", "local_world_aligned", "local",
                       "world"], Any]
+
+class MjcfWarning(UserWarning):
+    """Something in an MJCF file that rigid reads past or tolerates (actuators, sensors, gravity
+    compensation, ...): the model loads; the message names the element and the line."""
 
 class UrdfWarning(UserWarning):
     """Something in a URDF file that was tolerated (a non-physical inertia loaded as written, an
@@ -61,6 +72,19 @@ class Model:
         inertia: non-physical inertias are refused (``strict``), loaded as written with a
         ``UrdfWarning`` (``warn``), or replaced by the inertia doctor's repair (``repair``).
         layout: ``"rigid"`` or ``"pinocchio"`` (see the module documentation)."""
+    @staticmethod
+    def from_mjcf(path: Path, layout: Layout = "rigid") -> Model:
+        """Load an MJCF file (MuJoCo's XML) with MuJoCo's compiled inertias (mass matrix and bias
+        equal MuJoCo's to round-off); what rigid does not model is an ``MjcfWarning``."""
+    @staticmethod
+    def from_file(path: Path, layout: Layout = "rigid", floating: bool = False,
+                  inertia: Literal["strict", "warn", "repair"] = "warn") -> Model:
+        """``from_mjcf`` for a ``.xml`` file, ``from_urdf`` otherwise (``floating`` and
+        ``inertia`` apply to URDF only)."""
+    @property
+    def qpos0(self) -> Vector | None:
+        """MuJoCo's qpos0 (its layout: each body where the file puts it) for a model read from
+        MJCF; None otherwise."""
     @staticmethod
     def builtin(name: Literal["puma560", "puma560_armature", "pendulum", "double_pendulum"],
                 layout: Layout = "rigid") -> Model:

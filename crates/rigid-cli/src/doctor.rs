@@ -1,5 +1,6 @@
 //! `rigid doctor MODEL.urdf [--json] [--fix OUT.urdf]`: the inertial data of every link checked,
-//! the likely cause of each problem, and a repair (see `rigid::doctor`).
+//! the likely cause of each problem, and a repair (see `rigid::doctor`); for an MJCF file
+//! (`.xml`) every body's `<inertial>` against its geoms (no `--fix`).
 
 use clap::Args;
 use rigid::doctor::{fixed_urdf, BodyReport, Doctor, Status};
@@ -9,7 +10,7 @@ use std::path::PathBuf;
 /// Arguments of `rigid doctor`.
 #[derive(Args)]
 pub struct DoctorArgs {
-    /// A URDF file.
+    /// A URDF file, or an MJCF file (`.xml`).
     pub model: PathBuf,
     /// Print one JSON object: `{"robot", "bodies": [{"name", "line", "status", "findings":
     /// [{"code", "message"}], "likely_cause", "explanation", "repair"}]}`.
@@ -27,8 +28,23 @@ pub struct DoctorArgs {
 /// A file that cannot be read or parsed, or an output that cannot be written.
 pub fn run(args: &DoctorArgs) -> Result<(), String> {
     let path = &args.model;
-    let robot = parse_urdf_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let report = Doctor::new().examine(&robot);
+    let (robot, report) = if crate::load::is_mjcf(&path.to_string_lossy()) {
+        if args.fix.is_some() {
+            return Err(format!(
+                "--fix rewrites a URDF's <inertial> blocks; {} is MJCF (the report says what to \
+                 change)",
+                path.display()
+            ));
+        }
+        let m = rigid::io::mjcf::load_mjcf(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let robot = rigid::doctor::as_robot(&m);
+        let report = Doctor::new().examine(&robot);
+        (robot, report)
+    } else {
+        let robot = parse_urdf_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let report = Doctor::new().examine(&robot);
+        (robot, report)
+    };
     if let Some(out) = &args.fix {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
         crate::util::write_atomic(out, fixed_urdf(&text, &robot, &report).as_bytes())?;

@@ -1,9 +1,12 @@
 //! `rigid eval MODEL --cases CASES.json [--floating] [--json] [--derivatives]`: the dynamics of a model at given
 //! states, for scripts and cross-checks (the contract is in `docs/conventions.md`).
 
-use crate::load::load_model;
+#[path = "eval_mujoco.rs"]
+mod mujoco;
+
+use crate::load::load_printing_warnings;
 use clap::Args;
-use rigid::interop::PinocchioLayout;
+use rigid::interop::{MujocoLayout, PinocchioLayout};
 use rigid::io::cases::{parse_cases_with, Case};
 use rigid::io::urdf::SiblingOrder;
 use rigid::multibody::{
@@ -31,6 +34,9 @@ pub struct EvalArgs {
     /// `pinocchio`: read and write `q`, `v`, `a`, `τ`, `M` and the derivatives in Pinocchio's
     /// layout (sibling joints sorted by name, `(cos θ, sin θ)` for continuous and planar angles,
     /// free-flyer velocities linear first), so that they pass to and from Pinocchio unchanged.
+    /// `mujoco`: MuJoCo's `qpos`, `qvel`, `qacc`, `qfrc` (hinges from `ref`, quaternions `w`
+    /// first, free-joint velocity world-linear then body-angular); `mass_matrix` is `mj_fullM`
+    /// and `nonlinear_effects` is `qfrc_bias`.
     #[arg(long, value_enum, default_value = "rigid")]
     pub layout: Layout,
     /// Add the analytical derivatives to each result: `rnea_derivatives` (`dtau_dq`, `dtau_dv` at
@@ -53,6 +59,8 @@ pub enum Layout {
     Rigid,
     /// Pinocchio's.
     Pinocchio,
+    /// MuJoCo's (`rigid::interop::MujocoLayout`).
+    Mujoco,
 }
 
 #[derive(Serialize)]
@@ -64,8 +72,11 @@ struct Output {
 #[derive(Serialize)]
 struct ModelInfo {
     name: String,
-    /// `rigid` or `pinocchio` (added key).
+    /// `rigid`, `pinocchio` or `mujoco` (added key).
     layout: &'static str,
+    /// MuJoCo's `qpos0` (its layout), for an MJCF model in the `mujoco` layout (added key).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    qpos0: Option<Vec<f64>>,
     nq: usize,
     nv: usize,
     joints: Vec<JointInfo>,
@@ -89,7 +100,12 @@ struct CaseResult {
     mass_matrix: Vec<Vec<f64>>,
     nonlinear_effects: Vec<f64>,
     gravity_torques: Vec<f64>,
-    aba: Vec<f64>,
+    /// `null` when ABA is undefined for the case (then `aba_error` says why).
+    aba: Option<Vec<f64>>,
+    /// Why `aba` is `null`: the mass matrix is not positive definite (a non-physical inertia
+    /// loaded as written), or ABA failed (added key).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    aba_error: Option<String>,
     kinetic_energy: f64,
     potential_energy: f64,
     com: [f64; 3],
@@ -155,8 +171,24 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
     if args.layout == Layout::Pinocchio {
         load.sibling_order = SiblingOrder::Name;
     }
-    let model = load_model(&args.model, &load)?;
+    let loaded = load_printing_warnings(&args.model, &load)?;
+    let model = loaded.model;
     let layout = (args.layout == Layout::Pinocchio).then(|| PinocchioLayout::new(&model));
+    let mujoco = (args.layout == Layout::Mujoco).then(|| {
+        loaded
+            .mjcf
+            .as_ref()
+            .map_or_else(|| MujocoLayout::new(&model), |m| m.layout())
+    });
+    if let (Some(l), true) = (&mujoco, args.derivatives) {
+        if l.has_free_joint() {
+            return Err(
+                "--derivatives with --layout mujoco: not available for a model with a free joint \
+                 (MuJoCo's free-joint velocity depends on the orientation; use --layout rigid)"
+                    .into(),
+            );
+        }
+    }
     let path = args.cases.display();
     let text = std::fs::read_to_string(&args.cases)
         .map_err(|e| format!("cannot read cases file {path}: {e}"))?;
@@ -165,6 +197,14 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
     if let Some(l) = &layout {
         for (i, c) in cases.iter_mut().enumerate() {
             case_from_pinocchio(l, model.nq(), c).map_err(|e| format!("{path}: case {i}: {e}"))?;
+        }
+    }
+    let mut offsets = Vec::new();
+    if let Some(l) = &mujoco {
+        for (i, c) in cases.iter_mut().enumerate() {
+            let off = mujoco::case_from_mujoco(l, &model, c)
+                .map_err(|e| format!("{path}: case {i}: {e}"))?;
+            offsets.push(off);
         }
     }
     let mut results = evaluate_all(&model, &cases, args.derivatives)
@@ -181,8 +221,18 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
     if let Some(l) = &layout {
         results.iter_mut().for_each(|r| result_to_pinocchio(l, r));
     }
+    if let Some(l) = &mujoco {
+        for ((r, c), off) in results.iter_mut().zip(&cases).zip(&offsets) {
+            mujoco::result_to_mujoco(l, &model, c, off, r);
+        }
+    }
+    let mut info = model_info(&model, layout.as_ref());
+    if mujoco.is_some() {
+        info.layout = "mujoco";
+        info.qpos0 = loaded.mjcf.as_ref().map(|m| m.qpos0.clone());
+    }
     let out = Output {
-        model: model_info(&model, layout.as_ref()),
+        model: info,
         results,
     };
     if args.json {
@@ -213,11 +263,14 @@ fn case_from_pinocchio(l: &PinocchioLayout, nq: usize, c: &mut Case) -> Result<(
 /// is linear first for a free-flyer, as its velocity) permuted.
 fn result_to_pinocchio(l: &PinocchioLayout, r: &mut CaseResult) {
     for x in [
-        &mut r.rnea,
-        &mut r.nonlinear_effects,
-        &mut r.gravity_torques,
-        &mut r.aba,
-    ] {
+        Some(&mut r.rnea),
+        Some(&mut r.nonlinear_effects),
+        Some(&mut r.gravity_torques),
+        r.aba.as_mut(),
+    ]
+    .into_iter()
+    .flatten()
+    {
         let mut y = vec![0.0; x.len()];
         l.permute_v(x, &mut y);
         *x = y;
@@ -249,6 +302,7 @@ fn model_info(model: &Model, layout: Option<&PinocchioLayout>) -> ModelInfo {
         } else {
             "rigid"
         },
+        qpos0: None,
         nq: layout.map_or(model.nq(), PinocchioLayout::nq),
         nv: model.nv(),
         joints: model
@@ -314,8 +368,25 @@ fn evaluate(
     let nle = nle.as_slice().to_vec();
     let g = gravity_torques(model, data, &c.q).map_err(e("gravity_torques"))?;
     let g = g.as_slice().to_vec();
-    let ddq = aba(model, data, &c.q, &c.v, &c.tau).map_err(e("aba"))?;
-    let ddq = ddq.as_slice().to_vec();
+    // ABA is defined when M is positive definite: a non-physical inertia loaded as written can
+    // make it indefinite, and then the case still gets every other output
+    let (ddq, aba_error) = match positive_definite(&mass_matrix) {
+        false => (
+            None,
+            Some(
+                "mass matrix is not positive definite (a non-physical inertia): ABA is undefined"
+                    .to_string(),
+            ),
+        ),
+        true => match aba(model, data, &c.q, &c.v, &c.tau) {
+            Ok(a) if a.iter().all(|x| x.is_finite()) => (Some(a.as_slice().to_vec()), None),
+            Ok(_) => (
+                None,
+                Some("aba is not finite: the numbers overflow".to_string()),
+            ),
+            Err(err) => (None, Some(format!("aba: {err}"))),
+        },
+    };
     let kinetic_energy = kinetic_energy(model, data, &c.q, &c.v).map_err(e("kinetic_energy"))?;
     let potential_energy = potential_energy(model, data, &c.q).map_err(e("potential_energy"))?;
     let com = center_of_mass(model, data, &c.q).map_err(e("com"))?;
@@ -347,7 +418,6 @@ fn evaluate(
     finite("mass_matrix", &mass_matrix.concat())?;
     finite("nonlinear_effects", &nle)?;
     finite("gravity_torques", &g)?;
-    finite("aba", &ddq)?;
     finite("kinetic_energy", &[kinetic_energy, potential_energy])?;
     finite("com", &[com.x, com.y, com.z])?;
     let (rnea_derivatives, aba_derivatives) = if derivatives {
@@ -379,6 +449,7 @@ fn evaluate(
         nonlinear_effects: nle,
         gravity_torques: g,
         aba: ddq,
+        aba_error,
         kinetic_energy: kinetic_energy + 0.0,
         potential_energy: potential_energy + 0.0,
         com: [com.x + 0.0, com.y + 0.0, com.z + 0.0],
@@ -389,6 +460,14 @@ fn evaluate(
         constraint_dynamics: None,
         impulse_dynamics: None,
     })
+}
+
+/// Whether the symmetric matrix `m` (rows) is positive definite: a Cholesky factorisation that
+/// never meets a pivot `≤ 0`.
+fn positive_definite(m: &[Vec<f64>]) -> bool {
+    let n = m.len();
+    let a = nalgebra::DMatrix::from_fn(n, n, |r, c| m[r][c]);
+    n == 0 || nalgebra::Cholesky::new(a).is_some()
 }
 
 fn fmt_vec(x: &[f64]) -> String {
@@ -409,7 +488,13 @@ fn print_summary(out: &Output) {
     for (i, r) in out.results.iter().enumerate() {
         println!("case {i}:");
         println!("  rnea              {}", fmt_vec(&r.rnea));
-        println!("  aba               {}", fmt_vec(&r.aba));
+        match (&r.aba, &r.aba_error) {
+            (Some(a), _) => println!("  aba               {}", fmt_vec(a)),
+            (None, e) => println!(
+                "  aba               undefined: {}",
+                e.as_deref().unwrap_or("")
+            ),
+        }
         println!("  nonlinear effects {}", fmt_vec(&r.nonlinear_effects));
         println!("  gravity torques   {}", fmt_vec(&r.gravity_torques));
         println!("  kinetic energy    {:.6} J", r.kinetic_energy);

@@ -68,6 +68,13 @@ pub struct IdentifyArgs {
 /// does not excite every base parameter, a solver failure, an output that cannot be written.
 pub fn run(args: &IdentifyArgs) -> Result<(), String> {
     let model = load_model(&args.model, &args.load)?;
+    if args.out.is_some() && crate::load::is_mjcf(&args.model) {
+        return Err(format!(
+            "--out writes a URDF with the identified <inertial> blocks; \"{}\" is MJCF (the \
+             estimate is printed, and --json gives every parameter)",
+            args.model
+        ));
+    }
     let out_urdf = match &args.out {
         Some(_) => Some(urdf_path(&args.model).ok_or_else(|| {
             format!(

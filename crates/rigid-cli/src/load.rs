@@ -1,7 +1,9 @@
-//! Finding a model from the command line: a URDF file or a built-in model name, with the
-//! loading options every model command shares (`--floating`, `--inertia`).
+//! Finding a model from the command line: a URDF file, an MJCF file (`.xml`, chosen by the
+//! extension here and nowhere else) or a built-in model name, with the loading options every
+//! model command shares (`--floating`, `--inertia`).
 
 use clap::Args;
+use rigid::io::mjcf::{self, MjcfModel};
 use rigid::io::robots;
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, Model};
@@ -49,7 +51,16 @@ const SHOWN_WARNINGS: usize = 5;
 /// The URDF error (with its file, link or joint and line), an unknown built-in name, or
 /// `--floating` asked of a built-in model.
 pub fn load_model(spec: &str, args: &LoadArgs) -> Result<Model, String> {
-    let (model, warnings) = load_model_with_warnings(spec, args)?;
+    Ok(load_printing_warnings(spec, args)?.model)
+}
+
+/// As [`load_model`], with the MJCF import when there is one.
+///
+/// # Errors
+/// As [`load_model`].
+pub fn load_printing_warnings(spec: &str, args: &LoadArgs) -> Result<Loaded, String> {
+    let loaded = load_any(spec, args)?;
+    let warnings = &loaded.warnings;
     for w in warnings.iter().take(SHOWN_WARNINGS) {
         eprintln!("warning: {spec}: {w}");
     }
@@ -59,17 +70,68 @@ pub fn load_model(spec: &str, args: &LoadArgs) -> Result<Model, String> {
             warnings.len() - SHOWN_WARNINGS
         );
     }
-    Ok(model)
+    Ok(loaded)
 }
 
-/// As [`load_model`], returning the warnings instead of printing them.
+/// A model as loaded, with what its file says besides the dynamics.
+pub struct Loaded {
+    /// The model.
+    pub model: Model,
+    /// The loader's warnings.
+    pub warnings: Vec<String>,
+    /// The MJCF import, for an `.xml` file (geoms, MuJoCo's layout, ...).
+    pub mjcf: Option<MjcfModel>,
+}
+
+impl Loaded {
+    /// The configuration the file describes: MuJoCo's `qpos0` for MJCF (each body where the
+    /// file puts it), rigid's neutral configuration otherwise.
+    pub fn home(&self) -> Vec<f64> {
+        let mut q = rigid::multibody::neutral(&self.model);
+        if let Some(m) = &self.mjcf {
+            // qpos0 has the model's length and finite entries: the conversion cannot fail
+            let _ = m.layout().q_from_mujoco(&m.qpos0, &mut q);
+        }
+        q
+    }
+}
+
+/// True when `spec` names an MJCF file: its extension is `.xml` (any case).
+pub fn is_mjcf(spec: &str) -> bool {
+    Path::new(spec)
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+}
+
+/// The model named by `spec` (an MJCF file, a URDF file, a built-in model), its warnings and, for
+/// MJCF, the import. `--floating` is refused for MJCF, whose free joints are in the file.
 ///
 /// # Errors
 /// As [`load_model`].
-pub fn load_model_with_warnings(
-    spec: &str,
-    args: &LoadArgs,
-) -> Result<(Model, Vec<String>), String> {
+pub fn load_any(spec: &str, args: &LoadArgs) -> Result<Loaded, String> {
+    if is_mjcf(spec) {
+        if args.floating {
+            return Err(format!(
+                "--floating applies to URDF models; the MJCF file \"{spec}\" declares its free \
+                 joints itself"
+            ));
+        }
+        let m = mjcf::load_mjcf(spec).map_err(|e| format!("{spec}: {e}"))?;
+        return Ok(Loaded {
+            model: m.model.clone(),
+            warnings: m.warnings.iter().map(ToString::to_string).collect(),
+            mjcf: Some(m),
+        });
+    }
+    let (model, warnings) = load_urdf_or_builtin(spec, args)?;
+    Ok(Loaded {
+        model,
+        warnings,
+        mjcf: None,
+    })
+}
+
+fn load_urdf_or_builtin(spec: &str, args: &LoadArgs) -> Result<(Model, Vec<String>), String> {
     if let Some(path) = urdf_path(spec) {
         let (model, warnings) = urdf::load_urdf_with(&path, &args.urdf_options())
             .map_err(|e| format!("{spec}: {e}"))?;

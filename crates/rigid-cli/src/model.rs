@@ -2,7 +2,10 @@
 //! (bodies, joints, sizes, total mass), the warnings of its file and a validity report of every
 //! inertia.
 
-use crate::load::{is_file, load_model, LoadArgs};
+#[path = "model_mjcf.rs"]
+mod mjcf;
+
+use crate::load::{is_file, is_mjcf, load_model, LoadArgs};
 use clap::Args;
 use rigid::io::urdf::{self, build_model_with};
 use rigid::multibody::{FrameKind, Model};
@@ -10,7 +13,7 @@ use rigid::multibody::{FrameKind, Model};
 /// Arguments of `rigid model`.
 #[derive(Args)]
 pub struct ModelArgs {
-    /// A URDF file, or a built-in model name (`puma560`, `pendulum`, `double_pendulum`).
+    /// A URDF file, an MJCF file (`.xml`), or a built-in model name (`puma560`, `pendulum`, `double_pendulum`).
     pub model: String,
     #[command(flatten)]
     pub load: LoadArgs,
@@ -22,6 +25,9 @@ pub struct ModelArgs {
 /// A model that cannot be read or built (after printing what was found, if the file could be
 /// parsed).
 pub fn run(args: &ModelArgs) -> Result<(), String> {
+    if is_mjcf(&args.model) {
+        return mjcf::run(args);
+    }
     if !is_file(&args.model) {
         let model = load_model(&args.model, &args.load)?;
         print_model(&model);

@@ -1,19 +1,20 @@
 //! `rigid view MODEL [--q ...] --html FILE`: a robot in one pose, as a self-contained HTML page.
 
-use crate::load::{load_model, urdf_path, LoadArgs};
+use crate::load::{load_printing_warnings, urdf_path, LoadArgs};
 use clap::Args;
-use rigid::multibody::{neutral, Data};
+use rigid::multibody::Data;
 use rigid_replay::{robot_nodes, Recording};
 use std::path::PathBuf;
 
 /// Options of `rigid view`.
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// A URDF file, a robot of example-robot-data by name, or a built-in model.
+    /// A URDF or MJCF (`.xml`) file, a robot of example-robot-data by name, or a built-in model.
     pub model: String,
     #[command(flatten)]
     pub load: LoadArgs,
-    /// The configuration, `nq` comma-separated numbers (default: the neutral one).
+    /// The configuration, `nq` comma-separated numbers (default: the neutral one; for MJCF the
+    /// pose the file describes, MuJoCo's `qpos0`).
     #[arg(long, value_parser = crate::simulate::parse_list, allow_hyphen_values = true)]
     pub q: Option<crate::simulate::Numbers>,
     /// The page to write.
@@ -23,8 +24,9 @@ pub struct ViewArgs {
 
 /// Runs `rigid view`.
 pub fn run(args: &ViewArgs) -> Result<(), String> {
-    let model = load_model(&args.model, &args.load)?;
-    let q = args.q.clone().map_or_else(|| neutral(&model), |n| n.0);
+    let loaded = load_printing_warnings(&args.model, &args.load)?;
+    let q = args.q.clone().map_or_else(|| loaded.home(), |n| n.0);
+    let model = loaded.model;
     if q.len() != model.nq() {
         return Err(format!("--q has {} numbers; nq = {}", q.len(), model.nq()));
     }

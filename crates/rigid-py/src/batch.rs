@@ -12,6 +12,19 @@ use rigid::multibody::{self as mb, batch, Data};
 /// The states in rigid's layout: the caller's rows, or converted rows.
 fn q_rows(core: &ModelCore, func: &str, name: &str, x: &Matrix<'_>) -> PyResult<Vec<f64>> {
     let (nq, nq_r) = (core.nq(), core.model.nq());
+    if let Some(l) = &core.mujoco {
+        let mut out = vec![0.0; x.rows * nq_r];
+        for (k, (src, dst)) in x
+            .as_slice()
+            .chunks_exact(nq)
+            .zip(out.chunks_exact_mut(nq_r))
+            .enumerate()
+        {
+            l.q_from_mujoco(src, dst)
+                .map_err(|e| value_error(func, format!("{name}[{k}]: {e}")))?;
+        }
+        return Ok(out);
+    }
     let l = core.layout.as_ref().filter(|_| core.convert_q);
     let Some(l) = l else {
         return Ok(x.as_slice().to_vec());
@@ -55,6 +68,14 @@ pub(crate) fn inputs(
     q: &Bound<'_, PyAny>,
     vs: &[(&str, &Bound<'_, PyAny>)],
 ) -> PyResult<(usize, Vec<f64>, Vec<Vec<f64>>)> {
+    if core.mujoco_free().is_some() {
+        return Err(value_error(
+            func,
+            "not available in the mujoco layout for a model with a free joint (its velocity map \
+             depends on q); use layout=\"rigid\""
+                .to_string(),
+        ));
+    }
     let qm = matrix(q, func, "Q", "nq", core.nq())?;
     let n = qm.rows;
     let mut out = Vec::with_capacity(vs.len());

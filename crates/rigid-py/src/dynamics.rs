@@ -3,7 +3,10 @@
 //! energies. Each checks its inputs, converts them from the model's layout, calls rigid and
 //! returns a fresh float64 array in the model's layout.
 
-use crate::convert::{array1, value_error, vector, Vector};
+#[path = "dynamics_mujoco.rs"]
+mod mujoco;
+
+use crate::convert::{array1, array2, value_error, vector, Vector};
 use crate::model::{Data, Model, ModelCore, Place};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
@@ -69,6 +72,11 @@ pub(crate) fn load(
     c.load(data, q, vs)
 }
 
+/// A matrix as a fresh array, as it is.
+fn matrix<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> Bound<'py, PyArray2<f64>> {
+    array2(py, m.nrows(), m.ncols(), |r, c| m[(r, c)])
+}
+
 /// Inverse dynamics `τ = M(q) a + C(q, v) v + g(q)` by the recursive Newton-Euler algorithm
 /// (Featherstone 2008, Table 5.1).
 #[pyfunction]
@@ -82,6 +90,9 @@ pub fn rnea<'py>(
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("rnea", &model, &data)?;
     let d = &mut *data;
+    if let Some(tau) = mujoco::rnea(&c, d, q, v, a)? {
+        return Ok(array1(py, tau.as_slice()));
+    }
     c.load(d, q, &[("v", v), ("a", a)])?;
     let tau = mb::rnea(&c.core.model, &mut d.inner, &d.q, &d.v, &d.a).map_err(c.err())?;
     Ok(c.core.v_out(py, tau.as_slice()))
@@ -100,6 +111,9 @@ pub fn aba<'py>(
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("aba", &model, &data)?;
     let d = &mut *data;
+    if let Some(ddq) = mujoco::aba(&c, d, q, v, tau)? {
+        return Ok(array1(py, ddq.as_slice()));
+    }
     c.load(d, q, &[("v", v), ("tau", tau)])?;
     let ddq = mb::aba(&c.core.model, &mut d.inner, &d.q, &d.v, &d.a).map_err(c.err())?;
     Ok(c.core.v_out(py, ddq.as_slice()))
@@ -116,6 +130,9 @@ pub fn nle<'py>(
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("nle", &model, &data)?;
     let d = &mut *data;
+    if let Some(b) = mujoco::nle(&c, d, q, v)? {
+        return Ok(array1(py, b.as_slice()));
+    }
     c.load(d, q, &[("v", v)])?;
     let b = mb::nonlinear_effects(&c.core.model, &mut d.inner, &d.q, &d.v).map_err(c.err())?;
     Ok(c.core.v_out(py, b.as_slice()))
@@ -133,6 +150,10 @@ pub fn gravity<'py>(
     let d = &mut *data;
     c.load(d, q, &[])?;
     let g = mb::gravity_torques(&c.core.model, &mut d.inner, &d.q).map_err(c.err())?;
+    let g = nalgebra::DMatrix::from_column_slice(g.len(), 1, g.as_slice());
+    if let Some(g) = mujoco::convert(&c, &d.q, &g, mujoco::Convert::Force) {
+        return Ok(array1(py, g.as_slice()));
+    }
     Ok(c.core.v_out(py, g.as_slice()))
 }
 
@@ -149,6 +170,9 @@ pub fn crba<'py>(
     let d = &mut *data;
     c.load(d, q, &[])?;
     let m = mb::crba(&c.core.model, &mut d.inner, &d.q).map_err(c.err())?;
+    if let Some(m) = mujoco::convert(&c, &d.q, m, mujoco::Convert::Matrix) {
+        return Ok(matrix(py, &m));
+    }
     Ok(c.core.matrix_out(py, m))
 }
 
@@ -164,6 +188,9 @@ pub fn minverse<'py>(
     let d = &mut *data;
     c.load(d, q, &[])?;
     let m = mb::compute_minverse(&c.core.model, &mut d.inner, &d.q).map_err(c.err())?;
+    if let Some(m) = mujoco::convert(&c, &d.q, m, mujoco::Convert::Inverse) {
+        return Ok(matrix(py, &m));
+    }
     Ok(c.core.matrix_out(py, m))
 }
 
@@ -261,6 +288,9 @@ pub fn jacobian<'py>(
         Place::Frame(f) => mb::frame_jacobian(m, &mut d.inner, &d.q, f, rf),
     }
     .map_err(c.err())?;
+    if let Some(j) = mujoco::convert(&c, &d.q, j, mujoco::Convert::Jacobian) {
+        return Ok(matrix(py, &j));
+    }
     Ok(c.core.jacobian_out(py, j))
 }
 
@@ -289,6 +319,9 @@ pub fn kinetic_energy(
 ) -> PyResult<f64> {
     let c = Call::new("kinetic_energy", &model, &data)?;
     let d = &mut *data;
+    if let Some(k) = mujoco::kinetic_energy(&c, d, q, v)? {
+        return Ok(k);
+    }
     c.load(d, q, &[("v", v)])?;
     mb::kinetic_energy(&c.core.model, &mut d.inner, &d.q, &d.v).map_err(c.err())
 }

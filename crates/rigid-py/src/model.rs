@@ -7,7 +7,8 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
-use rigid::interop::{LayoutError, PinocchioLayout};
+use rigid::interop::{LayoutError, MujocoLayout, PinocchioLayout};
+use rigid::io::mjcf::{self, MjcfError};
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfError, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, FrameId, JointId, MultibodyError};
 use rigid::spatial::Transform;
@@ -15,6 +16,14 @@ use std::ffi::CString;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
+
+pyo3::create_exception!(
+    rigid,
+    MjcfWarning,
+    pyo3::exceptions::PyUserWarning,
+    "Something in an MJCF file that rigid reads past or tolerates (actuators, sensors, gravity \
+     compensation, ...): the file loads, the message names the element and the line."
+);
 
 pyo3::create_exception!(
     rigid,
@@ -39,8 +48,12 @@ pub struct ModelCore {
     /// Unique per loaded model (kept when gravity is changed): a `Data` works with the model it
     /// was made for.
     pub id: u64,
-    /// The URDF file it was loaded from (for the replay's meshes).
+    /// The URDF or MJCF file it was loaded from (for the replay's meshes).
     pub source: Option<PathBuf>,
+    /// `Some` for `layout="mujoco"`.
+    pub mujoco: Option<MujocoLayout>,
+    /// MuJoCo's `qpos0`, for a model read from MJCF.
+    pub qpos0: Option<Vec<f64>>,
 }
 
 /// The next [`ModelCore::id`].
@@ -61,7 +74,15 @@ impl ModelCore {
             warnings,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             source: None,
+            mujoco: None,
+            qpos0: None,
         }
+    }
+
+    /// The MuJoCo layout when it has a free joint: then velocities map through the
+    /// `q`-dependent `T(q)` and only the verbs of `dynamics` that handle it accept the model.
+    pub fn mujoco_free(&self) -> Option<&MujocoLayout> {
+        self.mujoco.as_ref().filter(|l| l.has_free_joint())
     }
 
     /// The length of `q` in this model's layout.
@@ -85,6 +106,15 @@ impl ModelCore {
         name: &str,
     ) -> PyResult<()> {
         let q = x.as_slice();
+        if let Some(l) = &self.mujoco {
+            out.resize(self.model.nq(), 0.0);
+            return l.q_from_mujoco(q, out).map_err(|e| match e {
+                MultibodyError::NonFinite { index, .. } => {
+                    convert::value_error(func, format!("{name}[{index}] is not finite"))
+                }
+                e => convert::value_error(func, format!("{name}: {e}")),
+            });
+        }
         match &self.layout {
             Some(l) if self.convert_q => {
                 out.resize(self.model.nq(), 0.0);
@@ -114,6 +144,16 @@ impl ModelCore {
         name: &str,
     ) -> PyResult<()> {
         let v = x.as_slice();
+        if self.mujoco_free().is_some() {
+            return Err(convert::value_error(
+                func,
+                "not available in the mujoco layout for a model with a free joint (MuJoCo's \
+                 free-joint velocity depends on q): rnea, aba, nle, gravity, crba, minverse, \
+                 jacobian, kinetic_energy, com and potential_energy are; use layout=\"rigid\" \
+                 for the others"
+                    .to_string(),
+            ));
+        }
         match &self.layout {
             Some(l) if self.convert_v => {
                 if let Some(i) = v.iter().position(|x| !x.is_finite()) {
@@ -143,6 +183,9 @@ impl ModelCore {
 
     /// A configuration as a fresh array in this model's layout.
     pub fn q_out<'py>(&self, py: Python<'py>, q: &[f64]) -> Bound<'py, PyArray1<f64>> {
+        if self.mujoco.is_some() {
+            return PyArray1::from_vec(py, self.q_to_layout(q));
+        }
         match &self.layout {
             Some(_) if self.convert_q => PyArray1::from_vec(py, self.q_to_layout(q)),
             _ => array1(py, q),
@@ -163,6 +206,11 @@ impl ModelCore {
 
     /// A configuration from rigid's layout to this model's.
     pub fn q_to_layout(&self, q: &[f64]) -> Vec<f64> {
+        if let Some(l) = &self.mujoco {
+            let mut out = vec![0.0; q.len()];
+            l.q_to_mujoco(q, &mut out);
+            return out;
+        }
         match &self.layout {
             Some(l) if self.convert_q => {
                 let mut out = vec![0.0; l.nq()];
@@ -259,14 +307,36 @@ fn policy(inertia: &str) -> PyResult<InertiaPolicy> {
         .map_err(|e: String| PyValueError::new_err(format!("Model.from_urdf: inertia: {e}")))
 }
 
-fn is_pinocchio(func: &str, layout: &str) -> PyResult<bool> {
+/// The layouts a model can be read and written in.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Layout {
+    Rigid,
+    Pinocchio,
+    Mujoco,
+}
+
+fn parse_layout(func: &str, layout: &str) -> PyResult<Layout> {
     match layout {
-        "rigid" => Ok(false),
-        "pinocchio" => Ok(true),
+        "rigid" => Ok(Layout::Rigid),
+        "pinocchio" => Ok(Layout::Pinocchio),
+        "mujoco" => Ok(Layout::Mujoco),
         _ => Err(PyValueError::new_err(format!(
-            "{func}: layout must be \"rigid\" or \"pinocchio\", got \"{layout}\""
+            "{func}: layout must be \"rigid\", \"pinocchio\" or \"mujoco\", got \"{layout}\""
         ))),
     }
+}
+
+/// Issues each warning as a Python warning of `category`.
+fn warn_all(
+    py: Python<'_>,
+    category: &Bound<'_, pyo3::types::PyType>,
+    warnings: &[String],
+) -> PyResult<()> {
+    for w in warnings {
+        let text = CString::new(w.replace('\0', " ")).unwrap_or_default();
+        PyErr::warn(py, category.as_any(), &text, 2)?;
+    }
+    Ok(())
 }
 
 /// A kinematic tree (Pinocchio's `Model`): joints depth-first from the root, their placements,
@@ -288,7 +358,8 @@ impl Model {
         inertia: &str,
         layout: &str,
     ) -> PyResult<Self> {
-        let pinocchio = is_pinocchio("Model.from_urdf", layout)?;
+        let kind = parse_layout("Model.from_urdf", layout)?;
+        let pinocchio = kind == Layout::Pinocchio;
         let opts = UrdfOptions {
             floating,
             inertia: policy(inertia)?,
@@ -304,31 +375,86 @@ impl Model {
             _ => PyValueError::new_err(format!("{shown}: {e}")),
         })?;
         let warnings: Vec<String> = warnings.iter().map(|w| format!("{shown}: {w}")).collect();
-        let category = py.get_type::<UrdfWarning>();
-        for w in &warnings {
-            let text = CString::new(w.replace('\0', " ")).unwrap_or_default();
-            PyErr::warn(py, category.as_any(), &text, 2)?;
-        }
+        warn_all(py, &py.get_type::<UrdfWarning>(), &warnings)?;
         let mut core = ModelCore::new(model, pinocchio, warnings);
+        if kind == Layout::Mujoco {
+            core.mujoco = Some(MujocoLayout::new(&core.model));
+        }
         core.source = Some(path);
         Ok(Self {
             inner: Arc::new(core),
         })
     }
 
+    /// Load an MJCF file (MuJoCo's XML) with MuJoCo's compiled inertias; `layout="mujoco"` reads
+    /// and writes MuJoCo's `qpos`, `qvel`, `qfrc` (hinges from `ref`, quaternions w first,
+    /// free-joint velocity world-linear then body-angular).
+    #[staticmethod]
+    #[pyo3(signature = (path, layout = "rigid"))]
+    fn from_mjcf(py: Python<'_>, path: PathBuf, layout: &str) -> PyResult<Self> {
+        let kind = parse_layout("Model.from_mjcf", layout)?;
+        let shown = path.display().to_string();
+        let m = mjcf::load_mjcf(&path).map_err(|e| match &e {
+            MjcfError::Io { source, .. } => convert::io_error(source, e.to_string()),
+            _ => PyValueError::new_err(format!("{shown}: {e}")),
+        })?;
+        let warnings: Vec<String> = m.warnings.iter().map(|w| format!("{shown}: {w}")).collect();
+        warn_all(py, &py.get_type::<MjcfWarning>(), &warnings)?;
+        let layout = m.layout();
+        let qpos0 = m.qpos0.clone();
+        let mut core = ModelCore::new(m.model, kind == Layout::Pinocchio, warnings);
+        if kind == Layout::Mujoco {
+            core.mujoco = Some(layout);
+        }
+        core.qpos0 = Some(qpos0);
+        core.source = Some(path);
+        Ok(Self {
+            inner: Arc::new(core),
+        })
+    }
+
+    /// Load a model file, MJCF for a `.xml` file and URDF otherwise (`floating` and `inertia`
+    /// apply to URDF only).
+    #[staticmethod]
+    #[pyo3(signature = (path, layout = "rigid", floating = false, inertia = "warn"))]
+    fn from_file(
+        py: Python<'_>,
+        path: PathBuf,
+        layout: &str,
+        floating: bool,
+        inertia: &str,
+    ) -> PyResult<Self> {
+        let mjcf = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+        if !mjcf {
+            return Self::from_urdf(py, path, floating, inertia, layout);
+        }
+        if floating {
+            return Err(PyValueError::new_err(
+                "Model.from_file: floating applies to URDF; an MJCF file declares its free joints",
+            ));
+        }
+        Self::from_mjcf(py, path, layout)
+    }
+
     /// A built-in model: `puma560`, `puma560_armature`, `pendulum`, `double_pendulum`.
     #[staticmethod]
     #[pyo3(signature = (name, layout = "rigid"))]
     fn builtin(name: &str, layout: &str) -> PyResult<Self> {
-        let pinocchio = is_pinocchio("Model.builtin", layout)?;
+        let kind = parse_layout("Model.builtin", layout)?;
         let model = builtin(name).ok_or_else(|| {
             PyValueError::new_err(format!(
                 "Model.builtin: unknown model \"{name}\" (built-in models: {})",
                 builtin_names().join(", ")
             ))
         })?;
+        let mut core = ModelCore::new(model, kind == Layout::Pinocchio, Vec::new());
+        if kind == Layout::Mujoco {
+            core.mujoco = Some(MujocoLayout::new(&core.model));
+        }
         Ok(Self {
-            inner: Arc::new(ModelCore::new(model, pinocchio, Vec::new())),
+            inner: Arc::new(core),
         })
     }
 
@@ -367,14 +493,22 @@ impl Model {
         self.inner.model.njoints()
     }
 
-    /// `"rigid"` or `"pinocchio"`.
+    /// `"rigid"`, `"pinocchio"` or `"mujoco"`.
     #[getter]
     fn layout(&self) -> &'static str {
-        if self.inner.layout.is_some() {
+        if self.inner.mujoco.is_some() {
+            "mujoco"
+        } else if self.inner.layout.is_some() {
             "pinocchio"
         } else {
             "rigid"
         }
+    }
+
+    /// MuJoCo's `qpos0` (its layout) for a model read from MJCF, else `None`.
+    #[getter]
+    fn qpos0<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.inner.qpos0.as_ref().map(|q| array1(py, q))
     }
 
     /// The moving joints' names in order (Pinocchio's `model.names[1:]`).
@@ -469,6 +603,8 @@ impl Model {
             warnings: core.warnings.clone(),
             id: core.id,
             source: core.source.clone(),
+            mujoco: core.mujoco.clone(),
+            qpos0: core.qpos0.clone(),
         });
         Ok(())
     }

@@ -117,7 +117,7 @@ def test_missing_and_malformed_files(tmp_path):
         rigid.Model.from_urdf(wrong)
     with pytest.raises(ValueError, match=r"inertia: unknown inertia policy"):
         rigid.Model.from_urdf(wrong, inertia="lenient")
-    with pytest.raises(ValueError, match=r"layout must be \"rigid\" or \"pinocchio\""):
+    with pytest.raises(ValueError, match=r"layout must be \"rigid\", \"pinocchio\" or \"mujoco\""):
         rigid.Model.from_urdf(wrong, layout="drake")
     with pytest.raises(ValueError, match=r"unknown model \"puma\" .*puma560"):
         rigid.Model.builtin("puma")

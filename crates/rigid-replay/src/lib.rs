@@ -2,7 +2,7 @@
 //! self-contained HTML file (WebGL, our own ~400-line renderer in `assets/`, embedded with
 //! `include_str!`; nothing is fetched when the page is viewed, a
 //! strict Content-Security-Policy forbids it). The scene is a list of nodes, each fixed in a
-//! body frame and carrying shapes (URDF boxes, cylinders, spheres, capsules and meshes, or a
+//! body frame and carrying shapes (URDF or MJCF boxes, cylinders, spheres, capsules and meshes, or a
 //! stick figure when a model has no geometry), and the world pose of every node at 60 frames per
 //! second, with the centre of mass for the trail.
 //!
@@ -12,6 +12,7 @@
 
 #![warn(missing_docs)]
 
+mod mjcf;
 mod shapes;
 
 pub use shapes::{body_box, robot_nodes};

@@ -15,7 +15,12 @@ const MESH_TRIANGLES: usize = 12_000;
 
 const GREY: [f64; 4] = [0.72, 0.73, 0.76, 1.0];
 
-fn shape(kind: &'static str, size: [f64; 3], origin: Transform, color: [f64; 4]) -> Shape {
+pub(crate) fn shape(
+    kind: &'static str,
+    size: [f64; 3],
+    origin: Transform,
+    color: [f64; 4],
+) -> Shape {
     Shape {
         kind,
         size,
@@ -74,7 +79,7 @@ fn cluster(mesh: &TriMesh, cells: f64) -> Mesh {
 }
 
 /// The mesh for the page: as read, or simplified to at most [`MESH_TRIANGLES`] triangles.
-fn simplify(mesh: &TriMesh) -> Mesh {
+pub(crate) fn simplify(mesh: &TriMesh) -> Mesh {
     if mesh.triangles.len() <= MESH_TRIANGLES {
         return Mesh {
             positions: mesh
@@ -166,13 +171,21 @@ fn link_shapes(
 }
 
 /// The nodes of `model`: the visual (else collision) geometry of each link of the URDF at
-/// `urdf`, placed at the link's body frame; a stick figure when there is no URDF or no link has
-/// any geometry.
+/// `urdf`, placed at the link's body frame, or for an MJCF file (`.xml`) its geoms
+/// (the MJCF drawing); a stick figure when there is no file or no link has any geometry.
 pub fn robot_nodes(model: &Model, urdf: Option<&Path>) -> Scene {
     let mut scene = Scene {
         extent: model_extent(model),
         ..Scene::default()
     };
+    let mjcf = urdf.filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("xml")));
+    if let Some(path) = mjcf {
+        if !super::mjcf::nodes(&mut scene, path) {
+            scene.nodes.clear();
+            stick_figure(model, &mut scene);
+        }
+        return scene;
+    }
     if let Some(path) = urdf {
         match parse_urdf_file(path) {
             Ok(robot) => {

@@ -48,6 +48,31 @@ pub fn urdf(data: &[u8]) {
     let _ = crate::doctor::Doctor::new().examine(&robot);
 }
 
+/// MJCF text through the importer (included files and meshes are looked up in a folder that
+/// does not exist), then RNEA, CRBA and ABA at a state made from the bytes, in rigid's layout and
+/// in MuJoCo's.
+pub fn mjcf(data: &[u8]) {
+    let Some(t) = text(data) else { return };
+    let Ok(m) = crate::io::mjcf::load_mjcf_str(t, Path::new("/nonexistent-rigid-fuzz")) else {
+        return;
+    };
+    let model = &m.model;
+    let mut d = Data::new(model);
+    let mut q = crate::multibody::neutral(model);
+    for (x, b) in q.iter_mut().zip(data) {
+        *x += f64::from(*b) * 1e-3;
+    }
+    let _ = crate::multibody::normalize(model, &mut q);
+    let v: Vec<f64> = (0..model.nv()).map(|i| (i as f64).sin()).collect();
+    let _ = rnea(model, &mut d, &q, &v, &v);
+    let _ = crba(model, &mut d, &q);
+    let _ = aba(model, &mut d, &q, &v, &v);
+    let layout = m.layout();
+    let _ = layout.rnea(model, &mut d, &q, &v, &v);
+    let _ = layout.mass_matrix(model, &mut d, &q);
+    let _ = layout.aba(model, &mut d, &q, &v, &v);
+}
+
 /// A `rigid mass` body spec (meshes are looked up in a folder that does not exist).
 pub fn spec(data: &[u8]) {
     let Some(t) = text(data) else { return };

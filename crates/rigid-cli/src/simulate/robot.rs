@@ -2,7 +2,7 @@
 //! built-in model, simulated by `rigid::multibody::simulation`.
 
 use super::{robot_plot::Samples, Numbers, SimulateArgs, PLOT_POINTS};
-use crate::load::{load_model, urdf_path};
+use crate::load::{load_printing_warnings, urdf_path};
 use rigid::multibody::simulation::{
     ControlLaw, Controller, JointLimits, SimulationError, SimulationOptions, Simulator,
 };
@@ -92,11 +92,17 @@ fn controller(args: &SimulateArgs, model: &Model, q0: &[f64]) -> Result<Controll
 /// Runs `rigid simulate` on a robot.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let steps = super::step_count(args)?;
-    let mut model = load_model(&args.model, &args.load)?;
+    let loaded = load_printing_warnings(&args.model, &args.load)?;
+    let home = loaded.home();
+    let mut model = loaded.model;
     if let Some(g) = args.gravity {
         model = model.with_gravity(g);
     }
-    let q0 = configuration(&model, "q0", &args.q0)?;
+    // an MJCF model starts where the file puts it (MuJoCo's qpos0)
+    let q0 = match &args.q0 {
+        None => home,
+        Some(_) => configuration(&model, "q0", &args.q0)?,
+    };
     let v0 = args
         .v0
         .clone()

@@ -133,7 +133,9 @@ urdf("origin_four_numbers", GOOD.replace('xyz="0 0 1"', 'xyz="0 0 1 1"'), "error
 urdf("origin_commas", GOOD.replace('xyz="0 0 1"', 'xyz="0,0,1"'), "error", 'joint "hinge"',
      "not a list")
 urdf("limit_lower_above_upper", GOOD.replace('lower="-1" upper="1"', 'lower="1" upper="-1"'),
-     "error", 'joint "hinge"', "limits")
+     "warning", 'joint "hinge"', "above upper", "no position limit")
+urdf("xml_declaration_after_blank_line", "\n" + GOOD, "warning", "line 2",
+     "XML declaration does not stand at the start")
 urdf("limit_nan", GOOD.replace('lower="-1"', 'lower="nan"'), "error", 'joint "hinge"',
      "non-finite")
 urdf("limit_negative_velocity", GOOD.replace('velocity="2"', 'velocity="-2"'), "error",
@@ -451,6 +453,92 @@ samples("out_of_builtin", swing(200), "error", "--out", "built-in",
         args="identify pendulum --data {file} --out {out}")
 samples("out_to_missing_folder", swing(200), "error", "/no/such/dir/x.urdf",
         args=IDENTIFY + " --out /no/such/dir/x.urdf")
+
+
+# ---------------------------------------------------------------------------------------- MJCF
+def mjcf(name, text, status, *contains, args="model {file}", extra=None):
+    """An MJCF case; `extra` maps other file names of the case (included files) to their text."""
+    write("mjcf", name, "xml", text, args, status, *contains)
+    for other, content in (extra or {}).items():
+        with open(os.path.join(HERE, "mjcf", other), "w") as f:
+            f.write(content)
+
+
+def mujoco(body, head=""):
+    return f'<mujoco model="m">\n{head}  <worldbody>\n{body}  </worldbody>\n</mujoco>\n'
+
+
+ARM = '    <body name="arm" pos="0 0 1">\n      <joint name="hinge" axis="0 1 0"/>\n{}    </body>\n'
+CAPSULE = '      <geom type="capsule" fromto="0 0 0 0 0 -0.5" size="0.05"/>\n'
+
+mjcf("broken_xml", mujoco(ARM.format(CAPSULE)).replace("</body>", "</bod>", 1), "error",
+     "malformed XML", "line 6")
+mjcf("not_mujoco", '<robot name="r"><link name="a"/></robot>\n', "error", "not <mujoco>")
+mjcf("unknown_class", mujoco(ARM.format('      <geom class="nope" size="0.1"/>\n')), "error",
+     "line 5", "unknown default class \"nope\"")
+mjcf("unknown_childclass", mujoco('    <body childclass="ghost">\n      <geom size="0.1"/>\n'
+                                  '    </body>\n'), "error", "line 3", "childclass \"ghost\"")
+mjcf("include_loop", mujoco(ARM.format(CAPSULE), '  <include file="include_loop_part.xml"/>\n'),
+     "error", "include loop", "include_loop.xml -> include_loop_part.xml -> include_loop.xml",
+     extra={"include_loop_part.xml": '<mujoco>\n  <include file="include_loop.xml"/>\n</mujoco>\n'})
+mjcf("include_missing", mujoco(ARM.format(CAPSULE), '  <include file="no_such_part.xml"/>\n'),
+     "error", "line 2", "no_such_part.xml", "not found")
+mjcf("missing_mesh", mujoco(ARM.format('      <geom type="mesh" mesh="m"/>\n'),
+                            '  <asset><mesh name="m" file="no_such_mesh.stl"/></asset>\n'),
+     "error", "line 2", "mesh \"m\"", "no_such_mesh.stl")
+mjcf("mesh_garbage", mujoco(ARM.format('      <geom type="mesh" mesh="m"/>\n'),
+                            '  <asset><mesh name="m" file="mesh_garbage.xml"/></asset>\n'),
+     "error", "line 2", "unknown mesh file type")
+mjcf("fromto_zero_length", mujoco(ARM.format(
+    '      <geom type="capsule" fromto="0 0 0.1 0 0 0.1" size="0.05"/>\n')), "error", "line 5",
+     "fromto has zero length")
+mjcf("negative_geom_mass", mujoco(ARM.format('      <geom size="0.1" mass="-1"/>\n')), "error",
+     "line 5", "negative mass")
+mjcf("negative_inertial_mass", mujoco(ARM.format(
+    '      <inertial pos="0 0 0" mass="-2" diaginertia="1 1 1"/>\n')), "error", "line 5",
+     "negative mass")
+mjcf("angle_not_finite", mujoco(ARM.format('      <geom type="box" size="0.1 0.1 0.1" '
+                                           'euler="1e999 0 0"/>\n')), "error", "line 5",
+     "\"euler\" is not finite")
+mjcf("mass_overflow", mujoco(ARM.format('      <geom size="1e3" density="1e308"/>\n')), "error",
+     "line 5", "not finite")
+mjcf("axis_zero", mujoco(ARM.format(CAPSULE).replace('axis="0 1 0"', 'axis="0 0 0"')), "error",
+     "line 4", "joint \"hinge\"", "axis is zero")
+mjcf("quat_zero", mujoco('    <body quat="0 0 0 0">\n      <geom size="0.1"/>\n    </body>\n'),
+     "error", "line 3", "zero quaternion")
+mjcf("orientation_twice", mujoco(ARM.format(
+    '      <geom type="box" size="0.1 0.1 0.1" quat="1 0 0 0" euler="0 0 10"/>\n')), "error",
+     "line 5", "orientation is given twice")
+mjcf("joint_type_unknown", mujoco(ARM.format(CAPSULE).replace('axis="0 1 0"', 'type="screw"')),
+     "error", "line 4", "\"screw\"", "expected one of")
+mjcf("range_reversed", mujoco(ARM.format(CAPSULE).replace('axis="0 1 0"',
+                                                          'limited="true" range="1 -1"')),
+     "error", "line 4", "range[0] must be smaller")
+mjcf("free_joint_below_top", mujoco(ARM.format(
+    CAPSULE + '      <body pos="0 0 -0.5">\n        <freejoint/>\n'
+              '        <geom size="0.1"/>\n      </body>\n')), "error", "line 7",
+     "free joint", "top-level")
+mjcf("massless_moving_body", mujoco(ARM.format('')), "error", "line 3", "body \"arm\"",
+     "must have mass")
+mjcf("size_negative", mujoco(ARM.format('      <geom type="box" size="0.1 -0.1 0.1"/>\n')),
+     "error", "line 5", "size[1]", "must be positive")
+mjcf("number_garbage", mujoco(ARM.format('      <geom size="0.1" pos="0 zero 0"/>\n')), "error",
+     "line 5", "\"pos\"", "\"zero\" is not a number")
+mjcf("composite", mujoco('    <body>\n      <composite type="grid" count="2 2 1"/>\n'
+                         '    </body>\n'), "error", "line 4", "<composite> is not supported")
+mjcf("nested_too_deep", mujoco("".join(f'{" " * (4 + i)}<body pos="0 0 0.1">\n'
+                                       for i in range(300))
+                                + f'{" " * 304}<geom size="0.01"/>\n'
+                                + "".join(f'{" " * (4 + i)}</body>\n' for i in reversed(range(300)))),
+     "error", "nested more than 200 deep")
+mjcf("inertia_triangle", mujoco(ARM.format(
+    '      <inertial pos="0 0 0" mass="1" diaginertia="1 1 3"/>\n')), "error", "line 5",
+     "A + B >= C", "balanceinertia")
+mjcf("actuators_ignored", mujoco(ARM.format(CAPSULE))
+     .replace("</mujoco>", '  <actuator>\n    <motor joint="hinge"/>\n  </actuator>\n</mujoco>'),
+     "warning", "line 8", "actuators are not modelled")
+mjcf("eval_floating", mujoco(ARM.format(CAPSULE)), "error", "--floating",
+     args="model {file} --floating")
 
 # --------------------------------------------------------------------------- command-line args
 def cli(name, args, status, *contains):

@@ -13,6 +13,7 @@ mod corpus;
 mod doctor_cli;
 mod eval;
 mod eval_constraints;
+mod eval_mujoco;
 mod eval_parallel;
 mod eval_pinocchio;
 mod explicit_cli;

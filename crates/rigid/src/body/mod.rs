@@ -23,6 +23,7 @@
 //! Runge-Kutta methods on manifolds" (1999) for RKMK; Lee, Leok & McClamroch, "Lie group
 //! variational integrators for the full body problem" (CMAME 2007) for the LGVI.
 
+#[cfg(feature = "autodiff")]
 pub mod lagrange;
 mod lgvi;
 mod newton_euler;

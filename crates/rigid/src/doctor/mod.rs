@@ -1,5 +1,5 @@
-//! `rigid doctor`: what is wrong with a URDF's inertial data, the likely cause, and the nearest
-//! valid value.
+//! `rigid doctor`: what is wrong with a URDF's inertial data (or an MJCF model's `<inertial>`
+//! elements, [`examine_mjcf`]), the likely cause, and the nearest valid value.
 //!
 //! For every link with an `<inertial>`, [`Doctor::examine`] runs the checks of
 //! [`checks::Evaluation`]:
@@ -37,10 +37,14 @@ pub mod checks;
 pub mod diagnose;
 mod fix;
 pub mod geometry;
+#[cfg(feature = "mjcf")]
+mod mjcf;
 
 pub use checks::{Evaluation, Finding, InertialParams};
 pub use diagnose::{Cause, Diagnosis, Hypothesis};
 pub use fix::fixed_urdf;
+#[cfg(feature = "mjcf")]
+pub use mjcf::{as_robot, examine_mjcf};
 
 use crate::io::urdf::UrdfRobot;
 use crate::mass::{nearest_consistent, RotationalInertia, Verdict};

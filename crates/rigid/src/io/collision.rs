@@ -1,16 +1,19 @@
 //! Collision geometry from the files: a URDF's `<collision>` elements ([`urdf_geometries`]),
-//! a `rigid mass` spec's parts ([`compound_geometries`]), on a built [`Model`]. (MJCF geoms, once
-//! the importer lands, map the same way: shape, placement in the body, `friction`, `contype`,
-//! `conaffinity`.)
+//! an MJCF model's geoms ([`mjcf_geometries`]), a `rigid mass` spec's parts
+//! ([`compound_geometries`]), on a built [`Model`].
 
 use super::mesh_file::read_mesh;
+#[cfg(feature = "urdf")]
 use super::urdf::{resolve_mesh_path, UrdfRobot, UrdfShape};
 use crate::collision::{Geometry, Shape};
 use crate::mass::{Compound, Geometry as PartGeometry, Shape as PartShape};
-use crate::multibody::{FrameKind, JointId, Model};
+#[cfg(feature = "urdf")]
+use crate::multibody::{FrameKind, Model};
+use crate::multibody::JointId;
 use crate::spatial::{Transform, Vec3};
 use std::path::Path;
 
+#[cfg(feature = "urdf")]
 /// A URDF shape as a collision shape; a mesh is read (path resolved as for the replay:
 /// `package://`, `file://`, relative to the URDF) and becomes the convex hull of its scaled
 /// vertices. `Err` says why a mesh could not be used.
@@ -47,6 +50,7 @@ fn urdf_shape(shape: &UrdfShape, urdf: Option<&Path>) -> Result<Shape, String> {
 /// element's `<origin>`, a mesh as its convex hull. Returns the geometries (named
 /// `link/index`) and the warnings: each element that could not be used (a mesh not found or
 /// unreadable, a degenerate shape), naming the link and line, which is skipped.
+#[cfg(feature = "urdf")]
 #[must_use]
 pub fn urdf_geometries(robot: &UrdfRobot, model: &Model) -> (Vec<Geometry>, Vec<String>) {
     let (mut out, mut warnings) = (Vec::new(), Vec::new());
@@ -139,6 +143,7 @@ pub fn compound_geometries(
 /// # Errors
 /// The spec or a mesh cannot be read (the spec parser, [`read_spec`](super::spec::read_spec),
 /// reports the same errors with the part and line).
+#[cfg(feature = "spec")]
 pub fn spec_mesh_vertices(path: &Path) -> Result<Vec<Option<Vec<Vec3>>>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let table: toml::Table = text.parse().map_err(|e| format!("{}: {e}", path.display()))?;
@@ -163,4 +168,69 @@ pub fn spec_mesh_vertices(path: &Path) -> Result<Vec<Option<Vec<Vec3>>>, String>
             }
         })
         .collect()
+}
+
+/// The collision geometry of an MJCF model: each geom on the rigid joint it is fixed in, at its
+/// placement, with its `contype` and `conaffinity` (MuJoCo's collision filter), a mesh as the
+/// convex hull of its vertices (as MuJoCo collides meshes). Returns the geometries (named by the
+/// geom, else `geom LINE`) and the warnings. Geoms with `contype = conaffinity = 0` (drawn,
+/// never colliding) are left out. Planes and height fields are not bodies' shapes
+/// (a plane is the ground: `--ground`), a mesh that cannot be read; each is skipped.
+#[cfg(feature = "mjcf")]
+#[must_use]
+pub fn mjcf_geometries(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<String>) {
+    use super::mjcf::MjcfShape;
+    let (mut out, mut warnings) = (Vec::new(), Vec::new());
+    for g in &mjcf.geoms {
+        if g.contype == 0 && g.conaffinity == 0 {
+            continue; // a visual geom: it collides with nothing in MuJoCo, the floor included
+        }
+        let name = g.name.clone().unwrap_or_else(|| format!("geom {}", g.line));
+        let shape = match &g.shape {
+            MjcfShape::Sphere { radius } => Ok(Shape::Sphere { radius: *radius }),
+            MjcfShape::Capsule {
+                radius,
+                half_length,
+            } => Ok(Shape::Capsule {
+                radius: *radius,
+                length: 2.0 * half_length,
+            }),
+            MjcfShape::Cylinder {
+                radius,
+                half_length,
+            } => Ok(Shape::Cylinder {
+                radius: *radius,
+                length: 2.0 * half_length,
+            }),
+            MjcfShape::Ellipsoid { radii } => Ok(Shape::Ellipsoid { semi_axes: *radii }),
+            MjcfShape::Box { half } => Ok(Shape::Box { size: 2.0 * half }),
+            MjcfShape::Mesh {
+                file,
+                scale,
+                refpos,
+                refrot,
+                ..
+            } => read_mesh(file)
+                .map(|m| Shape::ConvexHull {
+                    points: m
+                        .vertices
+                        .iter()
+                        .map(|v| (refrot.transpose() * (v - refpos)).component_mul(scale))
+                        .collect(),
+                })
+                .map_err(|e| format!("{}: {e}", file.display())),
+            MjcfShape::Plane { .. } => Err("a plane is not a body's shape (the ground: --ground)".into()),
+            MjcfShape::Hfield { .. } => Err("height fields are not read".into()),
+        };
+        match shape.and_then(|s| s.check().map(|()| s)) {
+            Ok(shape) => {
+                let mut geometry = Geometry::new(name, g.parent, g.placement, shape);
+                geometry.contype = u32::try_from(g.contype).unwrap_or(0);
+                geometry.conaffinity = u32::try_from(g.conaffinity).unwrap_or(0);
+                out.push(geometry);
+            }
+            Err(e) => warnings.push(format!("{name} (line {}): collision skipped: {e}", g.line)),
+        }
+    }
+    (out, warnings)
 }

@@ -1,12 +1,21 @@
 //! Reading files: triangle meshes (STL, OBJ, COLLADA), the body specs of `rigid mass` (TOML),
-//! URDF robots, the collision geometry they carry ([`collision`], feature `collision`), and finding the robot files of example-robot-data ([`robots`]).
+//! URDF robots, MuJoCo's MJCF models, constraint files, and finding the robot files of
+//! example-robot-data ([`robots`]).
 
+#[cfg(feature = "serde")]
 pub mod cases;
+#[cfg(feature = "mesh")]
 pub mod collada;
-#[cfg(feature = "collision")]
+#[cfg(all(feature = "collision", feature = "mesh"))]
 pub mod collision;
+#[cfg(feature = "serde")]
 pub mod constraints;
+#[cfg(feature = "mesh")]
 pub mod mesh_file;
+#[cfg(feature = "mjcf")]
+pub mod mjcf;
 pub mod robots;
+#[cfg(feature = "spec")]
 pub mod spec;
+#[cfg(feature = "urdf")]
 pub mod urdf;

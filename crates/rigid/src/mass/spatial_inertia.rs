@@ -26,12 +26,19 @@ use std::ops::{Add, AddAssign};
 /// let ad = t_ba.adjoint();
 /// assert!((g_a.matrix() - ad.transpose() * g_b.matrix() * ad).norm() < 1e-12);
 /// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SpatialInertia {
     mass: f64,
-    #[serde(rename = "first_moment", with = "crate::spatial::wire::vec3")]
+    #[cfg_attr(
+        feature = "serde",
+        serde(rename = "first_moment", with = "crate::spatial::wire::vec3")
+    )]
     h: Vec3,
-    #[serde(rename = "inertia_origin", with = "crate::spatial::wire::mat3")]
+    #[cfg_attr(
+        feature = "serde",
+        serde(rename = "inertia_origin", with = "crate::spatial::wire::mat3")
+    )]
     inertia: Mat3,
 }
 

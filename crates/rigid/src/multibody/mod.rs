@@ -43,6 +43,7 @@
 //! ```
 
 pub mod algorithms;
+#[cfg(feature = "parallel")]
 pub mod batch;
 mod builder;
 mod builtins;
@@ -56,6 +57,7 @@ mod textbook;
 mod model;
 pub(crate) mod plan;
 pub mod reference;
+#[cfg(feature = "serde")]
 mod serialize;
 pub mod simulation;
 
@@ -67,7 +69,7 @@ pub use configuration::{
     random_configuration, Rng,
 };
 pub use data::Data;
-pub use joint::{column_names, JointType, PinocchioCoords};
+pub use joint::{column_names, JointType, MujocoCoords, PinocchioCoords};
 pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 pub use textbook::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 

@@ -8,10 +8,9 @@ use crate::mass::SpatialInertia;
 use crate::spatial::{Transform, Twist, Vec3};
 
 /// The depth-first index of a moving joint (0-based); it also names the body the joint moves.
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
-)]
-#[serde(transparent)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(transparent))]
 pub struct JointId(pub usize);
 
 /// The index of a named frame in [`Model::frames`].
@@ -19,8 +18,9 @@ pub struct JointId(pub usize);
 pub struct FrameId(pub usize);
 
 /// One moving joint and the body it carries.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Joint {
     /// The joint's name.
     pub name: String,
@@ -78,8 +78,9 @@ impl Joint {
 /// What a named frame stands for. Frame names are unique within a kind, and joint names among the
 /// joints; a URDF link and a joint may share a name (links and joints are two namespaces in URDF,
 /// as in Pinocchio, whose frames carry their type too).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum FrameKind {
     /// A body's own frame (a URDF link): the link moved by a joint, or a link welded to its parent
     /// by a fixed joint (its inertia merged into the parent's).
@@ -122,8 +123,9 @@ pub enum FrameLookupError {
 }
 
 /// A named frame fixed in a moving body (or in the world).
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Frame {
     /// The frame's name.
     pub name: String,

@@ -221,7 +221,8 @@ impl<'de> Deserialize<'de> for Model {
 }
 
 impl Model {
-    /// The model in its stable JSON form (module [`serialize`](self) documentation).
+    /// The model in its stable JSON form: every field a user gave, nothing derived, numbers that
+    /// read back to the same `f64` ([`Model`]'s `Serialize` implementation).
     #[must_use]
     pub fn to_json(&self) -> String {
         serde_json::to_string(&ModelFile::from(self)).expect("a model always serialises")

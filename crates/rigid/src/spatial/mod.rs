@@ -19,6 +19,7 @@ pub mod so3;
 mod transform;
 pub(crate) mod trig;
 mod twist;
+#[cfg(feature = "serde")]
 pub(crate) mod wire;
 mod wrench;
 

@@ -15,13 +15,14 @@ use std::ops::Mul;
 /// let t_ba = t_ab.inverse();
 /// assert!((t_ab * t_ba).is_identity(1e-15));
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Transform {
     /// The rotation `R_ab` (columns: the axes of {b} in {a}).
-    #[serde(with = "super::wire::mat3")]
+    #[cfg_attr(feature = "serde", serde(with = "super::wire::mat3"))]
     pub rotation: Mat3,
     /// The translation `p_ab` (the origin of {b} in {a}).
-    #[serde(with = "super::wire::vec3")]
+    #[cfg_attr(feature = "serde", serde(with = "super::wire::vec3"))]
     pub translation: Vec3,
 }
 

@@ -9,13 +9,14 @@ use std::path::PathBuf;
 
 type Target = fn(&[u8]);
 
-const TARGETS: [(&str, Target); 6] = [
+const TARGETS: [(&str, Target); 7] = [
     ("urdf", rigid::fuzzing::urdf),
     ("spec", rigid::fuzzing::spec),
     ("stl", rigid::fuzzing::stl),
     ("obj", rigid::fuzzing::obj),
     ("dae", rigid::fuzzing::dae),
     ("cases", rigid::fuzzing::cases),
+    ("mjcf", rigid::fuzzing::mjcf),
 ];
 
 #[test]

@@ -37,6 +37,8 @@ mod identification_closed_loop;
 mod identification_packages;
 mod joints_pinocchio;
 mod mesh;
+mod mjcf;
+mod mjcf_import;
 mod multibody_batch;
 mod multibody_builders;
 mod multibody_closed_form;

@@ -110,7 +110,7 @@ pub fn build_model(robot: &UrdfRobot, floating: bool) -> Result<Model, UrdfError
 ///
 /// # Errors
 /// A negative mass; under [`InertiaPolicy::Strict`] an inertia that is not positive
-/// semi-definite beyond round-off; limits with `lower > upper`; or anything else the
+/// semi-definite beyond round-off; a negative velocity or effort limit; or anything else the
 /// [`ModelBuilder`] refuses, with the joint or link and the line.
 pub fn build_model_with(
     robot: &UrdfRobot,

@@ -430,12 +430,27 @@ impl Parser {
 
         let limit = match Self::child(node, "limit") {
             None => None,
-            Some(l) => Some(UrdfLimit {
-                lower: self.number(l, &what, "lower")?.unwrap_or(0.0),
-                upper: self.number(l, &what, "upper")?.unwrap_or(0.0),
-                effort: self.number(l, &what, "effort")?.unwrap_or(f64::INFINITY),
-                velocity: self.number(l, &what, "velocity")?.unwrap_or(f64::INFINITY),
-            }),
+            Some(l) => {
+                let mut limit = UrdfLimit {
+                    lower: self.number(l, &what, "lower")?.unwrap_or(0.0),
+                    upper: self.number(l, &what, "upper")?.unwrap_or(0.0),
+                    effort: self.number(l, &what, "effort")?.unwrap_or(f64::INFINITY),
+                    velocity: self.number(l, &what, "velocity")?.unwrap_or(f64::INFINITY),
+                };
+                // Bullet writes "no limit" as lower > upper, and urdfdom loads it: no position
+                // limit, with a warning
+                if limit.lower > limit.upper {
+                    let msg = format!(
+                        "<limit> lower = {} is above upper = {}: read as no position limit \
+                         (Bullet's way of writing none; urdfdom loads it)",
+                        limit.lower, limit.upper
+                    );
+                    self.warn(l, what.clone(), msg);
+                    limit.lower = f64::NEG_INFINITY;
+                    limit.upper = f64::INFINITY;
+                }
+                Some(limit)
+            }
         };
         let mimic = match Self::child(node, "mimic") {
             None => None,

@@ -31,7 +31,8 @@ pub fn parse_urdf_file(path: impl AsRef<Path>) -> Result<UrdfRobot, UrdfError> {
 /// [`UrdfRobot::inertia_report`] and when the model is built.
 ///
 /// Tolerated, with a warning in [`UrdfRobot::warnings`]: a `<robot>` without a name (the model
-/// is called `robot`), unknown elements, a mimic of a joint that is not defined (mimic joints are
+/// is called `robot`), an XML declaration after a blank line (as tinyxml2 reads it), a `<limit>`
+/// with `lower > upper` (no position limit, as urdfdom loads it), unknown elements, a mimic of a joint that is not defined (mimic joints are
 /// imported as independent joints anyway), an `<inertial>` without `<mass>` or `<inertia>`
 /// (zero), and a `<visual>` or `<collision>` whose geometry cannot be read (skipped).
 ///
@@ -48,6 +49,11 @@ pub fn parse_urdf_file(path: impl AsRef<Path>) -> Result<UrdfRobot, UrdfError> {
 /// # Errors
 /// A [`UrdfError`] naming the link or joint and the line.
 pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
+    // tinyxml2 (urdfdom) reads an XML declaration that does not stand at the very start (after a
+    // blank line); the XML standard and roxmltree do not: blank it out (same length, so that lines
+    // and byte spans hold) and warn
+    let (blanked, declaration_line) = blank_misplaced_declaration(text);
+    let text = blanked.as_deref().unwrap_or(text);
     // urdfdom (TinyXML) ignores XML namespaces, so files with undeclared prefixes such as
     // Drake's `<drake:joint>` load in other tools: declare each such prefix on the root element
     // (same line, so line numbers hold) and warn.
@@ -286,6 +292,15 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
     }
 
     let mut warnings = p.warnings;
+    if let Some(line) = declaration_line {
+        warnings.push(super::UrdfWarning {
+            line,
+            element: "document".into(),
+            message: "the XML declaration does not stand at the start of the file; read anyway, \
+                      as tinyxml2 (urdfdom) does"
+                .into(),
+        });
+    }
     for prefix in &undeclared {
         warnings.push(super::UrdfWarning {
             line: 1,
@@ -312,6 +327,34 @@ pub fn parse_urdf_str(text: &str) -> Result<UrdfRobot, UrdfError> {
         children,
         warnings,
     })
+}
+
+/// `text` with an XML declaration that follows only whitespace replaced by as many spaces, and the
+/// declaration's line; `(None, None)` when there is none to blank.
+fn blank_misplaced_declaration(text: &str) -> (Option<String>, Option<u32>) {
+    let start = text.len() - text.trim_start().len();
+    if start == 0 || !text[start..].starts_with("<?xml") {
+        return (None, None);
+    }
+    let Some(len) = text[start..].find("?>") else {
+        return (None, None);
+    };
+    let end = start + len + 2;
+    let mut out = String::with_capacity(text.len());
+    out.push_str(&text[..start]);
+    out.extend(
+        text[start..end]
+            .chars()
+            .map(|c| if c == '\n' { '\n' } else { ' ' }),
+    );
+    out.push_str(&text[end..]);
+    // the spaces replace characters one for one: a multi-byte character in the declaration would
+    // shift the byte spans, so keep the text as it was then
+    if out.len() != text.len() {
+        return (None, None);
+    }
+    let line = text[..start].matches('\n').count() as u32 + 1;
+    (Some(out), Some(line))
 }
 
 /// The byte offset just after the root element's tag name (`<robot`), where attributes may be

@@ -30,7 +30,35 @@ impl PinocchioCoords {
     }
 }
 
+/// How one joint's coordinates differ between rigid's layout and MuJoCo's
+/// ([`MujocoLayout`](crate::interop::MujocoLayout)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MujocoCoords {
+    /// One coordinate counted from MuJoCo's `ref` (a hinge or slide): `qpos = q + ref`.
+    Scalar,
+    /// A ball joint: the quaternion written `w` first.
+    Ball,
+    /// A free joint: the quaternion `w` first, and the velocity (world linear, body angular)
+    /// through a map that depends on `q`.
+    Free,
+    /// The same coordinates (joints MuJoCo does not have: planar, universal).
+    Same,
+}
+
 impl JointType {
+    /// How the joint's coordinates differ in MuJoCo's layout.
+    #[must_use]
+    pub fn mujoco_coords(&self) -> MujocoCoords {
+        match self {
+            Self::Revolute { .. } | Self::Prismatic { .. } | Self::Helical { .. } => {
+                MujocoCoords::Scalar
+            }
+            Self::Spherical => MujocoCoords::Ball,
+            Self::FreeFlyer => MujocoCoords::Free,
+            Self::Planar | Self::Universal { .. } => MujocoCoords::Same,
+        }
+    }
+
     /// The suffixes of the joint's coordinates in `q` and in `v` (also `a`, `τ`) used to name
     /// columns: `q_<joint>_<suffix>`, or `q_<joint>` for a one-coordinate joint (empty suffix).
     #[must_use]

@@ -21,7 +21,7 @@
 mod coords;
 pub(crate) mod lie;
 
-pub use coords::{column_names, PinocchioCoords};
+pub use coords::{column_names, MujocoCoords, PinocchioCoords};
 
 use crate::spatial::{
     quat_norm, quat_normalize, quat_to_rot, rodrigues, rotate_about, so3, trig, Mat3, Transform,
@@ -30,21 +30,25 @@ use crate::spatial::{
 
 /// A joint type. Axes are unit vectors in the joint frame. In files (JSON): an object tagged by
 /// [`name`](Self::name), e.g. `{"type": "revolute", "axis": [0, 0, 1]}`.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum JointType {
     /// Rotation `q` (rad) about `axis` through the joint-frame origin:
     /// `X_J = (exp([axis] q), 0)`, `S = (axis, 0)`. A URDF `continuous` joint is a revolute joint
     /// without limits ([`Joint::continuous`](super::Joint::continuous) remembers the name).
     Revolute {
         /// Unit axis in the joint frame.
-        #[serde(with = "crate::spatial::wire::vec3")]
+        #[cfg_attr(feature = "serde", serde(with = "crate::spatial::wire::vec3"))]
         axis: Vec3,
     },
     /// Translation `q` (m) along `axis`: `X_J = (1, axis q)`, `S = (0, axis)`.
     Prismatic {
         /// Unit axis in the joint frame.
-        #[serde(with = "crate::spatial::wire::vec3")]
+        #[cfg_attr(feature = "serde", serde(with = "crate::spatial::wire::vec3"))]
         axis: Vec3,
     },
     /// Ball joint: `q = (qx, qy, qz, qw)` a unit quaternion, velocity the body angular velocity
@@ -62,7 +66,7 @@ pub enum JointType {
     /// `JointModelHelicalUnaligned`).
     Helical {
         /// Unit axis in the joint frame.
-        #[serde(with = "crate::spatial::wire::vec3")]
+        #[cfg_attr(feature = "serde", serde(with = "crate::spatial::wire::vec3"))]
         axis: Vec3,
         /// Translation per radian (m/rad).
         pitch: f64,
@@ -73,11 +77,11 @@ pub enum JointType {
     /// (Pinocchio's `JointModelUniversal`).
     Universal {
         /// Unit first axis, in the joint frame.
-        #[serde(with = "crate::spatial::wire::vec3")]
+        #[cfg_attr(feature = "serde", serde(with = "crate::spatial::wire::vec3"))]
         axis1: Vec3,
         /// Unit second axis, in the frame moved by the first rotation (not parallel to
         /// `axis1`).
-        #[serde(with = "crate::spatial::wire::vec3")]
+        #[cfg_attr(feature = "serde", serde(with = "crate::spatial::wire::vec3"))]
         axis2: Vec3,
     },
 }

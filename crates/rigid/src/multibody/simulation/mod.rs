@@ -30,6 +30,7 @@
 // loops over several per-dof arrays at once read better indexed
 #![allow(clippy::needless_range_loop)]
 
+#[cfg(feature = "parallel")]
 mod batch;
 mod contact_step;
 mod control;
@@ -40,6 +41,7 @@ mod simulator;
 mod stance;
 mod trajectory;
 
+#[cfg(feature = "parallel")]
 pub use batch::simulate_batch;
 pub use control::{Control, ControlKind, ControlLaw, Controller};
 pub use simulator::Simulator;

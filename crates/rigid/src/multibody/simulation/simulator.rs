@@ -5,7 +5,7 @@ use super::contact_step::{contact_step, ContactStepper};
 use super::control::Control;
 use super::integrators::{self, Workspace};
 use super::{Integrator, JointLimits, SimulationError, SimulationOptions};
-use crate::error::DimensionError;
+
 use crate::multibody::{
     aba, aba_with_external, check_q, check_v, forward_kinematics_qv, gravity_torques,
     kinetic_energy, potential_energy, rnea_with_external, Data, JointId, Model, MultibodyError,
@@ -548,11 +548,13 @@ impl<C: Control> Simulator<C> {
 }
 
 /// Lengths of a row-major block of states.
+#[cfg(feature = "parallel")]
 pub(crate) fn check_rows(
     what: &'static str,
     per: usize,
     n: usize,
     len: usize,
 ) -> Result<(), SimulationError> {
-    DimensionError::check(what, n * per, len).map_err(|e| MultibodyError::from(e).into())
+    crate::error::DimensionError::check(what, n * per, len)
+        .map_err(|e| MultibodyError::from(e).into())
 }
