@@ -21,3 +21,4 @@ mod identify_cli;
 mod mass_cli;
 mod replay_browser;
 mod simulate;
+mod simulate_ground;

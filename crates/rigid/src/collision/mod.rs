@@ -248,6 +248,14 @@ pub enum CollisionError {
         /// The geometry.
         geometry: String,
     },
+    /// A configuration that is not one of the model's.
+    #[error("the configuration has {got} numbers or is not valid; the model has nq = {expected}")]
+    Configuration {
+        /// `nq`.
+        expected: usize,
+        /// The length given.
+        got: usize,
+    },
     /// A shape with a bad dimension, or a mesh whose convex hull cannot be made.
     #[error("geometry \"{geometry}\": {message}")]
     Shape {
@@ -256,4 +264,60 @@ pub enum CollisionError {
         /// What is wrong.
         message: String,
     },
+}
+
+/// Sets a floating robot down on the ground: moves its first free-flyer joint along the ground's
+/// normal so that the lowest geometry just touches the ground at `q` (gap 0), and returns the
+/// distance moved (m, positive up). `None` when there is no ground, no free-flyer, or no
+/// geometry that meets the ground.
+///
+/// # Errors
+/// A bad collision model, a configuration of the wrong length.
+pub fn place_on_ground(
+    model: &crate::multibody::Model,
+    cm: &CollisionModel,
+    q: &mut [f64],
+) -> Result<Option<f64>, CollisionError> {
+    use crate::multibody::{forward_kinematics_q, Data, JointType};
+    let Some(ground) = cm.ground else {
+        return Ok(None);
+    };
+    let Some(root) = model
+        .joints()
+        .iter()
+        .find(|j| j.kind == JointType::FreeFlyer && j.parent.is_none())
+    else {
+        return Ok(None);
+    };
+    if q.len() != model.nq() {
+        return Err(CollisionError::Configuration {
+            expected: model.nq(),
+            got: q.len(),
+        });
+    }
+    let far = CollisionModel {
+        margin: 1e6,
+        self_collision: false,
+        ..cm.clone()
+    };
+    let mut data = Data::new(model);
+    forward_kinematics_q(model, &mut data, q).map_err(|_| CollisionError::Configuration {
+        expected: model.nq(),
+        got: q.len(),
+    })?;
+    let mut cd = CollisionData::new(model, &far)?;
+    let mut contacts = Vec::new();
+    cd.contacts(&far, &data.placements, &mut contacts);
+    let low = contacts
+        .iter()
+        .filter(|c| c.geometries.1.is_none())
+        .map(|c| c.gap)
+        .fold(f64::INFINITY, f64::min);
+    if !low.is_finite() {
+        return Ok(None);
+    }
+    for (k, n) in ground.normal.iter().enumerate() {
+        q[root.idx_q + k] -= low * n;
+    }
+    Ok(Some(-low))
 }

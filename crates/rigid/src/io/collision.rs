@@ -7,9 +7,9 @@ use super::mesh_file::read_mesh;
 use super::urdf::{resolve_mesh_path, UrdfRobot, UrdfShape};
 use crate::collision::{Geometry, Shape};
 use crate::mass::{Compound, Geometry as PartGeometry, Shape as PartShape};
+use crate::multibody::JointId;
 #[cfg(feature = "urdf")]
 use crate::multibody::{FrameKind, Model};
-use crate::multibody::JointId;
 use crate::spatial::{Transform, Vec3};
 use std::path::Path;
 
@@ -146,7 +146,9 @@ pub fn compound_geometries(
 #[cfg(feature = "spec")]
 pub fn spec_mesh_vertices(path: &Path) -> Result<Vec<Option<Vec<Vec3>>>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let table: toml::Table = text.parse().map_err(|e| format!("{}: {e}", path.display()))?;
+    let table: toml::Table = text
+        .parse()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     let dir = path.parent().unwrap_or_else(|| Path::new("."));
     let parts = table
         .get("part")
@@ -219,7 +221,9 @@ pub fn mjcf_geometries(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<Str
                         .collect(),
                 })
                 .map_err(|e| format!("{}: {e}", file.display())),
-            MjcfShape::Plane { .. } => Err("a plane is not a body's shape (the ground: --ground)".into()),
+            MjcfShape::Plane { .. } => {
+                Err("a plane is not a body's shape (the ground: --ground)".into())
+            }
             MjcfShape::Hfield { .. } => Err("height fields are not read".into()),
         };
         match shape.and_then(|s| s.check().map(|()| s)) {

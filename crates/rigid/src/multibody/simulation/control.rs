@@ -258,10 +258,7 @@ impl Controller {
     /// Gains or a target of the wrong length, a non-finite gain, a bad target configuration.
     pub fn new(model: &Model, law: ControlLaw) -> Result<Self, SimulationError> {
         match &law {
-            ControlLaw::Pd { target, kp, kd }
-            | ControlLaw::Stance {
-                target, kp, kd, ..
-            } => {
+            ControlLaw::Pd { target, kp, kd } | ControlLaw::Stance { target, kp, kd, .. } => {
                 check_q(model, target)?;
                 DimensionError::check("kp", model.nv, kp.len()).map_err(MultibodyError::from)?;
                 DimensionError::check("kd", model.nv, kd.len()).map_err(MultibodyError::from)?;

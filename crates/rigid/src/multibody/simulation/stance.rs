@@ -45,10 +45,11 @@ impl ControlLaw {
         let nv = model.nv();
         let zeros = vec![0.0; nv];
         let mut cdata = ConstraintData::new(model, &points).map_err(invalid)?;
-        let feedforward = contact_inverse_dynamics(model, &mut data, &mut cdata, target, &zeros, &zeros)
-            .map_err(invalid)?
-            .as_slice()
-            .to_vec();
+        let feedforward =
+            contact_inverse_dynamics(model, &mut data, &mut cdata, target, &zeros, &zeros)
+                .map_err(invalid)?
+                .as_slice()
+                .to_vec();
         let m = crba(model, &mut data, target)?;
         let actuated: Vec<bool> = (0..nv)
             .map(|k| model.joint(model.dof_joint(k)).kind != JointType::FreeFlyer)
