@@ -4,8 +4,8 @@
 
 use super::SimulateArgs;
 use crate::load::{urdf_path, Loaded};
-use rigid::collision::{place_on_ground, CollisionModel, Ground, DEFAULT_FRICTION};
-use rigid::io::collision::{mjcf_geometries, urdf_geometries};
+use rigid::collision::{place_on_ground, CollisionModel};
+use rigid::io::collision::{ground_model, mjcf_geometries, urdf_geometries};
 use rigid::io::urdf::parse_urdf_file;
 use rigid::multibody::Model;
 
@@ -19,24 +19,6 @@ pub fn collision_model(
     let Some(height) = args.ground else {
         return Ok(None);
     };
-    let friction = args.friction.unwrap_or(DEFAULT_FRICTION);
-    let restitution = args.restitution.unwrap_or(0.0);
-    if !(friction.is_finite() && friction >= 0.0) {
-        return Err(format!(
-            "--friction must be finite and >= 0, got {friction}"
-        ));
-    }
-    if !(0.0..=1.0).contains(&restitution) {
-        return Err(format!(
-            "--restitution must be in [0, 1], got {restitution}"
-        ));
-    }
-    let mut ground = Ground::horizontal(height, friction);
-    ground.restitution = restitution;
-    let mut cm = CollisionModel::new(ground);
-    cm.self_collision = false;
-    cm.friction = friction;
-    cm.restitution = restitution;
     let (geometries, warnings) = if let Some(m) = &loaded.mjcf {
         mjcf_geometries(m)
     } else if let Some(path) = urdf_path(&args.model) {
@@ -54,8 +36,15 @@ pub fn collision_model(
             args.model
         );
     }
-    cm.geometries = geometries;
-    Ok(Some(cm))
+    ground_model(height, args.friction, args.restitution, geometries)
+        .map(Some)
+        .map_err(|e| {
+            if e.starts_with("the ") {
+                e
+            } else {
+                format!("--{e}")
+            }
+        })
 }
 
 /// Sets `q` of a floating robot down on the ground (see [`place_on_ground`]).

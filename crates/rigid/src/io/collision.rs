@@ -238,3 +238,60 @@ pub fn mjcf_geometries(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<Str
     }
     (out, warnings)
 }
+
+/// The collision geometry of the robot file at `path` that `model` was built from: an MJCF
+/// file's geoms ([`mjcf_geometries`], by the `.xml` extension), else a URDF's `<collision>`
+/// elements ([`urdf_geometries`]). Returns the geometries and the warnings.
+///
+/// # Errors
+/// The file cannot be read or parsed.
+#[cfg(all(feature = "urdf", feature = "mjcf"))]
+pub fn file_geometries(path: &Path, model: &Model) -> Result<(Vec<Geometry>, Vec<String>), String> {
+    let xml = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+    if xml {
+        let m = super::mjcf::load_mjcf(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(mjcf_geometries(&m))
+    } else {
+        let robot =
+            super::urdf::parse_urdf_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(urdf_geometries(&robot, model))
+    }
+}
+
+/// The collision model of `rigid simulate --ground HEIGHT --friction MU --restitution E` and of
+/// Python's `simulate(ground=, friction=, restitution=)`: the horizontal ground `z = height`,
+/// `geometries` (the robot's), `friction` (default [`DEFAULT_FRICTION`]) and `restitution`
+/// (default 0) for every contact, no contact between the robot's own bodies.
+///
+/// # Errors
+/// A friction that is negative or not finite, a restitution outside `[0, 1]`, a height that is
+/// not finite; the message names the option.
+pub fn ground_model(
+    height: f64,
+    friction: Option<f64>,
+    restitution: Option<f64>,
+    geometries: Vec<Geometry>,
+) -> Result<crate::collision::CollisionModel, String> {
+    use crate::collision::{CollisionModel, Ground, DEFAULT_FRICTION};
+    let friction = friction.unwrap_or(DEFAULT_FRICTION);
+    let restitution = restitution.unwrap_or(0.0);
+    if !(friction.is_finite() && friction >= 0.0) {
+        return Err(format!("friction must be finite and >= 0, got {friction}"));
+    }
+    if !(0.0..=1.0).contains(&restitution) {
+        return Err(format!("restitution must be in [0, 1], got {restitution}"));
+    }
+    if !height.is_finite() {
+        return Err(format!("the ground height must be finite, got {height}"));
+    }
+    let mut ground = Ground::horizontal(height, friction);
+    ground.restitution = restitution;
+    let mut cm = CollisionModel::new(ground);
+    cm.self_collision = false;
+    cm.friction = friction;
+    cm.restitution = restitution;
+    cm.geometries = geometries;
+    Ok(cm)
+}

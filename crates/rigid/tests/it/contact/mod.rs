@@ -19,6 +19,7 @@ use rigid::spatial::{so3, Mat3, Transform, Vec3};
 pub const G: f64 = 9.81;
 
 /// A free body of the world: its mass, inertia about the CoM and collision shape.
+#[derive(Clone)]
 pub struct Free {
     pub mass: f64,
     pub inertia: RotationalInertia,
