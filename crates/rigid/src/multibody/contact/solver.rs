@@ -213,6 +213,7 @@ impl ContactSolver {
     /// Adds a contact; its rows of `J` from the spatial Jacobian `data.jacobian` (world axes,
     /// angular rows first, at the world origin: the velocity of a point `p` of the body of dof k
     /// is `v_k + ω_k × p`).
+    #[cfg(feature = "collision")]
     pub(crate) fn push_contact(&mut self, data: &Data, c: &ContactPoint) {
         let n = c.normal;
         let t1 = tangent(&n);
@@ -629,6 +630,7 @@ fn disc_qp(a: f64, c: f64, e: f64, b1: f64, b2: f64, R: f64) -> (f64, f64) {
 }
 
 /// A unit vector orthogonal to the unit vector `n`.
+#[cfg(feature = "collision")]
 fn tangent(n: &Vec3) -> Vec3 {
     let a = if n.x.abs() < 0.6 {
         Vec3::x()

@@ -40,6 +40,7 @@ pub(crate) struct ContactStepper {
         crate::collision::CollisionModel,
         crate::collision::CollisionData,
     )>,
+    #[cfg(feature = "collision")]
     points: Vec<ContactPoint>,
     a: Vec<f64>,
     v_step: Vec<f64>,
@@ -57,6 +58,7 @@ impl ContactStepper {
             settings: ContactSettings::default(),
             #[cfg(feature = "collision")]
             collision: None,
+            #[cfg(feature = "collision")]
             points: Vec::new(),
             a: vec![0.0; nv],
             v_step: vec![0.0; nv],

@@ -92,4 +92,5 @@ impl ControlLaw {
 
 /// The natural frequency (rad/s) of each joint of the stance controller of
 /// [`ControlLaw::standing`]: 2 Hz, as `--controller pd`.
+#[cfg(feature = "collision")]
 pub const STANCE_OMEGA: f64 = 4.0 * std::f64::consts::PI;
