@@ -59,7 +59,19 @@ class UrdfWarning(UserWarning):
 
 class Model:
     """A kinematic tree (Pinocchio's ``Model``): joints depth-first from the root, their
-    placements, the bodies' spatial inertias, limits and gravity. Constant but for ``gravity``."""
+    placements, the bodies' spatial inertias, limits and gravity. Constant but for ``gravity``.
+    Picklable (``copy.deepcopy`` too) through its stable serialised form, which reads back bit
+    for bit; subclassable (``rigid.pinocchio.Model`` is one)."""
+
+    def __init__(self, json: str | None = None, layout: Layout = "rigid", *,
+                 warnings: Sequence[str] = (), source: Path | None = None,
+                 qpos0: ArrayLike | None = None) -> None:
+        """A model from its serialised form (``model.to_json()``, what pickling stores) in
+        ``layout``; without ``json`` the empty model (no joint; Pinocchio's ``pin.Model()``).
+        ``warnings``, ``source`` (the file it was read from) and ``qpos0`` are kept as given."""
+    def to_json(self) -> str:
+        """The stable serialised form: joints, placements, inertias, frames, limits (null for
+        none), armature, damping, friction, gravity, in rigid's layout (JSON)."""
 
     @staticmethod
     def from_urdf(path: Path, floating: bool = False,
@@ -141,7 +153,9 @@ class Model:
     def gravity(self, g: ArrayLike) -> None: ...
 
 class Data:
-    """The workspace of the algorithms for one model (Pinocchio's ``Data``), allocated once."""
+    """The workspace of the algorithms for one model (Pinocchio's ``Data``), allocated once.
+    Pickling or copying it gives a fresh workspace of the same model (pickle the pair,
+    ``pickle.dumps((model, data))``, to keep them together)."""
 
     def __init__(self, model: Model) -> None:
         """A workspace for ``model`` (Pinocchio's ``pin.Data(model)``)."""
@@ -152,13 +166,20 @@ class Data:
         R (3, 3) a rotation, p (3,) in m, ``x_world = R x_frame + p``. A joint name is looked up
         first, then the frames."""
 
-def rnea(model: Model, data: Data, q: ArrayLike, v: ArrayLike, a: ArrayLike) -> Vector:
+def rnea(model: Model, data: Data, q: ArrayLike, v: ArrayLike, a: ArrayLike,
+         fext: ArrayLike | Sequence[Any] | None = None) -> Vector:
     """Inverse dynamics ``τ = M(q) a + C(q, v) v + g(q)`` (N·m or N, length nv) by the recursive
-    Newton-Euler algorithm (Featherstone 2008, Table 5.1). Pinocchio: ``rnea``."""
+    Newton-Euler algorithm (Featherstone 2008, Table 5.1). ``fext``: one external wrench per
+    moving joint on its body, in its joint frame, ``(njoints, 6)`` — moment first ``(m, f)`` in
+    rigid's layout, force first ``(f, m)`` in Pinocchio's, where a list of ``pin.Force`` (with
+    the universe's first, ignored) is accepted too: ``τ = ID(q, v, a) - Σ Jᵢᵀ Fᵢ``. Pinocchio:
+    ``rnea``."""
 
-def aba(model: Model, data: Data, q: ArrayLike, v: ArrayLike, tau: ArrayLike) -> Vector:
+def aba(model: Model, data: Data, q: ArrayLike, v: ArrayLike, tau: ArrayLike,
+        fext: ArrayLike | Sequence[Any] | None = None) -> Vector:
     """Forward dynamics ``a = M(q)⁻¹ (τ - C(q, v) v - g(q))`` by the articulated-body algorithm
-    (Featherstone 2008, Table 7.1). A singular M is a ValueError. Pinocchio: ``aba``."""
+    (Featherstone 2008, Table 7.1); ``fext`` as in ``rnea``. A singular M is a ValueError.
+    Pinocchio: ``aba``."""
 
 def crba(model: Model, data: Data, q: ArrayLike) -> Matrix:
     """The joint-space mass matrix ``M(q)`` (nv, nv), full and symmetric, armature on the
@@ -211,10 +232,13 @@ def neutral(model: Model) -> Vector:
     """The neutral configuration: zeros, identity quaternions (and (1, 0) cos/sin pairs in
     Pinocchio's layout). Pinocchio: ``neutral``."""
 
-def random_configuration(model: Model) -> Vector:
-    """A random configuration within the position limits (angles in [-π, π] and translations in
-    [-1, 1] m where a limit is infinite; quaternions uniform on SO(3)). Pinocchio:
-    ``randomConfiguration`` (a different generator: the numbers differ)."""
+def random_configuration(model: Model, lower: ArrayLike | None = None,
+                         upper: ArrayLike | None = None) -> Vector:
+    """A random configuration within the position limits, or within ``lower``, ``upper`` (nq
+    each, this layout; a continuous joint's (cos, sin) bounds are not used, ±1e300 and beyond is
+    no bound): angles in [-π, π] and translations in [-1, 1] m where a bound is infinite;
+    quaternions uniform on SO(3). Pinocchio: ``randomConfiguration`` (a different generator: the
+    numbers differ)."""
 
 def seed(seed: int) -> None:
     """Seed the generator of ``random_configuration``. Pinocchio: ``pin.seed``."""
@@ -245,6 +269,70 @@ def aba_derivatives(model: Model, data: Data, q: ArrayLike, v: ArrayLike,
 def gravity_derivatives(model: Model, data: Data, q: ArrayLike) -> Matrix:
     """``∂g/∂q`` (nv, nv) of the generalised gravity, along ``q ⊕ δ``. Pinocchio:
     ``computeGeneralizedGravityDerivatives``."""
+
+def compute_joint_jacobians(model: Model, data: Data, q: ArrayLike | None = None) -> Matrix:
+    """The spatial (world-frame) Jacobian of every joint (6, nv): column k ``[Ad_{oMi}] S_k``;
+    rows (ω, v) in rigid's layout, (v, ω) in Pinocchio's; without ``q``, at the last ``q`` used
+    with ``data``. Pinocchio: ``computeJointJacobians`` (``data.J``)."""
+
+def update_frame_placements(model: Model, data: Data) -> None:
+    """World poses of the named frames ``oMf = oMi iMf`` from the last forward kinematics.
+    Pinocchio: ``updateFramePlacements``."""
+
+def frames_forward_kinematics(model: Model, data: Data, q: ArrayLike) -> None:
+    """``forward_kinematics`` then ``update_frame_placements``. Pinocchio:
+    ``framesForwardKinematics``."""
+
+def com_jacobian(model: Model, data: Data, q: ArrayLike) -> Matrix:
+    """The Jacobian of the centre of mass (3, nv), ``ċ = J_c v``, world frame:
+    ``J_c[:, k] = (m_s v_k + ω_k × h_s) / m`` over the subtree each dof moves. Pinocchio:
+    ``jacobianCenterOfMass``."""
+
+def centroidal_momentum_matrix(model: Model, data: Data, q: ArrayLike, v: ArrayLike) -> Matrix:
+    """The centroidal momentum matrix ``A_G`` (6, nv), ``h_G = A_G v`` about the centre of mass in
+    world axes (Orin, Goswami & Lee 2013): rows (L_G, p) in rigid's layout, (p, L_G) in
+    Pinocchio's. Pinocchio: ``ccrba``."""
+
+def centroidal_momentum(model: Model, data: Data, q: ArrayLike, v: ArrayLike) -> Vector:
+    """The centroidal momentum ``h_G`` (6,): (L_G, p) in rigid's layout, (p, L_G) in Pinocchio's
+    (kg·m²/s, kg·m/s). Pinocchio: ``computeCentroidalMomentum``."""
+
+def kinematics_derivatives(model: Model, data: Data, q: ArrayLike, v: ArrayLike, a: ArrayLike,
+                           name: str, frame: Frame = "body"
+                           ) -> tuple[Matrix, Matrix, Matrix, Matrix, Matrix]:
+    """``(∂V/∂q, ∂V/∂v, ∂A/∂q, ∂A/∂v, ∂A/∂a)`` (each (6, nv)) of the twist V and acceleration A
+    of a joint's or named frame in ``frame`` (as ``jacobian``; ``"world_aligned"`` is
+    ``(ω, ṗ)`` and ``(ω̇, p̈)``), ``∂/∂q`` along ``q ⊕ δ`` (Carpentier & Mansard 2018). Pinocchio:
+    ``getJointAccelerationDerivatives`` after ``computeForwardKinematicsDerivatives`` (whose
+    LOCAL_WORLD_ALIGNED holds the frame's origin fixed: ``rigid.pinocchio`` gives that one)."""
+
+def interpolate(model: Model, q0: ArrayLike, q1: ArrayLike, u: float) -> Vector:
+    """``q0 ⊕ u (q1 ⊖ q0)``, a fraction ``u`` of the way along the joints' geodesics.
+    Pinocchio: ``interpolate``."""
+
+def normalize(model: Model, q: ArrayLike) -> Vector:
+    """``q`` with every quaternion (and (cos, sin) pair) scaled to unit norm. Pinocchio:
+    ``normalize``."""
+
+def inverse_kinematics(model: Model, frame: str, target_pose: Any, q0: ArrayLike | None = None,
+                       *, twist: Literal["body", "space"] = "body", tolerance: float = 1e-9,
+                       max_iterations: int = 100, damping: float = 1e-3, restarts: int = 20,
+                       seed: int = 0, respect_limits: bool = True,
+                       data: Data | None = None) -> dict[str, Any]:
+    """Joint positions that put the joint or frame ``frame`` at ``target_pose``: a position (3,)
+    (the frame's origin; orientation free), a 4 x 4 homogeneous matrix, ``(R, p)`` or a
+    ``pin.SE3``. Levenberg-Marquardt on the SE(3) log error of the body twist (``twist="space"``:
+    the space twist; ``damping=0``: Modern Robotics' undamped IKinBody/IKinSpace step), from
+    ``q0`` (default neutral) then up to ``restarts`` random configurations (``seed``), position
+    limits respected, until the angular and linear errors are within ``tolerance`` (rad, m).
+    Returns ``{"q", "converged", "angular_error", "linear_error", "position_error",
+    "iterations", "total_iterations", "attempts"}`` (``q`` in this layout; the best attempt when
+    not converged). The library's ``rigid::kinematics::inverse``; not in Pinocchio."""
+
+computeJointJacobians = compute_joint_jacobians
+updateFramePlacements = update_frame_placements
+framesForwardKinematics = frames_forward_kinematics
+ccrba = centroidal_momentum_matrix
 
 computeRNEADerivatives = rnea_derivatives
 computeABADerivatives = aba_derivatives
@@ -437,6 +525,11 @@ class ConstraintModel:
                          kd: float = 0.0) -> ConstraintModel:
         """``q_joint1 = Σ_k polycoef[k] q_joint2^k`` (at most 5 coefficients) for one-dof joints
         (MJCF ``<equality joint>``); ``λ`` the generalised force on joint1."""
+    @staticmethod
+    def from_mjcf(model: Model) -> list[ConstraintModel]:
+        """The ``<equality>`` elements of the MJCF file ``model`` was read from: ``connect`` a
+        point, ``weld`` a frame, ``joint`` a joint coordinate (hard, world-aligned); tendon and
+        inactive equalities are left out with an ``MjcfWarning`` naming the line."""
     @property
     def dim(self) -> int:
         """3, 6 or 1."""

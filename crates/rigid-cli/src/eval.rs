@@ -47,7 +47,8 @@ pub struct EvalArgs {
     /// A constraint file (closed loops, contacts: `{"constraints": [{"type": "point" | "frame",
     /// "joint1", "placement1", "joint2", "placement2", "reference_frame", "baumgarte"}], "mu",
     /// "restitution"}`): adds `constraint_dynamics` (`ddq`, `lambda`) and `impulse_dynamics`
-    /// (`dq_plus`, `impulse`) to each result, at `(q, v, tau)`.
+    /// (`dq_plus`, `impulse`) to each result, at `(q, v, tau)`. For an MJCF model, its own
+    /// file (`--constraints MODEL.xml`) takes its `<equality>` elements (connect, weld, joint).
     #[arg(long)]
     pub constraints: Option<PathBuf>,
 }
@@ -213,7 +214,14 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
         .map(|(i, r)| r.map_err(|e| format!("{path}: case {i}: {e}")))
         .collect::<Result<Vec<_>, _>>()?;
     if let Some(path) = &args.constraints {
-        let more = crate::eval_constraints::evaluate(&model, path, &cases, layout.as_ref())?;
+        let more = crate::eval_constraints::evaluate(
+            &model,
+            path,
+            &cases,
+            layout.as_ref(),
+            loaded.mjcf.as_ref(),
+            mujoco.is_some(),
+        )?;
         for (r, (c, i)) in results.iter_mut().zip(more) {
             (r.constraint_dynamics, r.impulse_dynamics) = (Some(c), Some(i));
         }

@@ -1,10 +1,14 @@
 //! `rigid eval ... --constraints K.json`: each case's constrained dynamics and impulse dynamics
 //! (the contract is in `docs/conventions.md`; the file format and the semantics are
-//! `rigid::io::constraints` and `rigid::multibody::constraints`).
+//! `rigid::io::constraints` and `rigid::multibody::constraints`). `--constraints MODEL.xml`
+//! takes the MJCF model's own `<equality>` elements (`MjcfModel::constraint_models`).
 
+use rigid::interop::MujocoLayout;
 use rigid::interop::PinocchioLayout;
 use rigid::io::cases::Case;
-use rigid::io::constraints::parse_constraints;
+use rigid::io::constraints::{parse_constraints, ConstraintFile};
+use rigid::io::mjcf::MjcfModel;
+use rigid::multibody::constraints::ProximalSettings;
 use rigid::multibody::constraints::{constraint_dynamics, impulse_dynamics, ConstraintData};
 use rigid::multibody::{Data, Model};
 use serde::Serialize;
@@ -17,6 +21,14 @@ pub struct ConstraintDynamics {
     lambda: Vec<f64>,
 }
 
+impl ConstraintDynamics {
+    /// `q̈` in MuJoCo's layout (`q` in rigid's; `c` what MuJoCo's `qacc` adds, as for ABA).
+    pub fn convert_to_mujoco(&mut self, l: &MujocoLayout, q: &[f64], c: &[f64]) {
+        self.ddq.iter_mut().zip(c).for_each(|(x, c)| *x -= c);
+        l.v_to_mujoco(q, &mut self.ddq);
+    }
+}
+
 /// `impulse_dynamics`: `q̇⁺` and the impulse (3 or 6 numbers per constraint).
 #[derive(Serialize)]
 pub struct ImpulseDynamics {
@@ -24,8 +36,49 @@ pub struct ImpulseDynamics {
     impulse: Vec<f64>,
 }
 
+impl ImpulseDynamics {
+    /// `q̇⁺` in MuJoCo's layout (`q` in rigid's).
+    pub fn convert_to_mujoco(&mut self, l: &MujocoLayout, q: &[f64]) {
+        l.v_to_mujoco(q, &mut self.dq_plus);
+    }
+}
+
+/// The constraints of `path`: a constraint file, or the `<equality>` elements of the MJCF file
+/// the model was read from (solved by proximal iterations with `μ = 1e-6`, which also holds a
+/// loop whose rows are redundant, as a planar four-bar's in 3D).
+fn read(model: &Model, path: &Path, mjcf: Option<&MjcfModel>) -> Result<ConstraintFile, String> {
+    let name = path.display();
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+    {
+        let same = mjcf
+            .and_then(|m| m.path.as_ref())
+            .is_some_and(|p| std::fs::canonicalize(p).ok() == std::fs::canonicalize(path).ok());
+        let m = mjcf.filter(|_| same).ok_or_else(|| {
+            format!(
+                "{name}: the <equality> constraints of an MJCF file apply to the model read from \
+                 it: give that file as the model too"
+            )
+        })?;
+        let (constraints, skipped) = m.constraint_models().map_err(|e| format!("{name}: {e}"))?;
+        for w in skipped {
+            eprintln!("warning: {name}: {w}");
+        }
+        return Ok(ConstraintFile {
+            constraints,
+            settings: ProximalSettings::new(1e-12, 1e-6, 1000),
+            restitution: 0.0,
+        });
+    }
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read constraints file {name}: {e}"))?;
+    parse_constraints(&text, model).map_err(|e| format!("{name}: {e}"))
+}
+
 /// Every case's constrained and impulse dynamics, in `layout` when given (velocities permuted,
-/// wrenches force first).
+/// wrenches force first); wrenches force first too when `force_first` (MuJoCo's layout, whose
+/// velocities the caller converts).
 ///
 /// # Errors
 /// A message naming the file and the constraint, or the case.
@@ -34,12 +87,12 @@ pub fn evaluate(
     path: &Path,
     cases: &[Case],
     layout: Option<&PinocchioLayout>,
+    mjcf: Option<&MjcfModel>,
+    force_first: bool,
 ) -> Result<Vec<(ConstraintDynamics, ImpulseDynamics)>, String> {
     let name = path.display().to_string();
     let name = name.as_str();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read constraints file {name}: {e}"))?;
-    let file = parse_constraints(&text, model).map_err(|e| format!("{name}: {e}"))?;
+    let file = read(model, path, mjcf)?;
     let mut cd =
         ConstraintData::new(model, &file.constraints).map_err(|e| format!("{name}: {e}"))?;
     let mut data = Data::new(model);
@@ -54,7 +107,7 @@ pub fn evaluate(
     // wrenches force first in Pinocchio's layout
     let w_out = |cd: &ConstraintData, x: &[f64]| {
         let mut y = x.to_vec();
-        if layout.is_some() {
+        if layout.is_some() || force_first {
             cd.force_first(x, &mut y);
         }
         y

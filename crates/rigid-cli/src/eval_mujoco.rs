@@ -65,6 +65,12 @@ pub(super) fn result_to_mujoco(
         a.iter_mut().zip(&off.c).for_each(|(x, c)| *x -= c);
         l.v_to_mujoco(q, a);
     }
+    if let Some(d) = &mut r.constraint_dynamics {
+        d.convert_to_mujoco(l, q, &off.c);
+    }
+    if let Some(d) = &mut r.impulse_dynamics {
+        d.convert_to_mujoco(l, q);
+    }
     let mm = l.matrix_to_mujoco(q, &m);
     r.mass_matrix = (0..n)
         .map(|i| (0..n).map(|j| mm[(i, j)]).collect())

@@ -12,6 +12,7 @@ mod eval_constraints;
 mod excite;
 mod explicit;
 mod identify;
+mod ik;
 mod load;
 mod mass;
 mod model;
@@ -43,6 +44,8 @@ enum Command {
     Identify(Box<identify::IdentifyArgs>),
     /// Write an exciting trajectory for identification (CSV).
     Excite(excite::ExciteArgs),
+    /// Inverse kinematics: joint positions that put a frame at a target position or pose.
+    Ik(ik::IkArgs),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
     /// The explicit dynamic model: M(q), Coriolis, centrifugal and gravity terms as abbreviated tables or code.
@@ -99,6 +102,7 @@ fn main() -> ExitCode {
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),
+        Command::Ik(args) => ik::run(&args),
         Command::Identify(args) => report(identify::run(&args)),
         Command::Excite(args) => report(excite::run(&args)),
         Command::Model(args) => report(model::run(&args)),

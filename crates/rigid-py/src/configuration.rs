@@ -28,12 +28,28 @@ pub fn neutral<'py>(py: Python<'py>, model: PyRef<'py, Model>) -> Bound<'py, PyA
 
 /// A random configuration within the position limits (angles in `[-π, π]` and translations in
 /// `[-1, 1]` m where a limit is infinite; uniform quaternions).
+///
+/// With `lower` and `upper` (the model's layout, `nq` each): within these bounds instead of the
+/// model's limits (Pinocchio's `randomConfiguration(model, lower, upper)`; a continuous joint's
+/// `(cos θ, sin θ)` bounds are not used, and `±1e300` or beyond is no bound).
 #[pyfunction]
+#[pyo3(signature = (model, lower = None, upper = None))]
 pub fn random_configuration<'py>(
     py: Python<'py>,
     model: PyRef<'py, Model>,
-) -> Bound<'py, PyArray1<f64>> {
+    lower: Option<&Bound<'py, PyAny>>,
+    upper: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    const F: &str = "random_configuration";
     let core = &model.inner;
+    let bounds = match (lower, upper) {
+        (None, None) => None,
+        (Some(lo), Some(up)) => Some((
+            crate::pinocchio::bounds_to_rigid(core, lo, F, "lower", -1.0)?,
+            crate::pinocchio::bounds_to_rigid(core, up, F, "upper", 1.0)?,
+        )),
+        _ => return Err(value_error(F, "give both lower and upper, or neither")),
+    };
     let q = {
         let mut rng = RNG
             .lock()
@@ -45,9 +61,13 @@ pub fn random_configuration<'py>(
                 .map_or(0, |d| d.as_nanos() as u64);
             Rng::new(t)
         });
-        mb::random_configuration(&core.model, rng)
+        match &bounds {
+            None => mb::random_configuration(&core.model, rng),
+            Some((lo, up)) => mb::random_configuration_within(&core.model, rng, lo, up)
+                .map_err(|e| value_error(F, e))?,
+        }
     };
-    core.q_out(py, &q)
+    Ok(core.q_out(py, &q))
 }
 
 /// `q ⊕ v`: the configuration reached from `q` moving with the constant velocity `v` for one

@@ -166,6 +166,40 @@ impl ConstraintModel {
         })
     }
 
+    /// The `<equality>` elements of the MJCF file `model` was read from (`connect`: a point,
+    /// `weld`: a frame, `joint`: a joint coordinate; hard, world-aligned; the library's
+    /// `MjcfModel::constraint_models`). What is left out (tendon or inactive equalities) is an
+    /// `MjcfWarning` naming the line.
+    #[staticmethod]
+    fn from_mjcf(py: Python<'_>, model: PyRef<'_, Model>) -> PyResult<Vec<Self>> {
+        let f = "ConstraintModel.from_mjcf";
+        let core = &model.inner;
+        let path = core
+            .source
+            .as_ref()
+            .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("xml")))
+            .ok_or_else(|| value_error(f, "the model was not read from an MJCF file"))?;
+        let shown = path.display();
+        let mj = rigid::io::mjcf::load_mjcf(path)
+            .map_err(|e| value_error(f, format!("{shown}: {e}")))?;
+        let (constraints, skipped) = mj
+            .constraint_models()
+            .map_err(|e| value_error(f, format!("{shown}: {e}")))?;
+        let category = py.get_type::<crate::model::MjcfWarning>();
+        for w in skipped {
+            let text = std::ffi::CString::new(format!("{shown}: {w}").replace('\0', " "))
+                .unwrap_or_default();
+            PyErr::warn(py, category.as_any(), &text, 2)?;
+        }
+        Ok(constraints
+            .into_iter()
+            .map(|inner| Self {
+                inner,
+                model: Arc::clone(core),
+            })
+            .collect())
+    }
+
     /// `q_joint1 = Σ_k polycoef[k] q_joint2^k` for one-dof joints (MJCF `<equality joint>`);
     /// without joint2, `q_joint1 = polycoef[0]`.
     #[staticmethod]

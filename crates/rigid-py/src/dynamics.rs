@@ -79,7 +79,10 @@ fn matrix<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> Bound<'py, PyArra
 
 /// Inverse dynamics `τ = M(q) a + C(q, v) v + g(q)` by the recursive Newton-Euler algorithm
 /// (Featherstone 2008, Table 5.1).
+/// With `fext`, one external wrench per moving joint, in its joint frame (`(m, f)`; linear first
+/// `(f, m)` in Pinocchio's layout), acting on the body: `τ = ID(q, v, a) - Σ J_iᵀ F_i^ext`.
 #[pyfunction]
+#[pyo3(signature = (model, data, q, v, a, fext = None))]
 pub fn rnea<'py>(
     py: Python<'py>,
     model: PyRef<'py, Model>,
@@ -87,9 +90,17 @@ pub fn rnea<'py>(
     q: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
     a: &Bound<'py, PyAny>,
+    fext: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("rnea", &model, &data)?;
     let d = &mut *data;
+    if let Some(f) = fext {
+        let f = crate::pinocchio::external_wrenches(c.core, f, c.func)?;
+        c.load(d, q, &[("v", v), ("a", a)])?;
+        let m = &c.core.model;
+        let tau = mb::rnea_with_external(m, &mut d.inner, &d.q, &d.v, &d.a, &f).map_err(c.err())?;
+        return Ok(c.core.v_out(py, tau.as_slice()));
+    }
     if let Some(tau) = mujoco::rnea(&c, d, q, v, a)? {
         return Ok(array1(py, tau.as_slice()));
     }
@@ -100,7 +111,9 @@ pub fn rnea<'py>(
 
 /// Forward dynamics `a = M(q)⁻¹ (τ - C(q, v) v - g(q))` by the articulated-body algorithm
 /// (Featherstone 2008, Table 7.1).
+/// With `fext` (as in `rnea`): `a = M⁻¹ (τ - C v - g + Σ J_iᵀ F_i^ext)`.
 #[pyfunction]
+#[pyo3(signature = (model, data, q, v, tau, fext = None))]
 pub fn aba<'py>(
     py: Python<'py>,
     model: PyRef<'py, Model>,
@@ -108,9 +121,17 @@ pub fn aba<'py>(
     q: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
     tau: &Bound<'py, PyAny>,
+    fext: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let c = Call::new("aba", &model, &data)?;
     let d = &mut *data;
+    if let Some(f) = fext {
+        let f = crate::pinocchio::external_wrenches(c.core, f, c.func)?;
+        c.load(d, q, &[("v", v), ("tau", tau)])?;
+        let m = &c.core.model;
+        let ddq = mb::aba_with_external(m, &mut d.inner, &d.q, &d.v, &d.a, &f).map_err(c.err())?;
+        return Ok(c.core.v_out(py, ddq.as_slice()));
+    }
     if let Some(ddq) = mujoco::aba(&c, d, q, v, tau)? {
         return Ok(array1(py, ddq.as_slice()));
     }
@@ -247,7 +268,7 @@ pub fn forward_kinematics<'py>(
     .map_err(c.err())
 }
 
-fn reference_frame(frame: &Bound<'_, PyAny>) -> PyResult<ReferenceFrame> {
+pub(crate) fn reference_frame(frame: &Bound<'_, PyAny>) -> PyResult<ReferenceFrame> {
     // a string, or an enum value with a `name` (Pinocchio's `pin.ReferenceFrame.LOCAL`)
     let name: String = match frame.extract::<String>() {
         Ok(s) => s,

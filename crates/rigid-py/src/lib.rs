@@ -12,6 +12,9 @@
 //! | `constraints.rs` | `ConstraintModel`, `ConstraintData`, `constraint_dynamics`, `impulse_dynamics`, `contact_inverse_dynamics` (and Pinocchio's names) |
 //! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch` (all cores, GIL released) |
 //! | `simulation.rs` | `simulate` (robot simulation, built-in or Python control laws), `replay_html` |
+//! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, private field accessors |
+//! | `inverse_kinematics.rs` | `inverse_kinematics` (`rigid::kinematics::inverse`: targets in, a dict out) |
+//! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_lie`) |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
 
 mod batch;
@@ -22,7 +25,10 @@ mod convert;
 mod derivatives;
 mod dynamics;
 mod identification;
+mod inverse_kinematics;
+mod lie;
 mod model;
+mod pinocchio;
 mod simulation;
 
 use pyo3::prelude::*;
@@ -109,6 +115,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(body::point, m)?)?;
     m.add_function(wrap_pyfunction!(body::mesh, m)?)?;
     constraints::register(m)?;
+    pinocchio::register(m)?;
     for (alias, name) in PINOCCHIO_ALIASES {
         m.add(alias, m.getattr(name)?)?;
     }

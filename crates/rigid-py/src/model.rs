@@ -60,7 +60,11 @@ pub struct ModelCore {
 static NEXT_ID: AtomicU64 = AtomicU64::new(0);
 
 impl ModelCore {
-    fn new(model: rigid::multibody::Model, pinocchio: bool, warnings: Vec<String>) -> Self {
+    pub(crate) fn new(
+        model: rigid::multibody::Model,
+        pinocchio: bool,
+        warnings: Vec<String>,
+    ) -> Self {
         let layout = pinocchio.then(|| PinocchioLayout::new(&model));
         let convert_q = layout.as_ref().is_some_and(|l| l.nq() != model.nq());
         let convert_v = layout
@@ -229,7 +233,9 @@ impl ModelCore {
         }
     }
 
-    /// An `nv × nv` matrix (`M`, `M⁻¹`, `C`) as a fresh array in this layout.
+    /// An `nv × nv` matrix (`M`, `M⁻¹`, `C`) as a fresh array in this layout:
+    /// `out[(r, c)] = m[(v_index(r), v_index(c))]`, written straight into the array (no
+    /// intermediate matrix).
     pub fn matrix_out<'py>(
         &self,
         py: Python<'py>,
@@ -238,10 +244,7 @@ impl ModelCore {
         let (rows, cols) = m.shape();
         match &self.layout {
             Some(l) if self.convert_v => {
-                // column-major in and out
-                let mut out = nalgebra::DMatrix::zeros(rows, cols);
-                l.permute_matrix(m.as_slice(), out.as_mut_slice());
-                array2(py, rows, cols, |r, c| out[(r, c)])
+                array2(py, rows, cols, |r, c| m[(l.v_index(r), l.v_index(c))])
             }
             _ => array2(py, rows, cols, |r, c| m[(r, c)]),
         }
@@ -340,14 +343,77 @@ fn warn_all(
 }
 
 /// A kinematic tree (Pinocchio's `Model`): joints depth-first from the root, their placements,
-/// the bodies' spatial inertias, limits and gravity. Constant but for `gravity`.
-#[pyclass(module = "rigid", name = "Model")]
+/// the bodies' spatial inertias, limits and gravity. Constant but for `gravity`. Subclassable
+/// (`rigid.pinocchio.Model` is one); pickled through its stable serialised form
+/// (`Model::to_json`), which reads back bit for bit.
+#[pyclass(module = "rigid", name = "Model", subclass)]
 pub struct Model {
     pub inner: Arc<ModelCore>,
 }
 
 #[pymethods]
 impl Model {
+    /// A model from its serialised form (`model.to_json()`; what pickling stores), in `layout`;
+    /// without `json`, the empty model (no joint: Pinocchio's `pin.Model()`). `warnings`,
+    /// `source` (the file it was read from) and `qpos0` (an MJCF model's) are kept as given.
+    #[new]
+    #[pyo3(signature = (json = None, layout = "rigid", *, warnings = Vec::new(), source = None, qpos0 = None))]
+    fn py_new(
+        json: Option<&str>,
+        layout: &str,
+        warnings: Vec<String>,
+        source: Option<PathBuf>,
+        qpos0: Option<Vec<f64>>,
+    ) -> PyResult<Self> {
+        let kind = parse_layout("Model", layout)?;
+        let model = match json {
+            Some(text) => rigid::multibody::Model::from_json(text)
+                .map_err(|e| PyValueError::new_err(format!("Model: json: {e}")))?,
+            None => rigid::multibody::ModelBuilder::new("model")
+                .build()
+                .map_err(|e| PyValueError::new_err(format!("Model: {e}")))?,
+        };
+        let mut core = ModelCore::new(model, kind == Layout::Pinocchio, warnings);
+        if kind == Layout::Mujoco {
+            core.mujoco = Some(MujocoLayout::new(&core.model));
+        }
+        core.source = source;
+        core.qpos0 = qpos0;
+        Ok(Self {
+            inner: Arc::new(core),
+        })
+    }
+
+    /// The model's stable serialised form (JSON: joints, placements, inertias, frames, limits,
+    /// armature, damping, friction, gravity; rigid's layout). `rigid.Model(json)` reads it back
+    /// bit for bit.
+    fn to_json(&self) -> String {
+        self.inner.model.to_json()
+    }
+
+    /// Pickling: `(type(self), (json, layout), {warnings, source, qpos0})`; the copy computes
+    /// the same numbers bit for bit and is a new model (a `Data` of the original does not work
+    /// with it: pickle the two together, `pickle.dumps((model, data))`, to keep the pair).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let me = slf.borrow();
+        let core = &me.inner;
+        let kwargs = pyo3::types::PyDict::new(py);
+        kwargs.set_item("warnings", core.warnings.clone())?;
+        kwargs.set_item("source", core.source.clone())?;
+        kwargs.set_item("qpos0", core.qpos0.clone())?;
+        let args = (core.model.to_json(), me.layout());
+        let rebuild = py
+            .import("functools")?
+            .getattr("partial")?
+            .call((slf.get_type(),), Some(&kwargs))?;
+        (rebuild, args).into_pyobject(py).map(Bound::into_any)
+    }
+
+    /// `copy.copy`: the same (constant) model, shared.
+    fn __copy__<'py>(slf: &Bound<'py, Self>) -> Bound<'py, Self> {
+        slf.clone()
+    }
     /// Load a URDF file (Pinocchio's `buildModelFromUrdf`).
     #[staticmethod]
     #[pyo3(signature = (path, floating = false, inertia = "warn", layout = "rigid"))]
@@ -459,14 +525,14 @@ impl Model {
     }
 
     /// A new workspace for this model (Pinocchio's `model.createData()`).
-    fn create_data(&self) -> Data {
-        Data::of(&self.inner)
+    fn create_data(slf: &Bound<'_, Self>) -> Data {
+        Data::of(slf)
     }
 
     /// Alias of `create_data` (Pinocchio's name).
     #[pyo3(name = "createData")]
-    fn create_data_pinocchio(&self) -> Data {
-        Data::of(&self.inner)
+    fn create_data_pinocchio(slf: &Bound<'_, Self>) -> Data {
+        Data::of(slf)
     }
 
     /// The model's name.
@@ -636,11 +702,14 @@ type Pose<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// The workspace of the algorithms for one model (Pinocchio's `Data`): every buffer allocated
 /// once. After `forward_kinematics`, `placement(name)` gives a joint's or frame's world pose.
-#[pyclass(module = "rigid", name = "Data")]
+/// Subclassable; pickled (and copied) as a fresh workspace of its model.
+#[pyclass(module = "rigid", name = "Data", subclass)]
 pub struct Data {
     pub inner: rigid::multibody::Data,
     /// The model it was made for (names, layout).
     pub model: Arc<ModelCore>,
+    /// The Python model it was made for (pickled with it).
+    pub owner: Py<Model>,
     /// Scratch buffers for the layout conversions.
     pub q: Vec<f64>,
     pub v: Vec<f64>,
@@ -648,10 +717,12 @@ pub struct Data {
 }
 
 impl Data {
-    fn of(core: &Arc<ModelCore>) -> Self {
+    fn of(model: &Bound<'_, Model>) -> Self {
+        let core = &model.borrow().inner;
         Self {
             inner: rigid::multibody::Data::new(&core.model),
             model: Arc::clone(core),
+            owner: model.clone().unbind(),
             q: Vec::new(),
             v: Vec::new(),
             a: Vec::new(),
@@ -663,8 +734,37 @@ impl Data {
 impl Data {
     /// A workspace for `model` (Pinocchio's `pin.Data(model)`).
     #[new]
-    fn new(model: PyRef<'_, Model>) -> Self {
-        Self::of(&model.inner)
+    fn new(model: &Bound<'_, Model>) -> Self {
+        Self::of(model)
+    }
+
+    /// Pickling and copying: `(type(self), (model,))`, a fresh workspace of the same model (the
+    /// model is pickled with it, once however many data refer to it).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let owner = slf.borrow().owner.clone_ref(py);
+        (slf.get_type(), (owner,))
+            .into_pyobject(py)
+            .map(Bound::into_any)
+    }
+
+    /// `copy.copy`: a fresh workspace of the same model.
+    fn __copy__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let owner = slf.borrow().owner.clone_ref(slf.py());
+        slf.get_type().call1((owner,))
+    }
+
+    /// `copy.deepcopy`: a fresh workspace of the same model, or of its copy when the model is
+    /// copied in the same call (`copy.deepcopy((model, data))`).
+    fn __deepcopy__<'py>(
+        slf: &Bound<'py, Self>,
+        memo: &Bound<'py, pyo3::types::PyDict>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let owner = slf.borrow().owner.clone_ref(py).into_bound(py);
+        let key = owner.as_ptr() as usize;
+        let model = memo.get_item(key)?.unwrap_or_else(|| owner.into_any());
+        slf.get_type().call1((model,))
     }
 
     /// The world pose `(R, p)` of a joint's frame (as moved by the joint; Pinocchio's

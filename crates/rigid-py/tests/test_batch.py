@@ -5,8 +5,9 @@ import threading
 import time
 
 import numpy as np
-import pinocchio as pin
 import pytest
+
+pin = pytest.importorskip("pinocchio")
 
 import rigid
 from conftest import assert_close, pair

@@ -5,8 +5,9 @@ impulse_c force first), and contact_inverse_dynamics checked on its own equation
 import os
 
 import numpy as np
-import pinocchio as pin
 import pytest
+
+pin = pytest.importorskip("pinocchio")
 
 import rigid
 from conftest import ROOT, rel_err, TOL
@@ -94,3 +95,30 @@ def test_rigid_layout_wrench_is_moment_first_and_errors_are_value_errors():
     other = rigid.Model.builtin("double_pendulum")
     with pytest.raises(ValueError, match="another model"):
         rigid.constraint_dynamics(other, other.create_data(), [0, 0], [0, 0], [0, 0], cd)
+
+
+def test_mjcf_equalities_are_constraint_models():
+    """ConstraintModel.from_mjcf: fourbar.xml's <connect> closes the loop as fourbar.urdf's
+    constraint written by hand (q shifted by the assembly angles); equalities.xml's tendon and
+    inactive equalities are MjcfWarnings; a URDF model is refused."""
+    xml = os.path.join(FIX, "constraints", "fourbar.xml")
+    m = rigid.Model.from_mjcf(xml)
+    cs = rigid.ConstraintModel.from_mjcf(m)
+    assert [c.dim for c in cs] == [3]
+    u = rigid.Model.from_urdf(os.path.join(FIX, "constraints", "fourbar.urdf"))
+    hand = rigid.ConstraintModel(u, "point", "coupler_joint", (np.eye(3), [0.8, 0, 0]),
+                                 "rocker_joint", (np.eye(3), [0.6, 0, 0]),
+                                 reference_frame="local_world_aligned")
+    q, v, tau = np.array([0.1, -0.2, 0.05]), np.array([0.5, -1.0, 0.3]), np.array([0.2, 0, -0.1])
+    assembly = np.array([0.5, 0.02116623166979137, 1.1280269456729848])
+    cx, cu = rigid.ConstraintData(m, cs), rigid.ConstraintData(u, [hand])
+    ax = rigid.constraint_dynamics(m, m.create_data(), q, v, tau, cx, mu=1e-6, max_iter=1000)
+    au = rigid.constraint_dynamics(u, u.create_data(), q + assembly, v, tau, cu, mu=1e-6,
+                                   max_iter=1000)
+    assert rel_err(ax, au) < 1e-9 and rel_err(cx.lambda_c, cu.lambda_c) < 1e-9
+    with pytest.warns(rigid.MjcfWarning, match="tendon equalities are not modelled"):
+        more = rigid.ConstraintModel.from_mjcf(
+            rigid.Model.from_mjcf(os.path.join(FIX, "constraints", "equalities.xml")))
+    assert [c.dim for c in more] == [6, 1, 3, 6, 6]
+    with pytest.raises(ValueError, match="not read from an MJCF file"):
+        rigid.ConstraintModel.from_mjcf(u)

@@ -6,8 +6,9 @@ still, a Python control law equal to the built-in one, errors raised, and the HT
 import math
 
 import numpy as np
-import pinocchio as pin
 import pytest
+
+pin = pytest.importorskip("pinocchio")
 
 import rigid
 from conftest import assert_close, pair, robot_path, symmetric

@@ -7,8 +7,9 @@ import math
 import os
 
 import numpy as np
-import pinocchio as pin
 import pytest
+
+pin = pytest.importorskip("pinocchio")
 
 import rigid
 from conftest import assert_close, pair

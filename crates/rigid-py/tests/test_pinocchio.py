@@ -9,8 +9,9 @@ import json
 import warnings
 
 import numpy as np
-import pinocchio as pin
 import pytest
+
+pin = pytest.importorskip("pinocchio")
 
 import rigid
 from conftest import assert_close, cli, every_urdf, pair, rel_err, symmetric, TOL

@@ -218,3 +218,84 @@ fn eval_constraints_errors_name_the_file_and_the_constraint() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// `--constraints MODEL.xml`: the MJCF file's own `<connect>` closes fourbar.xml's loop, and the
+/// accelerations and pin force equal those of fourbar.urdf closed by a constraint file (its `q`
+/// shifted by the assembly angles of fourbar.xml); in MuJoCo's layout too (hinges: the same
+/// numbers). Another file than the model's is refused.
+#[test]
+fn mjcf_equalities_close_the_loop() {
+    let xml = fixtures().join("fourbar.xml");
+    let xml = xml.to_str().unwrap();
+    let urdf = fixtures().join("fourbar.urdf");
+    let (q, v, tau) = ([0.1, -0.2, 0.05], [0.5, -1.0, 0.3], [0.2, 0.0, -0.1]);
+    let assembly = [0.5, 0.02116623166979137, 1.1280269456729848];
+    let q_urdf: Vec<f64> = q.iter().zip(assembly).map(|(a, b)| a + b).collect();
+    let case = |q: &[f64]| {
+        format!(r#"{{"cases": [{{"q": {q:?}, "v": {v:?}, "a": [0, 0, 0], "tau": {tau:?}}}]}}"#)
+    };
+    let closure = r#"{"constraints": [{"type": "point", "joint1": "coupler_joint",
+        "placement1": {"translation": [0.8, 0, 0]}, "joint2": "rocker_joint",
+        "placement2": {"translation": [0.6, 0, 0]}, "reference_frame": "local_world_aligned"}],
+        "mu": 1e-6, "max_iter": 1000}"#;
+    let result = |args: &[&str]| -> Value {
+        let out = rigid(args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let doc: Value = serde_json::from_slice(&out.stdout).unwrap();
+        doc["results"][0]["constraint_dynamics"].clone()
+    };
+    let (cases_x, cases_u) = (
+        temp_file("fb_x.json", &case(&q)),
+        temp_file("fb_u.json", &case(&q_urdf)),
+    );
+    let by_file = temp_file("fb_k.json", closure);
+    let reference = result(&[
+        "eval",
+        urdf.to_str().unwrap(),
+        "--cases",
+        &cases_u,
+        "--constraints",
+        &by_file,
+        "--json",
+    ]);
+    for layout in ["rigid", "mujoco"] {
+        let got = result(&[
+            "eval",
+            xml,
+            "--cases",
+            &cases_x,
+            "--constraints",
+            xml,
+            "--layout",
+            layout,
+            "--json",
+        ]);
+        let lambda = numbers(&reference["lambda"]); // a point: three numbers in either layout
+        assert!(
+            rel_err(&numbers(&got["ddq"]), &numbers(&reference["ddq"])) < 1e-9,
+            "{layout}: {got}"
+        );
+        assert!(
+            rel_err(&numbers(&got["lambda"]), &lambda) < 1e-9,
+            "{layout}: {got}"
+        );
+    }
+    let out = rigid(&[
+        "eval",
+        urdf.to_str().unwrap(),
+        "--cases",
+        &cases_u,
+        "--constraints",
+        xml,
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("the <equality> constraints of an MJCF file apply to the model read from it"),
+        "{err}"
+    );
+}

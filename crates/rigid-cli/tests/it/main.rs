@@ -18,6 +18,7 @@ mod eval_parallel;
 mod eval_pinocchio;
 mod explicit_cli;
 mod identify_cli;
+mod ik_cli;
 mod mass_cli;
 mod replay_browser;
 mod simulate;

@@ -125,6 +125,42 @@ pub fn random_configuration(model: &Model, rng: &mut Rng) -> Vec<f64> {
     q
 }
 
+/// A random configuration within the bounds `lower`, `upper` (one per configuration coordinate,
+/// in place of the model's position limits; Pinocchio's `randomConfiguration(model, lower,
+/// upper)`): each revolute, prismatic, helical or planar coordinate uniform in its bounds
+/// (angles in `[-π, π]` and translations in `[-1, 1]` m where a bound is infinite), quaternions
+/// uniform on SO(3) whatever their bounds.
+///
+/// # Errors
+/// `lower` or `upper` not of length `nq`, a NaN bound, or `lower > upper`
+/// ([`MultibodyError::NonFinite`] names the first bad index, in `lower`).
+pub fn random_configuration_within(
+    model: &Model,
+    rng: &mut Rng,
+    lower: &[f64],
+    upper: &[f64],
+) -> Result<Vec<f64>, MultibodyError> {
+    DimensionError::check("lower", model.nq, lower.len())?;
+    DimensionError::check("upper", model.nq, upper.len())?;
+    if let Some(index) = lower
+        .iter()
+        .zip(upper)
+        .position(|(l, u)| l.is_nan() || u.is_nan() || l > u)
+    {
+        return Err(MultibodyError::NonFinite {
+            what: "lower",
+            index,
+        });
+    }
+    let mut q = vec![0.0; model.nq];
+    for j in model.joints() {
+        let iq = j.idx_q..j.idx_q + j.nq;
+        j.kind
+            .random(rng, &lower[iq.clone()], &upper[iq.clone()], &mut q[iq]);
+    }
+    Ok(q)
+}
+
 /// Normalise the quaternions in `q` (with `w ≥ 0`); other coordinates are left alone.
 ///
 /// # Errors

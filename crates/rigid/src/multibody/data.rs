@@ -58,6 +58,33 @@ pub struct Data {
     pub com: Vec3,
     /// Mass of the moving bodies.
     pub mass: f64,
+    /// Mass of each subtree: the moving bodies of joint i's subtree
+    /// ([`subtree_centers_of_mass`](super::subtree_centers_of_mass), [`jacobian_center_of_mass`](super::jacobian_center_of_mass)).
+    pub subtree_masses: Vec<f64>,
+    /// Centre of mass of each subtree, world frame (zero for a massless subtree).
+    pub subtree_coms: Vec<Vec3>,
+    /// Velocity of each subtree's centre of mass, world frame
+    /// ([`subtree_centers_of_mass`](super::subtree_centers_of_mass) with `v`).
+    pub subtree_com_velocities: Vec<Vec3>,
+    /// Classical acceleration of each subtree's centre of mass, world frame (with `v` and `a`).
+    pub subtree_com_accelerations: Vec<Vec3>,
+    /// Velocity `ċ` of the centre of mass of the moving bodies, world frame.
+    pub com_velocity: Vec3,
+    /// Classical acceleration `c̈` of the centre of mass, world frame.
+    pub com_acceleration: Vec3,
+    /// Jacobian of the centre of mass, `ċ = J_c v` (3 x nv, world frame;
+    /// [`jacobian_center_of_mass`](super::jacobian_center_of_mass)).
+    pub com_jacobian: DMatrix<f64>,
+    /// Centroidal momentum matrix `A_G` (6 x nv, angular rows first;
+    /// [`centroidal_momentum_matrix`](super::centroidal_momentum_matrix)).
+    pub centroidal_map: DMatrix<f64>,
+    /// Centroidal momentum `h_G = (L_G, p)`: angular momentum about the centre of mass and linear
+    /// momentum, world axes ([`centroidal_momentum`](super::centroidal_momentum),
+    /// [`centroidal_momentum_matrix`](super::centroidal_momentum_matrix)).
+    pub centroidal_momentum: Wrench,
+    /// Composite inertia of the moving bodies about their centre of mass, world axes (Pinocchio's
+    /// `Ig`; [`centroidal_momentum_matrix`](super::centroidal_momentum_matrix)).
+    pub centroidal_inertia: SpatialInertia,
     /// Outputs and buffers of the analytical derivatives ([`rnea_derivatives`](super::rnea_derivatives),
     /// [`aba_derivatives`](super::aba_derivatives), the kinematics derivatives).
     pub derivatives: super::Derivatives,
@@ -129,6 +156,16 @@ impl Data {
             frame_jacobian_dot: DMatrix::zeros(6, nv),
             com: Vec3::zeros(),
             mass: model.total_mass(),
+            subtree_masses: vec![0.0; n],
+            subtree_coms: vec![Vec3::zeros(); n],
+            subtree_com_velocities: vec![Vec3::zeros(); n],
+            subtree_com_accelerations: vec![Vec3::zeros(); n],
+            com_velocity: Vec3::zeros(),
+            com_acceleration: Vec3::zeros(),
+            com_jacobian: DMatrix::zeros(3, nv),
+            centroidal_map: DMatrix::zeros(6, nv),
+            centroidal_momentum: Wrench::zero(),
+            centroidal_inertia: SpatialInertia::zero(),
             derivatives: super::Derivatives::new(model),
             S: (0..nv).map(|k| model.motion_subspace(k)).collect(),
             ia: vec![Mat6::zeros(); n],

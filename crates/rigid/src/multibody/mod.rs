@@ -14,7 +14,7 @@
 //! | notes | code | source |
 //! | --- | --- | --- |
 //! | `T_i(q)`, `V_i`, `V̇_i` | [`forward_kinematics`] | Featherstone 2008 Table 5.1 (first loop) |
-//! | `J_s`, `J_b`, `(ω, ṗ)` and `J̇` | [`joint_jacobian`], [`frame_jacobian`], `*_time_variation` | Lynch & Park §5.1 |
+//! | `J_s`, `J_b`, `(ω, ṗ)` and `J̇` | [`joint_jacobian`], [`frame_jacobian`], `*_time_variation`, [`stored_joint_jacobian`] | Lynch & Park §5.1 |
 //! | `τ = M q̈ + c + g` | [`rnea`], [`rnea_with_external`] | Featherstone 2008 Table 5.1; Lynch & Park §8.3.2 |
 //! | `c + g`, `g` | [`nonlinear_effects`], [`gravity_torques`] | RNEA with `q̈ = 0` (and `q̇ = 0`) |
 //! | `M(q)` | [`crba`] | Featherstone 2008 Table 6.2 |
@@ -22,6 +22,7 @@
 //! | `M(q)⁻¹` | [`compute_minverse`] | ABA for all unit torques: Featherstone 2008 §7.3; Carpentier & Mansard 2018 |
 //! | `C(q, q̇)` (Christoffel), `Ṁ - 2C` skew | [`coriolis_matrix`] | Lynch & Park §8.1.2; Pinocchio `computeCoriolisMatrix` |
 //! | `K = ½ q̇ᵀ M q̇`, `U = -Σ mᵢ gᵀ cᵢ` | [`kinetic_energy`], [`potential_energy`] | Lynch & Park §8.1 |
+//! | subtree `c`, `ċ`, `c̈`; `ċ = J_c v`; `h_G = A_G v` | [`subtree_centers_of_mass`], [`jacobian_center_of_mass`], [`centroidal_momentum_matrix`], [`centroidal_momentum`] | Orin, Goswami & Lee 2013; Pinocchio `centerOfMass`, `jacobianCenterOfMass`, `ccrba` |
 //! | `q ⊕ v dt`, `q₁ ⊖ q₀` | [`integrate`], [`difference`] | joint Lie groups |
 //! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
 //! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`PinocchioLayout`](crate::interop::PinocchioLayout) | URDF models loaded with sibling joints sorted by name |
@@ -66,9 +67,13 @@ pub use builder::{InertiaCheck, ModelBuilder};
 pub use builtins::{builtin, builtin_names, double_pendulum, pendulum, puma560, Puma560Options};
 pub use configuration::{
     difference, difference_jacobians, integrate, integrate_jacobians, neutral, normalize,
-    random_configuration, Rng,
+    random_configuration, random_configuration_within, Rng,
 };
 pub use data::Data;
+pub use joint::lie::{
+    se3_jr as se3_right_jacobian, se3_jr_inv as se3_right_jacobian_inverse,
+    so3_jr as so3_right_jacobian, so3_jr_inv as so3_right_jacobian_inverse,
+};
 pub use joint::{column_names, JointType, MujocoCoords, PinocchioCoords};
 pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 pub use textbook::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};

@@ -69,6 +69,12 @@ fn crm(v: &Vec6) -> Mat6 {
     Twist::from_vector(v).ad()
 }
 
+/// spatial_v2's `a_grav`: gravity as a spatial acceleration `(0, g)`; the base moves with `−a_grav`.
+fn a_grav(model: &Model) -> Vec6 {
+    let g = model.gravity;
+    Vec6::new(0.0, 0.0, 0.0, g.x, g.y, g.z)
+}
+
 /// Inverse dynamics `τ = M(q) q̈ + c(q, q̇) + g(q)` (spatial_v2 `ID.m`; Featherstone 2008,
 /// Table 5.1).
 ///
@@ -83,14 +89,7 @@ pub fn rnea(
     check_q(model, q)?;
     check_v(model, "v", qd)?;
     check_v(model, "a", qdd)?;
-    let a_grav = Vec6::new(
-        0.0,
-        0.0,
-        0.0,
-        model.gravity.x,
-        model.gravity.y,
-        model.gravity.z,
-    );
+    let a_grav = a_grav(model);
     let joints = model.joints();
     let bodies = jcalc(model, q, qd);
     let (mut v, mut a, mut f) = (Vec::<Vec6>::new(), Vec::<Vec6>::new(), Vec::<Vec6>::new());
@@ -168,14 +167,7 @@ pub fn aba(
     check_q(model, q)?;
     check_v(model, "v", qd)?;
     check_v(model, "tau", tau)?;
-    let a_grav = Vec6::new(
-        0.0,
-        0.0,
-        0.0,
-        model.gravity.x,
-        model.gravity.y,
-        model.gravity.z,
-    );
+    let a_grav = a_grav(model);
     let joints = model.joints();
     let bodies = jcalc(model, q, qd);
     let (mut v, mut c) = (Vec::<Vec6>::new(), Vec::<Vec6>::new());

@@ -191,7 +191,7 @@ struct Counts {
 
 /// Every MJCF file of the installed description packages (`RIGID_CROSSCHECK=1`): each file that
 /// MuJoCo compiles must load and match, except where rigid says why not (a tendon armature,
-/// which rigid does not model).
+/// which rigid does not model), and its `<equality>` elements convert to constraint models.
 #[test]
 fn every_package_model_that_mujoco_compiles_matches() {
     if std::env::var("RIGID_CROSSCHECK").as_deref() != Ok("1") {
@@ -213,6 +213,8 @@ fn every_package_model_that_mujoco_compiles_matches() {
     );
     let mut counts: BTreeMap<String, Counts> = BTreeMap::new();
     let (mut failures, mut explained) = (Vec::new(), Vec::new());
+    // files with <equality>, constraints made from them, equalities left out
+    let mut equalities = [0usize; 3];
     // the largest relative error among the matching files: without and with mesh inertia
     let mut worst = [(0.0f64, String::new()), (0.0f64, String::new())];
     for line in String::from_utf8(out.stdout).unwrap().lines() {
@@ -233,6 +235,16 @@ fn every_package_model_that_mujoco_compiles_matches() {
             }
         };
         c.loaded += 1;
+        // the <equality> constraints convert (or are left out with a warning)
+        match m.constraint_models() {
+            Ok((cs, skipped)) if !m.equalities.is_empty() => {
+                equalities[0] += 1;
+                equalities[1] += cs.len();
+                equalities[2] += skipped.len();
+            }
+            Ok(_) => {}
+            Err(e) => failures.push(format!("{file}: equality constraints: {e}")),
+        }
         let (err, what) = compare(&m, &row);
         let tol = tolerance(&row);
         if err <= tol {
@@ -263,6 +275,10 @@ fn every_package_model_that_mujoco_compiles_matches() {
     println!(
         "largest relative error where they match: {:.1e} ({}); with mesh inertia {:.1e} ({})",
         worst[0].0, worst[0].1, worst[1].0, worst[1].1
+    );
+    println!(
+        "<equality>: {} files, {} constraints made, {} left out (each with a warning)",
+        equalities[0], equalities[1], equalities[2]
     );
     for e in &explained {
         println!("explained: {e}");

@@ -35,7 +35,8 @@
 //! | `<freejoint>` | a free-flyer |
 //! | `<inertial>` | `mass`, `pos`, `diaginertia` or `fullinertia`, its orientation |
 //! | `<geom>` | inertia by MuJoCo's formulas ([`inertia`]), meshes ([`mesh`]: STL, OBJ, MSH; `legacy`, `exact` or `shell` rule), `mass` or `density`, `shellinertia`; kept in [`MjcfGeom`] |
-//! | `<site>`, `<equality>`, `<tendon>` | kept in [`MjcfSite`], [`MjcfEquality`], [`MjcfTendon`] (no algorithm uses them yet) |
+//! | `<equality>` | kept in [`MjcfEquality`]; `connect`, `weld` and `joint` become constraint models ([`MjcfModel::constraint_models`]) |
+//! | `<site>`, `<tendon>` | kept in [`MjcfSite`], [`MjcfTendon`] |
 //! | `<option gravity>`, `<flag gravity="disable">` | the model's gravity |
 //! | `gravcomp` | kept in [`MjcfBody::gravcomp`] and reported |
 //!
@@ -57,6 +58,7 @@ mod attrs;
 mod build;
 mod compile;
 pub mod defaults;
+mod equality;
 pub mod inertia;
 pub mod mesh;
 pub mod orientation;

@@ -36,10 +36,25 @@ pub fn compute_joint_jacobians<'a>(
     Ok(&data.jacobian)
 }
 
+/// `J_k = [Ad_{oMi}] S_k` for every dof; when `S_k = s e_c` (a coordinate axis, `Plan::dof_axis`)
+/// the column is `(s R_c, p × s R_c)` (angular axis) or `(0, s R_(c-3))` (linear): a column of
+/// `R`, no product with `S`.
 fn fill_jacobian(model: &Model, data: &mut Data) {
+    let plan = model.plan();
     for k in 0..model.nv {
-        let oMi = &data.placements[model.plan().dof_joint[k]];
-        set_col(&mut data.jacobian, k, &oMi.act_twist(&data.S[k]));
+        let oMi = &data.placements[plan.dof_joint[k]];
+        let t = match plan.dof_axis[k] {
+            Some((c, s)) if c < 3 => {
+                let w: crate::spatial::Vec3 = oMi.rotation.column(c) * s;
+                Twist::new(w, oMi.translation.cross(&w))
+            }
+            Some((c, s)) => Twist::new(
+                crate::spatial::Vec3::zeros(),
+                oMi.rotation.column(c - 3) * s,
+            ),
+            None => oMi.act_twist(&data.S[k]),
+        };
+        set_col(&mut data.jacobian, k, &t);
     }
 }
 
@@ -225,6 +240,44 @@ pub fn frame_jacobian<'a>(
 ) -> Result<&'a DMatrix<f64>, MultibodyError> {
     check_frame(model, frame)?;
     compute_joint_jacobians(model, data, q)?;
+    let (body, oMf) = frame_pose(model, data, frame);
+    express(model, data, body, &oMf, rf);
+    Ok(&data.frame_jacobian)
+}
+
+/// The Jacobian (6 x nv) of joint `joint`'s moved frame in `rf`, from the spatial Jacobian and
+/// the placements already in `data` (those of the last [`compute_joint_jacobians`]): no
+/// kinematics is run. Pinocchio's `getJointJacobian`. Returns `data.frame_jacobian`.
+///
+/// # Errors
+/// `joint` out of range, or a `data` made for another model.
+pub fn stored_joint_jacobian<'a>(
+    model: &Model,
+    data: &'a mut Data,
+    joint: JointId,
+    rf: ReferenceFrame,
+) -> Result<&'a DMatrix<f64>, MultibodyError> {
+    check_joint(model, joint)?;
+    check_data(model, data)?;
+    let oMi = data.placements[joint.0];
+    express(model, data, Some(joint.0), &oMi, rf);
+    Ok(&data.frame_jacobian)
+}
+
+/// The Jacobian (6 x nv) of a named frame in `rf`, from the spatial Jacobian and the placements
+/// already in `data` (those of the last [`compute_joint_jacobians`]), with the frame's pose
+/// `oMf = oMi iMf`. Pinocchio's `getFrameJacobian`. Returns `data.frame_jacobian`.
+///
+/// # Errors
+/// `frame` out of range, or a `data` made for another model.
+pub fn stored_frame_jacobian<'a>(
+    model: &Model,
+    data: &'a mut Data,
+    frame: FrameId,
+    rf: ReferenceFrame,
+) -> Result<&'a DMatrix<f64>, MultibodyError> {
+    check_frame(model, frame)?;
+    check_data(model, data)?;
     let (body, oMf) = frame_pose(model, data, frame);
     express(model, data, body, &oMf, rf);
     Ok(&data.frame_jacobian)

@@ -2,6 +2,7 @@
 //! (lengths, finiteness, unit quaternions) and write into `data`.
 
 mod aba;
+mod centroidal;
 mod cholesky;
 mod coriolis;
 mod crba;
@@ -14,6 +15,10 @@ mod rnea;
 
 pub(crate) use aba::check_inputs as check_aba_inputs;
 pub use aba::{aba, aba_with_external};
+pub use centroidal::{
+    centroidal_momentum, centroidal_momentum_matrix, jacobian_center_of_mass,
+    subtree_centers_of_mass, KinematicLevel,
+};
 pub use cholesky::forward_dynamics_cholesky;
 pub(crate) use cholesky::{ltl_factor, ltl_solve_lower, ltl_solve_transposed, NONE as NO_DOF};
 pub use coriolis::coriolis_matrix;
@@ -27,7 +32,8 @@ pub use derivatives::{
 pub use energy::{center_of_mass, kinetic_energy, potential_energy};
 pub use jacobian::{
     compute_joint_jacobians, compute_joint_jacobians_time_variation, frame_jacobian,
-    frame_jacobian_time_variation, joint_jacobian, joint_jacobian_time_variation, ReferenceFrame,
+    frame_jacobian_time_variation, joint_jacobian, joint_jacobian_time_variation,
+    stored_frame_jacobian, stored_joint_jacobian, ReferenceFrame,
 };
 pub use kinematics::{
     forward_kinematics, forward_kinematics_q, forward_kinematics_qv, update_frame_placements,

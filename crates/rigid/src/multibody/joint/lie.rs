@@ -236,15 +236,24 @@ fn coefficients(t2: f64) -> [f64; 4] {
 }
 
 /// The right Jacobian of SO(3), `J_r(ω) = 1 - (1 - cos θ)/θ² [ω] + (θ - sin θ)/θ³ [ω]²`:
-/// `exp([ω + δ]) ≈ exp([ω]) exp([J_r δ])`.
-pub(crate) fn so3_jr(w: &Vec3) -> Mat3 {
+/// `exp([ω + δ]) ≈ exp([ω]) exp([J_r δ])` (Barfoot 2017, §7.1.5; Pinocchio's `Jexp3`).
+///
+/// ```
+/// use rigid::multibody::{so3_right_jacobian, so3_right_jacobian_inverse};
+/// use rigid::spatial::Vec3;
+/// let w = Vec3::new(0.3, -1.1, 0.4);
+/// let i = so3_right_jacobian(&w) * so3_right_jacobian_inverse(&w);
+/// assert!((i - rigid::spatial::Mat3::identity()).norm() < 1e-14);
+/// ```
+pub fn so3_jr(w: &Vec3) -> Mat3 {
     let [a, b, ..] = coefficients(w.norm_squared());
     let k = skew(w);
     Mat3::identity() - k * a + k * k * b
 }
 
-/// `J_r(ω)⁻¹ = 1 + ½[ω] + (1/θ² - cot(θ/2)/(2θ)) [ω]²` (finite for `θ < 2π`).
-pub(crate) fn so3_jr_inv(w: &Vec3) -> Mat3 {
+/// `J_r(ω)⁻¹ = 1 + ½[ω] + (1/θ² - cot(θ/2)/(2θ)) [ω]²` (finite for `θ < 2π`): the derivative of
+/// `log` in the body frame, `log(R exp([δ])) ≈ log R + J_r(log R)⁻¹ δ` (Pinocchio's `Jlog3`).
+pub fn so3_jr_inv(w: &Vec3) -> Mat3 {
     let t2 = w.norm_squared();
     let e = if t2 < SMALL * SMALL {
         1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0 + t2 * t2 * t2 / 1209600.0
@@ -267,15 +276,18 @@ fn se3_q(phi: &Vec3, rho: &Vec3) -> Mat3 {
 }
 
 /// The right Jacobian of SE(3) for the twist `ξ = (ω, v)`, angular first:
-/// `[[J_r(ω), 0], [Q(-v, -ω), J_r(ω)]]` (`J_r(ξ) = J_l(-ξ)`): `T exp(ξ + δ) ≈ T exp(ξ) exp(J_r δ)`.
-fn se3_jr(x: &Twist) -> Mat6 {
+/// `[[J_r(ω), 0], [Q(-v, -ω), J_r(ω)]]` (`J_r(ξ) = J_l(-ξ)`): `T exp(ξ + δ) ≈ T exp(ξ) exp(J_r δ)`
+/// (Barfoot 2017, §7.2.5; Pinocchio's `Jexp6`, linear first).
+pub fn se3_jr(x: &Twist) -> Mat6 {
     let j = so3_jr(&x.w);
     let q = se3_q(&-x.w, &-x.v);
     blocks(&j, &q)
 }
 
-/// `J_r(ξ)⁻¹ = [[J⁻¹, 0], [-J⁻¹ Q J⁻¹, J⁻¹]]` with the blocks of [`se3_jr`].
-fn se3_jr_inv(x: &Twist) -> Mat6 {
+/// `J_r(ξ)⁻¹ = [[J⁻¹, 0], [-J⁻¹ Q J⁻¹, J⁻¹]]` with the blocks of [`se3_jr`]: the derivative of
+/// `log` in the body frame, `log(T exp(δ)) ≈ log T + J_r(log T)⁻¹ δ` (Pinocchio's `Jlog6`,
+/// linear first).
+pub fn se3_jr_inv(x: &Twist) -> Mat6 {
     let ji = so3_jr_inv(&x.w);
     let q = se3_q(&-x.w, &-x.v);
     blocks(&ji, &(-(ji * q * ji)))

@@ -7,6 +7,7 @@
 
 mod identities;
 mod mechanics;
+mod mjcf;
 mod pinocchio;
 
 use rigid::io::urdf::{load_urdf_with, SiblingOrder, UrdfOptions};
