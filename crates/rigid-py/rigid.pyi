@@ -351,7 +351,8 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
              move_time: float | None = None, profile: str = "quintic", limits: str = "spring",
              joint_dynamics: bool = True,
              control: Callable[[float, Vector, Vector], ArrayLike] | None = None,
-             every: int = 1) -> dict[str, npt.NDArray[np.float64]]:
+             every: int = 1, ground: float | None = None, friction: float | None = None,
+             restitution: float | None = None) -> dict[str, npt.NDArray[np.float64]]:
     """Simulate the robot from ``(q0, v0)`` (default: neutral, at rest) for ``duration`` s with a
     fixed step ``dt``: forward dynamics by ABA, ``integrator`` ``"semi-implicit"`` (symplectic
     Euler), ``"rk4"`` (Runge-Kutta-Munthe-Kaas on the joint groups, quaternions never
@@ -362,7 +363,13 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
     torque along a ``profile`` ``"quintic"``/``"trapezoidal"`` motion from ``q0`` to ``target``
     in ``move_time``); or ``control(t, q, v) -> τ``, a Python function (its exceptions propagate).
     Returns ``t`` (N,), ``q`` (N, nq), ``v`` (N, nv), ``tau`` (N, nv; the control torques) and
-    ``energy`` (N,; J), one row every ``every`` steps and the last, in the model's layout."""
+    ``energy`` (N,; J), one row every ``every`` steps and the last, in the model's layout.
+    ``ground`` (a height, m; ``rigid simulate --ground``) puts the plane ``z = ground`` under the
+    robot's collision geometry (URDF ``<collision>``, MJCF geoms) with Coulomb ``friction``
+    (default 0.8) and ``restitution`` (default 0): the integrator becomes ``"semi-implicit"``
+    (``"rk4"`` is replaced), a floating robot without ``q0`` starts set down at ``target`` (or
+    neutral), ``controller="pd"`` holds that stance on its feet, and the result gains ``contacts``
+    (N,; active contacts) and ``normal_force`` (N,; their normal force sum, N)."""
 
 def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -> None:
     """Write the 3D replay of ``traj`` (a dict or object with ``t`` (N,) and ``q`` (N, nq), such

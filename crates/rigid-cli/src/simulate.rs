@@ -2,6 +2,7 @@
 //! (a `rigid mass` TOML spec, [`body`]), chosen by the input.
 
 mod body;
+mod ground;
 mod plot;
 mod robot;
 mod robot_plot;
@@ -63,6 +64,26 @@ pub struct SimulateArgs {
     /// Body: a point `x,y,z` of the spec frame fixed in the world (a spherical pivot).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub pivot: Option<Vec3>,
+    /// Robot: a ground plane `z = HEIGHT` (0 when no number is given), which the robot's
+    /// collision geometry (URDF `<collision>`, MJCF geoms; meshes as convex hulls) touches with
+    /// Coulomb friction (contacts between the robot's own bodies are off). Steps with the
+    /// `semi-implicit` time-stepping scheme (rk4 is replaced, another integrator refused). A
+    /// floating robot starts set down on it (its lowest geometry touching), at --target when
+    /// given and no --q0; `--controller pd` then holds the stance with the torques that carry
+    /// its weight on the feet. A negative height is written `--ground=-0.5`.
+    #[arg(
+        long,
+        num_args = 0..=1,
+        default_missing_value = "0",
+        value_name = "HEIGHT"
+    )]
+    pub ground: Option<f64>,
+    /// Coulomb friction coefficient of the contacts with the ground (with --ground; default 0.8).
+    #[arg(long, allow_hyphen_values = true, value_name = "MU")]
+    pub friction: Option<f64>,
+    /// Newton restitution of the contacts, in [0, 1] (with --ground; default 0: no bounce).
+    #[arg(long, allow_hyphen_values = true, value_name = "E")]
+    pub restitution: Option<f64>,
     /// Simulated time (s).
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub duration: f64,
@@ -81,7 +102,8 @@ pub struct SimulateArgs {
     )]
     pub integrator: Integrator,
     /// Write one row per step to this CSV file (robot: `t`, then q, v and τ with joint-named
-    /// columns; body: `t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz`).
+    /// columns, then with --ground `contacts` (active contacts) and `normal_force` (the sum of
+    /// their normal forces, N); body: `t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz`).
     #[arg(long)]
     pub csv: Option<PathBuf>,
     /// Draw a figure to this SVG or PNG file (robot: joint angles, velocities, torques and total
@@ -169,6 +191,24 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             "a body spec (.toml)"
         };
         return Err(format!("{flag} applies to {what}, not to {}", args.model));
+    }
+    if args.ground.is_none() {
+        if let Some(flag) = [
+            ("--friction", args.friction),
+            ("--restitution", args.restitution),
+        ]
+        .iter()
+        .find_map(|(f, x)| x.map(|_| f))
+        {
+            return Err(format!("{flag} applies with --ground"));
+        }
+    }
+    if body && args.ground.is_some() {
+        return Err(
+            "--ground applies to robots; a body spec (.toml) on the ground is not \
+                    supported yet"
+                .into(),
+        );
     }
     if body {
         body::run(args)

@@ -84,6 +84,8 @@ pub(crate) struct Record {
     pub v: Vec<f64>,
     pub tau: Vec<f64>,
     pub energy: Vec<f64>,
+    pub contacts: Vec<f64>,
+    pub normal_force: Vec<f64>,
 }
 
 pub(crate) fn run<C: Control>(
@@ -99,6 +101,10 @@ pub(crate) fn run<C: Control>(
         let tau = sim.torques()?.0.to_vec();
         rec.tau.extend_from_slice(&tau);
         rec.energy.push(sim.energy()?);
+        let stats = sim.contact_stats();
+        rec.contacts.push(stats.active as f64);
+        rec.normal_force
+            .push(stats.normal_impulse / sim.options().dt);
         Ok(())
     };
     push(sim, rec)?;
@@ -115,12 +121,19 @@ pub(crate) fn run<C: Control>(
 /// and built-in controllers of `rigid simulate`; `control`, a Python function `u(t, q, v) -> τ`,
 /// replaces `controller`). Returns a dict of numpy arrays: `t` (N), `q` (N × nq), `v` (N × nv),
 /// `tau` (N × nv, the control law's torques) and `energy` (N, kinetic + potential, J), one row
-/// every `every` steps and the last; in the model's layout.
+/// every `every` steps and the last; in the model's layout. `ground` (a height, m) puts the
+/// ground plane `z = ground` under the robot (its URDF `<collision>` or MJCF geoms, Coulomb
+/// `friction`, default 0.8, and `restitution`, default 0; `rigid simulate --ground`): the
+/// integrator is then the time-stepping `semi-implicit` one (`rk4` replaced), a floating robot
+/// without `q0` starts set down on the ground at `target` (or neutral), `controller="pd"` holds
+/// the stance on its feet, and the dict gains `contacts` (N, active contacts) and `normal_force`
+/// (N, their normal force sum, N).
 #[pyfunction]
 #[pyo3(signature = (
     model, q0 = None, v0 = None, duration = 1.0, dt = 1e-3, integrator = "rk4",
     controller = "none", target = None, move_time = None, profile = "quintic",
-    limits = "spring", joint_dynamics = true, control = None, every = 1
+    limits = "spring", joint_dynamics = true, control = None, every = 1, ground = None,
+    friction = None, restitution = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
@@ -139,6 +152,9 @@ pub fn simulate<'py>(
     joint_dynamics: bool,
     control: Option<&Bound<'py, PyAny>>,
     every: u64,
+    ground: Option<f64>,
+    friction: Option<f64>,
+    restitution: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let func = "simulate";
     let core: &ModelCore = &model.inner;
@@ -148,18 +164,62 @@ pub fn simulate<'py>(
     if every == 0 {
         return Err(PyValueError::new_err("simulate: every must be at least 1"));
     }
-    let q0 = match q0 {
-        Some(x) => q_arg(core, func, "q0", x)?,
-        None => rigid::multibody::neutral(m),
+    if ground.is_none() && (friction.is_some() || restitution.is_some()) {
+        return Err(value_error(
+            func,
+            "friction and restitution apply with ground",
+        ));
+    }
+    let collision = match ground {
+        Some(h) => {
+            let (geometries, warnings) = match &core.source {
+                Some(path) => rigid::io::collision::file_geometries(path, m)
+                    .map_err(|e| value_error(func, e))?,
+                None => (Vec::new(), Vec::new()),
+            };
+            let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+            for w in warnings {
+                let text = std::ffi::CString::new(format!("{func}: {w}").replace('\0', " "))
+                    .unwrap_or_default();
+                PyErr::warn(py, category.as_any(), &text, 2)?;
+            }
+            Some(
+                rigid::io::collision::ground_model(h, friction, restitution, geometries)
+                    .map_err(|e| value_error(func, e))?,
+            )
+        }
+        None => None,
     };
+    let mut target = target.map(|x| q_arg(core, func, "target", x)).transpose()?;
+    let given_q0 = q0.is_some();
+    let mut q0 = match q0 {
+        Some(x) => q_arg(core, func, "q0", x)?,
+        None => target
+            .clone()
+            .unwrap_or_else(|| rigid::multibody::neutral(m)),
+    };
+    if let Some(cm) = &collision {
+        let place = |q: &mut [f64]| {
+            rigid::collision::place_on_ground(m, cm, q).map_err(|e| value_error(func, e))
+        };
+        if !given_q0 {
+            place(&mut q0)?;
+        }
+        if let Some(t) = target.as_mut() {
+            place(t)?;
+        }
+    }
     let v0 = match v0 {
         Some(x) => v_arg(core, func, "v0", x)?,
         None => vec![0.0; m.nv()],
     };
-    let target = target.map(|x| q_arg(core, func, "target", x)).transpose()?;
+    let integrator = match (integrator.parse::<Integrator>().map_err(err)?, &collision) {
+        (Integrator::Rk4, Some(_)) => Integrator::SemiImplicitEuler,
+        (i, _) => i,
+    };
     let opts = SimulationOptions {
         dt,
-        integrator: integrator.parse::<Integrator>().map_err(err)?,
+        integrator,
         limits: limits.parse::<JointLimits>().map_err(err)?,
         joint_dynamics,
         ..SimulationOptions::default()
@@ -178,6 +238,9 @@ pub fn simulate<'py>(
                 error: None,
             };
             let mut sim = Simulator::new(m, &q0, &v0, opts, law).map_err(err)?;
+            if let Some(cm) = collision.clone() {
+                sim = sim.with_collision(cm).map_err(err)?;
+            }
             let result = run(&mut sim, steps, every, &mut rec);
             if let Some(e) = sim.control_mut().error.take() {
                 return Err(e);
@@ -188,10 +251,16 @@ pub fn simulate<'py>(
             let scaling: TimeScaling = profile.parse().map_err(err)?;
             let kind: ControlKind = controller.parse().map_err(err)?;
             let time = move_time.unwrap_or(0.5 * duration);
-            let law =
-                ControlLaw::builtin(m, kind, &q0, target.as_deref(), time, scaling).map_err(err)?;
+            let law = match (&collision, kind, &target) {
+                (Some(cm), ControlKind::Pd, Some(t)) => ControlLaw::standing(m, t, cm),
+                _ => ControlLaw::builtin(m, kind, &q0, target.as_deref(), time, scaling),
+            }
+            .map_err(err)?;
             let ctrl = Controller::new(m, law).map_err(err)?;
             let mut sim = Simulator::new(m, &q0, &v0, opts, ctrl).map_err(err)?;
+            if let Some(cm) = collision.clone() {
+                sim = sim.with_collision(cm).map_err(err)?;
+            }
             py.detach(|| run(&mut sim, steps, every, &mut rec))
                 .map_err(err)?;
         }
@@ -216,6 +285,10 @@ pub fn simulate<'py>(
     out.set_item("v", rows_array(py, v_rows(&rec.v), n, nv)?)?;
     out.set_item("tau", rows_array(py, v_rows(&rec.tau), n, nv)?)?;
     out.set_item("energy", PyArray1::from_vec(py, rec.energy))?;
+    if collision.is_some() {
+        out.set_item("contacts", PyArray1::from_vec(py, rec.contacts))?;
+        out.set_item("normal_force", PyArray1::from_vec(py, rec.normal_force))?;
+    }
     Ok(out)
 }
 

@@ -11,6 +11,7 @@
 //! | [`spatial`] | SO(3), SE(3), twists, wrenches, `Ad`, `ad`, exp and log; the small dense kernels | core |
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G`, pseudo-inertia and physical consistency | core |
 //! | [`multibody`] | kinematic trees: `Model` (with its compiled plan), `Data`, joints, the textbook [`multibody::reference`] algorithms beside the fast ones (kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis, energies, derivatives), constraints, simulation, builders, built-in robots | core (`batch`: `parallel`) |
+//! | [`collision`] | collision geometry (URDF `<collision>`, MJCF geoms, body parts, a ground plane) and contact points, on parry3d-f64 | `collision` |
 //! | [`kinematics`] | inverse kinematics: Newton / Levenberg-Marquardt on the SE(3) log error (`IKinBody`, `IKinSpace`), position or full pose, limits, restarts | core |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, Lagrange by autodiff, and its simulator (the one-joint case of the multibody simulator, plus the Lie-group variational integrator) | core (`lagrange`: `autodiff`) |
 //! | [`identification`] | inertial parameters from measured motion: joint-torque regressor, base parameters, least squares, physically consistent estimate (semidefinite program, feature `sdp`), exciting trajectories | core |
@@ -27,6 +28,8 @@
 #![allow(non_snake_case)]
 
 pub mod body;
+#[cfg(feature = "collision")]
+pub mod collision;
 #[cfg(feature = "urdf")]
 pub mod doctor;
 pub mod error;

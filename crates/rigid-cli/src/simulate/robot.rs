@@ -1,19 +1,25 @@
 //! `rigid simulate MODEL` for a robot: a URDF file, a robot of example-robot-data by name, or a
 //! built-in model, simulated by `rigid::multibody::simulation`.
 
+use super::ground;
 use super::{robot_plot::Samples, Numbers, SimulateArgs, PLOT_POINTS};
 use crate::load::{load_printing_warnings, urdf_path};
+use rigid::collision::CollisionModel;
 use rigid::multibody::simulation::{
-    ControlLaw, Controller, JointLimits, SimulationError, SimulationOptions, Simulator,
+    ControlKind, ControlLaw, Controller, Integrator, JointLimits, SimulationError,
+    SimulationOptions, Simulator,
 };
 use rigid::multibody::{column_names, neutral, Data, Model};
 use rigid_replay::{robot_nodes, Recording};
 use std::io::Write;
 
 /// `t`, then `q_<joint>`, `v_<joint>`, `tau_<joint>` (`_<coordinate>` for multi-dof joints).
-fn csv_header(model: &Model) -> String {
+fn csv_header(model: &Model, contacts: bool) -> String {
     let mut cols = vec!["t".to_string()];
     cols.extend(column_names(model, &["q", "v", "tau"]));
+    if contacts {
+        cols.extend(["contacts".to_string(), "normal_force".to_string()]);
+    }
     cols.join(",")
 }
 
@@ -23,10 +29,14 @@ fn write_row(
     q: &[f64],
     v: &[f64],
     tau: &[f64],
+    contacts: Option<(usize, f64)>,
 ) -> std::io::Result<()> {
     write!(out, "{t}")?;
     for x in q.iter().chain(v).chain(tau) {
         write!(out, ",{x}")?;
+    }
+    if let Some((n, f)) = contacts {
+        write!(out, ",{n},{f}")?;
     }
     writeln!(out)
 }
@@ -57,20 +67,32 @@ fn joint_list(model: &Model) -> String {
 }
 
 fn options(args: &SimulateArgs) -> Result<SimulationOptions, String> {
+    // contacts step with the time-stepping scheme; rk4, the default, gives way to it
+    let integrator = match (args.ground, args.integrator) {
+        (Some(_), Integrator::Rk4) => Integrator::SemiImplicitEuler,
+        (_, i) => i,
+    };
     Ok(SimulationOptions {
         dt: args.dt,
-        integrator: args.integrator,
+        integrator,
         limits: args.limits,
         joint_dynamics: !args.no_joint_dynamics,
         ..SimulationOptions::default()
     })
 }
 
-fn controller(args: &SimulateArgs, model: &Model, q0: &[f64]) -> Result<Controller, String> {
-    let target = match &args.target {
-        Some(_) => Some(configuration(model, "target", &args.target)?),
-        None => None,
-    };
+fn controller(
+    args: &SimulateArgs,
+    model: &Model,
+    q0: &[f64],
+    target: Option<Vec<f64>>,
+    collision: Option<&CollisionModel>,
+) -> Result<Controller, String> {
+    if let (Some(cm), ControlKind::Pd, Some(target)) = (collision, args.controller, &target) {
+        // standing: PD to the stance with the torques that hold it on its contacts
+        let law = ControlLaw::standing(model, target, cm).map_err(|e| format!("--target: {e}"))?;
+        return Controller::new(model, law).map_err(|e| e.to_string());
+    }
     let time = args.move_time.unwrap_or(0.5 * args.duration);
     let law = ControlLaw::builtin(
         model,
@@ -94,15 +116,30 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let steps = super::step_count(args)?;
     let loaded = load_printing_warnings(&args.model, &args.load)?;
     let home = loaded.home();
+    let collision = ground::collision_model(args, &loaded)?;
     let mut model = loaded.model;
     if let Some(g) = args.gravity {
         model = model.with_gravity(g);
     }
     // an MJCF model starts where the file puts it (MuJoCo's qpos0)
-    let q0 = match &args.q0 {
-        None => home,
-        Some(_) => configuration(&model, "q0", &args.q0)?,
+    let mut target = match &args.target {
+        Some(_) => Some(configuration(&model, "target", &args.target)?),
+        None => None,
     };
+    let mut q0 = match (&args.q0, &target, &collision) {
+        (None, Some(t), Some(_)) => t.clone(),
+        (None, _, _) => home,
+        (Some(_), _, _) => configuration(&model, "q0", &args.q0)?,
+    };
+    if let Some(cm) = &collision {
+        // a floating robot starts on the ground, and its stance is on the ground
+        if args.q0.is_none() {
+            ground::set_down(&model, cm, &mut q0)?;
+        }
+        if let Some(t) = target.as_mut() {
+            ground::set_down(&model, cm, t)?;
+        }
+    }
     let v0 = args
         .v0
         .clone()
@@ -115,8 +152,18 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         ));
     }
     let opts = options(args)?;
-    let ctrl = controller(args, &model, &q0)?;
+    let ctrl = controller(args, &model, &q0, target, collision.as_ref())?;
     let mut sim = Simulator::new(&model, &q0, &v0, opts, ctrl).map_err(|e| e.to_string())?;
+    let contacts = collision.is_some();
+    if let Some(cm) = collision {
+        sim = sim.with_collision(cm).map_err(|e| e.to_string())?;
+    }
+    let contact_row = |sim: &Simulator| {
+        contacts.then(|| {
+            let s = sim.contact_stats();
+            (s.active, s.normal_impulse / args.dt)
+        })
+    };
     let (nq, nv) = (model.nq(), model.nv());
 
     let mut csv = match &args.csv {
@@ -127,9 +174,9 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         Ok(sim.torques().map_err(|e| e.to_string())?.0.to_vec())
     };
     if let Some(f) = csv.as_mut() {
-        writeln!(f.writer(), "{}", csv_header(&model)).map_err(|e| e.to_string())?;
+        writeln!(f.writer(), "{}", csv_header(&model, contacts)).map_err(|e| e.to_string())?;
         let tau = tau_row(&mut sim)?;
-        write_row(f.writer(), 0.0, &q0, &v0, &tau).map_err(|e| e.to_string())?;
+        write_row(f.writer(), 0.0, &q0, &v0, &tau, contact_row(&sim)).map_err(|e| e.to_string())?;
     }
     let mut scene = if args.html.is_some() {
         robot_nodes(&model, urdf_path(&args.model).as_deref())
@@ -152,6 +199,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         samples.push(&model, 0.0, sim.q(), sim.v(), &tau, e0);
     }
     let mut max_speed = (0.0f64, 0usize);
+    let mut max_penetration = 0.0f64;
     let mut progress = super::Progress::new(steps)?;
     let mut failure = None;
     for k in 1..=steps {
@@ -160,6 +208,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             break;
         }
         let t = sim.time();
+        max_penetration = max_penetration.max(sim.contact_stats().penetration);
         for (i, x) in sim.v().iter().enumerate() {
             if x.abs() > max_speed.0 {
                 max_speed = (x.abs(), i);
@@ -169,7 +218,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         if csv.is_some() || plot_now {
             let tau = tau_row(&mut sim)?;
             if let Some(f) = csv.as_mut() {
-                write_row(f.writer(), t, sim.q(), sim.v(), &tau).map_err(|e| e.to_string())?;
+                write_row(f.writer(), t, sim.q(), sim.v(), &tau, contact_row(&sim))
+                    .map_err(|e| e.to_string())?;
             }
             if plot_now {
                 let e = sim.energy().map_err(|e| e.to_string())?;
@@ -190,6 +240,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     }
     let limits = match opts.limits {
         JointLimits::Ignored => "ignored".to_string(),
+        JointLimits::Unilateral => "unilateral (an impulse stops a joint at its limit)".to_string(),
         JointLimits::Spring {
             time_constant,
             damping_ratio,
@@ -251,6 +302,19 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             "off"
         }
     );
+    if let Some(h) = args.ground {
+        let s = sim.contact_stats();
+        println!(
+            "ground: z = {h} m, friction {}, restitution {}",
+            args.friction.unwrap_or(rigid::collision::DEFAULT_FRICTION),
+            args.restitution.unwrap_or(0.0)
+        );
+        println!(
+            "contacts at the end: {} active, normal force {:.6} N; deepest penetration {max_penetration:.3e} m",
+            s.active,
+            s.normal_impulse / args.dt
+        );
+    }
     println!("steps: {}", sim.steps());
     println!("simulated time: {} s", sim.time());
     println!(

@@ -22,3 +22,4 @@ mod ik_cli;
 mod mass_cli;
 mod replay_browser;
 mod simulate;
+mod simulate_ground;

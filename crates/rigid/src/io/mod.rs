@@ -6,6 +6,8 @@
 pub mod cases;
 #[cfg(feature = "mesh")]
 pub mod collada;
+#[cfg(all(feature = "collision", feature = "mesh"))]
+pub mod collision;
 #[cfg(feature = "serde")]
 pub mod constraints;
 #[cfg(feature = "mesh")]

@@ -50,6 +50,7 @@ mod builder;
 mod builtins;
 pub(crate) mod configuration;
 pub mod constraints;
+pub mod contact;
 mod data;
 pub(crate) mod joint;
 mod textbook;

@@ -26,6 +26,7 @@ mod collada;
 mod compound;
 mod consistency;
 mod constraints;
+mod contact;
 mod doctor;
 mod explicit_codegen;
 mod explicit_derivation;

@@ -70,8 +70,8 @@ mod impulse;
 mod inverse;
 mod kinematics;
 mod simulate;
-mod solver;
-mod workspace;
+pub(crate) mod solver;
+pub(crate) mod workspace;
 
 pub use dynamics::constraint_dynamics;
 pub use impulse::impulse_dynamics;

@@ -9,7 +9,7 @@
 //! complement form of the KKT system `[[M, −Jᵀ], [J, μ I]]` that Pinocchio's
 //! `ContactCholeskyDecomposition` factorises as a whole (Carpentier, Budhiraja & Mansard 2021).
 
-use super::workspace::ConstraintData;
+use super::workspace::{ConstraintData, Support};
 use super::{ConstraintError, ProximalSettings, SolverStats};
 use crate::multibody::algorithms::{ltl_solve_lower, NO_DOF};
 use crate::multibody::Data;
@@ -18,18 +18,41 @@ use nalgebra::{DMatrix, DVector};
 /// `Z = L⁻ᵀ Jᵀ` and `K = Zᵀ Z` from `cd.jacobian` and the factor `L` in `data.chol`
 /// (`data.dof_parent` its parent dofs).
 pub(crate) fn delassus(data: &Data, cd: &mut ConstraintData) {
-    let nv = data.chol.nrows();
-    let m = cd.dim();
-    let (L, lambda) = (data.chol.as_slice(), &data.dof_parent);
     let n = cd.placements.len();
+    delassus_rows(
+        data,
+        &cd.rows[..=n],
+        &cd.support[..n],
+        &cd.jacobian,
+        cd.z.as_mut_slice(),
+        cd.delassus.as_mut_slice(),
+    );
+}
+
+/// The kernel of [`delassus`] on any set of row blocks (constraints, contacts, joint limits):
+/// block `c` has rows `rows[c]..rows[c + 1]` of `J` (`J.nrows()` may exceed `m = rows[n]`) and
+/// the support `support[c]` (its dofs, closed under taking parents). Writes `Z = L⁻ᵀ Jᵀ`
+/// column-major into `Z` (column r at `r * nv`; at least `nv m` entries) and `K = Zᵀ Z`, `m x m`
+/// with stride `m`, into `K` (at least `m²` entries).
+pub(crate) fn delassus_rows(
+    data: &Data,
+    rows: &[usize],
+    support: &[Support],
+    J: &DMatrix<f64>,
+    Z: &mut [f64],
+    K: &mut [f64],
+) {
+    let nv = data.chol.nrows();
+    let n = support.len();
+    let m = rows[n];
+    let (L, lambda) = (data.chol.as_slice(), &data.dof_parent);
     // Z, column-major: column r = Z[r * nv..(r + 1) * nv]
-    let Z = cd.z.as_mut_slice();
     for c in 0..n {
-        let support = &cd.support[c].cols;
-        let rows = cd.rows[c]..cd.rows[c + 1];
+        let support = &support[c].cols;
+        let rows = rows[c]..rows[c + 1];
         for r in rows.clone() {
             for &(k, _, _) in support {
-                Z[r * nv + k] = cd.jacobian[(r, k)];
+                Z[r * nv + k] = J[(r, k)];
             }
         }
         // back substitution on the support, from its deepest dof up (it is closed under taking
@@ -51,14 +74,12 @@ pub(crate) fn delassus(data: &Data, cd: &mut ConstraintData) {
         }
     }
     // K[r, s] = Z_rᵀ Z_s over the span of r's constraint's support (Z_r is zero outside it)
-    let Z = cd.z.as_slice();
-    let K = cd.delassus.as_mut_slice();
     for c in 0..n {
-        let span = match (cd.support[c].cols.first(), cd.support[c].cols.last()) {
+        let span = match (support[c].cols.first(), support[c].cols.last()) {
             (Some(a), Some(b)) => a.0..b.0 + 1,
             _ => 0..0,
         };
-        for r in cd.rows[c]..cd.rows[c + 1] {
+        for r in rows[c]..rows[c + 1] {
             let zr = &Z[r * nv..(r + 1) * nv][span.clone()];
             for s in 0..=r {
                 let x = dot(zr, &Z[s * nv..(s + 1) * nv][span.clone()]);
@@ -102,10 +123,33 @@ pub(crate) fn z_transpose_times(cd: &ConstraintData, x: &DVector<f64>, y: &mut [
 
 /// `x ← L⁻¹ (x + Z λ)`: the primal solution from `x = w` and the multipliers.
 pub(crate) fn primal(data: &Data, cd: &ConstraintData, lambda: &DVector<f64>, x: &mut [f64]) {
-    for c in 0..cd.placements.len() {
-        for r in cd.rows[c]..cd.rows[c + 1] {
-            for &(k, _, _) in &cd.support[c].cols {
-                x[k] += cd.z[(k, r)] * lambda[r];
+    let n = cd.placements.len();
+    primal_rows(
+        data,
+        &cd.rows[..=n],
+        &cd.support[..n],
+        cd.z.as_slice(),
+        lambda.as_slice(),
+        x,
+    );
+}
+
+/// The kernel of [`primal`] on any set of row blocks (see [`delassus_rows`]).
+pub(crate) fn primal_rows(
+    data: &Data,
+    rows: &[usize],
+    support: &[Support],
+    Z: &[f64],
+    lambda: &[f64],
+    x: &mut [f64],
+) {
+    let nv = data.chol.nrows();
+    for c in 0..support.len() {
+        for r in rows[c]..rows[c + 1] {
+            if lambda[r] != 0.0 {
+                for &(k, _, _) in &support[c].cols {
+                    x[k] += Z[r * nv + k] * lambda[r];
+                }
             }
         }
     }

@@ -61,6 +61,21 @@ pub enum ControlLaw {
         /// `K_d` per dof.
         kd: Vec<f64>,
     },
+    /// Standing on contacts ([`ControlLaw::stance`], [`ControlLaw::standing`]): joint PD to a
+    /// stance with the torques that hold it there, `τ = τ_ff + K_p (q_target ⊖ q) − K_d v`, zero
+    /// on a free-flyer's dofs (no actuator moves a floating base). `τ_ff` is PD with gravity
+    /// compensation's `g(q)` for a robot on the ground: the least-norm torques that, with the
+    /// contact forces, hold the stance at rest (contact inverse dynamics at the target).
+    Stance {
+        /// Target configuration (length `nq`).
+        target: Vec<f64>,
+        /// `K_p` per dof (0 on a free-flyer's).
+        kp: Vec<f64>,
+        /// `K_d` per dof (0 on a free-flyer's).
+        kd: Vec<f64>,
+        /// `τ_ff` per dof (0 on a free-flyer's).
+        feedforward: Vec<f64>,
+    },
     /// Computed torque (Lynch & Park §11.4.1, eq. 11.35): `τ = M(q) (q̈_d + K_p e + K_d ė) +
     /// c(q, v) + g(q)` with `e = q_d ⊖ q`, `ė = v_d - v`, computed as one RNEA; gains in s⁻²
     /// and s⁻¹. With the exact model the error obeys `ë + K_d ė + K_p e = 0`. The model is the
@@ -243,12 +258,16 @@ impl Controller {
     /// Gains or a target of the wrong length, a non-finite gain, a bad target configuration.
     pub fn new(model: &Model, law: ControlLaw) -> Result<Self, SimulationError> {
         match &law {
-            ControlLaw::Pd { target, kp, kd } => {
+            ControlLaw::Pd { target, kp, kd } | ControlLaw::Stance { target, kp, kd, .. } => {
                 check_q(model, target)?;
                 DimensionError::check("kp", model.nv, kp.len()).map_err(MultibodyError::from)?;
                 DimensionError::check("kd", model.nv, kd.len()).map_err(MultibodyError::from)?;
                 if kp.iter().chain(kd).any(|k| !k.is_finite()) {
                     return Err(SimulationError::Invalid("PD gains must be finite".into()));
+                }
+                if let ControlLaw::Stance { feedforward, .. } = &law {
+                    DimensionError::check("feedforward", model.nv, feedforward.len())
+                        .map_err(MultibodyError::from)?;
                 }
             }
             ControlLaw::ComputedTorque { trajectory, kp, kd } => {
@@ -294,7 +313,7 @@ impl Controller {
                 trajectory.sample(model, t, &mut self.qd, &mut self.vd, &mut self.ad);
                 Some((&self.qd, &self.vd))
             }
-            ControlLaw::Pd { target, .. } => {
+            ControlLaw::Pd { target, .. } | ControlLaw::Stance { target, .. } => {
                 self.vd.fill(0.0);
                 Some((target, &self.vd))
             }
@@ -322,6 +341,17 @@ impl Control for Controller {
                 let g = gravity_torques(model, &mut self.data, q)?;
                 for k in 0..model.nv {
                     tau[k] = g[k] + kp[k] * self.e[k] - kd[k] * v[k];
+                }
+            }
+            ControlLaw::Stance {
+                target,
+                kp,
+                kd,
+                feedforward,
+            } => {
+                difference(model, q, target, &mut self.e)?;
+                for k in 0..model.nv {
+                    tau[k] = feedforward[k] + kp[k] * self.e[k] - kd[k] * v[k];
                 }
             }
             ControlLaw::ComputedTorque { trajectory, kp, kd } => {

@@ -12,6 +12,7 @@
 //! | one rigid body: discrete Moser-Veselov on SO(3) | [`Integrator::Lgvi`] ([`body::Simulator`](crate::body::Simulator)) | Lee, Leok & McClamroch 2007 |
 //! | `τ = -b v - F_c tanh(v / v_s)` | [`SimulationOptions::joint_dynamics`] | URDF `<dynamics>` |
 //! | `τ = -D (e/τ_c² + 2ζ v/τ_c)` past a limit | [`JointLimits::Spring`] | MuJoCo's soft limits (`solref`) |
+//! | contacts with friction, unilateral joint limits: impulses per step | [`Simulator::with_collision`], [`JointLimits::Unilateral`] ([`contact`](crate::multibody::contact)) | Moreau–Jean time stepping; Jean 1999 |
 //! | quintic / trapezoidal `s(t)` | [`TimeScaling`] | Lynch & Park §9.2 |
 //! | gravity compensation, PD, computed torque | [`ControlLaw`] | Lynch & Park §11.4 |
 //!
@@ -31,11 +32,13 @@
 
 #[cfg(feature = "parallel")]
 mod batch;
+mod contact_step;
 mod control;
 mod integrators;
 
 mod momentum;
 mod simulator;
+mod stance;
 mod trajectory;
 
 #[cfg(feature = "parallel")]
@@ -88,12 +91,30 @@ pub enum SimulationError {
         /// The integrator given.
         integrator: Integrator,
     },
-    /// A name of joint limits that is not one of [`JointLimits`]'s (`spring`, `ignored`).
-    #[error("unknown joint limits {name:?}: expected spring or ignored")]
+    /// A name of joint limits that is not one of [`JointLimits`]'s (`spring`, `ignored`,
+    /// `unilateral`).
+    #[error("unknown joint limits {name:?}: expected spring, ignored or unilateral")]
     UnknownLimits {
         /// The name given.
         name: String,
     },
+    /// Contacts or unilateral joint limits asked of an integrator other than `semi-implicit`:
+    /// impulses are applied by the time-stepping scheme, which is first order.
+    #[error(
+        "contacts and unilateral joint limits are stepped by the time-stepping scheme \
+         (--integrator semi-implicit), not by {integrator}"
+    )]
+    ContactIntegrator {
+        /// The integrator given.
+        integrator: Integrator,
+    },
+    /// Contact solver settings out of range.
+    #[error("contact settings: max_iterations >= 1, tolerance >= 0, stabilization in [0, 1], restitution_speed >= 0")]
+    ContactSettings,
+    /// A bad collision model.
+    #[cfg(feature = "collision")]
+    #[error(transparent)]
+    Collision(#[from] crate::collision::CollisionError),
     /// A time-scaling name that is not one of [`TimeScaling`]'s.
     #[error("unknown time scaling {name:?}: expected quintic or trapezoidal")]
     UnknownTimeScaling {
@@ -283,6 +304,11 @@ pub enum JointLimits {
         /// `ζ`; 1 is critical damping.
         damping_ratio: f64,
     },
+    /// Unilateral constraints `lower ≤ q ≤ upper`: an impulse stops a joint at its limit (no
+    /// bounce, no penetration beyond the position correction), solved with the contacts
+    /// ([`contact`](crate::multibody::contact)); stepped by the time-stepping scheme, so the
+    /// integrator must be `semi-implicit`. Only 1-dof joints have limits.
+    Unilateral,
 }
 
 impl Default for JointLimits {
@@ -296,11 +322,13 @@ impl Default for JointLimits {
 
 impl FromStr for JointLimits {
     type Err = SimulationError;
-    /// `spring` (the default spring-damper, [`JointLimits::default`]) or `ignored`.
+    /// `spring` (the default spring-damper, [`JointLimits::default`]), `ignored` or
+    /// `unilateral`.
     fn from_str(s: &str) -> Result<Self, SimulationError> {
         match s {
             "spring" => Ok(Self::default()),
             "ignored" => Ok(Self::Ignored),
+            "unilateral" => Ok(Self::Unilateral),
             _ => Err(SimulationError::UnknownLimits { name: s.into() }),
         }
     }

@@ -1,6 +1,7 @@
 //! The simulator: a model, a state `(q, v)` (and `p = M v` for the variational integrator), a
 //! clock, a control law and the external wrenches, stepping without allocation.
 
+use super::contact_step::{contact_step, ContactStepper};
 use super::control::Control;
 use super::integrators::{self, Workspace};
 use super::{Integrator, JointLimits, SimulationError, SimulationOptions};
@@ -151,6 +152,9 @@ pub struct Simulator<C = super::Controller> {
     pub(crate) v: Vec<f64>,
     /// `p = M(q) v` (the variational integrator's state).
     pub(crate) p: Vec<f64>,
+    /// Contacts and unilateral limits, when there are any ([`with_collision`](Self::with_collision),
+    /// [`JointLimits::Unilateral`]).
+    pub(crate) contact: Option<Box<ContactStepper>>,
 }
 
 impl<C: Control> Simulator<C> {
@@ -211,9 +215,107 @@ impl<C: Control> Simulator<C> {
             q: q0.to_vec(),
             v: v0.to_vec(),
             p: vec![0.0; nv],
+            contact: None,
         };
+        if options.limits == JointLimits::Unilateral {
+            sim.contact_stepper()?;
+        }
         sim.sync_momentum();
         Ok(sim)
+    }
+
+    /// The contact stepper, made on first use; refuses an integrator other than semi-implicit.
+    fn contact_stepper(&mut self) -> Result<&mut ContactStepper, SimulationError> {
+        let integrator = self.dynamics.options.integrator;
+        if integrator != Integrator::SemiImplicitEuler {
+            return Err(SimulationError::ContactIntegrator { integrator });
+        }
+        let model = &self.dynamics.model;
+        Ok(self
+            .contact
+            .get_or_insert_with(|| Box::new(ContactStepper::new(model))))
+    }
+
+    /// The same simulator with collision geometry: contacts with the ground and between bodies,
+    /// with Coulomb friction and restitution, solved at every step
+    /// ([`contact`](crate::multibody::contact)). The integrator must be `semi-implicit` (the
+    /// time-stepping scheme).
+    ///
+    /// ```
+    /// use rigid::collision::{CollisionModel, Geometry, Ground, Shape};
+    /// use rigid::mass::{RotationalInertia, SpatialInertia};
+    /// use rigid::multibody::simulation::{Controller, Integrator, SimulationOptions, Simulator};
+    /// use rigid::multibody::{JointId, JointType, ModelBuilder};
+    /// use rigid::spatial::{Transform, Vec3};
+    /// // a 1 kg ball of radius 0.1 m dropped from 0.5 m onto the ground
+    /// let g = SpatialInertia::from_com(1.0, Vec3::zeros(), RotationalInertia::diagonal(0.004, 0.004, 0.004));
+    /// let mut b = ModelBuilder::new("ball");
+    /// b.add_joint(None, "ball", JointType::FreeFlyer, Transform::identity(), g).unwrap();
+    /// let model = b.build().unwrap();
+    /// let mut cm = CollisionModel::new(Ground::horizontal(0.0, 0.8));
+    /// cm.geometries.push(Geometry::new("ball", Some(JointId(0)), Transform::identity(), Shape::Sphere { radius: 0.1 }));
+    /// let opts = SimulationOptions { integrator: Integrator::SemiImplicitEuler, ..Default::default() };
+    /// let q0 = [0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 1.0];
+    /// let mut sim = Simulator::new(&model, &q0, &[0.0; 6], opts, Controller::none(&model))?.with_collision(cm)?;
+    /// sim.run(1000, |_| {})?;
+    /// assert!((sim.q()[2] - 0.1).abs() < 1e-6); // resting on the ground
+    /// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`SimulationError::ContactIntegrator`], or a bad collision model
+    /// ([`SimulationError::Collision`]).
+    #[cfg(feature = "collision")]
+    pub fn with_collision(
+        mut self,
+        collision: crate::collision::CollisionModel,
+    ) -> Result<Self, SimulationError> {
+        let data = crate::collision::CollisionData::new(&self.dynamics.model, &collision)?;
+        self.contact_stepper()?.collision = Some((collision, data));
+        Ok(self)
+    }
+
+    /// The same simulator with these contact solver settings.
+    ///
+    /// # Errors
+    /// [`SimulationError::ContactSettings`] for settings out of range,
+    /// [`SimulationError::ContactIntegrator`].
+    pub fn with_contact_settings(
+        mut self,
+        settings: crate::multibody::contact::ContactSettings,
+    ) -> Result<Self, SimulationError> {
+        if !settings.is_valid() {
+            return Err(SimulationError::ContactSettings);
+        }
+        self.contact_stepper()?.settings = settings;
+        Ok(self)
+    }
+
+    /// The contacts of the last step: every contact point given to the solver (a gap under the
+    /// margin), whether it pushed or not; empty without collision geometry.
+    #[must_use]
+    pub fn contacts(&self) -> &[crate::multibody::contact::ContactPoint] {
+        self.contact.as_ref().map_or(&[], |c| c.contacts())
+    }
+
+    /// The impulse of each of [`contacts`](Self::contacts) on its body 1 over the last step
+    /// (N·s, world axes; divide by `dt` for the mean force).
+    #[must_use]
+    pub fn contact_impulses(&self) -> &[Vec3] {
+        self.contact.as_ref().map_or(&[], |c| c.impulses())
+    }
+
+    /// What the last step's contact solve did (all zero without contacts).
+    #[must_use]
+    pub fn contact_stats(&self) -> crate::multibody::contact::ContactStats {
+        self.contact.as_ref().map(|c| c.stats()).unwrap_or_default()
+    }
+
+    /// The kinetic energy the contact impulses have taken since the start (J, never negative):
+    /// `K + U` plus this is the energy the system would have without them.
+    #[must_use]
+    pub fn contact_dissipation(&self) -> f64 {
+        self.contact.as_ref().map_or(0.0, |c| c.dissipated)
     }
 
     /// `p = M(q) v` from the current `(q, v)`.
@@ -229,34 +331,48 @@ impl<C: Control> Simulator<C> {
     /// [`SimulationError::Diverged`] when the new state is not finite.
     pub fn step(&mut self) -> Result<(), SimulationError> {
         let h = self.dynamics.options.dt;
-        let ok = match self.dynamics.options.integrator {
-            super::Integrator::SemiImplicitEuler => integrators::semi_implicit_euler(
+        let ok = if let Some(cs) = &mut self.contact {
+            let ws = &mut self.ws;
+            contact_step(
                 &mut self.dynamics,
-                &mut self.ws,
+                cs,
                 self.t,
                 h,
                 &self.q,
                 &self.v,
-            ),
-            super::Integrator::Rk4 => integrators::rk4(
-                &mut self.dynamics,
-                &mut self.ws,
-                self.t,
-                h,
-                &self.q,
-                &self.v,
-            ),
-            super::Integrator::Variational => integrators::variational(
-                &mut self.dynamics,
-                &mut self.ws,
-                self.t,
-                h,
-                &self.q,
-                &self.p,
-            ),
-            // refused by `new`, and options cannot change after it
-            integrator @ super::Integrator::Lgvi => {
-                Err(SimulationError::UnsupportedIntegrator { integrator })
+                &mut ws.q_new,
+                &mut ws.v_new,
+            )
+        } else {
+            match self.dynamics.options.integrator {
+                super::Integrator::SemiImplicitEuler => integrators::semi_implicit_euler(
+                    &mut self.dynamics,
+                    &mut self.ws,
+                    self.t,
+                    h,
+                    &self.q,
+                    &self.v,
+                ),
+                super::Integrator::Rk4 => integrators::rk4(
+                    &mut self.dynamics,
+                    &mut self.ws,
+                    self.t,
+                    h,
+                    &self.q,
+                    &self.v,
+                ),
+                super::Integrator::Variational => integrators::variational(
+                    &mut self.dynamics,
+                    &mut self.ws,
+                    self.t,
+                    h,
+                    &self.q,
+                    &self.p,
+                ),
+                // refused by `new`, and options cannot change after it
+                integrator @ super::Integrator::Lgvi => {
+                    Err(SimulationError::UnsupportedIntegrator { integrator })
+                }
             }
         };
         let time = self.t + h;

@@ -1,0 +1,157 @@
+//! `rigid simulate ROBOT --ground`: a URDF box falls onto the ground and rests there, Solo-12
+//! stands on it under `--controller pd`, the CSV's contact columns, and clean refusals of bad
+//! friction and restitution.
+
+use crate::common::example_robot_data;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn rigid(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rigid"))
+        .env("EXAMPLE_ROBOT_DATA", example_robot_data())
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rigid-ground-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The last row of a CSV file, by column name.
+fn last_row(path: &std::path::Path) -> std::collections::HashMap<String, f64> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let last = lines.last().unwrap();
+    header
+        .iter()
+        .zip(last.split(','))
+        .map(|(h, x)| (h.to_string(), x.parse().unwrap()))
+        .collect()
+}
+
+/// A 2 kg box 0.4 x 0.3 x 0.1 m with its collision box, one link.
+const BOX_URDF: &str = r#"<robot name="crate">
+  <link name="crate">
+    <inertial><mass value="2"/><inertia ixx="0.0167" iyy="0.0283" izz="0.0417" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.4 0.3 0.1"/></geometry></collision>
+  </link>
+</robot>"#;
+
+#[test]
+fn a_urdf_box_falls_onto_the_ground_and_rests_on_it() {
+    let dir = scratch("box");
+    let urdf = dir.join("crate.urdf");
+    std::fs::write(&urdf, BOX_URDF).unwrap();
+    let csv = dir.join("box.csv");
+    let out = rigid(&[
+        "simulate",
+        urdf.to_str().unwrap(),
+        "--floating",
+        "--q0",
+        "0,0,0.5,0,0,0,1",
+        "--ground",
+        "--duration",
+        "1",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("ground: z = 0 m, friction 0.8, restitution 0"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("integrator: semi-implicit"), "{stdout}");
+    let row = last_row(&csv);
+    // resting on its largest face: the centre half the height above the ground
+    assert!((row["q_root_joint_z"] - 0.05).abs() < 1e-4, "{row:?}");
+    assert_eq!(row["contacts"], 4.0, "{row:?}");
+    // the four corners carry the weight
+    assert!(
+        (row["normal_force"] - 2.0 * 9.81).abs() < 0.02 * 2.0 * 9.81,
+        "{row:?}"
+    );
+}
+
+#[test]
+fn solo12_stands_on_the_ground_under_pd() {
+    let dir = scratch("solo");
+    let csv = dir.join("solo.csv");
+    let stance = "0,0,0.3,0,0,0,1,0.1,0.8,-1.6,-0.1,0.8,-1.6,0.1,-0.8,1.6,-0.1,-0.8,1.6";
+    let out = rigid(&[
+        "simulate",
+        "solo12",
+        "--floating",
+        "--ground",
+        "--controller",
+        "pd",
+        "--target",
+        stance,
+        "--duration",
+        "0.5",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let header = text.lines().next().unwrap();
+    assert!(header.ends_with(",contacts,normal_force"), "{header}");
+    let first: Vec<f64> = text
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let row = last_row(&csv);
+    // set down on its four feet at the stance, it stays there
+    assert!(
+        (row["q_root_joint_z"] - first[3]).abs() < 1e-3,
+        "{row:?} from {}",
+        first[3]
+    );
+    assert_eq!(row["contacts"], 4.0);
+    let weight = 9.81 * 2.5; // Solo-12 weighs about 2.5 kg
+    assert!(
+        (row["normal_force"] - weight).abs() < 0.05 * weight,
+        "{row:?}"
+    );
+}
+
+#[test]
+fn bad_friction_and_restitution_are_refused_with_the_flag_named() {
+    for (args, message) in [
+        (
+            &["--ground", "--friction", "-0.5"][..],
+            "--friction must be finite and >= 0",
+        ),
+        (
+            &["--ground", "--restitution", "1.5"][..],
+            "--restitution must be in [0, 1]",
+        ),
+        (
+            &["--friction", "0.5"][..],
+            "--friction applies with --ground",
+        ),
+    ] {
+        let mut all = vec!["simulate", "ur5", "--duration", "0.01"];
+        all.extend_from_slice(args);
+        let out = rigid(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}

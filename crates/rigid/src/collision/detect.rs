@@ -1,0 +1,216 @@
+//! The workspace of a collision model and the contact points at a configuration.
+
+use super::shape::{from_parry, pose, Parry};
+use super::{CollisionError, CollisionModel};
+use crate::multibody::contact::ContactPoint;
+use crate::multibody::{JointId, Model};
+use crate::spatial::{Transform, Vec3};
+use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher};
+
+/// The workspace of a [`CollisionModel`] on a [`Model`] (Pinocchio's `GeometryData`): parry's
+/// shapes, the candidate pairs and their manifolds, the geometries' world poses.
+#[derive(Clone, Debug)]
+pub struct CollisionData {
+    shapes: Vec<Parry>,
+    /// The pairs of geometries that may collide (the ground aside).
+    pairs: Vec<(usize, usize)>,
+    manifolds: Vec<Vec<ContactManifold<(), ()>>>,
+    /// Each geometry's world pose, at the last [`contacts`](Self::contacts).
+    pub poses: Vec<Transform>,
+    near: Vec<(Vec3, f64)>,
+    njoints: usize,
+}
+
+impl CollisionData {
+    /// The workspace of `cm` on `model`: checks `cm`, makes parry's shapes (convex hulls of
+    /// meshes) and the list of candidate pairs.
+    ///
+    /// # Errors
+    /// [`CollisionModel::check`]'s, or a convex hull parry cannot make.
+    pub fn new(model: &Model, cm: &CollisionModel) -> Result<Self, CollisionError> {
+        cm.check(model.njoints())?;
+        let shapes = cm
+            .geometries
+            .iter()
+            .map(|g| {
+                Parry::of(&g.shape).map_err(|message| CollisionError::Shape {
+                    geometry: g.name.clone(),
+                    message,
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let parent = |j: JointId| model.joint(j).parent;
+        let mut pairs = Vec::new();
+        for (i, a) in cm.geometries.iter().enumerate() {
+            for (j, b) in cm.geometries.iter().enumerate().skip(i + 1) {
+                let masks = (a.contype & b.conaffinity) | (b.contype & a.conaffinity) != 0;
+                let meet = match (a.body, b.body) {
+                    (None, None) => false,
+                    (Some(_), None) | (None, Some(_)) => true,
+                    (Some(x), Some(y)) => {
+                        cm.self_collision && x != y && parent(x) != Some(y) && parent(y) != Some(x)
+                    }
+                };
+                if masks && meet {
+                    pairs.push((i, j));
+                }
+            }
+        }
+        Ok(Self {
+            manifolds: vec![Vec::new(); pairs.len()],
+            poses: vec![Transform::identity(); shapes.len()],
+            shapes,
+            pairs,
+            near: Vec::new(),
+            njoints: model.njoints(),
+        })
+    }
+
+    /// The number of candidate pairs of geometries (the ground aside).
+    #[must_use]
+    pub fn pairs(&self) -> usize {
+        self.pairs.len()
+    }
+
+    /// The contacts at the joints' world poses `oMi` (`Data::placements`), into `out`
+    /// (cleared first): every pair closer than the margin, with its gap, normal, friction and
+    /// restitution.
+    ///
+    /// # Panics
+    /// If `oMi` has fewer entries than the model has joints.
+    pub fn contacts(
+        &mut self,
+        cm: &CollisionModel,
+        oMi: &[Transform],
+        out: &mut Vec<ContactPoint>,
+    ) {
+        assert!(oMi.len() >= self.njoints, "one placement per joint");
+        out.clear();
+        for (k, g) in cm.geometries.iter().enumerate() {
+            self.poses[k] = match g.body {
+                Some(j) => oMi[j.0] * g.placement,
+                None => g.placement,
+            };
+        }
+        let margin = cm.margin;
+        if let Some(ground) = &cm.ground {
+            let n = ground.normal;
+            for (k, g) in cm.geometries.iter().enumerate() {
+                let Some(body) = g.body else { continue };
+                let s = &self.shapes[k];
+                let c = self.poses[k].act_point(&s.center);
+                if n.dot(&c) - ground.height - s.radius > margin {
+                    continue;
+                }
+                s.near_plane(&self.poses[k], &n, ground.height, margin, &mut self.near);
+                reduce(&mut self.near, &n);
+                for &(x, d) in &self.near {
+                    out.push(ContactPoint {
+                        body1: Some(body),
+                        body2: None,
+                        point: x - n * (0.5 * d),
+                        normal: n,
+                        gap: d,
+                        friction: ground.friction,
+                        restitution: ground.restitution,
+                        geometries: (k, None),
+                    });
+                }
+            }
+        }
+        let dispatcher = DefaultQueryDispatcher;
+        for (p, &(i, j)) in self.pairs.iter().enumerate() {
+            let (si, sj) = (&self.shapes[i], &self.shapes[j]);
+            let (ci, cj) = (
+                self.poses[i].act_point(&si.center),
+                self.poses[j].act_point(&sj.center),
+            );
+            if (ci - cj).norm() - si.radius - sj.radius > margin {
+                self.manifolds[p].clear();
+                continue;
+            }
+            let (pi, pj) = (self.poses[i] * si.offset, self.poses[j] * sj.offset);
+            let pos12 = pose(&pi).inv_mul(&pose(&pj));
+            let found = dispatcher.contact_manifolds(
+                &pos12,
+                &*si.shape,
+                &*sj.shape,
+                margin,
+                &mut self.manifolds[p],
+                &mut None,
+            );
+            if found.is_err() {
+                continue;
+            }
+            let (a, b) = (&cm.geometries[i], &cm.geometries[j]);
+            let pick = |x: Option<f64>, y: Option<f64>, default: f64| match (x, y) {
+                (None, None) => default,
+                (x, y) => x.unwrap_or(0.0).max(y.unwrap_or(0.0)),
+            };
+            let friction = pick(a.friction, b.friction, cm.friction);
+            let restitution = pick(a.restitution, b.restitution, cm.restitution);
+            for m in &self.manifolds[p] {
+                // the normal out of shape i, towards j: body i is pushed along its opposite
+                let n1 = pi.rotation * from_parry(m.local_n1);
+                for c in &m.points {
+                    if c.dist > margin {
+                        continue;
+                    }
+                    let (x1, x2) = (
+                        pi.act_point(&from_parry(c.local_p1)),
+                        pj.act_point(&from_parry(c.local_p2)),
+                    );
+                    out.push(ContactPoint {
+                        body1: a.body,
+                        body2: b.body,
+                        point: (x1 + x2) * 0.5,
+                        normal: -n1,
+                        gap: c.dist,
+                        friction,
+                        restitution,
+                        geometries: (i, Some(j)),
+                    });
+                }
+            }
+        }
+    }
+}
+
+/// Keeps at most four of the points near a plane of normal `n`: the deepest, the farthest from
+/// it, the one making the largest triangle with those two, and the one making the largest
+/// triangle on the other side of their line (Bullet's manifold reduction); duplicates dropped.
+fn reduce(pts: &mut Vec<(Vec3, f64)>, n: &Vec3) {
+    // drop duplicates (a support point that is also a feature vertex)
+    let mut k = 0;
+    while k < pts.len() {
+        if pts[..k].iter().any(|q| (q.0 - pts[k].0).norm() < 1e-9) {
+            pts.swap_remove(k);
+        } else {
+            k += 1;
+        }
+    }
+    if pts.len() <= 4 {
+        return;
+    }
+    let area = |a: &Vec3, b: &Vec3, c: &Vec3| n.dot(&(b - a).cross(&(c - a)));
+    let argmax = |pts: &[(Vec3, f64)], f: &dyn Fn(&(Vec3, f64)) -> f64| {
+        (0..pts.len())
+            .max_by(|&x, &y| f(&pts[x]).total_cmp(&f(&pts[y])))
+            .expect("points")
+    };
+    let i0 = argmax(pts, &|p| -p.1);
+    let p0 = pts[i0].0;
+    let i1 = argmax(pts, &|p| (p.0 - p0).norm());
+    let p1 = pts[i1].0;
+    let i2 = argmax(pts, &|p| area(&p0, &p1, &p.0).abs());
+    let p2 = pts[i2].0;
+    let side = area(&p0, &p1, &p2).signum();
+    let i3 = argmax(pts, &|p| -side * area(&p0, &p1, &p.0));
+    let keep = [pts[i0], pts[i1], pts[i2], pts[i3]];
+    pts.clear();
+    for p in keep {
+        if !pts.iter().any(|q| (q.0 - p.0).norm() < 1e-12) {
+            pts.push(p);
+        }
+    }
+}

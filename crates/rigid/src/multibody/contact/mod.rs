@@ -1,0 +1,144 @@
+//! Unilateral contacts with Coulomb friction, and joint limits as unilateral constraints, in the
+//! velocity-level time-stepping form (Moreau 1988; Stewart & Trinkle 1996; Anitescu & Potra
+//! 1997): over a step `h` the forces are impulses, and one problem per step decides them.
+//!
+//! With `M = M(q_k)`, the free velocity `v_f = v_k + h M⁻¹ (τ − c − g)`, the contact Jacobian
+//! `J` (three rows per contact: the normal `n` and two tangents, the relative velocity of the
+//! two bodies at the contact point; one row per joint limit) and the Delassus operator
+//! `G = J M⁻¹ Jᵀ`, the velocity after the step is `v⁺ = v_f + M⁻¹ Jᵀ λ` and the contact
+//! velocity `σ = J v⁺ = σ_f + G λ`. Each contact's impulse `λ = (λ_n, λ_t)` obeys
+//!
+//! - Signorini at the velocity level: `0 ≤ λ_n ⊥ σ_n − σ*_n ≥ 0`, with the target
+//!   `σ*_n = −φ/h` for a gap `φ > 0` (the bodies may close it in this step, and no more: a
+//!   contact whose gap closes lands at `φ = 0`), `0` when touching or penetrating, and
+//!   `e V` at the step after a gap closed at the speed `V` (Newton's impact law with restitution
+//!   `e`; `V` the approach speed when the gap closed within that step, uniformly accelerated
+//!   from `J_n v_k` to `J_n v_f`), or `e |σ_n⁻|` for a contact found already touching and
+//!   approaching at `σ_n⁻ = J_n v_k`;
+//! - Coulomb's law with maximal dissipation: `‖λ_t‖ ≤ μ λ_n`, and if the contact slides
+//!   (`σ_t ≠ 0`), `λ_t = −μ λ_n σ_t / ‖σ_t‖`.
+//!
+//! This is the nonlinear complementarity problem of Signorini–Coulomb (not the convex relaxation
+//! of Anitescu, whose sliding contacts drift apart by `μ ‖σ_t‖` per second). It is solved by
+//! projected Gauss–Seidel over the contacts on the exact (second-order) cone, Jean & Moreau's
+//! non-smooth Gauss–Seidel (Jean 1999, "The non-smooth contact dynamics method"; Pinocchio's
+//! `PGSContactSolverTpl`): per contact, the normal impulse by a projected Newton step on its
+//! row, then the tangential impulse by the 2×2 block and a radial projection on the disc
+//! `μ λ_n`. `G` comes from the tree-sparse factor `M = LᵀL` of the constraint machinery
+//! ([`constraints`](super::constraints)): `Z = L⁻ᵀ Jᵀ`, `G = Zᵀ Z`.
+//!
+//! # What it guarantees
+//!
+//! **The contact impulses never add kinetic energy.** The change they make in a step is
+//! `ΔK = ½ v⁺ᵀ M v⁺ − ½ v_fᵀ M v_f = λᵀ σ_f + ½ λᵀ G λ = λᵀ σ − ½ λᵀ G λ`. At a solution
+//! `λ_n (σ_n − σ*_n) = 0` and `λ_t · σ_t ≤ 0` (maximal dissipation), so `λᵀ σ = Σ λ_n σ*_n`:
+//! without a rebound every `σ*_n ≤ 0`, and `ΔK ≤ 0` because `G` is positive semi-definite. An
+//! impact spans two steps, the one where the gap closes (the contact takes the approach's kinetic
+//! energy, `E`) and the next (the rebound gives back at most `e² E`, e ≤ 1), so over the two
+//! `ΔK ≤ −(1 − e²) E ≤ 0`. The iterations stop before exact convergence, and Newton's law at
+//! several simultaneous impacts can add energy; so after the iterations `ΔK` is computed, and if
+//! it exceeds the rebounds' credit `Σ e² E` (0 without rebound) the impulse is scaled by the
+//! largest `α ∈ [0, 1]` that brings it back (the cone is a cone: `α λ` stays in it;
+//! [`ContactStats::scaled`] counts it). So the kinetic energy taken by the contacts since the
+//! start never becomes negative, converged or not; the tests check it on random impacts.
+//!
+//! Penetration (from finite steps, rotations within a step, or an initial state) is removed by
+//! a second, position-only solve (post-stabilisation, Cline & Pai 2003): normal impulses `μ ≥ 0`
+//! with `G_nn μ ≥ β max(0, −φ)/h`, moving `q` by `h M⁻¹ J_nᵀ μ` without touching `v`: no kinetic
+//! energy is made (the potential energy changes by the weight lifted out of the ground).
+
+// loops over several per-row arrays at once read better indexed
+#![allow(clippy::needless_range_loop)]
+
+mod solver;
+
+pub(crate) use solver::ContactSolver;
+
+use crate::multibody::JointId;
+use crate::spatial::Vec3;
+
+/// One contact between two bodies (or a body and the world), the solver's input: where, along
+/// which normal, how far apart, with which friction and restitution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactPoint {
+    /// The body pushed along `+normal` (`None`: the world).
+    pub body1: Option<JointId>,
+    /// The other body (`None`: the world, as for the ground).
+    pub body2: Option<JointId>,
+    /// The contact point in the world (m): the middle of the two closest points.
+    pub point: Vec3,
+    /// The unit contact normal in the world, from body 2 towards body 1.
+    pub normal: Vec3,
+    /// The signed distance along `normal` (m): positive apart, negative penetrating.
+    pub gap: f64,
+    /// Coulomb's friction coefficient `μ ≥ 0`.
+    pub friction: f64,
+    /// Newton's restitution coefficient `e ∈ [0, 1]`.
+    pub restitution: f64,
+    /// The collision geometries in contact (indices into the collision model; `None` for the
+    /// ground), for reports.
+    pub geometries: (usize, Option<usize>),
+}
+
+/// The solver's settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactSettings {
+    /// The most Gauss–Seidel sweeps per step.
+    pub max_iterations: usize,
+    /// Stop when no impulse changed by more than `tolerance × (largest impulse)` in a sweep.
+    pub tolerance: f64,
+    /// `β ∈ [0, 1]`: the share of a penetration removed by the position correction of one step
+    /// (1: all of it, post-stabilisation; 0: none).
+    pub stabilization: f64,
+    /// The approach speed (m/s) below which an impact is plastic whatever the restitution: a
+    /// body resting on another does not bounce on the speed gravity gives it in one step.
+    pub restitution_speed: f64,
+}
+
+impl Default for ContactSettings {
+    /// 200 sweeps, tolerance `1e-10`, `β = 1`, restitution below 1 cm/s ignored.
+    fn default() -> Self {
+        Self {
+            max_iterations: 200,
+            tolerance: 1e-10,
+            stabilization: 1.0,
+            restitution_speed: 0.01,
+        }
+    }
+}
+
+impl ContactSettings {
+    pub(crate) fn is_valid(&self) -> bool {
+        self.max_iterations >= 1
+            && self.tolerance >= 0.0
+            && self.tolerance.is_finite()
+            && (0.0..=1.0).contains(&self.stabilization)
+            && self.restitution_speed >= 0.0
+            && self.restitution_speed.is_finite()
+    }
+}
+
+/// What the last step's contact solve did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactStats {
+    /// Contacts and joint limits given to the solver (with a gap under the margin).
+    pub candidates: usize,
+    /// Of those, the ones that pushed (`λ_n > 0`).
+    pub active: usize,
+    /// Gauss–Seidel sweeps done.
+    pub iterations: usize,
+    /// Whether the tolerance was met within the sweeps.
+    pub converged: bool,
+    /// Whether the impulse was scaled down so as not to add kinetic energy (see the
+    /// [module](self) documentation).
+    pub scaled: bool,
+    /// `ΔK = ½ v⁺ᵀ M v⁺ − ½ v_fᵀ M v_f` (J): the kinetic energy the contact impulses gave
+    /// (negative: taken); positive only at a rebound, by at most `e²` times what the same
+    /// contact took when its gap closed in the step before.
+    pub kinetic_change: f64,
+    /// The sum of the normal impulses of the contacts, `Σ λ_n` (N·s; divide by `h` for the force).
+    pub normal_impulse: f64,
+    /// The deepest penetration among the candidates before the step's position correction (m,
+    /// positive; 0 when none penetrates).
+    pub penetration: f64,
+}

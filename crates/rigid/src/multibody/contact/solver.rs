@@ -1,0 +1,672 @@
+//! The contact problem of one step: rows of `J`, the Delassus operator through the constraint
+//! machinery's kernels, the projected Gauss–Seidel iterations, the energy safeguard and the
+//! position correction (see the [module](super) documentation for the equations).
+
+use super::{ContactPoint, ContactSettings, ContactStats};
+use crate::multibody::constraints::solver::{delassus_rows, primal_rows};
+use crate::multibody::constraints::workspace::Support;
+use crate::multibody::{Data, JointId, Model};
+use crate::spatial::Vec3;
+use nalgebra::DMatrix;
+
+/// One row block of the problem: a contact (3 rows: normal, two tangents) or a joint limit
+/// (1 row).
+#[derive(Clone, Copy, Debug)]
+struct Block {
+    /// First row.
+    row: usize,
+    /// 3 (contact) or 1 (limit).
+    dim: usize,
+    /// `μ` (0 for a limit).
+    friction: f64,
+    /// `e`.
+    restitution: f64,
+    /// `φ` (m or rad).
+    gap: f64,
+    /// The contact frame `(n, t1, t2)` in the world (a limit: unused).
+    frame: [Vec3; 3],
+    /// The impulse of the same contact at the last step (the warm start).
+    warm: [f64; 3],
+    /// The approach speed of an impact whose gap closed in the last step (0: none).
+    impact: f64,
+    /// The kinetic energy the rebound of that impact may give back (J): `e²` times what the
+    /// contact took when its gap closed.
+    credit: f64,
+    /// The approach speed if the gap closes in this step (0: it does not).
+    closing: f64,
+}
+
+/// What a contact of one step leaves to the next: the same pair of geometries (or the same
+/// joint limit) near the same point is the same contact.
+#[derive(Clone, Copy, Debug)]
+struct Memory {
+    key: (usize, usize),
+    point: Vec3,
+    lambda: [f64; 3],
+    /// The speed at which its gap closed in that step (0: it did not).
+    impact: f64,
+    /// `e²` times the kinetic energy the contact took in that step if its gap closed (J).
+    credit: f64,
+}
+
+/// Two contacts of successive steps with the same key are the same within this distance (m).
+const SAME_CONTACT: f64 = 0.02;
+
+/// The workspace of the contact problem, reused from step to step. It allocates only when a
+/// step has more contact rows than any before it.
+#[derive(Clone, Debug)]
+pub(crate) struct ContactSolver {
+    nv: usize,
+    /// Per joint: the dofs of its chain to the root, ascending.
+    chains: Vec<Vec<usize>>,
+    blocks: Vec<Block>,
+    /// The contact points given, in block order (limits excluded).
+    pub(crate) points: Vec<ContactPoint>,
+    /// The impulse (N·s, world axes) of each of `points` on its body 1, as last solved.
+    pub(crate) impulses: Vec<Vec3>,
+    /// First row of each block, and the total at the end.
+    rows: Vec<usize>,
+    /// Per block, its support (a pool: only the first `blocks.len()` are in use).
+    support: Vec<Support>,
+    /// Rows of `J` (capacity x nv); only each block's support columns are written.
+    jacobian: DMatrix<f64>,
+    z: Vec<f64>,
+    delassus: Vec<f64>,
+    sigma_free: Vec<f64>,
+    sigma_before: Vec<f64>,
+    target: Vec<f64>,
+    lambda: Vec<f64>,
+    sigma: Vec<f64>,
+    x: Vec<f64>,
+    /// The contacts of the last step, and of this one (for the next).
+    memory: Vec<Memory>,
+    next_memory: Vec<Memory>,
+    keys: Vec<((usize, usize), Vec3)>,
+    /// What the last solve did.
+    pub(crate) stats: ContactStats,
+}
+
+impl ContactSolver {
+    /// The workspace of `model`.
+    pub(crate) fn new(model: &Model) -> Self {
+        let nv = model.nv();
+        let chains = (0..model.njoints())
+            .map(|j| {
+                let mut dofs = Vec::new();
+                let mut at = Some(JointId(j));
+                while let Some(i) = at {
+                    let joint = model.joint(i);
+                    dofs.extend(joint.dofs());
+                    at = joint.parent;
+                }
+                dofs.sort_unstable();
+                dofs
+            })
+            .collect();
+        let mut s = Self {
+            nv,
+            chains,
+            blocks: Vec::new(),
+            points: Vec::new(),
+            impulses: Vec::new(),
+            rows: vec![0],
+            support: Vec::new(),
+            jacobian: DMatrix::zeros(0, nv),
+            z: Vec::new(),
+            delassus: Vec::new(),
+            sigma_free: Vec::new(),
+            sigma_before: Vec::new(),
+            target: Vec::new(),
+            lambda: Vec::new(),
+            sigma: Vec::new(),
+            x: vec![0.0; nv],
+            memory: Vec::new(),
+            next_memory: Vec::new(),
+            keys: Vec::new(),
+            stats: ContactStats::default(),
+        };
+        s.reserve(24);
+        s
+    }
+
+    /// Room for `m` rows.
+    fn reserve(&mut self, m: usize) {
+        let cap = self.jacobian.nrows();
+        if m <= cap {
+            return;
+        }
+        let cap = m.max(2 * cap);
+        let nv = self.nv;
+        let mut jacobian = DMatrix::zeros(cap, nv);
+        let used = self.rows[self.blocks.len()];
+        jacobian
+            .rows_mut(0, used)
+            .copy_from(&self.jacobian.rows(0, used));
+        self.jacobian = jacobian;
+        self.z.resize(nv * cap, 0.0);
+        self.delassus.resize(cap * cap, 0.0);
+        for v in [
+            &mut self.sigma_free,
+            &mut self.sigma_before,
+            &mut self.target,
+            &mut self.lambda,
+            &mut self.sigma,
+        ] {
+            v.resize(cap, 0.0);
+        }
+    }
+
+    /// Forgets the blocks of the last step (remembering their impulses and impacts for the
+    /// warm start of this one).
+    pub(crate) fn clear(&mut self) {
+        std::mem::swap(&mut self.memory, &mut self.next_memory);
+        self.next_memory.clear();
+        self.keys.clear();
+        self.blocks.clear();
+        self.points.clear();
+        self.impulses.clear();
+        self.rows.truncate(1);
+        self.stats = ContactStats::default();
+    }
+
+    /// The rows so far.
+    fn m(&self) -> usize {
+        self.rows[self.blocks.len()]
+    }
+
+    /// A new block of `dim` rows, `key` and `point` naming it from step to step; returns its
+    /// first row (its support cleared).
+    fn push_block(&mut self, block: Block, key: (usize, usize), point: Vec3) -> usize {
+        let found = self
+            .memory
+            .iter()
+            .filter(|m| m.key == key && (m.point - point).norm() < SAME_CONTACT)
+            .min_by(|a, b| {
+                (a.point - point)
+                    .norm()
+                    .total_cmp(&(b.point - point).norm())
+            });
+        let (warm, impact, credit) =
+            found.map_or(([0.0; 3], 0.0, 0.0), |m| (m.lambda, m.impact, m.credit));
+        let block = Block {
+            warm,
+            impact,
+            credit,
+            closing: 0.0,
+            ..block
+        };
+        self.keys.push((key, point));
+        let row = self.m();
+        self.reserve(row + block.dim);
+        let n = self.blocks.len();
+        if self.support.len() == n {
+            self.support.push(Support {
+                cols: Vec::with_capacity(self.nv),
+            });
+        }
+        self.support[n].cols.clear();
+        self.blocks.push(Block { row, ..block });
+        self.rows.push(row + block.dim);
+        row
+    }
+
+    /// Adds a contact; its rows of `J` from the spatial Jacobian `data.jacobian` (world axes,
+    /// angular rows first, at the world origin: the velocity of a point `p` of the body of dof k
+    /// is `v_k + ω_k × p`).
+    #[cfg(feature = "collision")]
+    pub(crate) fn push_contact(&mut self, data: &Data, c: &ContactPoint) {
+        let n = c.normal;
+        let t1 = tangent(&n);
+        let t2 = n.cross(&t1);
+        let frame = [n, t1, t2];
+        let block = Block {
+            row: 0,
+            dim: 3,
+            friction: c.friction,
+            restitution: c.restitution,
+            gap: c.gap,
+            frame,
+            warm: [0.0; 3],
+            impact: 0.0,
+            credit: 0.0,
+            closing: 0.0,
+        };
+        let key = (c.geometries.0, c.geometries.1.unwrap_or(usize::MAX));
+        let row = self.push_block(block, key, c.point);
+        let b = self.blocks.len() - 1;
+        let cols = &mut self.support[b].cols;
+        merge_chains(
+            c.body1.map(|j| self.chains[j.0].as_slice()),
+            c.body2.map(|j| self.chains[j.0].as_slice()),
+            cols,
+        );
+        let p = c.point;
+        let pd = [p.cross(&n), p.cross(&t1), p.cross(&t2)];
+        for &(k, on1, on2) in cols.iter() {
+            let s = f64::from(i8::from(on1) - i8::from(on2));
+            let col = data.jacobian.column(k);
+            let w = Vec3::new(col[0], col[1], col[2]);
+            let v = Vec3::new(col[3], col[4], col[5]);
+            for (i, d) in frame.iter().enumerate() {
+                self.jacobian[(row + i, k)] = s * (d.dot(&v) + pd[i].dot(&w));
+            }
+        }
+        self.points.push(*c);
+    }
+
+    /// Adds the limit of the 1-dof joint `joint` (its dof `dof`): `sign = +1` for a lower limit
+    /// (`q − lower ≥ 0`), `−1` for an upper one, at the distance `gap` from it.
+    pub(crate) fn push_limit(&mut self, joint: JointId, dof: usize, sign: f64, gap: f64) {
+        let block = Block {
+            row: 0,
+            dim: 1,
+            friction: 0.0,
+            restitution: 0.0,
+            gap,
+            frame: [Vec3::zeros(); 3],
+            warm: [0.0; 3],
+            impact: 0.0,
+            credit: 0.0,
+            closing: 0.0,
+        };
+        let key = (usize::MAX - 1, 2 * dof + usize::from(sign > 0.0));
+        let row = self.push_block(block, key, Vec3::zeros());
+        let b = self.blocks.len() - 1;
+        let cols = &mut self.support[b].cols;
+        merge_chains(Some(self.chains[joint.0].as_slice()), None, cols);
+        for &(k, _, _) in cols.iter() {
+            self.jacobian[(row, k)] = if k == dof { sign } else { 0.0 };
+        }
+    }
+
+    /// Whether there is nothing to solve.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.blocks.is_empty()
+    }
+
+    /// `J x` over the supports into `out`.
+    fn times(&self, x: &[f64], out: &mut [f64]) {
+        for (b, block) in self.blocks.iter().enumerate() {
+            for r in block.row..block.row + block.dim {
+                out[r] = self.support[b]
+                    .cols
+                    .iter()
+                    .map(|&(k, _, _)| self.jacobian[(r, k)] * x[k])
+                    .sum();
+            }
+        }
+    }
+
+    /// Solves the step's contact problem: `v` the velocity at the start of the step, `v_free`
+    /// the free velocity, overwritten with `v⁺`; `data` holds the factor `M = LᵀL`
+    /// (`ltl_factor`). Fills [`stats`](Self::stats).
+    pub(crate) fn solve(
+        &mut self,
+        data: &Data,
+        v: &[f64],
+        v_free: &mut [f64],
+        h: f64,
+        settings: &ContactSettings,
+    ) {
+        let nblocks = self.blocks.len();
+        let m = self.m();
+        self.stats.candidates = nblocks;
+        if nblocks == 0 {
+            return;
+        }
+        delassus_rows(
+            data,
+            &self.rows,
+            &self.support[..nblocks],
+            &self.jacobian,
+            &mut self.z,
+            &mut self.delassus,
+        );
+        let mut sigma_free = std::mem::take(&mut self.sigma_free);
+        let mut sigma_before = std::mem::take(&mut self.sigma_before);
+        self.times(v_free, &mut sigma_free);
+        self.times(v, &mut sigma_before);
+        self.sigma_free = sigma_free;
+        self.sigma_before = sigma_before;
+        // the normal targets σ*_n (the tangent rows aim at 0): a gap φ > 0 may close in this
+        // step and no more (a contact that closes lands at φ = 0, and its approach speed is
+        // remembered); touching, an impact of the last step (or a contact found approaching)
+        // rebounds at e times its speed
+        let mut penetration: f64 = 0.0;
+        let mut credit = 0.0;
+        for b in &mut self.blocks {
+            let r = b.row;
+            penetration = penetration.max(-b.gap);
+            let rebound = |speed: f64| {
+                if speed > settings.restitution_speed {
+                    b.restitution * speed
+                } else {
+                    0.0
+                }
+            };
+            let target = if b.impact > 0.0 {
+                // the gap closed in the last step: the impact happens now
+                credit += b.credit;
+                rebound(b.impact).max(-b.gap / h)
+            } else if b.gap > 0.0 {
+                let (s0, s1) = (self.sigma_before[r], self.sigma_free[r]);
+                if b.gap + h * s1 < 0.0 && b.restitution > 0.0 {
+                    // the speed when the gap closes, the approach accelerating uniformly from
+                    // σ_n⁻ to σ_{f,n} over the step: v² = σ_n⁻² − 2 a φ, a = (σ_{f,n} − σ_n⁻)/h
+                    let v2 = s0 * s0 - 2.0 * (s1 - s0) / h * b.gap;
+                    b.closing = v2.max(0.0).sqrt().clamp(s0.abs().min(-s1), -s1);
+                }
+                -b.gap / h
+            } else {
+                rebound(-self.sigma_before[r])
+            };
+            self.target[r] = target;
+            for i in 1..b.dim {
+                self.target[r + i] = 0.0;
+            }
+        }
+        self.stats.penetration = penetration;
+        let K = &self.delassus[..m * m];
+        let (lambda, sigma) = (&mut self.lambda[..m], &mut self.sigma[..m]);
+        // warm start: the impulses of the same contacts at the last step, σ = σ_f + K λ
+        for b in &self.blocks {
+            lambda[b.row..b.row + b.dim].copy_from_slice(&b.warm[..b.dim]);
+        }
+        sigma.copy_from_slice(&self.sigma_free[..m]);
+        for s in 0..m {
+            if lambda[s] != 0.0 {
+                let col = &K[s * m..(s + 1) * m];
+                for (x, k) in sigma.iter_mut().zip(col) {
+                    *x += k * lambda[s];
+                }
+            }
+        }
+        let (iterations, converged) = pgs(
+            &self.blocks,
+            K,
+            &self.target[..m],
+            lambda,
+            sigma,
+            settings,
+            true,
+        );
+        // ΔK = λᵀ σ_f + ½ λᵀ G λ, with G λ = σ − σ_f; at most the credit of the rebounds
+        let (mut lsf, mut lgl) = (0.0, 0.0);
+        for r in 0..m {
+            lsf += lambda[r] * self.sigma_free[r];
+            lgl += lambda[r] * (sigma[r] - self.sigma_free[r]);
+        }
+        let mut dk = lsf + 0.5 * lgl;
+        let scale = lsf.abs().max(lgl.abs());
+        let mut scaled = false;
+        if dk > credit + 1e-12 * scale {
+            // the largest α ∈ [0, 1] with α λᵀσ_f + ½ α² λᵀGλ ≤ credit
+            let alpha = if lgl > 0.0 {
+                ((-lsf + (lsf * lsf + 2.0 * lgl * credit).sqrt()) / lgl).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            for r in 0..m {
+                lambda[r] *= alpha;
+                sigma[r] = self.sigma_free[r] + alpha * (sigma[r] - self.sigma_free[r]);
+            }
+            dk = alpha * lsf + 0.5 * alpha * alpha * lgl;
+            scaled = true;
+        }
+        for (i, b) in self.blocks.iter().enumerate() {
+            let mut l = [0.0; 3];
+            l[..b.dim].copy_from_slice(&lambda[b.row..b.row + b.dim]);
+            // the block's share of ΔK: ½ λ_bᵀ (σ_f + σ)_b
+            let share: f64 = (b.row..b.row + b.dim)
+                .map(|r| 0.5 * lambda[r] * (self.sigma_free[r] + sigma[r]))
+                .sum();
+            let (key, point) = self.keys[i];
+            self.next_memory.push(Memory {
+                key,
+                point,
+                lambda: l,
+                impact: b.closing,
+                credit: if b.closing > 0.0 {
+                    b.restitution * b.restitution * (-share).max(0.0)
+                } else {
+                    0.0
+                },
+            });
+        }
+        // v⁺ = v_f + M⁻¹ Jᵀ λ = v_f + L⁻¹ Z λ
+        self.x.fill(0.0);
+        primal_rows(
+            data,
+            &self.rows,
+            &self.support[..nblocks],
+            &self.z,
+            &self.lambda[..m],
+            &mut self.x,
+        );
+        for (v, dv) in v_free.iter_mut().zip(&self.x) {
+            *v += dv;
+        }
+        let (mut active, mut normal) = (0, 0.0);
+        for b in &self.blocks {
+            let l = &self.lambda[b.row..b.row + b.dim];
+            if l[0] > 0.0 {
+                active += 1;
+            }
+            if b.dim == 3 {
+                normal += l[0];
+                let f = b.frame;
+                self.impulses.push(f[0] * l[0] + f[1] * l[1] + f[2] * l[2]);
+            }
+        }
+        self.stats = ContactStats {
+            candidates: nblocks,
+            active,
+            iterations,
+            converged,
+            scaled,
+            kinetic_change: dk,
+            normal_impulse: normal,
+            penetration,
+        };
+    }
+
+    /// The position correction after [`solve`](Self::solve): normal impulses `μ ≥ 0` with
+    /// `G_nn μ ≥ β max(0, −φ)/h`, and `dq = h M⁻¹ J_nᵀ μ` into `dq` (zero when nothing
+    /// penetrates).
+    pub(crate) fn correction(
+        &mut self,
+        data: &Data,
+        h: f64,
+        settings: &ContactSettings,
+        dq: &mut [f64],
+    ) {
+        dq.fill(0.0);
+        let beta = settings.stabilization;
+        if self.stats.penetration <= 0.0 || beta == 0.0 {
+            return;
+        }
+        let m = self.m();
+        for b in &self.blocks {
+            self.target[b.row] = beta * (-b.gap).max(0.0) / h;
+            for i in 1..b.dim {
+                self.target[b.row + i] = 0.0;
+            }
+        }
+        let (lambda, sigma) = (&mut self.lambda[..m], &mut self.sigma[..m]);
+        lambda.fill(0.0);
+        sigma.fill(0.0);
+        pgs(
+            &self.blocks,
+            &self.delassus[..m * m],
+            &self.target[..m],
+            lambda,
+            sigma,
+            settings,
+            false,
+        );
+        primal_rows(
+            data,
+            &self.rows,
+            &self.support[..self.blocks.len()],
+            &self.z,
+            &self.lambda[..m],
+            dq,
+        );
+        for x in dq.iter_mut() {
+            *x *= h;
+        }
+    }
+}
+
+/// Projected Gauss–Seidel on `σ = σ₀ + K λ` (`σ` holds `σ₀` on entry, `K` m x m with stride m):
+/// per block, the normal row `λ_n ← max(0, λ_n − (σ_n − σ*_n)/K_nn)`, then (when `friction`
+/// and the block is a contact with `μ > 0`) the tangent rows by the 2x2 block and a radial
+/// projection on the disc `‖λ_t‖ ≤ μ λ_n`; `σ` kept equal to `σ₀ + K λ`. Returns the sweeps
+/// done and whether the tolerance was met.
+fn pgs(
+    blocks: &[Block],
+    K: &[f64],
+    target: &[f64],
+    lambda: &mut [f64],
+    sigma: &mut [f64],
+    settings: &ContactSettings,
+    friction: bool,
+) -> (usize, bool) {
+    let m = lambda.len();
+    let update = |sigma: &mut [f64], r: usize, d: f64| {
+        let col = &K[r * m..(r + 1) * m];
+        for (s, k) in sigma.iter_mut().zip(col) {
+            *s += k * d;
+        }
+    };
+    for it in 1..=settings.max_iterations {
+        let (mut change, mut largest): (f64, f64) = (0.0, 0.0);
+        for b in blocks {
+            let r = b.row;
+            let g = K[r * m + r];
+            if g > 0.0 {
+                let new = (lambda[r] - (sigma[r] - target[r]) / g).max(0.0);
+                let d = new - lambda[r];
+                if d != 0.0 {
+                    lambda[r] = new;
+                    update(sigma, r, d);
+                    change = change.max(d.abs());
+                }
+            }
+            largest = largest.max(lambda[r]);
+            if !(friction && b.dim == 3 && b.friction > 0.0) {
+                continue;
+            }
+            let (r1, r2) = (r + 1, r + 2);
+            let (a, c, e) = (K[r1 * m + r1], K[r1 * m + r2], K[r2 * m + r2]);
+            // the tangent impulse minimising the block's energy ½ xᵀ A x + bᵀ x on the disc
+            // ‖x‖ ≤ μ λ_n, b = σ_t − A λ_t: at the boundary A x + b = −κ x, the slip velocity
+            // opposite the friction (maximal dissipation)
+            let b1 = sigma[r1] - a * lambda[r1] - c * lambda[r2];
+            let b2 = sigma[r2] - c * lambda[r1] - e * lambda[r2];
+            let (t1, t2) = disc_qp(a, c, e, b1, b2, b.friction * lambda[r]);
+            let (d1, d2) = (t1 - lambda[r1], t2 - lambda[r2]);
+            if d1 != 0.0 {
+                lambda[r1] = t1;
+                update(sigma, r1, d1);
+            }
+            if d2 != 0.0 {
+                lambda[r2] = t2;
+                update(sigma, r2, d2);
+            }
+            change = change.max(d1.abs()).max(d2.abs());
+            largest = largest.max(t1.abs()).max(t2.abs());
+        }
+        if change <= settings.tolerance * largest {
+            return (it, true);
+        }
+    }
+    (settings.max_iterations, false)
+}
+
+/// The minimiser of `½ xᵀ A x + bᵀ x` over the disc `‖x‖ ≤ R` (`A = [[a, c], [c, e]]` positive
+/// semi-definite): the unconstrained minimiser `−A⁻¹ b` if it is inside, else `x(κ) = −(A + κ
+/// I)⁻¹ b` on the circle, `κ > 0` by Newton's method on `1/‖x(κ)‖ − 1/R` (the trust-region
+/// subproblem, Moré & Sorensen 1983).
+fn disc_qp(a: f64, c: f64, e: f64, b1: f64, b2: f64, R: f64) -> (f64, f64) {
+    let nb = b1.hypot(b2);
+    if R <= 0.0 || nb == 0.0 {
+        return (0.0, 0.0);
+    }
+    if a + e <= 0.0 || (a + e).is_nan() {
+        // no inertia along the tangents: the linear objective's minimiser on the circle
+        return (-R * b1 / nb, -R * b2 / nb);
+    }
+    // eigen-decomposition of A: l1 ≥ l2 ≥ 0, unit eigenvector u of l1, w ⊥ u
+    let (mean, half) = (0.5 * (a + e), (0.5 * (a - e)).hypot(c));
+    let (l1, l2) = (mean + half, (mean - half).max(0.0));
+    let angle = 0.5 * c.atan2(0.5 * (a - e));
+    let u = (angle.cos(), angle.sin());
+    let (p, q) = (u.0 * b1 + u.1 * b2, -u.1 * b1 + u.0 * b2);
+    let at = |k: f64| {
+        let (x, y) = (-p / (l1 + k), -q / (l2 + k));
+        (u.0 * x - u.1 * y, u.1 * x + u.0 * y)
+    };
+    let norm = |k: f64| (p / (l1 + k)).hypot(q / (l2 + k));
+    if l2 > 1e-14 * l1 && norm(0.0) <= R {
+        return at(0.0);
+    }
+    let mut k = 0.0f64.max(1e-14 * l1);
+    for _ in 0..50 {
+        let n = norm(k);
+        let d = (p * p / (l1 + k).powi(3) + q * q / (l2 + k).powi(3)) / n.powi(3);
+        let step = (1.0 / n - 1.0 / R) / d;
+        let next = (k - step).max(0.5 * k);
+        if (next - k).abs() <= 1e-14 * (l1 + next) {
+            k = next;
+            break;
+        }
+        k = next;
+    }
+    let (x, y) = at(k);
+    // on the circle to round-off
+    let s = R / x.hypot(y).max(R);
+    (x * s, y * s)
+}
+
+/// A unit vector orthogonal to the unit vector `n`.
+#[cfg(feature = "collision")]
+fn tangent(n: &Vec3) -> Vec3 {
+    let a = if n.x.abs() < 0.6 {
+        Vec3::x()
+    } else if n.y.abs() < 0.6 {
+        Vec3::y()
+    } else {
+        Vec3::z()
+    };
+    n.cross(&a).normalize()
+}
+
+/// The union of two chains of dofs (ascending), each dof with the chains it is on.
+fn merge_chains(a: Option<&[usize]>, b: Option<&[usize]>, out: &mut Vec<(usize, bool, bool)>) {
+    out.clear();
+    let (a, b) = (a.unwrap_or(&[]), b.unwrap_or(&[]));
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() || j < b.len() {
+        match (a.get(i), b.get(j)) {
+            (Some(&x), Some(&y)) if x == y => {
+                out.push((x, true, true));
+                i += 1;
+                j += 1;
+            }
+            (Some(&x), Some(&y)) if x < y => {
+                out.push((x, true, false));
+                i += 1;
+            }
+            (Some(&x), None) => {
+                out.push((x, true, false));
+                i += 1;
+            }
+            (_, Some(&y)) => {
+                out.push((y, false, true));
+                j += 1;
+            }
+            (None, None) => break,
+        }
+    }
+}

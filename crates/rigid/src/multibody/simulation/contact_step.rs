@@ -1,0 +1,189 @@
+//! The time-stepping scheme with contacts and unilateral joint limits (Moreau–Jean; Stewart &
+//! Trinkle 1996; Anitescu & Potra 1997), the equations in
+//! [`multibody::contact`](crate::multibody::contact):
+//!
+//! 1. `v_f = v_k + h M⁻¹ (τ(t_k, q_k, v_k) − c − g + Σ Jᵢᵀ Fᵢ)`: symplectic Euler's free velocity
+//!    (the factor `M = LᵀL` kept for step 3);
+//! 2. the contacts at `q_k` (collision geometry, parry) and the joints at or near a limit;
+//! 3. the impulses `λ` of the contact problem, `v_{k+1} = v_f + M⁻¹ Jᵀ λ`;
+//! 4. `q_{k+1} = q_k ⊕ h v_{k+1} ⊕ δq`, with `δq` the position correction of any penetration.
+//!
+//! First order in `h`, as MuJoCo's Euler and Pinocchio's simulators are; the smooth forces are
+//! those of the other integrators (control, joint damping and friction, limit springs, external
+//! wrenches).
+//!
+//! A free-flyer joint is stepped on SO(3) × R³ with its velocity in world-aligned axes over the
+//! step (as MuJoCo's free joint): its origin moves in a straight line, `p⁺ = p + h R v_b⁺`, and
+//! its twist is carried to the new body axes, `V⁺ ← ΔRᵀ V⁺` with `ΔR = Rᵀ R⁺`. In body axes the
+//! explicit step would turn `v_b` by `−h ω × v_b`, which lengthens it by `√(1 + h²ω²)` every
+//! step: a ball rolling at 20 rad/s would gain 20 % of its speed a second.
+
+use super::control::Control;
+use super::simulator::Dynamics;
+use super::{JointLimits, SimulationError};
+use crate::multibody::algorithms::{ltl_factor, ltl_solve_lower, ltl_solve_transposed};
+use crate::multibody::contact::{ContactPoint, ContactSettings, ContactSolver, ContactStats};
+use crate::multibody::JointType;
+use crate::multibody::{
+    compute_joint_jacobians, crba, integrate, nonlinear_effects, rnea_with_external, Model,
+};
+use crate::spatial::{quat_to_rot, Vec3};
+
+/// The contact part of a simulator: the solver's workspace, the collision geometry and its
+/// workspace, and the results of the last step.
+#[derive(Clone, Debug)]
+pub(crate) struct ContactStepper {
+    pub(crate) solver: ContactSolver,
+    pub(crate) settings: ContactSettings,
+    #[cfg(feature = "collision")]
+    pub(crate) collision: Option<(
+        crate::collision::CollisionModel,
+        crate::collision::CollisionData,
+    )>,
+    #[cfg(feature = "collision")]
+    points: Vec<ContactPoint>,
+    a: Vec<f64>,
+    v_step: Vec<f64>,
+    dq: Vec<f64>,
+    zeros: Vec<f64>,
+    /// The kinetic energy the contact impulses took since the start (J, ≥ 0).
+    pub(crate) dissipated: f64,
+}
+
+impl ContactStepper {
+    pub(crate) fn new(model: &Model) -> Self {
+        let nv = model.nv();
+        Self {
+            solver: ContactSolver::new(model),
+            settings: ContactSettings::default(),
+            #[cfg(feature = "collision")]
+            collision: None,
+            #[cfg(feature = "collision")]
+            points: Vec::new(),
+            a: vec![0.0; nv],
+            v_step: vec![0.0; nv],
+            dq: vec![0.0; nv],
+            zeros: vec![0.0; nv],
+            dissipated: 0.0,
+        }
+    }
+
+    /// The contacts of the last step (those given to the solver: gap under the margin).
+    pub(crate) fn contacts(&self) -> &[ContactPoint] {
+        &self.solver.points
+    }
+
+    /// Their impulses on body 1 (N·s, world axes).
+    pub(crate) fn impulses(&self) -> &[Vec3] {
+        &self.solver.impulses
+    }
+
+    /// The last solve's numbers.
+    pub(crate) fn stats(&self) -> ContactStats {
+        self.solver.stats
+    }
+}
+
+/// One step of `h` from `(q, v)` at `t` into `q_new`, `v_new`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn contact_step<C: Control>(
+    d: &mut Dynamics<C>,
+    cs: &mut ContactStepper,
+    t: f64,
+    h: f64,
+    q: &[f64],
+    v: &[f64],
+    q_new: &mut [f64],
+    v_new: &mut [f64],
+) -> Result<(), SimulationError> {
+    let nv = v.len();
+    d.torques(t, q, v)?;
+    let model = &d.model;
+    let data = &mut d.data;
+    // a = τ − c − g + Σ Jᵀ F
+    if d.has_fext {
+        let b = rnea_with_external(model, data, q, v, &cs.zeros, &d.fext)?;
+        for k in 0..nv {
+            cs.a[k] = d.tau[k] - b[k];
+        }
+    } else {
+        let b = nonlinear_effects(model, data, q, v)?;
+        for k in 0..nv {
+            cs.a[k] = d.tau[k] - b[k];
+        }
+    }
+    crba(model, data, q)?;
+    ltl_factor(model, data)?;
+    ltl_solve_transposed(data.chol.as_slice(), &data.dof_parent, &mut cs.a);
+    ltl_solve_lower(data.chol.as_slice(), &data.dof_parent, &mut cs.a);
+    for k in 0..nv {
+        v_new[k] = v[k] + h * cs.a[k];
+    }
+    // free-flyers in world-aligned axes over the step: the frame's turning `−ω × v_b`, which
+    // `a` holds, is not a force
+    for j in model.joints() {
+        if j.kind == JointType::FreeFlyer {
+            let k = j.idx_v;
+            let w = Vec3::new(v[k], v[k + 1], v[k + 2]);
+            let vb = Vec3::new(v[k + 3], v[k + 4], v[k + 5]);
+            let turn = w.cross(&vb) * h;
+            for i in 0..3 {
+                v_new[k + 3 + i] += turn[i];
+            }
+        }
+    }
+    compute_joint_jacobians(model, data, q)?;
+    cs.solver.clear();
+    #[cfg(feature = "collision")]
+    if let Some((cm, cd)) = &mut cs.collision {
+        cd.contacts(cm, &data.placements, &mut cs.points);
+        for c in &cs.points {
+            cs.solver.push_contact(data, c);
+        }
+    }
+    if d.options.limits == JointLimits::Unilateral {
+        for (j, joint) in model.joints().iter().enumerate() {
+            if joint.nq != 1 || joint.nv != 1 {
+                continue;
+            }
+            let (x, k) = (q[joint.idx_q], joint.idx_v);
+            let (lo, hi) = (model.lower[joint.idx_q], model.upper[joint.idx_q]);
+            // near enough to reach the limit within two steps at this speed
+            let reach = 2.0 * h * v[k].abs() + 1e-9;
+            let id = crate::multibody::JointId(j);
+            if lo.is_finite() && x - lo <= reach {
+                cs.solver.push_limit(id, k, 1.0, x - lo);
+            }
+            if hi.is_finite() && hi - x <= reach {
+                cs.solver.push_limit(id, k, -1.0, hi - x);
+            }
+        }
+    }
+    if cs.solver.is_empty() {
+        cs.v_step.copy_from_slice(v_new);
+    } else {
+        cs.solver.solve(data, v, v_new, h, &cs.settings);
+        cs.dissipated -= cs.solver.stats.kinetic_change;
+        cs.solver.correction(data, h, &cs.settings, &mut cs.dq);
+        for k in 0..nv {
+            cs.v_step[k] = v_new[k] + cs.dq[k] / h;
+        }
+    }
+    integrate(model, q, &cs.v_step, h, q_new)?;
+    for j in model.joints() {
+        if j.kind == JointType::FreeFlyer {
+            let (iq, k) = (j.idx_q, j.idx_v);
+            let r0 = quat_to_rot(q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]);
+            let r1 = quat_to_rot(q_new[iq + 3], q_new[iq + 4], q_new[iq + 5], q_new[iq + 6]);
+            let vb = Vec3::new(cs.v_step[k + 3], cs.v_step[k + 4], cs.v_step[k + 5]);
+            let p = Vec3::new(q[iq], q[iq + 1], q[iq + 2]) + r0 * vb * h;
+            q_new[iq..iq + 3].copy_from_slice(p.as_slice());
+            let turn = r1.tr_mul(&r0);
+            for at in [k, k + 3] {
+                let x = turn * Vec3::new(v_new[at], v_new[at + 1], v_new[at + 2]);
+                v_new[at..at + 3].copy_from_slice(x.as_slice());
+            }
+        }
+    }
+    Ok(())
+}

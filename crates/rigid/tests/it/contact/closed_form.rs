@@ -1,0 +1,206 @@
+//! The closed forms of mechanics with contact and Coulomb friction.
+
+use super::{com, q_of, scene, simulator, Free, G};
+use rigid::collision::Ground;
+use rigid::spatial::{Mat3, Vec3};
+
+/// A box of any mass launched at `v₀` on the ground with friction `μ` stops after
+/// `v₀² / (2 μ g)` (within 1 % at `dt = 1 ms`): Coulomb's law decelerates it at `μ g` whatever its
+/// mass, the four corners' normal forces summing to `m g`.
+#[test]
+fn a_sliding_box_stops_after_v0_squared_over_2_mu_g() {
+    for (mass, mu, v0) in [(3.7, 0.5, 2.0), (0.2, 0.3, 1.0), (250.0, 0.8, 3.0)] {
+        let size = Vec3::new(0.3, 0.2, 0.1);
+        let (model, cm) = scene(
+            &[Free::cube(mass, size)],
+            Vec3::new(0.0, 0.0, -G),
+            Some(Ground::horizontal(0.0, mu)),
+        );
+        let q0 = q_of(Vec3::new(0.0, 0.0, 0.05), &Mat3::identity());
+        let v0 = [0.0, 0.0, 0.0, v0, 0.0, 0.0];
+        let dt = 1e-3;
+        let mut sim = simulator(&model, cm, &q0, &v0, dt);
+        let mut stopped = None;
+        for _ in 0..5000 {
+            sim.step().unwrap();
+            let (p, v) = com(&sim, 0);
+            if v.x.abs() < 1e-9 {
+                stopped = Some(p);
+                break;
+            }
+        }
+        let p = stopped.expect("the box stops");
+        let expected = v0[3] * v0[3] / (2.0 * mu * G);
+        let err = (p.x - expected).abs() / expected;
+        println!(
+            "box m = {mass} kg, μ = {mu}, v₀ = {}: {:.5} m against {expected:.5} m, error {:.3} %",
+            v0[3],
+            p.x,
+            100.0 * err
+        );
+        assert!(
+            err < 0.01,
+            "stopping distance {} vs {expected}: {err:e}",
+            p.x
+        );
+        assert!(
+            (p.z - 0.05).abs() < 1e-4 && p.y.abs() < 1e-9,
+            "stays on the ground: {p}"
+        );
+    }
+}
+
+/// A solid ball on a slope of angle θ (level ground, gravity tilted by θ) rolls without
+/// slipping at `a = 5/7 g sin θ` when `μ ≥ 2/7 tan θ`, and slips at `a = g (sin θ − μ cos θ)`
+/// below it (to 0.5 % over one second at 1 ms).
+#[test]
+fn a_ball_rolls_at_five_sevenths_g_sin_theta_or_slips() {
+    let theta = 20f64.to_radians();
+    let gravity = Vec3::new(G * theta.sin(), 0.0, -G * theta.cos());
+    let threshold = 2.0 / 7.0 * theta.tan();
+    for (mu, rolls) in [
+        (0.5, true),
+        (1.2 * threshold, true),
+        (0.8 * threshold, false),
+        (0.05, false),
+    ] {
+        let r = 0.1;
+        let (model, cm) = scene(
+            &[Free::ball(2.0, r)],
+            gravity,
+            Some(Ground::horizontal(0.0, mu)),
+        );
+        let q0 = q_of(Vec3::new(0.0, 0.0, r), &Mat3::identity());
+        let mut sim = simulator(&model, cm, &q0, &[0.0; 6], 1e-3);
+        sim.run(1000, |_| {}).unwrap();
+        let (p, v) = com(&sim, 0);
+        let a = v.x / sim.time();
+        let expected = if rolls {
+            5.0 / 7.0 * G * theta.sin()
+        } else {
+            G * (theta.sin() - mu * theta.cos())
+        };
+        let err = (a - expected).abs() / expected;
+        // rolling: the contact point is at rest, v = ω r
+        let w = sim.v()[1];
+        let slip = v.x - w * r;
+        println!("μ = {mu:.4} ({}): a = {a:.5} against {expected:.5}, error {:.3} %, slip speed {slip:.2e}", if rolls { "rolls" } else { "slips" }, 100.0 * err);
+        assert!(err < 5e-3, "μ = {mu}: a = {a} vs {expected}");
+        assert!((p.z - r).abs() < 1e-6, "on the ground: {}", p.z);
+        if rolls {
+            assert!(slip.abs() < 1e-6, "rolling without slipping: {slip}");
+        } else {
+            assert!(slip > 0.1, "slipping: {slip}");
+        }
+    }
+}
+
+/// A ball dropped with restitution `e` rebounds to `e²` of its height, bounce after bounce
+/// (each apex within 2 % of `e²` times the one before).
+#[test]
+fn a_ball_rebounds_to_e_squared_of_its_height() {
+    for e in [0.5, 0.8, 0.9] {
+        let r = 0.05;
+        let ground = Ground {
+            restitution: e,
+            ..Ground::horizontal(0.0, 0.5)
+        };
+        let (model, cm) = scene(&[Free::ball(0.5, r)], Vec3::new(0.0, 0.0, -G), Some(ground));
+        let h0 = 1.0;
+        let q0 = q_of(Vec3::new(0.0, 0.0, r + h0), &Mat3::identity());
+        let mut sim = simulator(&model, cm, &q0, &[0.0; 6], 1e-3);
+        let (mut apexes, mut top, mut rising) = (vec![h0], 0.0f64, false);
+        for _ in 0..6000 {
+            sim.step().unwrap();
+            let (p, v) = com(&sim, 0);
+            if v.z > 0.0 {
+                rising = true;
+                top = top.max(p.z - r);
+            } else if rising {
+                rising = false;
+                apexes.push(top.max(p.z - r));
+                top = 0.0;
+            }
+            if apexes.len() == 5 {
+                break;
+            }
+        }
+        assert!(apexes.len() >= 4, "bounces: {apexes:?}");
+        for w in apexes.windows(2) {
+            let ratio = w[1] / w[0];
+            let err = (ratio - e * e).abs() / (e * e);
+            println!("e = {e}: apex {:.5} -> {:.5} m, ratio {ratio:.5} against e² = {:.4}, error {:.2} %", w[0], w[1], e * e, 100.0 * err);
+            assert!(err < 0.02, "e = {e}: {apexes:?}");
+        }
+    }
+}
+
+/// A box resting on the ground stays within 0.1 mm of where it was put, and does not drift, over
+/// 10 s.
+#[test]
+fn a_resting_box_stays_put_for_ten_seconds() {
+    let size = Vec3::new(0.4, 0.3, 0.2);
+    let (model, cm) = scene(
+        &[Free::cube(5.0, size)],
+        Vec3::new(0.0, 0.0, -G),
+        Some(Ground::horizontal(0.0, 0.8)),
+    );
+    let p0 = Vec3::new(0.1, -0.2, 0.1);
+    let q0 = q_of(p0, &Mat3::identity());
+    let mut sim = simulator(&model, cm, &q0, &[0.0; 6], 1e-3);
+    let mut worst: f64 = 0.0;
+    for _ in 0..10_000 {
+        sim.step().unwrap();
+        worst = worst.max((com(&sim, 0).0 - p0).norm());
+    }
+    let s = sim.contact_stats();
+    println!("resting box: largest displacement {worst:.2e} m over 10 s; {} contacts, normal force {:.4} N (mg = {:.4} N)", s.active, s.normal_impulse / 1e-3, 5.0 * G);
+    assert!(worst < 1e-4, "moved {worst} m");
+    assert!((s.normal_impulse / 1e-3 - 5.0 * G).abs() < 1e-6 * 5.0 * G);
+}
+
+/// Three boxes stacked on the ground stand: after 5 s each is within 1 mm of where it was put
+/// and has not turned.
+#[test]
+fn a_tower_of_three_boxes_stands() {
+    let size = Vec3::new(0.3, 0.3, 0.2);
+    let boxes = [
+        Free::cube(4.0, size),
+        Free::cube(2.0, size),
+        Free::cube(1.0, size),
+    ];
+    let (model, cm) = scene(
+        &boxes,
+        Vec3::new(0.0, 0.0, -G),
+        Some(Ground::horizontal(0.0, 0.8)),
+    );
+    let mut q0 = Vec::new();
+    let start: Vec<Vec3> = (0..3)
+        .map(|i| Vec3::new(0.0, 0.0, 0.1 + 0.2 * i as f64))
+        .collect();
+    for p in &start {
+        q0.extend(q_of(*p, &Mat3::identity()));
+    }
+    let mut sim = simulator(&model, cm, &q0, &[0.0; 18], 1e-3);
+    let mut worst: f64 = 0.0;
+    for _ in 0..5000 {
+        sim.step().unwrap();
+        for (i, p) in start.iter().enumerate() {
+            worst = worst.max((com(&sim, i).0 - p).norm());
+        }
+    }
+    let turn = (0..3)
+        .map(|i| {
+            sim.q()[7 * i + 3..7 * i + 6]
+                .iter()
+                .fold(0.0f64, |m, x| m.max(x.abs()))
+        })
+        .fold(0.0f64, f64::max);
+    println!(
+        "tower: largest displacement {worst:.2e} m, largest quaternion vector part {turn:.2e}"
+    );
+    assert!(
+        worst < 1e-3 && turn < 1e-3,
+        "the tower moved {worst} m, turned {turn}"
+    );
+}

@@ -1,0 +1,1 @@
+//! Robots standing on the ground.
