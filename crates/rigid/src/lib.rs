@@ -14,7 +14,7 @@
 //! | [`collision`] | collision geometry (URDF `<collision>`, MJCF geoms, body parts, a ground plane) and contact points, on parry3d-f64 | `collision` |
 //! | [`kinematics`] | inverse kinematics: Newton / Levenberg-Marquardt on the SE(3) log error (`IKinBody`, `IKinSpace`), position or full pose, limits, restarts | core |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, Lagrange by autodiff, and its simulator (the one-joint case of the multibody simulator, plus the Lie-group variational integrator) | core (`lagrange`: `autodiff`) |
-//! | [`identification`] | inertial parameters from measured motion: joint-torque regressor, base parameters, least squares, physically consistent estimate (semidefinite program, feature `sdp`), exciting trajectories | core |
+//! | [`identification`] | inertial parameters from measured motion: joint-torque regressor, base parameters, least squares, physically consistent estimate (semidefinite program, feature `sdp`), exciting trajectories | core (`regressor_batch`: `parallel`; `sdp`) |
 //! | [`io`] | reading files: meshes (STL, OBJ, COLLADA), `rigid mass` specs (TOML), URDF and MJCF robots, case and constraint files, example-robot-data | `mesh`, `spec`, `urdf`, `mjcf`, `serde` |
 //! | [`doctor`] | what is wrong with a robot file's inertias, the likely cause, the repair (`rigid doctor`) | `urdf` |
 //! | [`interop`] | Pinocchio's and MuJoCo's layouts of the same vectors and matrices | core |

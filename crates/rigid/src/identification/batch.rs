@@ -3,14 +3,20 @@
 //! `Y π`), and a model with other inertial parameters, checked body by body
 //! ([`model_with_checked_parameters`]).
 
-use super::regressor::{model_with_parameters, Regressor};
+use super::regressor::model_with_parameters;
+#[cfg(feature = "parallel")]
+use super::regressor::Regressor;
 use crate::error::DimensionError;
 use crate::mass::{Consistency, SpatialInertia, Verdict};
-use crate::multibody::{Model, MultibodyError};
+use crate::multibody::Model;
+#[cfg(feature = "parallel")]
+use crate::multibody::MultibodyError;
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 use thiserror::Error;
 
 /// Tasks per rayon thread (as `multibody::batch`): a few, each with its own workspace.
+#[cfg(feature = "parallel")]
 const TASKS_PER_THREAD: usize = 2;
 
 /// `Y(q_k, v_k, a_k)` for every state `k` (see [`Regressor::compute`]) into `out`: `N` blocks of
@@ -38,6 +44,7 @@ const TASKS_PER_THREAD: usize = 2;
 ///
 /// # Errors
 /// Lengths that are not `N nq` / `N nv` / `N nv 10 n`, or the first failing state's error.
+#[cfg(feature = "parallel")]
 pub fn regressor_batch(
     model: &Model,
     qs: &[f64],

@@ -53,7 +53,9 @@ mod regressor;
 mod samples;
 
 pub use base::{BaseParameters, JointTerms, ParameterLayout};
-pub use batch::{model_with_checked_parameters, regressor_batch, ParameterError};
+#[cfg(feature = "parallel")]
+pub use batch::regressor_batch;
+pub use batch::{model_with_checked_parameters, ParameterError};
 pub use estimate::{Estimate, Identification, Weighting, RANK_TOLERANCE};
 pub use physical::PhysicalOptions;
 pub use regressor::{body_regressor, model_parameters, model_with_parameters, Regressor};
