@@ -1,5 +1,5 @@
 //! Collision geometry and contact points, on parry3d-f64 (the `collision` feature, on by
-//! default): the shapes fixed in the bodies of a multibody [`Model`], a ground plane, and the
+//! default): the shapes fixed in the bodies of a multibody [`Model`](crate::multibody::Model), a ground plane, and the
 //! contact points between them at a configuration, for the contact dynamics of
 //! [`multibody::contact`](crate::multibody::contact).
 //!

@@ -262,7 +262,7 @@ pub fn file_geometries(path: &Path, model: &Model) -> Result<(Vec<Geometry>, Vec
 
 /// The collision model of `rigid simulate --ground HEIGHT --friction MU --restitution E` and of
 /// Python's `simulate(ground=, friction=, restitution=)`: the horizontal ground `z = height`,
-/// `geometries` (the robot's), `friction` (default [`DEFAULT_FRICTION`]) and `restitution`
+/// `geometries` (the robot's), `friction` (default [`DEFAULT_FRICTION`](crate::collision::DEFAULT_FRICTION)) and `restitution`
 /// (default 0) for every contact, no contact between the robot's own bodies.
 ///
 /// # Errors

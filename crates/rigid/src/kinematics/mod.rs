@@ -1,4 +1,4 @@
-//! Kinematics as verbs: [`inverse`] finds joint positions that put a frame of a
+//! Kinematics as verbs: [`inverse()`] finds joint positions that put a frame of a
 //! [`Model`](crate::multibody::Model) at a target (Lynch & Park, *Modern Robotics*, ch. 6). The
 //! forward kinematics and Jacobians it iterates on are those of [`multibody`](crate::multibody).
 //!

@@ -29,7 +29,8 @@ type Anchor = (Option<JointId>, Transform);
 
 impl MjcfModel {
     /// The model's active `<equality>` constraints as [`ConstraintModel`]s, in the file's order,
-    /// with a warning for each one left out (see the [module](self) documentation).
+    /// with a warning for each one left out (MuJoCo's rules element by element: the
+    /// [`equality`](crate::io::mjcf::equality) module).
     ///
     /// ```
     /// let mj = rigid::io::mjcf::load_mjcf_str(r#"

@@ -58,7 +58,7 @@ mod attrs;
 mod build;
 mod compile;
 pub mod defaults;
-mod equality;
+pub mod equality;
 pub mod inertia;
 pub mod mesh;
 pub mod orientation;
