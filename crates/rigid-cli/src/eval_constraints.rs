@@ -46,7 +46,11 @@ impl ImpulseDynamics {
 /// The constraints of `path`: a constraint file, or the `<equality>` elements of the MJCF file
 /// the model was read from (solved by proximal iterations with `μ = 1e-6`, which also holds a
 /// loop whose rows are redundant, as a planar four-bar's in 3D).
-fn read(model: &Model, path: &Path, mjcf: Option<&MjcfModel>) -> Result<ConstraintFile, String> {
+pub(crate) fn read(
+    model: &Model,
+    path: &Path,
+    mjcf: Option<&MjcfModel>,
+) -> Result<ConstraintFile, String> {
     let name = path.display();
     if path
         .extension()

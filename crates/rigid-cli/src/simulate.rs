@@ -2,6 +2,7 @@
 //! (a `rigid mass` TOML spec, [`body`]), chosen by the input.
 
 mod body;
+mod closed_loop;
 mod ground;
 mod plot;
 mod robot;
@@ -101,6 +102,13 @@ pub struct SimulateArgs {
         value_name = "rk4|variational|semi-implicit|lgvi"
     )]
     pub integrator: Integrator,
+    /// Robot: a closed loop (`{"constraints": [...]}` as `rigid eval --constraints`, or the MJCF
+    /// model's own file for its `<equality>` elements), simulated without torques by RKMK4 on
+    /// the constrained dynamics, projected back onto the constraints each step; prints the
+    /// largest violation and energy change; the CSV has `t`, q, v, `energy`,
+    /// `violation_position`, `violation_velocity`.
+    #[arg(long)]
+    pub constraints: Option<PathBuf>,
     /// Write one row per step to this CSV file (robot: `t`, then q, v and τ with joint-named
     /// columns, then with --ground `contacts` (active contacts) and `normal_force` (the sum of
     /// their normal forces, N); body: `t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz`).
@@ -209,6 +217,23 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
                     supported yet"
                 .into(),
         );
+    }
+    if let Some(path) = &args.constraints {
+        let other = [
+            ("a body spec (.toml)", body),
+            ("--ground", args.ground.is_some()),
+            ("--controller", args.controller != ControlKind::None),
+            ("--integrator", args.integrator != Integrator::Rk4),
+            ("--plot", args.plot.is_some()),
+            ("--html", args.html.is_some()),
+        ];
+        if let Some((what, _)) = other.iter().find(|(_, given)| *given) {
+            return Err(format!(
+                "--constraints: not with {what} (a closed loop is simulated without torques, by \
+                 RKMK4 on the constrained dynamics)"
+            ));
+        }
+        return closed_loop::run(args, path);
     }
     if body {
         body::run(args)
