@@ -50,7 +50,11 @@ pub(crate) fn delassus_rows(
     for c in 0..n {
         let support = &support[c].cols;
         let rows = rows[c]..rows[c + 1];
+        // the whole row first: a row of Z is zero outside its constraint's support, which the
+        // products below rely on, and a row may have held another support before (contacts
+        // come and go between steps)
         for r in rows.clone() {
+            Z[r * nv..(r + 1) * nv].fill(0.0);
             for &(k, _, _) in support {
                 Z[r * nv + k] = J[(r, k)];
             }
