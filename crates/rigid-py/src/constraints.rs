@@ -185,12 +185,8 @@ impl ConstraintModel {
         let (constraints, skipped) = mj
             .constraint_models()
             .map_err(|e| value_error(f, format!("{shown}: {e}")))?;
-        let category = py.get_type::<crate::model::MjcfWarning>();
-        for w in skipped {
-            let text = std::ffi::CString::new(format!("{shown}: {w}").replace('\0', " "))
-                .unwrap_or_default();
-            PyErr::warn(py, category.as_any(), &text, 2)?;
-        }
+        let skipped: Vec<String> = skipped.iter().map(|w| format!("{shown}: {w}")).collect();
+        crate::model::warn_all(py, &py.get_type::<crate::model::MjcfWarning>(), &skipped)?;
         Ok(constraints
             .into_iter()
             .map(|inner| Self {

@@ -3,7 +3,7 @@
 //! free-flyer velocities), with the conversions the verbs apply at the boundary.
 
 use crate::convert::{self, array1, array2, Vector};
-use numpy::{PyArray1, PyArray2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
@@ -251,20 +251,26 @@ impl ModelCore {
     }
 
     /// A `6 × nv` Jacobian as a fresh array: rows `(ω, v)` in rigid's layout, `(v, ω)` and
-    /// columns permuted in Pinocchio's.
+    /// columns permuted in Pinocchio's. Written column by column straight from the column-major
+    /// source into the row-major array.
     pub fn jacobian_out<'py>(
         &self,
         py: Python<'py>,
         j: &nalgebra::DMatrix<f64>,
     ) -> Bound<'py, PyArray2<f64>> {
-        let row = |r: usize| {
-            if self.layout.is_some() {
-                (r + 3) % 6
-            } else {
-                r
+        let nv = j.ncols();
+        // SAFETY: a new C-contiguous array, every entry written below before Python sees it.
+        let a = unsafe { PyArray2::<f64>::new(py, [6, nv], false) };
+        // SAFETY: the array was just made here and nothing else refers to it.
+        let out = unsafe { a.as_slice_mut() }.unwrap_or(&mut []);
+        let shift = if self.layout.is_some() { 3 } else { 0 };
+        for c in 0..nv {
+            let col = j.column(self.v_index(c));
+            for r in 0..6 {
+                out[r * nv + c] = col[(r + shift) % 6];
             }
-        };
-        array2(py, 6, j.ncols(), |r, c| j[(row(r), self.v_index(c))])
+        }
+        a
     }
 
     /// `data` was made for this model (or for it before a gravity change).
@@ -330,7 +336,7 @@ fn parse_layout(func: &str, layout: &str) -> PyResult<Layout> {
 }
 
 /// Issues each warning as a Python warning of `category`.
-fn warn_all(
+pub(crate) fn warn_all(
     py: Python<'_>,
     category: &Bound<'_, pyo3::types::PyType>,
     warnings: &[String],

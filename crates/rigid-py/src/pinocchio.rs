@@ -39,24 +39,10 @@ fn wrench6(core: &ModelCore, w: &Wrench) -> [f64; 6] {
     twist6(core, &Twist::new(w.m, w.f))
 }
 
-/// A 6 x nv matrix of rigid's (rows angular first) as a fresh array in the model's layout:
-/// rows `(v, ω)` and columns permuted in Pinocchio's. Written straight from the column-major
-/// source into the row-major array.
+/// A 6 x nv matrix of rigid's (rows angular first) as a fresh array in the model's layout
+/// ([`ModelCore::jacobian_out`]).
 fn six_by_nv<'py>(py: Python<'py>, core: &ModelCore, m: &nalgebra::DMatrix<f64>) -> Array2<'py> {
-    let nv = m.ncols();
-    // SAFETY: a new C-contiguous array, every entry written below before Python sees it.
-    let a = unsafe { PyArray2::<f64>::new(py, [6, nv], false) };
-    // SAFETY: the array was just made here and nothing else refers to it.
-    let out = unsafe { a.as_slice_mut() }.unwrap_or(&mut []);
-    let src = m.as_slice();
-    let shift = if linear_first(core) { 3 } else { 0 };
-    for c in 0..nv {
-        let col = &src[core.v_index(c) * 6..core.v_index(c) * 6 + 6];
-        for r in 0..6 {
-            out[r * nv + c] = col[(r + shift) % 6];
-        }
-    }
-    a
+    core.jacobian_out(py, m)
 }
 
 /// A 3 x nv matrix of rigid's as a fresh array, columns in the model's layout.

@@ -3,29 +3,12 @@
 //! `ConstrainedSimulator` (RKMK4 on the constrained dynamics, projected back onto the constraints
 //! every step), with the constraint violation over time.
 
-use super::{Numbers, SimulateArgs};
+use super::{robot, SimulateArgs};
 use crate::load::load_printing_warnings;
 use rigid::multibody::column_names;
 use rigid::multibody::constraints::{ConstrainedSimulator, ConstrainedStepOptions};
 use std::io::Write;
 use std::path::Path;
-
-fn vector(
-    what: &str,
-    x: &Option<Numbers>,
-    default: Vec<f64>,
-    n: usize,
-) -> Result<Vec<f64>, String> {
-    let x = x.clone().map_or(default, |x| x.0);
-    if x.len() == n {
-        Ok(x)
-    } else {
-        Err(format!(
-            "--{what} has {} numbers; the model needs {n}",
-            x.len()
-        ))
-    }
-}
 
 /// Runs the closed-loop simulation of `args` with the constraints of `path`.
 ///
@@ -40,8 +23,11 @@ pub fn run(args: &SimulateArgs, path: &Path) -> Result<(), String> {
     if let Some(g) = args.gravity {
         model = model.with_gravity(g);
     }
-    let q0 = vector("q0", &args.q0, home, model.nq())?;
-    let v0 = vector("v0", &args.v0, vec![0.0; model.nv()], model.nv())?;
+    let q0 = match &args.q0 {
+        None => home, // an MJCF model starts where the file puts it (MuJoCo's qpos0)
+        Some(_) => robot::configuration(&model, "q0", &args.q0)?,
+    };
+    let v0 = robot::velocity(&model, &args.v0)?;
     let options = ConstrainedStepOptions {
         dt: args.dt,
         settings: file.settings,

@@ -42,7 +42,11 @@ fn write_row(
 }
 
 /// A configuration from the command line: `nq` numbers, quaternions of unit norm.
-fn configuration(model: &Model, what: &str, x: &Option<Numbers>) -> Result<Vec<f64>, String> {
+pub(super) fn configuration(
+    model: &Model,
+    what: &str,
+    x: &Option<Numbers>,
+) -> Result<Vec<f64>, String> {
     let q = x.clone().map_or_else(|| neutral(model), |n| n.0);
     if q.len() != model.nq() {
         return Err(format!(
@@ -54,6 +58,19 @@ fn configuration(model: &Model, what: &str, x: &Option<Numbers>) -> Result<Vec<f
         ));
     }
     Ok(q)
+}
+
+/// The initial velocity from the command line: `nv` numbers, zero by default.
+pub(super) fn velocity(model: &Model, x: &Option<Numbers>) -> Result<Vec<f64>, String> {
+    let v0 = x.clone().map_or_else(|| vec![0.0; model.nv()], |n| n.0);
+    if v0.len() != model.nv() {
+        return Err(format!(
+            "--v0 has {} numbers; nv = {}",
+            v0.len(),
+            model.nv()
+        ));
+    }
+    Ok(v0)
 }
 
 /// `name (nq)` for every joint.
@@ -140,17 +157,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             ground::set_down(&model, cm, t)?;
         }
     }
-    let v0 = args
-        .v0
-        .clone()
-        .map_or_else(|| vec![0.0; model.nv()], |n| n.0);
-    if v0.len() != model.nv() {
-        return Err(format!(
-            "--v0 has {} numbers; nv = {}",
-            v0.len(),
-            model.nv()
-        ));
-    }
+    let v0 = velocity(&model, &args.v0)?;
     let opts = options(args)?;
     let ctrl = controller(args, &model, &q0, target, collision.as_ref())?;
     let mut sim = Simulator::new(&model, &q0, &v0, opts, ctrl).map_err(|e| e.to_string())?;
