@@ -176,9 +176,17 @@ impl CollisionData {
     }
 }
 
-/// Keeps at most four of the points near a plane of normal `n`: the deepest, the farthest from
-/// it, the one making the largest triangle with those two, and the one making the largest
-/// triangle on the other side of their line (Bullet's manifold reduction); duplicates dropped.
+/// Points of a shape within this height (m) of its deepest one are its resting face: a mesh's
+/// flat sole is uneven by a fraction of a millimetre.
+pub(crate) const RESTING_FACE: f64 = 1e-3;
+
+/// Keeps at most four of the points near a plane of normal `n`, as Bullet's manifold reduction
+/// (the deepest, the farthest from it, the one making the largest triangle with those two, and
+/// the one making the largest triangle on the other side of their line), each taken first from
+/// the resting face (the points within [`RESTING_FACE`] of the deepest) and from the others
+/// only when the face has no point that spreads the set: a flat sole rests on its four widest
+/// points, not on its deepest one and three corners raised by its rounded edges; a box landing
+/// on one corner keeps the other corners as speculative contacts.
 fn reduce(pts: &mut Vec<(Vec3, f64)>, n: &Vec3) {
     // drop duplicates (a support point that is also a feature vertex)
     let mut k = 0;
@@ -192,25 +200,38 @@ fn reduce(pts: &mut Vec<(Vec3, f64)>, n: &Vec3) {
     if pts.len() <= 4 {
         return;
     }
+    let deepest = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    let on_face = |p: &(Vec3, f64)| p.1 <= deepest + RESTING_FACE;
     let area = |a: &Vec3, b: &Vec3, c: &Vec3| n.dot(&(b - a).cross(&(c - a)));
-    let argmax = |pts: &[(Vec3, f64)], f: &dyn Fn(&(Vec3, f64)) -> f64| {
-        (0..pts.len())
-            .max_by(|&x, &y| f(&pts[x]).total_cmp(&f(&pts[y])))
-            .expect("points")
-    };
-    let i0 = argmax(pts, &|p| -p.1);
-    let p0 = pts[i0].0;
-    let i1 = argmax(pts, &|p| (p.0 - p0).norm());
-    let p1 = pts[i1].0;
-    let i2 = argmax(pts, &|p| area(&p0, &p1, &p.0).abs());
-    let p2 = pts[i2].0;
-    let side = area(&p0, &p1, &p2).signum();
-    let i3 = argmax(pts, &|p| -side * area(&p0, &p1, &p.0));
-    let keep = [pts[i0], pts[i1], pts[i2], pts[i3]];
-    pts.clear();
-    for p in keep {
-        if !pts.iter().any(|q| (q.0 - p.0).norm() < 1e-12) {
-            pts.push(p);
+    let mut keep: Vec<(Vec3, f64)> = Vec::with_capacity(4);
+    let mut side = 0.0;
+    while keep.len() < 4 {
+        // how much a point spreads the kept set (slot 0: its depth)
+        let score = |p: &(Vec3, f64)| match keep.len() {
+            0 => -p.1,
+            1 => (p.0 - keep[0].0).norm(),
+            2 => area(&keep[0].0, &keep[1].0, &p.0).abs(),
+            _ => -side * area(&keep[0].0, &keep[1].0, &p.0),
+        };
+        let best = |face: bool| {
+            pts.iter()
+                .filter(|p| on_face(p) == face)
+                .map(|p| (score(p), *p))
+                .max_by(|a, b| a.0.total_cmp(&b.0))
+        };
+        // a point spreads the set if it is 0.1 mm away from it (or 1e-8 m² of triangle)
+        let spreads = |s: f64| keep.is_empty() || s > if keep.len() == 1 { 1e-4 } else { 1e-8 };
+        let Some((_, p)) = best(true)
+            .filter(|b| spreads(b.0))
+            .or_else(|| best(false).filter(|b| spreads(b.0)))
+        else {
+            break;
+        };
+        if keep.len() == 2 {
+            side = area(&keep[0].0, &keep[1].0, &p.0).signum();
         }
+        keep.push(p);
     }
+    pts.clear();
+    pts.extend(keep);
 }

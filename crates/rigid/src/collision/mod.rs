@@ -47,6 +47,7 @@ mod detect;
 mod shape;
 
 pub use detect::CollisionData;
+pub(crate) use detect::RESTING_FACE;
 pub use shape::Shape;
 
 use crate::multibody::JointId;

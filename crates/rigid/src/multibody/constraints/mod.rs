@@ -74,6 +74,7 @@ pub(crate) mod solver;
 pub(crate) mod workspace;
 
 pub use dynamics::constraint_dynamics;
+pub(crate) use dynamics::constraint_rows;
 pub use impulse::impulse_dynamics;
 pub use inverse::contact_inverse_dynamics;
 pub use kinematics::ConstraintPlacement;

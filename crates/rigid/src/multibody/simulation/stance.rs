@@ -2,19 +2,33 @@
 //! the feedforward torques that hold the stance on its contacts.
 
 use super::{ControlLaw, SimulationError};
-use crate::multibody::constraints::{contact_inverse_dynamics, ConstraintData, ConstraintModel};
+use crate::multibody::constraints::{
+    constraint_rows, contact_inverse_dynamics, ConstraintData, ConstraintModel,
+};
 use crate::multibody::contact::ContactPoint;
-use crate::multibody::{crba, forward_kinematics_q, Data, JointType, Model, ReferenceFrame};
-use crate::spatial::Transform;
+use crate::multibody::{
+    compute_joint_jacobians, crba, forward_kinematics_q, Data, JointId, JointType, Model,
+    ReferenceFrame,
+};
+use crate::spatial::{Transform, Vec3};
 
 impl ControlLaw {
     /// Standing on `contacts` (points of the bodies touching the world at `target`): joint PD to
-    /// `target`, every actuated joint alone at the natural frequency `omega` (rad/s) and damping
-    /// ratio `zeta` (`K_p,k = ω² M_kk`, `K_d,k = 2ζω M_kk` at the target, as [`ControlLaw::pd`]),
-    /// nothing on a free-flyer's dofs, and the feedforward `τ_ff` that holds the stance at rest:
-    /// the least-norm `(τ, λ)` of `g(q*) = τ + Jᵀ λ` with `λ` a force at each contact point
-    /// ([`contact_inverse_dynamics`]). Without contacts `τ_ff` is the least-norm part of `g(q*)`
-    /// the joints can hold.
+    /// `target`, nothing on a free-flyer's dofs, plus the feedforward `τ_ff` that holds the
+    /// stance at rest: the least-norm `(τ, λ)` of `g(q*) = τ + Jᵀ λ` with `λ` a force at each
+    /// contact point ([`contact_inverse_dynamics`]; without contacts, the least-norm part of
+    /// `g(q*)` the joints can hold).
+    ///
+    /// Every actuated joint alone has the natural frequency `omega` (rad/s) and damping ratio
+    /// `zeta` on the inertia it moves *while the feet hold*: `K_p,k = ω² m_k`, `K_d,k = 2ζω m_k`
+    /// with `m_k = max(M_kk, 1 / (M_c⁻¹)_kk)` and `M_c⁻¹ = M⁻¹ − M⁻¹Aᵀ (A M⁻¹ Aᵀ)⁺ A M⁻¹` the
+    /// mobility with each touching body pinned at one point, the centroid of its contacts (`A`
+    /// their rows; Featherstone 2008 §8.1, the constrained system's inverse inertia). A knee
+    /// then moves the body it carries, not only its shank: with the leg's own `M_kk`, as
+    /// [`ControlLaw::pd`] on a fixed base, the joints are far softer than the load's geometric
+    /// stiffness `≈ m g ℓ` and the stance buckles (Solo-12 twisted in yaw and fell after ~1 s).
+    /// One point per body rather than every contact: a sole's points would lock its leg and
+    /// give no scale at all.
     ///
     /// # Errors
     /// A bad target, a contact on a body of another model.
@@ -27,17 +41,31 @@ impl ControlLaw {
     ) -> Result<Self, SimulationError> {
         let mut data = Data::new(model);
         forward_kinematics_q(model, &mut data, target)?;
+        let pin = |data: &Data, body: JointId, at: Vec3| {
+            let at = Transform::from_translation(at);
+            let local = data.placements[body.0].inverse() * at;
+            ConstraintModel::point(Some(body), local, None, at)
+                .with_reference(ReferenceFrame::WorldAligned)
+        };
         let points: Vec<ConstraintModel> = contacts
             .iter()
-            .filter_map(|c| {
-                let body = c.body1?;
-                let at = Transform::from_translation(c.point);
-                let local = data.placements[body.0].inverse() * at;
-                Some(
-                    ConstraintModel::point(Some(body), local, None, at)
-                        .with_reference(ReferenceFrame::WorldAligned),
-                )
-            })
+            .filter_map(|c| Some(pin(&data, c.body1?, c.point)))
+            .collect();
+        // one anchor per touching body, at the centroid of its contact points
+        let mut bodies: Vec<(JointId, Vec3, f64)> = Vec::new();
+        for c in contacts {
+            let Some(body) = c.body1 else { continue };
+            match bodies.iter_mut().find(|b| b.0 == body) {
+                Some(b) => {
+                    b.1 += c.point;
+                    b.2 += 1.0;
+                }
+                None => bodies.push((body, c.point, 1.0)),
+            }
+        }
+        let anchors: Vec<ConstraintModel> = bodies
+            .iter()
+            .map(|&(body, sum, n)| pin(&data, body, sum / n))
             .collect();
         let invalid = |e: crate::multibody::constraints::ConstraintError| {
             SimulationError::Invalid(format!("stance: {e}"))
@@ -50,13 +78,37 @@ impl ControlLaw {
                 .map_err(invalid)?
                 .as_slice()
                 .to_vec();
-        let m = crba(model, &mut data, target)?;
+        let m = crba(model, &mut data, target)?.clone();
         let actuated: Vec<bool> = (0..nv)
             .map(|k| model.joint(model.dof_joint(k)).kind != JointType::FreeFlyer)
             .collect();
+        let mut inertia: Vec<f64> = (0..nv).map(|k| m[(k, k)]).collect();
+        if !anchors.is_empty() {
+            let minv = m.clone().try_inverse().ok_or_else(|| {
+                SimulationError::Invalid("stance: the mass matrix is singular at the target".into())
+            })?;
+            compute_joint_jacobians(model, &mut data, target)?;
+            let mut adata = ConstraintData::new(model, &anchors).map_err(invalid)?;
+            constraint_rows(model, &data, &mut adata, target, &zeros, false);
+            let A = adata.jacobian.rows(0, adata.dim());
+            let AMinv = A * &minv;
+            let delassus = &AMinv * A.transpose();
+            let tol = 1e-12 * delassus.amax();
+            let pinv = delassus
+                .pseudo_inverse(tol)
+                .map_err(|e| SimulationError::Invalid(format!("stance: {e}")))?;
+            let held = AMinv.transpose() * pinv * &AMinv;
+            for k in (0..nv).filter(|&k| actuated[k]) {
+                let mobility = minv[(k, k)] - held[(k, k)];
+                // a joint the anchors lock keeps its own inertia
+                if mobility > 1e-9 * minv[(k, k)] {
+                    inertia[k] = inertia[k].max(1.0 / mobility);
+                }
+            }
+        }
         let gain = |w: f64| -> Vec<f64> {
             (0..nv)
-                .map(|k| if actuated[k] { w * m[(k, k)] } else { 0.0 })
+                .map(|k| if actuated[k] { w * inertia[k] } else { 0.0 })
                 .collect()
         };
         Ok(Self::Stance {
@@ -68,7 +120,8 @@ impl ControlLaw {
     }
 
     /// [`stance`](Self::stance) on the contacts `collision` finds at `target` with a gap under
-    /// 1 mm (the feet on the ground), with the gains of `rigid simulate --controller pd`
+    /// 2 mm (the feet on the ground: the points of a sole within twice its resting face's
+    /// unevenness), with the gains of `rigid simulate --controller pd`
     /// (`ω = 4π`, `ζ = 1`). `rigid simulate ROBOT --floating --ground --controller pd --target
     /// STANCE` stands on it.
     ///
@@ -85,7 +138,7 @@ impl ControlLaw {
         let mut cd = crate::collision::CollisionData::new(model, collision)?;
         let mut contacts = Vec::new();
         cd.contacts(collision, &data.placements, &mut contacts);
-        contacts.retain(|c| c.gap < 1e-3 && c.body2.is_none());
+        contacts.retain(|c| c.gap < 2.0 * crate::collision::RESTING_FACE && c.body2.is_none());
         Self::stance(model, target, &contacts, STANCE_OMEGA, 1.0)
     }
 }
