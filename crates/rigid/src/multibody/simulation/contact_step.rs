@@ -3,7 +3,12 @@
 //! [`multibody::contact`](crate::multibody::contact):
 //!
 //! 1. `v_f = v_k + h M⁻¹ (τ(t_k, q_k, v_k) − c − g + Σ Jᵢᵀ Fᵢ)`: symplectic Euler's free velocity
-//!    (the factor `M = LᵀL` kept for step 3);
+//!    (the factor `M = LᵀL` kept for step 3). A controller's PD part (`K_p`, `K_d`,
+//!    [`Control::pd_gains`]) is linearly implicit, as MuJoCo's implicit damping: `M` becomes
+//!    `M̃ = M + h K_d + h² K_p` and the force `τ − c − g − h K_p v` (the backward-Euler
+//!    linearisation of `K_p (q* ⊖ q⁺) − K_d v⁺`), so that stiff gains on light joints (an ankle
+//!    that carries a humanoid, [`ControlLaw::stance`](super::ControlLaw::stance)) do not need a
+//!    smaller step; the contact problem of step 3 is then posed on `M̃`;
 //! 2. the contacts at `q_k` (collision geometry, parry) and the joints at or near a limit;
 //! 3. the impulses `λ` of the contact problem, `v_{k+1} = v_f + M⁻¹ Jᵀ λ`;
 //! 4. `q_{k+1} = q_k ⊕ h v_{k+1} ⊕ δq`, with `δq` the position correction of any penetration.
@@ -113,6 +118,12 @@ pub(crate) fn contact_step<C: Control>(
         }
     }
     crba(model, data, q)?;
+    if let Some((kp, kd)) = d.control.pd_gains() {
+        for k in 0..nv {
+            data.mass_matrix[(k, k)] += h * kd[k] + h * h * kp[k];
+            cs.a[k] -= h * kp[k] * v[k];
+        }
+    }
     ltl_factor(model, data)?;
     ltl_solve_transposed(data.chol.as_slice(), &data.dof_parent, &mut cs.a);
     ltl_solve_lower(data.chol.as_slice(), &data.dof_parent, &mut cs.a);

@@ -26,6 +26,13 @@ pub trait Control {
         v: &[f64],
         tau: &mut [f64],
     ) -> Result<(), MultibodyError>;
+
+    /// The joint-space stiffness and damping `(K_p, K_d)`, per dof, of a PD part of this law
+    /// (`τ = … + K_p (q* ⊖ q) − K_d v`), which the contact time stepper integrates implicitly;
+    /// `None` (the default) when there is none.
+    fn pd_gains(&self) -> Option<(&[f64], &[f64])> {
+        None
+    }
 }
 
 impl<F: FnMut(f64, &[f64], &[f64], &mut [f64])> Control for F {
@@ -323,6 +330,15 @@ impl Controller {
 }
 
 impl Control for Controller {
+    fn pd_gains(&self) -> Option<(&[f64], &[f64])> {
+        match &self.law {
+            ControlLaw::Pd { kp, kd, .. } | ControlLaw::Stance { kp, kd, .. } => Some((kp, kd)),
+            ControlLaw::None
+            | ControlLaw::GravityCompensation
+            | ControlLaw::ComputedTorque { .. } => None,
+        }
+    }
+
     fn torque(
         &mut self,
         model: &Model,

@@ -11,6 +11,7 @@ use crate::multibody::{
     ReferenceFrame,
 };
 use crate::spatial::{Transform, Vec3};
+use nalgebra::DMatrix;
 
 impl ControlLaw {
     /// Standing on `contacts` (points of the bodies touching the world at `target`): joint PD to
@@ -63,9 +64,21 @@ impl ControlLaw {
                 None => bodies.push((body, c.point, 1.0)),
             }
         }
-        let anchors: Vec<ConstraintModel> = bodies
+        let pinned: Vec<ConstraintModel> = bodies
             .iter()
             .map(|&(body, sum, n)| pin(&data, body, sum / n))
+            .collect();
+        // a body on three or more points (a sole) held whole, in position and orientation
+        let held: Vec<ConstraintModel> = bodies
+            .iter()
+            .map(|&(body, sum, n)| {
+                if n < 3.0 {
+                    return pin(&data, body, sum / n);
+                }
+                let at = Transform::from_translation(sum / n);
+                let local = data.placements[body.0].inverse() * at;
+                ConstraintModel::frame(Some(body), local, None, at)
+            })
             .collect();
         let invalid = |e: crate::multibody::constraints::ConstraintError| {
             SimulationError::Invalid(format!("stance: {e}"))
@@ -83,26 +96,22 @@ impl ControlLaw {
             .map(|k| model.joint(model.dof_joint(k)).kind != JointType::FreeFlyer)
             .collect();
         let mut inertia: Vec<f64> = (0..nv).map(|k| m[(k, k)]).collect();
-        if !anchors.is_empty() {
+        if !bodies.is_empty() {
             let minv = m.clone().try_inverse().ok_or_else(|| {
                 SimulationError::Invalid("stance: the mass matrix is singular at the target".into())
             })?;
             compute_joint_jacobians(model, &mut data, target)?;
-            let mut adata = ConstraintData::new(model, &anchors).map_err(invalid)?;
-            constraint_rows(model, &data, &mut adata, target, &zeros, false);
-            let A = adata.jacobian.rows(0, adata.dim());
-            let AMinv = A * &minv;
-            let delassus = &AMinv * A.transpose();
-            let tol = 1e-12 * delassus.amax();
-            let pinv = delassus
-                .pseudo_inverse(tol)
-                .map_err(|e| SimulationError::Invalid(format!("stance: {e}")))?;
-            let held = AMinv.transpose() * pinv * &AMinv;
+            let by_frame = mobility(model, &data, target, &held, &minv)?;
+            let by_point = mobility(model, &data, target, &pinned, &minv)?;
             for k in (0..nv).filter(|&k| actuated[k]) {
-                let mobility = minv[(k, k)] - held[(k, k)];
-                // a joint the anchors lock keeps its own inertia
-                if mobility > 1e-9 * minv[(k, k)] {
-                    inertia[k] = inertia[k].max(1.0 / mobility);
+                // the soles held whole, or where that locks the joint the feet pinned at a point;
+                // a joint locked both ways keeps its own inertia
+                let unlocked = |x: f64| x > 1e-9 * minv[(k, k)];
+                if let Some(x) = [by_frame[k], by_point[k]]
+                    .into_iter()
+                    .find(|&x| unlocked(x))
+                {
+                    inertia[k] = inertia[k].max(1.0 / x);
                 }
             }
         }
@@ -147,3 +156,29 @@ impl ControlLaw {
 /// [`ControlLaw::standing`]: 2 Hz, as `--controller pd`.
 #[cfg(feature = "collision")]
 pub const STANCE_OMEGA: f64 = 4.0 * std::f64::consts::PI;
+
+/// The diagonal of the constrained mobility `M_c⁻¹ = M⁻¹ − M⁻¹Aᵀ (A M⁻¹ Aᵀ)⁺ A M⁻¹` at `q`
+/// (`A` the rows of `anchors`; `data` holds the placements and the spatial Jacobian at `q`).
+fn mobility(
+    model: &Model,
+    data: &Data,
+    q: &[f64],
+    anchors: &[ConstraintModel],
+    minv: &DMatrix<f64>,
+) -> Result<Vec<f64>, SimulationError> {
+    let invalid = |e: String| SimulationError::Invalid(format!("stance: {e}"));
+    let mut adata = ConstraintData::new(model, anchors).map_err(|e| invalid(e.to_string()))?;
+    let zeros = vec![0.0; model.nv()];
+    constraint_rows(model, data, &mut adata, q, &zeros, false);
+    let A = adata.jacobian.rows(0, adata.dim());
+    let AMinv = A * minv;
+    let delassus = &AMinv * A.transpose();
+    let tol = 1e-12 * delassus.amax();
+    let pinv = delassus
+        .pseudo_inverse(tol)
+        .map_err(|e| invalid(e.to_string()))?;
+    let held = AMinv.transpose() * pinv * &AMinv;
+    Ok((0..model.nv())
+        .map(|k| minv[(k, k)] - held[(k, k)])
+        .collect())
+}
