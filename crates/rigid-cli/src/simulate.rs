@@ -65,13 +65,15 @@ pub struct SimulateArgs {
     /// Body: a point `x,y,z` of the spec frame fixed in the world (a spherical pivot).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub pivot: Option<Vec3>,
-    /// Robot: a ground plane `z = HEIGHT` (0 when no number is given), which the robot's
+    /// Robot or body: a ground plane `z = HEIGHT` (0 when no number is given), which the robot's
     /// collision geometry (URDF `<collision>`, MJCF geoms; meshes as convex hulls) touches with
     /// Coulomb friction (contacts between the robot's own bodies are off). Steps with the
     /// `semi-implicit` time-stepping scheme (rk4 is replaced, another integrator refused). A
     /// floating robot starts set down on it (its lowest geometry touching), at --target when
     /// given and no --q0; `--controller pd` then holds the stance with the torques that carry
-    /// its weight on the feet. A negative height is written `--ground=-0.5`.
+    /// its weight on the feet. A body spec (`.toml`) collides through its parts' shapes; its pose
+    /// is then --q0 (`x,y,z,qx,qy,qz,qw` of its CoM with the spec axes; default: set down), its
+    /// twist --omega and --velocity. A negative height is written `--ground=-0.5`.
     #[arg(
         long,
         num_args = 0..=1,
@@ -170,10 +172,23 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     if let Some(plot) = &args.plot {
         crate::plotting::check_format(plot)?;
     }
-    let body = args.model.to_ascii_lowercase().ends_with(".toml");
+    let body = is_body_spec(&args.model);
     // a flag of the other kind of simulation is a mistake, not something to ignore
     let zero = Vec3::zeros();
-    let misplaced: &[(&str, bool)] = if body {
+    let misplaced: &[(&str, bool)] = if body && args.ground.is_some() {
+        // a body on the ground: its pose is --q0, its twist --omega and --velocity
+        &[
+            ("--v0", args.v0.is_some()),
+            ("--controller", args.controller != ControlKind::None),
+            ("--target", args.target.is_some()),
+            ("--move-time", args.move_time.is_some()),
+            ("--profile", args.profile != TimeScaling::Quintic),
+            ("--limits", args.limits != JointLimits::default()),
+            ("--no-joint-dynamics", args.no_joint_dynamics),
+            ("--floating", args.load.floating),
+            ("--pivot", args.pivot.is_some()),
+        ]
+    } else if body {
         &[
             ("--q0", args.q0.is_some()),
             ("--v0", args.v0.is_some()),
@@ -193,6 +208,13 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         ]
     };
     if let Some((flag, _)) = misplaced.iter().find(|(_, given)| *given) {
+        if body && args.ground.is_some() {
+            return Err(format!(
+                "{flag} does not apply to a body on the ground ({}: its pose is --q0 \
+                 x,y,z,qx,qy,qz,qw of its CoM, its twist --omega and --velocity)",
+                args.model
+            ));
+        }
         let what = if body {
             "a robot (URDF or model name)"
         } else {
@@ -211,13 +233,6 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             return Err(format!("{flag} applies with --ground"));
         }
     }
-    if body && args.ground.is_some() {
-        return Err(
-            "--ground applies to robots; a body spec (.toml) on the ground is not \
-                    supported yet"
-                .into(),
-        );
-    }
     if let Some(path) = &args.constraints {
         let other = [
             ("a body spec (.toml)", body),
@@ -235,11 +250,16 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         }
         return closed_loop::run(args, path);
     }
-    if body {
+    if body && args.ground.is_none() {
         body::run(args)
     } else {
         robot::run(args)
     }
+}
+
+/// True when `model` names a body spec (`.toml`, any case).
+pub fn is_body_spec(model: &str) -> bool {
+    model.to_ascii_lowercase().ends_with(".toml")
 }
 
 /// A progress bar on stderr that appears only once a run has taken more than a second.

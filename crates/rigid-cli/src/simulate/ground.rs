@@ -5,7 +5,7 @@
 use super::SimulateArgs;
 use crate::load::{urdf_path, Loaded};
 use rigid::collision::{place_on_ground, CollisionModel};
-use rigid::io::collision::{ground_model, mjcf_geometries, urdf_geometries};
+use rigid::io::collision::{ground_model, mjcf_geometries, spec_body, urdf_geometries};
 use rigid::io::urdf::parse_urdf_file;
 use rigid::multibody::Model;
 
@@ -45,6 +45,35 @@ pub fn collision_model(
                 format!("--{e}")
             }
         })
+}
+
+/// `rigid simulate SPEC.toml --ground`: the body of the spec as a model of one free-flyer at
+/// its CoM ([`spec_body`]) and the collision model of its parts on the ground.
+pub fn body_on_ground(args: &SimulateArgs) -> Result<(Loaded, CollisionModel), String> {
+    let height = args.ground.unwrap_or_default();
+    let (model, geometries, warnings) = spec_body(std::path::Path::new(&args.model))?;
+    for w in &warnings {
+        eprintln!("warning: {}: {w}", args.model);
+    }
+    if geometries.is_empty() {
+        return Err(format!(
+            "{}: no part has a shape to collide with the ground",
+            args.model
+        ));
+    }
+    let cm = ground_model(height, args.friction, args.restitution, geometries).map_err(|e| {
+        if e.starts_with("the ") {
+            e
+        } else {
+            format!("--{e}")
+        }
+    })?;
+    let loaded = Loaded {
+        model,
+        warnings: Vec::new(),
+        mjcf: None,
+    };
+    Ok((loaded, cm))
 }
 
 /// Sets `q` of a floating robot down on the ground (see [`place_on_ground`]).

@@ -131,9 +131,18 @@ fn controller(
 /// Runs `rigid simulate` on a robot.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let steps = super::step_count(args)?;
-    let loaded = load_printing_warnings(&args.model, &args.load)?;
+    // a body spec on the ground is a one-body model: its pose is --q0 (the CoM and the spec
+    // axes), its twist --omega and --velocity
+    let spec = super::is_body_spec(&args.model);
+    let (loaded, collision) = if spec {
+        let (loaded, cm) = ground::body_on_ground(args)?;
+        (loaded, Some(cm))
+    } else {
+        let loaded = load_printing_warnings(&args.model, &args.load)?;
+        let cm = ground::collision_model(args, &loaded)?;
+        (loaded, cm)
+    };
     let home = loaded.home();
-    let collision = ground::collision_model(args, &loaded)?;
     let mut model = loaded.model;
     if let Some(g) = args.gravity {
         model = model.with_gravity(g);
@@ -157,7 +166,12 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             ground::set_down(&model, cm, t)?;
         }
     }
-    let v0 = velocity(&model, &args.v0)?;
+    let v0 = if spec {
+        let (w, v) = (args.omega, args.velocity);
+        vec![w.x, w.y, w.z, v.x, v.y, v.z]
+    } else {
+        velocity(&model, &args.v0)?
+    };
     let opts = options(args)?;
     let ctrl = controller(args, &model, &q0, target, collision.as_ref())?;
     let mut sim = Simulator::new(&model, &q0, &v0, opts, ctrl).map_err(|e| e.to_string())?;
@@ -186,7 +200,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         write_row(f.writer(), 0.0, &q0, &v0, &tau, contact_row(&sim)).map_err(|e| e.to_string())?;
     }
     let mut scene = if args.html.is_some() {
-        robot_nodes(&model, urdf_path(&args.model).as_deref())
+        robot_nodes(&model, urdf_path(&args.model).filter(|_| !spec).as_deref())
     } else {
         Default::default()
     };

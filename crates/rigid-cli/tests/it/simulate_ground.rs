@@ -1,4 +1,5 @@
-//! `rigid simulate ROBOT --ground`: a URDF box falls onto the ground and rests there, Solo-12
+//! `rigid simulate ROBOT --ground`: a URDF box falls onto the ground and rests there, a body spec
+//! (`.toml`) set down or thrown onto it comes to rest on its parts, Solo-12
 //! stands on it under `--controller pd`, the CSV's contact columns, and clean refusals of bad
 //! friction and restitution.
 
@@ -153,5 +154,101 @@ fn bad_friction_and_restitution_are_refused_with_the_flag_named() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
         assert!(stderr.contains(message), "{args:?}: {stderr}");
         assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
+
+/// The compound of lecture notes 001 (a 2 kg cylinder of radius 0.1 m and length 0.2 m, a 1 kg
+/// prism bolted to its side), as `examples/compound.toml`.
+fn compound_spec() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/compound.toml")
+}
+
+#[test]
+fn a_body_spec_set_down_on_the_ground_rests_on_its_parts() {
+    // no --q0: the body starts on the ground, spec axes upright; its cylinder (axis vertical,
+    // half-length 0.1 m) and the prism (0.1 m thick, centred at the same height) carry it with
+    // its CoM at 0.1 m
+    let csv = scratch("spec").join("spec.csv");
+    let spec = compound_spec();
+    let out = rigid(&[
+        "simulate",
+        spec.to_str().unwrap(),
+        "--ground",
+        "--duration",
+        "1",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let last = last_row(&csv);
+    assert!((last["q_body_z"] - 0.1).abs() < 1e-4, "{last:?}");
+    assert!(
+        last["q_body_x"].abs() < 1e-3 && last["q_body_y"].abs() < 1e-3,
+        "{last:?}"
+    );
+    assert!(
+        (last["normal_force"] - 3.0 * 9.81).abs() < 0.01 * 3.0 * 9.81,
+        "{last:?}"
+    );
+}
+
+#[test]
+fn a_body_spec_thrown_tumbling_comes_to_rest_on_the_ground() {
+    // dropped from 0.5 m tilted, spinning and sliding: at the end it lies still on the ground,
+    // its weight on its contacts, having lost energy (never gained it)
+    let csv = scratch("throw").join("throw.csv");
+    let spec = compound_spec();
+    let out = rigid(&[
+        "simulate",
+        spec.to_str().unwrap(),
+        "--ground",
+        "--q0",
+        "0,0,0.5,0.199995991,0.099997996,0,0.974680463",
+        "--omega",
+        "1,2,3",
+        "--velocity",
+        "0.5,0,0",
+        "--duration",
+        "3",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let last = last_row(&csv);
+    let speed: f64 = ["wx", "wy", "wz", "vx", "vy", "vz"]
+        .iter()
+        .map(|k| last[&format!("v_body_{k}")].powi(2))
+        .sum::<f64>()
+        .sqrt();
+    assert!(speed < 1e-3, "still moving: {last:?}");
+    // the CoM lies between 0.05 m (on the prism's face) and 0.25 m above the ground
+    assert!(
+        last["q_body_z"] > 0.05 && last["q_body_z"] < 0.25,
+        "{last:?}"
+    );
+    assert!(
+        (last["normal_force"] - 3.0 * 9.81).abs() < 0.01 * 3.0 * 9.81,
+        "{last:?}"
+    );
+}
+
+#[test]
+fn a_body_spec_on_the_ground_refuses_the_flags_that_do_not_apply() {
+    let spec = compound_spec();
+    for flag in [&["--pivot", "0,0,0"][..], &["--v0", "0,0,0,0,0,0"][..]] {
+        let mut all = vec!["simulate", spec.to_str().unwrap(), "--ground"];
+        all.extend_from_slice(flag);
+        let out = rigid(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{flag:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!(
+                "{} does not apply to a body on the ground",
+                flag[0]
+            )),
+            "{stderr}"
+        );
     }
 }

@@ -136,6 +136,39 @@ pub fn compound_geometries(
     (out, warnings)
 }
 
+/// A body made of parts (a `rigid mass` spec file) as a model of one free-flyer joint `"body"`
+/// whose frame is at the centre of mass with the spec's axes (`q = (x, y, z, qx, qy, qz, qw)` is
+/// the CoM's position and the spec axes' orientation in the world), and the collision geometry
+/// of its parts ([`compound_geometries`]) with their warnings: `rigid simulate SPEC.toml
+/// --ground`.
+///
+/// # Errors
+/// The spec or a mesh cannot be read, or its mass properties are not physical (the messages of
+/// [`read_spec`](super::spec::read_spec) and `Compound::mass_properties`, with the file).
+#[cfg(feature = "spec")]
+pub fn spec_body(
+    path: &Path,
+) -> Result<(crate::multibody::Model, Vec<Geometry>, Vec<String>), String> {
+    use crate::mass::SpatialInertia;
+    use crate::multibody::{JointType, ModelBuilder};
+    let compound = super::spec::read_spec(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let props = compound
+        .mass_properties()
+        .map_err(|e| format!("{}: {}", path.display(), compound.error_message(&e)))?;
+    let g = SpatialInertia::from_com(props.mass, Vec3::zeros(), props.inertia_com);
+    let name = path
+        .file_stem()
+        .map_or("body".into(), |s| s.to_string_lossy().into_owned());
+    let mut b = ModelBuilder::new(&name);
+    let joint = b
+        .add_joint(None, "body", JointType::FreeFlyer, Transform::identity(), g)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let model = b.build().map_err(|e| format!("{}: {e}", path.display()))?;
+    let meshes = spec_mesh_vertices(path)?;
+    let (geometries, warnings) = compound_geometries(&compound, &meshes, joint, props.com);
+    Ok((model, geometries, warnings))
+}
+
 /// The vertices of each mesh part of a spec file (`None` for the other parts), read again from
 /// the files its `[[part]]` tables name (relative to the spec's folder), for
 /// [`compound_geometries`].
