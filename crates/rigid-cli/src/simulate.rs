@@ -28,7 +28,8 @@ pub struct SimulateArgs {
     pub model: String,
     #[command(flatten)]
     pub load: LoadArgs,
-    /// Robot: initial configuration, `nq` comma-separated numbers (default: the neutral one).
+    /// Robot: initial configuration, `nq` comma-separated numbers (default: the neutral one);
+    /// a body on the ground (`--ground`): its CoM pose `x,y,z,qx,qy,qz,qw`.
     #[arg(long, value_parser = parse_list, allow_hyphen_values = true)]
     pub q0: Option<Numbers>,
     /// Robot: initial velocity, `nv` comma-separated numbers (default: zero).
