@@ -217,7 +217,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     };
     if args.plot.is_some() {
         let tau = tau_row(&mut sim)?;
-        samples.push(&model, 0.0, sim.q(), sim.v(), &tau, e0);
+        let c = contacts.then_some((0.0, 0.0));
+        samples.push(0.0, sim.q(), sim.v(), &tau, e0, c);
     }
     let mut max_speed = (0.0f64, 0usize);
     let mut max_penetration = 0.0f64;
@@ -244,7 +245,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             }
             if plot_now {
                 let e = sim.energy().map_err(|e| e.to_string())?;
-                samples.push(&model, t, sim.q(), sim.v(), &tau, e);
+                let c = contact_row(&sim).map(|(_, n)| (n, sim.contact_dissipation()));
+                samples.push(t, sim.q(), sim.v(), &tau, e, c);
             }
         }
         if args.html.is_some() {

@@ -1,5 +1,6 @@
 //! The robot simulator's `--plot` figure: joint angles, joint velocities, torques and total
-//! energy against time (one panel each).
+//! energy against time (one panel each), and with contacts their normal force and the energy
+//! they took.
 
 use crate::plotting::{color, save, Panel};
 use plotters::style::BLACK;
@@ -16,6 +17,9 @@ pub struct Samples {
     v: Vec<Vec<f64>>,
     tau: Vec<Vec<f64>>,
     energy: Vec<f64>,
+    /// With contacts: the sum of their normal forces (N) and the kinetic energy they took (J).
+    normal: Vec<f64>,
+    taken: Vec<f64>,
 }
 
 impl Samples {
@@ -35,11 +39,26 @@ impl Samples {
             v: vec![Vec::new(); n],
             tau: vec![Vec::new(); n],
             energy: Vec::new(),
+            normal: Vec::new(),
+            taken: Vec::new(),
         }
     }
 
-    /// Records one state.
-    pub fn push(&mut self, _model: &Model, t: f64, q: &[f64], v: &[f64], tau: &[f64], energy: f64) {
+    /// Records one state; `contact` is `(normal force sum, energy taken by the contacts so far)`
+    /// when there are contacts.
+    pub fn push(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        tau: &[f64],
+        energy: f64,
+        contact: Option<(f64, f64)>,
+    ) {
+        if let Some((normal, taken)) = contact {
+            self.normal.push(normal);
+            self.taken.push(taken);
+        }
         self.t.push(t);
         for (k, &(iq, iv)) in self.dofs.iter().enumerate() {
             self.q[k].push(q[iq]);
@@ -56,30 +75,53 @@ impl Samples {
             .collect()
     }
 
-    /// Draws the four panels into `path` (SVG or PNG).
+    /// Draws the panels into `path` (SVG or PNG).
     pub fn draw(&self, path: &Path) -> Result<(), String> {
-        let panels = [
-            Panel {
-                title: "joint positions (1-dof joints)".into(),
-                y_label: "q (rad or m)".into(),
-                curves: self.curves(&self.q),
-            },
-            Panel {
-                title: "joint velocities".into(),
-                y_label: "v (rad/s or m/s)".into(),
-                curves: self.curves(&self.v),
-            },
-            Panel {
-                title: "control torques".into(),
-                y_label: "τ (N·m or N)".into(),
-                curves: self.curves(&self.tau),
-            },
-            Panel {
+        let mut panels = Vec::new();
+        // a model without 1-dof joints (a free body) has no joint panels
+        if !self.names.is_empty() {
+            panels.extend([
+                Panel {
+                    title: "joint positions (1-dof joints)".into(),
+                    y_label: "q (rad or m)".into(),
+                    curves: self.curves(&self.q),
+                },
+                Panel {
+                    title: "joint velocities".into(),
+                    y_label: "v (rad/s or m/s)".into(),
+                    curves: self.curves(&self.v),
+                },
+                Panel {
+                    title: "control torques".into(),
+                    y_label: "τ (N·m or N)".into(),
+                    curves: self.curves(&self.tau),
+                },
+            ]);
+        }
+        if self.normal.len() == self.t.len() && !self.t.is_empty() {
+            // the kinetic energy the contact impulses took, cumulative (J, never decreasing):
+            // without control K + U falls by it, but for the time stepping's O(h) (at rest each
+            // step's free velocity, −g h, is taken again)
+            panels.push(Panel {
+                title: "energy: K + U, and the energy the contacts took since the start".into(),
+                y_label: "E (J)".into(),
+                curves: vec![
+                    ("K + U".into(), self.energy.clone(), BLACK),
+                    ("taken by contacts".into(), self.taken.clone(), color(1)),
+                ],
+            });
+            panels.push(Panel {
+                title: "contacts: sum of the normal forces".into(),
+                y_label: "N".into(),
+                curves: vec![(String::new(), self.normal.clone(), color(0))],
+            });
+        } else {
+            panels.push(Panel {
                 title: "total energy K + U".into(),
                 y_label: "E (J)".into(),
                 curves: vec![(String::new(), self.energy.clone(), BLACK)],
-            },
-        ];
+            });
+        }
         save(path, &self.t, &panels)
     }
 }
