@@ -176,40 +176,29 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let body = is_body_spec(&args.model);
     // a flag of the other kind of simulation is a mistake, not something to ignore
     let zero = Vec3::zeros();
-    let misplaced: &[(&str, bool)] = if body && args.ground.is_some() {
-        // a body on the ground: its pose is --q0, its twist --omega and --velocity
-        &[
-            ("--v0", args.v0.is_some()),
-            ("--controller", args.controller != ControlKind::None),
-            ("--target", args.target.is_some()),
-            ("--move-time", args.move_time.is_some()),
-            ("--profile", args.profile != TimeScaling::Quintic),
-            ("--limits", args.limits != JointLimits::default()),
-            ("--no-joint-dynamics", args.no_joint_dynamics),
-            ("--floating", args.load.floating),
-            ("--pivot", args.pivot.is_some()),
-        ]
-    } else if body {
-        &[
-            ("--q0", args.q0.is_some()),
-            ("--v0", args.v0.is_some()),
-            ("--controller", args.controller != ControlKind::None),
-            ("--target", args.target.is_some()),
-            ("--move-time", args.move_time.is_some()),
-            ("--profile", args.profile != TimeScaling::Quintic),
-            ("--limits", args.limits != JointLimits::default()),
-            ("--no-joint-dynamics", args.no_joint_dynamics),
-            ("--floating", args.load.floating),
-        ]
-    } else {
-        &[
-            ("--omega", args.omega != zero),
-            ("--velocity", args.velocity != zero),
-            ("--pivot", args.pivot.is_some()),
-        ]
-    };
+    let on_ground = body && args.ground.is_some();
+    // a body takes none of a robot's flags, but on the ground its pose is --q0 (and its twist
+    // --omega and --velocity, not --v0) and it has no pivot
+    let robot_only = [
+        ("--q0", args.q0.is_some() && !on_ground),
+        ("--v0", args.v0.is_some()),
+        ("--controller", args.controller != ControlKind::None),
+        ("--target", args.target.is_some()),
+        ("--move-time", args.move_time.is_some()),
+        ("--profile", args.profile != TimeScaling::Quintic),
+        ("--limits", args.limits != JointLimits::default()),
+        ("--no-joint-dynamics", args.no_joint_dynamics),
+        ("--floating", args.load.floating),
+        ("--pivot", args.pivot.is_some() && on_ground),
+    ];
+    let body_only = [
+        ("--omega", args.omega != zero),
+        ("--velocity", args.velocity != zero),
+        ("--pivot", args.pivot.is_some()),
+    ];
+    let misplaced: &[(&str, bool)] = if body { &robot_only } else { &body_only };
     if let Some((flag, _)) = misplaced.iter().find(|(_, given)| *given) {
-        if body && args.ground.is_some() {
+        if on_ground {
             return Err(format!(
                 "{flag} does not apply to a body on the ground ({}: its pose is --q0 \
                  x,y,z,qx,qy,qz,qw of its CoM, its twist --omega and --velocity)",
