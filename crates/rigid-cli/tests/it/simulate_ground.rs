@@ -163,25 +163,26 @@ fn compound_spec() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/compound.toml")
 }
 
+/// `rigid simulate compound.toml --ground FLAGS --csv ...` (`name` names the scratch folder):
+/// the last CSV row, after checking that it succeeded.
+fn compound_on_ground(name: &str, flags: &[&str]) -> std::collections::HashMap<String, f64> {
+    let csv = scratch(name).join("run.csv");
+    let spec = compound_spec();
+    let mut all = vec!["simulate", spec.to_str().unwrap(), "--ground"];
+    all.extend_from_slice(flags);
+    all.extend_from_slice(&["--csv", csv.to_str().unwrap()]);
+    let out = rigid(&all);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    last_row(&csv)
+}
+
 #[test]
 fn a_body_spec_set_down_on_the_ground_rests_on_its_parts() {
     // no --q0: the body starts on the ground, spec axes upright; its cylinder (axis vertical,
     // half-length 0.1 m) and the prism (0.1 m thick, centred at the same height) carry it with
     // its CoM at 0.1 m
-    let csv = scratch("spec").join("spec.csv");
-    let spec = compound_spec();
-    let out = rigid(&[
-        "simulate",
-        spec.to_str().unwrap(),
-        "--ground",
-        "--duration",
-        "1",
-        "--csv",
-        csv.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
-    let last = last_row(&csv);
+    let last = compound_on_ground("spec", &["--duration", "1"]);
     assert!((last["q_body_z"] - 0.1).abs() < 1e-4, "{last:?}");
     assert!(
         last["q_body_x"].abs() < 1e-3 && last["q_body_y"].abs() < 1e-3,
@@ -197,26 +198,19 @@ fn a_body_spec_set_down_on_the_ground_rests_on_its_parts() {
 fn a_body_spec_thrown_tumbling_comes_to_rest_on_the_ground() {
     // dropped from 0.5 m tilted, spinning and sliding: at the end it lies still on the ground,
     // its weight on its contacts, having lost energy (never gained it)
-    let csv = scratch("throw").join("throw.csv");
-    let spec = compound_spec();
-    let out = rigid(&[
-        "simulate",
-        spec.to_str().unwrap(),
-        "--ground",
-        "--q0",
-        "0,0,0.5,0.199995991,0.099997996,0,0.974680463",
-        "--omega",
-        "1,2,3",
-        "--velocity",
-        "0.5,0,0",
-        "--duration",
-        "3",
-        "--csv",
-        csv.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
-    let last = last_row(&csv);
+    let last = compound_on_ground(
+        "throw",
+        &[
+            "--q0",
+            "0,0,0.5,0.199995991,0.099997996,0,0.974680463",
+            "--omega",
+            "1,2,3",
+            "--velocity",
+            "0.5,0,0",
+            "--duration",
+            "3",
+        ],
+    );
     let speed: f64 = ["wx", "wy", "wz", "vx", "vy", "vz"]
         .iter()
         .map(|k| last[&format!("v_body_{k}")].powi(2))
