@@ -12,9 +12,11 @@
 
 #![warn(missing_docs)]
 
+mod ground;
 mod mjcf;
 mod shapes;
 
+pub use ground::{collision_nodes, CONTACT_MARKERS};
 pub use shapes::{body_box, robot_nodes};
 
 use base64::Engine;

@@ -9,8 +9,9 @@ use rigid::multibody::simulation::{
     ControlKind, ControlLaw, Controller, Integrator, JointLimits, SimulationError,
     SimulationOptions, Simulator,
 };
-use rigid::multibody::{column_names, neutral, Data, Model};
-use rigid_replay::{robot_nodes, Recording};
+use rigid::multibody::{center_of_mass, column_names, neutral, Data, Model};
+use rigid::spatial::Vec3;
+use rigid_replay::{collision_nodes, robot_nodes, Recording};
 use std::io::Write;
 
 /// `t`, then `q_<joint>`, `v_<joint>`, `tau_<joint>` (`_<coordinate>` for multi-dof joints).
@@ -176,6 +177,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let ctrl = controller(args, &model, &q0, target, collision.as_ref())?;
     let mut sim = Simulator::new(&model, &q0, &v0, opts, ctrl).map_err(|e| e.to_string())?;
     let contacts = collision.is_some();
+    // a body spec has no visual of its own: the page draws its parts' shapes
+    let spec_nodes = collision
+        .as_ref()
+        .filter(|_| spec && args.html.is_some())
+        .map(collision_nodes);
     if let Some(cm) = collision {
         sim = sim.with_collision(cm).map_err(|e| e.to_string())?;
     }
@@ -199,14 +205,41 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         let tau = tau_row(&mut sim)?;
         write_row(f.writer(), 0.0, &q0, &v0, &tau, contact_row(&sim)).map_err(|e| e.to_string())?;
     }
-    let mut scene = if args.html.is_some() {
-        robot_nodes(&model, urdf_path(&args.model).filter(|_| !spec).as_deref())
-    } else {
-        Default::default()
+    let mut scene = match (spec_nodes, &args.html) {
+        (Some((nodes, warnings)), _) => rigid_replay::Scene {
+            nodes,
+            warnings,
+            extent: 0.5,
+            ..Default::default()
+        },
+        (None, Some(_)) => robot_nodes(&model, urdf_path(&args.model).as_deref()),
+        (None, None) => Default::default(),
     };
     let mut rec = Recording::default();
     let mut data = Data::new(&model);
+    // with --ground the page draws the ground and marks the contacts that push
+    let height = args.ground.unwrap_or_default();
+    let markers = match (&args.html, contacts) {
+        (Some(_), true) => {
+            let c = center_of_mass(&model, &mut data, &q0).map_err(|e| e.to_string())?;
+            Some(scene.add_ground(height, c))
+        }
+        _ => None,
+    };
+    let mark = |scene: &mut rigid_replay::Scene, sim: &Simulator| {
+        if let Some(first) = markers {
+            let pushing: Vec<Vec3> = sim
+                .contacts()
+                .iter()
+                .zip(sim.contact_impulses())
+                .filter(|(_, p)| p.norm() > 0.0)
+                .map(|(c, _)| c.point)
+                .collect();
+            scene.set_contacts(first, &pushing, height);
+        }
+    };
     if args.html.is_some() {
+        mark(&mut scene, &sim);
         rec.record_model(&scene, &model, &mut data, 0.0, &q0, true)?;
     }
     let stride = (steps as usize).div_ceil(PLOT_POINTS).max(1) as u64;
@@ -249,7 +282,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
                 samples.push(t, sim.q(), sim.v(), &tau, e, c);
             }
         }
-        if args.html.is_some() {
+        if args.html.is_some() && (rec.due(t) || k == steps) {
+            mark(&mut scene, &sim);
             rec.record_model(&scene, &model, &mut data, t, sim.q(), k == steps)?;
         }
         progress.tick(k);

@@ -246,3 +246,21 @@ fn a_body_spec_on_the_ground_refuses_the_flags_that_do_not_apply() {
         );
     }
 }
+
+#[test]
+fn the_replay_of_a_body_on_the_ground_draws_the_ground_its_parts_and_the_contacts() {
+    let html = scratch("replay").join("replay.html");
+    compound_on_ground(
+        "replay-csv",
+        &["--duration", "0.5", "--html", html.to_str().unwrap()],
+    );
+    let page = std::fs::read_to_string(&html).unwrap();
+    for node in [
+        r#""name":"ground""#,
+        r#""name":"contact 0""#,
+        r#""name":"cylinder""#,
+        r#""name":"prism""#,
+    ] {
+        assert!(page.contains(node), "no {node} in the page");
+    }
+}
