@@ -36,15 +36,23 @@ pub fn collision_model(
             args.model
         );
     }
-    ground_model(height, args.friction, args.restitution, geometries)
-        .map(Some)
-        .map_err(|e| {
-            if e.starts_with("the ") {
-                e
-            } else {
-                format!("--{e}")
-            }
-        })
+    on_ground(args, height, geometries).map(Some)
+}
+
+/// The ground `z = height` with `--friction` and `--restitution` under `geometries` (a bad value
+/// named by its flag).
+fn on_ground(
+    args: &SimulateArgs,
+    height: f64,
+    geometries: Vec<rigid::collision::Geometry>,
+) -> Result<CollisionModel, String> {
+    ground_model(height, args.friction, args.restitution, geometries).map_err(|e| {
+        if e.starts_with("the ") {
+            e
+        } else {
+            format!("--{e}")
+        }
+    })
 }
 
 /// `rigid simulate SPEC.toml --ground`: the body of the spec as a model of one free-flyer at
@@ -61,13 +69,7 @@ pub fn body_on_ground(args: &SimulateArgs) -> Result<(Loaded, CollisionModel), S
             args.model
         ));
     }
-    let cm = ground_model(height, args.friction, args.restitution, geometries).map_err(|e| {
-        if e.starts_with("the ") {
-            e
-        } else {
-            format!("--{e}")
-        }
-    })?;
+    let cm = on_ground(args, height, geometries)?;
     let loaded = Loaded {
         model,
         warnings: Vec::new(),

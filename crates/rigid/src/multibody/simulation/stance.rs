@@ -23,13 +23,14 @@ impl ControlLaw {
     /// Every actuated joint alone has the natural frequency `omega` (rad/s) and damping ratio
     /// `zeta` on the inertia it moves *while the feet hold*: `K_p,k = ω² m_k`, `K_d,k = 2ζω m_k`
     /// with `m_k = max(M_kk, 1 / (M_c⁻¹)_kk)` and `M_c⁻¹ = M⁻¹ − M⁻¹Aᵀ (A M⁻¹ Aᵀ)⁺ A M⁻¹` the
-    /// mobility with each touching body pinned at one point, the centroid of its contacts (`A`
-    /// their rows; Featherstone 2008 §8.1, the constrained system's inverse inertia). A knee
+    /// constrained mobility (Featherstone 2008 §8.1), `A` the rows of one anchor per touching
+    /// body at the centroid of its contacts: a frame (the sole held whole) on a body with three
+    /// or more contacts, else a point; where the frames lock joint k, the points alone. A knee
     /// then moves the body it carries, not only its shank: with the leg's own `M_kk`, as
     /// [`ControlLaw::pd`] on a fixed base, the joints are far softer than the load's geometric
     /// stiffness `≈ m g ℓ` and the stance buckles (Solo-12 twisted in yaw and fell after ~1 s).
-    /// One point per body rather than every contact: a sole's points would lock its leg and
-    /// give no scale at all.
+    /// Anchors rather than every contact: the many points of a sole would give the same frame
+    /// with redundant rows.
     ///
     /// # Errors
     /// A bad target, a contact on a body of another model.
@@ -42,17 +43,22 @@ impl ControlLaw {
     ) -> Result<Self, SimulationError> {
         let mut data = Data::new(model);
         forward_kinematics_q(model, &mut data, target)?;
-        let pin = |data: &Data, body: JointId, at: Vec3| {
+        // a point (or, `whole`, a frame) of `body` at `at` held where it is
+        let anchor = |body: JointId, at: Vec3, whole: bool| {
             let at = Transform::from_translation(at);
             let local = data.placements[body.0].inverse() * at;
-            ConstraintModel::point(Some(body), local, None, at)
-                .with_reference(ReferenceFrame::WorldAligned)
+            if whole {
+                ConstraintModel::frame(Some(body), local, None, at)
+            } else {
+                ConstraintModel::point(Some(body), local, None, at)
+                    .with_reference(ReferenceFrame::WorldAligned)
+            }
         };
         let points: Vec<ConstraintModel> = contacts
             .iter()
-            .filter_map(|c| Some(pin(&data, c.body1?, c.point)))
+            .filter_map(|c| Some(anchor(c.body1?, c.point, false)))
             .collect();
-        // one anchor per touching body, at the centroid of its contact points
+        // per touching body: the sum of its contact points and their number
         let mut bodies: Vec<(JointId, Vec3, f64)> = Vec::new();
         for c in contacts {
             let Some(body) = c.body1 else { continue };
@@ -66,19 +72,11 @@ impl ControlLaw {
         }
         let pinned: Vec<ConstraintModel> = bodies
             .iter()
-            .map(|&(body, sum, n)| pin(&data, body, sum / n))
+            .map(|&(body, sum, n)| anchor(body, sum / n, false))
             .collect();
-        // a body on three or more points (a sole) held whole, in position and orientation
         let held: Vec<ConstraintModel> = bodies
             .iter()
-            .map(|&(body, sum, n)| {
-                if n < 3.0 {
-                    return pin(&data, body, sum / n);
-                }
-                let at = Transform::from_translation(sum / n);
-                let local = data.placements[body.0].inverse() * at;
-                ConstraintModel::frame(Some(body), local, None, at)
-            })
+            .map(|&(body, sum, n)| anchor(body, sum / n, n >= 3.0))
             .collect();
         let invalid = |e: crate::multibody::constraints::ConstraintError| {
             SimulationError::Invalid(format!("stance: {e}"))
