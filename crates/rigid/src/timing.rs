@@ -23,7 +23,6 @@
 //! ```
 
 use crate::error::DimensionError;
-use crate::multibody::batch::QvxFn;
 use crate::multibody::{
     aba, aba_derivatives, batch, compute_joint_jacobians, compute_minverse, crba,
     forward_dynamics_cholesky, forward_kinematics, forward_kinematics_q, gravity_torques,
@@ -207,6 +206,15 @@ pub fn time_algorithms(
     }
     Ok(samples.into_iter().map(median).collect())
 }
+
+/// `rnea` and `aba` share one shape: `(q, v, x) ↦ nv-vector` (the loops of single calls).
+pub(crate) type QvxFn = for<'a> fn(
+    &Model,
+    &'a mut Data,
+    &[f64],
+    &[f64],
+    &[f64],
+) -> Result<&'a nalgebra::DVector<f64>, MultibodyError>;
 
 /// Row-major states for the batch entry points.
 struct Rows {

@@ -52,6 +52,44 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
     }
 }
 
+/// [`sin_cos`] of `W` angles side by side, one per lane, for the batch kernels
+/// ([`multibody::batch`](crate::multibody::batch)): the same operations in each lane (the
+/// quadrant picked by bit masks instead of a `match`), so the results are [`sin_cos`]'s bit for
+/// bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the standard library, as there.
+#[inline(always)]
+#[must_use]
+pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W]) {
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let (mut sin, mut cos) = ([0.0; W], [0.0; W]);
+    for i in 0..W {
+        let x = q[i];
+        let shifted = x * std::f64::consts::FRAC_2_PI + ROUND;
+        let n = shifted - ROUND;
+        // n mod 4 in the low bits of the mantissa of n + 1.5·2⁵²
+        let t = shifted.to_bits();
+        let r = ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_2T;
+        let z = r * r;
+        let s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
+        let hz = 0.5 * z;
+        let w = 1.0 - hz;
+        let c = w
+            + (((1.0 - w) - hz)
+                + z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6))))));
+        // quadrant 0: (s, c); 1: (c, -s); 2: (-s, -c); 3: (-c, s)
+        let swap = 0u64.wrapping_sub(t & 1);
+        let (sb, cb) = (s.to_bits(), c.to_bits());
+        let (s0, c0) = ((sb & !swap) | (cb & swap), (cb & !swap) | (sb & swap));
+        sin[i] = f64::from_bits(s0 ^ ((t & 2) << 62));
+        cos[i] = f64::from_bits(c0 ^ (((t + 1) & 2) << 62));
+    }
+    for i in 0..W {
+        if q[i].abs().partial_cmp(&1e5) != Some(std::cmp::Ordering::Less) {
+            (sin[i], cos[i]) = q[i].sin_cos();
+        }
+    }
+    (sin, cos)
+}
+
 /// `out[k] = [sin q_k, cos q_k]` for the entries `k` of `q` listed in `at`, several at a time in
 /// the lanes of a vector register: four in AVX2 where the CPU has it (detected at run time, as
 /// glibc picks its own `sincos`), else two in SSE2 (the x86-64 baseline). The lanes do the same
@@ -306,6 +344,39 @@ mod tests {
 
     /// The vector paths (four AVX2 lanes, two SSE2 lanes) give `sin_cos` bit for bit, in every
     /// quadrant and lane, and fall back for large or non-finite angles.
+    #[test]
+    fn sin_cos_lanes_equals_sin_cos_bit_for_bit() {
+        let qs = [
+            0.0,
+            -0.0,
+            0.3,
+            -0.3,
+            1.0,
+            2.5,
+            -2.5,
+            3.2,
+            -3.9,
+            7.1,
+            100.0,
+            -99_999.0,
+            1e6,
+            f64::NAN,
+            std::f64::consts::FRAC_PI_2,
+            -3.0 * std::f64::consts::FRAC_PI_2,
+            std::f64::consts::TAU,
+        ];
+        for chunk in qs.chunks(4) {
+            let mut q = [0.25; 4];
+            q[..chunk.len()].copy_from_slice(chunk);
+            let (s, c) = super::sin_cos_lanes(q);
+            for i in 0..4 {
+                let (s1, c1) = sin_cos(q[i]);
+                assert_eq!(s[i].to_bits(), s1.to_bits(), "sin {}", q[i]);
+                assert_eq!(c[i].to_bits(), c1.to_bits(), "cos {}", q[i]);
+            }
+        }
+    }
+
     #[test]
     fn sin_cos_at_equals_sin_cos_bit_for_bit() {
         let q: Vec<f64> = (-40_001..=40_001)

@@ -1,0 +1,266 @@
+//! ABA on a pack of `W` states: [`aba`](crate::multibody::aba)'s three passes (Featherstone
+//! 2008, Table 7.1), every quantity a lane vector, the articulated inertias in 3x3 blocks.
+
+use super::lanes::{L, M3, T6, V3, X};
+use super::pack::{momentum, placement, Pack, I6};
+use crate::mass::SpatialInertia;
+use crate::multibody::joint::Shape;
+use crate::multibody::{Model, MultibodyError};
+
+/// `q̈ = FD(q, v, τ)` for the pack's states: `q`, `v`, `x = τ` in, `out = q̈`.
+///
+/// 1. i = 1..n: `V_i = [Ad_{liMi⁻¹}] V_λ + S_i q̇_i`, `c_i = V_i × S_i q̇_i + c_J`,
+///    `I^A_i = G_i`, `p^A_i = V_i ×* G_i V_i`;
+/// 2. i = n..1: `U_i = I^A_i S_i`, `D_i = S_iᵀ U_i + armature`, `u_i = τ_i − S_iᵀ p^A_i`, and
+///    with `I^a = I^A_i − U_i D_i⁻¹ U_iᵀ`, `p^a = p^A_i + I^a c_i + U_i D_i⁻¹ u_i`:
+///    `I^A_λ += X* I^a X⁻¹`, `p^A_λ += X* p^a` (`X = [Ad_{liMi}]`);
+/// 3. i = 1..n: `a_i = [Ad_{liMi⁻¹}] a_λ + c_i` (`a_0 = -g`), `q̈_i = D_i⁻¹ (u_i − U_iᵀ a_i)`,
+///    `a_i += S_i q̈_i`.
+///
+/// # Errors
+/// [`MultibodyError::NotPositiveDefinite`] when some `D_i` is not positive in some lane (a
+/// massless subtree, as the single call says).
+#[inline(always)]
+pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), MultibodyError> {
+    let joints = model.joints();
+    p.update_subspaces(model);
+    for (i, j) in joints.iter().enumerate() {
+        let X = placement(model, i, &p.q);
+        let mut V = match j.parent {
+            Some(par) => X.inv_act(&p.V[par.0]),
+            None => T6::zero(),
+        };
+        let vJ = p.joint_twist(model, i, &p.v);
+        V += vJ;
+        let mut c = V.cross(&vJ);
+        if let Some(cJ) = p.joint_bias(model, i) {
+            c += cJ;
+        }
+        let G = &model.inertias()[i];
+        p.IA[i] = I6::from_inertia(G);
+        p.F[i] = V.cross_star(&momentum(G, &V));
+        p.X[i] = X;
+        p.V[i] = V;
+        p.A[i] = c;
+    }
+    for (i, j) in joints.iter().enumerate().rev() {
+        let iv = j.idx_v;
+        let (IA, pA) = (p.IA[i], p.F[i]);
+        let axis = match (j.kind.shape(), model.plan().dof_axis[iv]) {
+            (Shape::FreeFlyer, _) => None,
+            (_, Some((c, s))) if j.nv == 1 => Some((c, s)),
+            _ => None,
+        };
+        let ff = j.kind.shape() == Shape::FreeFlyer;
+        for k in j.dofs() {
+            p.U[k] = match axis {
+                Some((c, s)) => IA.col(c).scale(L::splat(s)),
+                None if ff => IA.col(k - iv),
+                None => IA.mul(&p.S[k]),
+            };
+        }
+        // D = Sᵀ U + armature (nv x nv, row-major), u = τ − Sᵀ p^A
+        let n = j.nv;
+        let mut D = [L::zero(); 36];
+        for a in 0..n {
+            for b in 0..n {
+                D[a * n + b] = match axis {
+                    Some((c, s)) => p.U[iv + b].get(c) * s,
+                    None if ff => p.U[iv + b].get(a),
+                    None => p.S[iv + a].dot(&p.U[iv + b]),
+                };
+            }
+            D[a * n + a] += model.armature()[iv + a];
+            let Sp = match axis {
+                Some((c, s)) => pA.get(c) * s,
+                None if ff => pA.get(a),
+                None => p.S[iv + a].dot(&pA),
+            };
+            p.u[iv + a] = p.x[iv + a] - Sp;
+        }
+        let Dinv = spd_inverse(&D, n)?;
+        p.Dinv[i] = Dinv;
+        if let Some(par) = j.parent {
+            // I^a = I^A − Σ_a U_a (Σ_b D⁻¹_ab U_b)ᵀ, p^a = p^A + I^a c + Σ_a U_a (Σ_b D⁻¹_ab u_b)
+            let mut Ia = IA;
+            let mut pa = pA;
+            for a in 0..n {
+                let mut Wa = T6::zero();
+                let mut s = L::zero();
+                for b in 0..n {
+                    Wa += p.U[iv + b].scale(Dinv[a * n + b]);
+                    s += Dinv[a * n + b] * p.u[iv + b];
+                }
+                Ia.sub_outer(&p.U[iv + a], &Wa);
+                pa += p.U[iv + a].scale(s);
+            }
+            pa += Ia.mul(&p.A[i]);
+            let X = p.X[i];
+            let moved = Ia.congruence(&X);
+            p.IA[par.0].add(&moved);
+            let f = X.act_wrench(&pa);
+            p.F[par.0] += f;
+        }
+    }
+    let a_world = T6 {
+        w: V3::zero(),
+        v: V3::splat(&-model.gravity()),
+    };
+    for (i, j) in joints.iter().enumerate() {
+        let iv = j.idx_v;
+        let X = &p.X[i];
+        let mut a = match j.parent {
+            Some(par) => X.inv_act(&p.A[par.0]),
+            None => X.inv_act(&a_world),
+        } + p.A[i];
+        let n = j.nv;
+        let mut r = [L::zero(); 6];
+        for (b, rb) in r[..n].iter_mut().enumerate() {
+            *rb = p.u[iv + b] - p.U[iv + b].dot(&a);
+        }
+        for a_ in 0..n {
+            let mut x = L::zero();
+            for (b, rb) in r[..n].iter().enumerate() {
+                x += p.Dinv[i][a_ * n + b] * *rb;
+            }
+            p.out[iv + a_] = x;
+        }
+        a += p.joint_twist(model, i, &p.out);
+        p.A[i] = a;
+    }
+    Ok(())
+}
+
+/// `D⁻¹` of a symmetric positive definite `n x n` matrix per lane (row-major), by Gauss-Jordan
+/// elimination without pivoting (whose pivots are the Schur complements, positive for such a
+/// matrix).
+///
+/// # Errors
+/// [`MultibodyError::NotPositiveDefinite`] when a pivot is not positive (or NaN) in some lane.
+#[inline(always)]
+fn spd_inverse<const W: usize>(D: &[L<W>; 36], n: usize) -> Result<[L<W>; 36], MultibodyError> {
+    let mut m = *D;
+    let mut inv = [L::zero(); 36];
+    for k in 0..n {
+        inv[k * n + k] = L::splat(1.0);
+    }
+    for k in 0..n {
+        let piv = m[k * n + k];
+        if piv
+            .0
+            .iter()
+            .any(|x| x.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater))
+        {
+            return Err(MultibodyError::NotPositiveDefinite);
+        }
+        let r = piv.map(|x| 1.0 / x);
+        for j in 0..n {
+            m[k * n + j] *= r;
+            inv[k * n + j] *= r;
+        }
+        for i in (0..n).filter(|&i| i != k) {
+            let f = m[i * n + k];
+            for j in 0..n {
+                let (mk, ik) = (m[k * n + j], inv[k * n + j]);
+                m[i * n + j] -= f * mk;
+                inv[i * n + j] -= f * ik;
+            }
+        }
+    }
+    Ok(inv)
+}
+
+impl<const W: usize> I6<W> {
+    /// The constant body inertia `(m, h, I_O)` as `[[I_O, [h]×], [[h]×ᵀ, m 1]]`.
+    #[inline(always)]
+    fn from_inertia(G: &SpatialInertia) -> Self {
+        let h = G.first_moment();
+        let m = G.mass();
+        let hx = crate::spatial::Mat3::new(0.0, -h.z, h.y, h.z, 0.0, -h.x, -h.y, h.x, 0.0);
+        Self {
+            a: M3::splat(G.inertia_origin_matrix()),
+            b: M3::splat(&hx),
+            c: M3::splat(&(crate::spatial::Mat3::identity() * m)),
+        }
+    }
+
+    /// `I T = (A ω + B v, Bᵀ ω + C v)`.
+    #[inline(always)]
+    fn mul(&self, t: &T6<W>) -> T6<W> {
+        T6 {
+            w: self.a.mul_v(&t.w) + self.b.mul_v(&t.v),
+            v: self.b.tr_mul_v(&t.w) + self.c.mul_v(&t.v),
+        }
+    }
+
+    /// Column `c` (angular first).
+    #[inline(always)]
+    fn col(&self, c: usize) -> T6<W> {
+        if c < 3 {
+            T6 {
+                w: self.a.col(c),
+                v: V3(self.b.0[c]),
+            }
+        } else {
+            T6 {
+                w: self.b.col(c - 3),
+                v: self.c.col(c - 3),
+            }
+        }
+    }
+
+    /// `I −= U Wᵀ` (the blocks of the 6x6 outer product).
+    #[inline(always)]
+    fn sub_outer(&mut self, u: &T6<W>, w: &T6<W>) {
+        for r in 0..3 {
+            for c in 0..3 {
+                self.a.0[r][c] -= u.w.0[r] * w.w.0[c];
+                self.b.0[r][c] -= u.w.0[r] * w.v.0[c];
+                self.c.0[r][c] -= u.v.0[r] * w.v.0[c];
+            }
+        }
+    }
+
+    /// `I += J`.
+    #[inline(always)]
+    fn add(&mut self, o: &Self) {
+        for r in 0..3 {
+            for c in 0..3 {
+                self.a.0[r][c] += o.a.0[r][c];
+                self.b.0[r][c] += o.b.0[r][c];
+                self.c.0[r][c] += o.c.0[r][c];
+            }
+        }
+    }
+
+    /// `X* I X⁻¹` for `X = [Ad_{(R, p)}]`: the inertia of the child frame in the parent frame.
+    /// Turned first, `(A, B, C) ← (R A Rᵀ, R B Rᵀ, R C Rᵀ)`, then moved by `p`:
+    /// `C' = C`, `B' = B + [p] C`, `A' = A − B [p] + [p] B'ᵀ`.
+    #[inline(always)]
+    fn congruence(&self, x: &X<W>) -> Self {
+        let r = &x.r;
+        let (a, b, c) = (
+            r.mul(&self.a).mul_tr(r),
+            r.mul(&self.b).mul_tr(r),
+            r.mul(&self.c).mul_tr(r),
+        );
+        let p = &x.p;
+        let mut bn = b;
+        for j in 0..3 {
+            let pc = p.cross(&c.col(j));
+            for i in 0..3 {
+                bn.0[i][j] += pc.0[i];
+            }
+        }
+        let mut an = a;
+        for i in 0..3 {
+            let e = p.cross(&V3(b.0[i])); // −(B [p]) row i
+            let h = p.cross(&V3(bn.0[i])); // ([p] B'ᵀ) column i
+            for j in 0..3 {
+                an.0[i][j] += e.0[j];
+                an.0[j][i] += h.0[j];
+            }
+        }
+        Self { a: an, b: bn, c }
+    }
+}

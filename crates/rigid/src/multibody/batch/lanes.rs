@@ -1,0 +1,438 @@
+//! `W` states side by side: every scalar of the algorithms becomes a `W`-wide vector [`L`], one
+//! lane per state, and the spatial types of one state become their lane versions ([`V3`],
+//! [`M3`], [`T6`]). Each operation is a loop over the lanes that the compiler turns into one
+//! vector instruction when the kernel is compiled for a vector unit of `W` doubles
+//! ([`super::simd`]: AVX-512 8, AVX2 4, SSE2 2); there are no shuffles, because a lane never
+//! talks to another. Constants of the model (placements, inertias, axes) stay `f64` and are
+//! broadcast by the product `L * f64`.
+//!
+//! The operations are those of the single-state code, one for one, without fused multiply-add
+//! (Rust never contracts `a * b + c`), so a lane computes what a single call would when the two
+//! take the same steps in the same order.
+
+use crate::spatial::{Mat3, Twist, Vec3};
+use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+
+/// `W` doubles, one per state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(transparent)]
+pub(crate) struct L<const W: usize>(pub(crate) [f64; W]);
+
+impl<const W: usize> L<W> {
+    /// Every lane `x`.
+    #[inline(always)]
+    pub(crate) fn splat(x: f64) -> Self {
+        Self([x; W])
+    }
+
+    /// Every lane 0.
+    #[inline(always)]
+    pub(crate) fn zero() -> Self {
+        Self([0.0; W])
+    }
+
+    /// `f` of each lane (for the few steps that are not arithmetic: `sqrt`, a division).
+    #[inline(always)]
+    pub(crate) fn map(self, f: impl Fn(f64) -> f64) -> Self {
+        let mut r = self.0;
+        for x in &mut r {
+            *x = f(*x);
+        }
+        Self(r)
+    }
+}
+
+macro_rules! lane_op {
+    ($tr:ident, $f:ident, $op:tt, $tra:ident, $fa:ident) => {
+        impl<const W: usize> $tr for L<W> {
+            type Output = Self;
+            #[inline(always)]
+            fn $f(self, o: Self) -> Self {
+                let mut r = self.0;
+                for i in 0..W {
+                    r[i] = self.0[i] $op o.0[i];
+                }
+                Self(r)
+            }
+        }
+        impl<const W: usize> $tr<f64> for L<W> {
+            type Output = Self;
+            #[inline(always)]
+            fn $f(self, o: f64) -> Self {
+                let mut r = self.0;
+                for x in &mut r {
+                    let y = *x;
+                    *x = y $op o;
+                }
+                Self(r)
+            }
+        }
+        impl<const W: usize> $tra for L<W> {
+            #[inline(always)]
+            fn $fa(&mut self, o: Self) {
+                *self = *self $op o;
+            }
+        }
+        impl<const W: usize> $tra<f64> for L<W> {
+            #[inline(always)]
+            fn $fa(&mut self, o: f64) {
+                *self = *self $op o;
+            }
+        }
+    };
+}
+lane_op!(Add, add, +, AddAssign, add_assign);
+lane_op!(Sub, sub, -, SubAssign, sub_assign);
+lane_op!(Mul, mul, *, MulAssign, mul_assign);
+
+use std::ops::MulAssign;
+
+impl<const W: usize> Neg for L<W> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        self.map(|x| -x)
+    }
+}
+
+/// A 3-vector per lane.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct V3<const W: usize>(pub(crate) [L<W>; 3]);
+
+impl<const W: usize> V3<W> {
+    #[inline(always)]
+    pub(crate) fn zero() -> Self {
+        Self([L::zero(); 3])
+    }
+
+    /// The constant `x` in every lane.
+    #[inline(always)]
+    pub(crate) fn splat(x: &Vec3) -> Self {
+        Self([L::splat(x.x), L::splat(x.y), L::splat(x.z)])
+    }
+
+    /// `a × b`.
+    #[inline(always)]
+    pub(crate) fn cross(&self, b: &Self) -> Self {
+        let (a, b) = (&self.0, &b.0);
+        Self([
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ])
+    }
+
+    /// `a · b`.
+    #[inline(always)]
+    pub(crate) fn dot(&self, b: &Self) -> L<W> {
+        self.0[0] * b.0[0] + self.0[1] * b.0[1] + self.0[2] * b.0[2]
+    }
+
+    /// `a x` for a lane scalar `x`.
+    #[inline(always)]
+    pub(crate) fn scale(&self, x: L<W>) -> Self {
+        Self([self.0[0] * x, self.0[1] * x, self.0[2] * x])
+    }
+
+    /// `c × a` for a constant `c`.
+    #[inline(always)]
+    pub(crate) fn c_cross(c: &Vec3, a: &Self) -> Self {
+        let a = &a.0;
+        Self([
+            a[2] * c.y - a[1] * c.z,
+            a[0] * c.z - a[2] * c.x,
+            a[1] * c.x - a[0] * c.y,
+        ])
+    }
+
+    /// `c x` for a constant `c` and a lane scalar `x`.
+    #[inline(always)]
+    pub(crate) fn c_scale(c: &Vec3, x: L<W>) -> Self {
+        Self([x * c.x, x * c.y, x * c.z])
+    }
+}
+
+impl<const W: usize> Add for V3<W> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Self([self.0[0] + o.0[0], self.0[1] + o.0[1], self.0[2] + o.0[2]])
+    }
+}
+
+impl<const W: usize> Sub for V3<W> {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self([self.0[0] - o.0[0], self.0[1] - o.0[1], self.0[2] - o.0[2]])
+    }
+}
+
+impl<const W: usize> AddAssign for V3<W> {
+    #[inline(always)]
+    fn add_assign(&mut self, o: Self) {
+        *self = *self + o;
+    }
+}
+
+impl<const W: usize> SubAssign for V3<W> {
+    #[inline(always)]
+    fn sub_assign(&mut self, o: Self) {
+        *self = *self - o;
+    }
+}
+
+impl<const W: usize> Neg for V3<W> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self([-self.0[0], -self.0[1], -self.0[2]])
+    }
+}
+
+/// A 3x3 matrix per lane, `m[r][c]` (row `r`, column `c`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct M3<const W: usize>(pub(crate) [[L<W>; 3]; 3]);
+
+impl<const W: usize> M3<W> {
+    /// The constant `m` in every lane.
+    #[inline(always)]
+    pub(crate) fn splat(m: &Mat3) -> Self {
+        let mut r = [[L::zero(); 3]; 3];
+        for (i, row) in r.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x = L::splat(m[(i, j)]);
+            }
+        }
+        Self(r)
+    }
+
+    /// Column `c`.
+    #[inline(always)]
+    pub(crate) fn col(&self, c: usize) -> V3<W> {
+        V3([self.0[0][c], self.0[1][c], self.0[2][c]])
+    }
+
+    /// `M x`.
+    #[inline(always)]
+    pub(crate) fn mul_v(&self, x: &V3<W>) -> V3<W> {
+        let m = &self.0;
+        let x = &x.0;
+        V3([
+            m[0][0] * x[0] + m[0][1] * x[1] + m[0][2] * x[2],
+            m[1][0] * x[0] + m[1][1] * x[1] + m[1][2] * x[2],
+            m[2][0] * x[0] + m[2][1] * x[1] + m[2][2] * x[2],
+        ])
+    }
+
+    /// `Mᵀ x`.
+    #[inline(always)]
+    pub(crate) fn tr_mul_v(&self, x: &V3<W>) -> V3<W> {
+        let m = &self.0;
+        let x = &x.0;
+        V3([
+            m[0][0] * x[0] + m[1][0] * x[1] + m[2][0] * x[2],
+            m[0][1] * x[0] + m[1][1] * x[1] + m[2][1] * x[2],
+            m[0][2] * x[0] + m[1][2] * x[1] + m[2][2] * x[2],
+        ])
+    }
+
+    /// `M c` for a constant `c`.
+    #[inline(always)]
+    pub(crate) fn mul_c(&self, c: &Vec3) -> V3<W> {
+        let m = &self.0;
+        V3([
+            m[0][0] * c.x + m[0][1] * c.y + m[0][2] * c.z,
+            m[1][0] * c.x + m[1][1] * c.y + m[1][2] * c.z,
+            m[2][0] * c.x + m[2][1] * c.y + m[2][2] * c.z,
+        ])
+    }
+
+    /// `A B`.
+    #[inline(always)]
+    pub(crate) fn mul(&self, b: &Self) -> Self {
+        let (a, b) = (&self.0, &b.0);
+        let mut r = [[L::zero(); 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
+            }
+        }
+        Self(r)
+    }
+
+    /// `A C` for a constant `C`.
+    #[inline(always)]
+    pub(crate) fn mul_cm(&self, c: &Mat3) -> Self {
+        let a = &self.0;
+        let mut r = [[L::zero(); 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] = a[i][0] * c[(0, j)] + a[i][1] * c[(1, j)] + a[i][2] * c[(2, j)];
+            }
+        }
+        Self(r)
+    }
+
+    /// `C B` for a constant `C`.
+    #[inline(always)]
+    pub(crate) fn c_mul(c: &Mat3, b: &Self) -> Self {
+        let b = &b.0;
+        let mut r = [[L::zero(); 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] = b[0][j] * c[(i, 0)] + b[1][j] * c[(i, 1)] + b[2][j] * c[(i, 2)];
+            }
+        }
+        Self(r)
+    }
+}
+
+/// A twist `(ω, v)` or a wrench `(m, f)` per lane, angular first.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct T6<const W: usize> {
+    /// Angular part: `ω` of a twist, the moment `m` of a wrench.
+    pub(crate) w: V3<W>,
+    /// Linear part: `v` of a twist, the force `f` of a wrench.
+    pub(crate) v: V3<W>,
+}
+
+impl<const W: usize> T6<W> {
+    #[inline(always)]
+    pub(crate) fn zero() -> Self {
+        Self {
+            w: V3::zero(),
+            v: V3::zero(),
+        }
+    }
+
+    /// The constant twist `t` in every lane.
+    #[inline(always)]
+    pub(crate) fn splat(t: &Twist) -> Self {
+        Self {
+            w: V3::splat(&t.w),
+            v: V3::splat(&t.v),
+        }
+    }
+
+    /// Component `c` (angular first).
+    #[inline(always)]
+    pub(crate) fn get(&self, c: usize) -> L<W> {
+        if c < 3 {
+            self.w.0[c]
+        } else {
+            self.v.0[c - 3]
+        }
+    }
+
+    /// Component `c` (angular first), to write.
+    #[inline(always)]
+    pub(crate) fn get_mut(&mut self, c: usize) -> &mut L<W> {
+        if c < 3 {
+            &mut self.w.0[c]
+        } else {
+            &mut self.v.0[c - 3]
+        }
+    }
+
+    /// `a · b` of a twist and a wrench (power).
+    #[inline(always)]
+    pub(crate) fn dot(&self, b: &Self) -> L<W> {
+        self.w.dot(&b.w) + self.v.dot(&b.v)
+    }
+
+    /// `a x` for a lane scalar `x`.
+    #[inline(always)]
+    pub(crate) fn scale(&self, x: L<W>) -> Self {
+        Self {
+            w: self.w.scale(x),
+            v: self.v.scale(x),
+        }
+    }
+
+    /// `V × T = [ad_V] T` of two twists: `(ω × ω', v × ω' + ω × v')`.
+    #[inline(always)]
+    pub(crate) fn cross(&self, t: &Self) -> Self {
+        Self {
+            w: self.w.cross(&t.w),
+            v: self.v.cross(&t.w) + self.w.cross(&t.v),
+        }
+    }
+
+    /// `V ×* F = -[ad_V]ᵀ F` of a twist and a wrench: `(ω × m + v × f, ω × f)`.
+    #[inline(always)]
+    pub(crate) fn cross_star(&self, f: &Self) -> Self {
+        Self {
+            w: self.w.cross(&f.w) + self.v.cross(&f.v),
+            v: self.w.cross(&f.v),
+        }
+    }
+}
+
+impl<const W: usize> Add for T6<W> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Self {
+            w: self.w + o.w,
+            v: self.v + o.v,
+        }
+    }
+}
+
+impl<const W: usize> AddAssign for T6<W> {
+    #[inline(always)]
+    fn add_assign(&mut self, o: Self) {
+        *self = *self + o;
+    }
+}
+
+impl<const W: usize> Sub for T6<W> {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self {
+            w: self.w - o.w,
+            v: self.v - o.v,
+        }
+    }
+}
+
+/// A pose `(R, p)` per lane: the child frame's axes `R` and origin `p` in the parent frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct X<const W: usize> {
+    pub(crate) r: M3<W>,
+    pub(crate) p: V3<W>,
+}
+
+impl<const W: usize> X<W> {
+    /// `[Ad_{X⁻¹}] T`: a twist of the parent frame in the child frame,
+    /// `(Rᵀ ω, Rᵀ (v − p × ω))` ([`Transform::inv_act_twist`](crate::spatial::Transform::inv_act_twist)).
+    #[inline(always)]
+    pub(crate) fn inv_act(&self, t: &T6<W>) -> T6<W> {
+        T6 {
+            w: self.r.tr_mul_v(&t.w),
+            v: self.r.tr_mul_v(&(t.v - self.p.cross(&t.w))),
+        }
+    }
+
+    /// `[Ad_X]⁻ᵀ F`: a wrench of the child frame in the parent frame, `(R m + p × R f, R f)`
+    /// ([`Transform::act_wrench`](crate::spatial::Transform::act_wrench)).
+    #[inline(always)]
+    pub(crate) fn act_wrench(&self, f: &T6<W>) -> T6<W> {
+        let rf = self.r.mul_v(&f.v);
+        T6 {
+            w: self.r.mul_v(&f.w) + self.p.cross(&rf),
+            v: rf,
+        }
+    }
+
+    /// `A B`: the pose of frame `b` in `a`'s parent from `a` and `b` in `a`.
+    #[inline(always)]
+    pub(crate) fn compose(&self, b: &Self) -> Self {
+        Self {
+            r: self.r.mul(&b.r),
+            p: self.r.mul_v(&b.p) + self.p,
+        }
+    }
+}

@@ -1,0 +1,370 @@
+//! A pack of `W` states: the workspace of the lane kernels ([`Pack`]), the states moved in and out
+//! of it (row-major arrays transposed to one lane per state), and what every kernel needs of a
+//! joint, per lane: its pose in the parent `X_T X_J(q)` (Featherstone's `jcalc`), its motion
+//! subspace `S(q)` and the joint twist `S q̇` with its bias terms.
+
+use super::lanes::{L, M3, T6, V3, X};
+use crate::mass::SpatialInertia;
+use crate::multibody::joint::Shape;
+use crate::multibody::{JointType, Model};
+use crate::spatial::{trig, Mat3, Vec3};
+
+/// The workspace of one pack of `W` states, made once per model (see
+/// [`Batch`](super::Batch)): the inputs and output transposed to lanes, and each algorithm's
+/// per-joint quantities.
+#[derive(Clone, Debug)]
+pub(crate) struct Pack<const W: usize> {
+    /// `q` (nq lanes), `v` and the third input (`a` or `τ`), and the `nv` outputs.
+    pub(crate) q: Vec<L<W>>,
+    pub(crate) v: Vec<L<W>>,
+    pub(crate) x: Vec<L<W>>,
+    pub(crate) out: Vec<L<W>>,
+    /// `S_k` per degree of freedom, in the child frame (the constant ones set once).
+    pub(crate) S: Vec<T6<W>>,
+    /// Per joint: `liMi`, the body's twist `V_i`, acceleration `A_i` (RNEA: with gravity; ABA:
+    /// the bias `c_i` then the acceleration), wrench `F_i` (ABA: `p^A_i`).
+    pub(crate) X: Vec<X<W>>,
+    pub(crate) V: Vec<T6<W>>,
+    pub(crate) A: Vec<T6<W>>,
+    pub(crate) F: Vec<T6<W>>,
+    /// CRBA: per joint the world pose and the composite inertia in the world frame; per dof
+    /// `S_k` in the world frame; `M`'s lower triangle, packed by columns.
+    pub(crate) oX: Vec<X<W>>,
+    pub(crate) Yc: Vec<I3<W>>,
+    pub(crate) oS: Vec<T6<W>>,
+    pub(crate) M: Vec<L<W>>,
+    /// ABA: per joint the articulated inertia `I^A_i` and `D⁻¹` (`nv x nv`, row-major); per
+    /// dof `U_k = I^A S_k` and `u_k = τ_k − S_kᵀ p^A`.
+    pub(crate) IA: Vec<I6<W>>,
+    pub(crate) Dinv: Vec<[L<W>; 36]>,
+    pub(crate) U: Vec<T6<W>>,
+    pub(crate) u: Vec<L<W>>,
+}
+
+impl<const W: usize> Pack<W> {
+    /// The workspace for `model`.
+    pub(crate) fn new(model: &Model) -> Self {
+        let (n, nq, nv) = (model.njoints(), model.nq(), model.nv());
+        let z = L::zero();
+        Self {
+            q: vec![z; nq],
+            v: vec![z; nv],
+            x: vec![z; nv],
+            out: vec![z; nv],
+            S: (0..nv).map(|k| T6::splat(&model.plan().dof_S[k])).collect(),
+            X: vec![X::identity(); n],
+            V: vec![T6::zero(); n],
+            A: vec![T6::zero(); n],
+            F: vec![T6::zero(); n],
+            oX: vec![X::identity(); n],
+            Yc: vec![I3::zero(); n],
+            oS: vec![T6::zero(); nv],
+            M: vec![z; nv * (nv + 1) / 2],
+            IA: vec![I6::zero(); n],
+            Dinv: vec![[z; 36]; n],
+            U: vec![T6::zero(); nv],
+            u: vec![z; nv],
+        }
+    }
+
+    /// Whether this workspace has the shape of `model`'s.
+    pub(crate) fn fits(&self, model: &Model) -> bool {
+        self.q.len() == model.nq() && self.v.len() == model.nv() && self.X.len() == model.njoints()
+    }
+
+    /// Lane `l` of the inputs from state `k` of the row-major inputs (`x` may be empty).
+    #[inline(always)]
+    pub(crate) fn gather(&mut self, l: usize, k: usize, qs: &[f64], vs: &[f64], xs: &[f64]) {
+        let (nq, nv) = (self.q.len(), self.v.len());
+        for (t, x) in qs[k * nq..][..nq].iter().enumerate() {
+            self.q[t].0[l] = *x;
+        }
+        if !vs.is_empty() {
+            for (t, x) in vs[k * nv..][..nv].iter().enumerate() {
+                self.v[t].0[l] = *x;
+            }
+        }
+        if !xs.is_empty() {
+            for (t, x) in xs[k * nv..][..nv].iter().enumerate() {
+                self.x[t].0[l] = *x;
+            }
+        }
+    }
+
+    /// `S(q)` per lane for the joints whose motion subspace depends on `q` (the others were set
+    /// by [`Pack::new`]).
+    #[inline(always)]
+    pub(crate) fn update_subspaces(&mut self, model: &Model) {
+        let mut q = [0.0; 7];
+        let mut S = [crate::spatial::Twist::zero(); 6];
+        for &i in &model.plan().variable_subspace {
+            let j = &model.joints()[i];
+            for l in 0..W {
+                for (t, qt) in q[..j.nq].iter_mut().enumerate() {
+                    *qt = self.q[j.idx_q + t].0[l];
+                }
+                j.kind.subspace(&q[..j.nq], &mut S[..j.nv]);
+                for (k, Sk) in S[..j.nv].iter().enumerate() {
+                    set_lane(&mut self.S[j.idx_v + k], l, Sk);
+                }
+            }
+        }
+    }
+
+    /// `S_i v_i` of joint `i`, the joint twist (per lane), with `S` as [`Pack::update_subspaces`]
+    /// left it.
+    #[inline(always)]
+    pub(crate) fn joint_twist(&self, model: &Model, i: usize, v: &[L<W>]) -> T6<W> {
+        let j = &model.joints()[i];
+        match (j.kind.shape(), model.plan().dof_axis[j.idx_v]) {
+            (Shape::FreeFlyer, _) => T6 {
+                w: V3([v[j.idx_v], v[j.idx_v + 1], v[j.idx_v + 2]]),
+                v: V3([v[j.idx_v + 3], v[j.idx_v + 4], v[j.idx_v + 5]]),
+            },
+            (_, Some((c, s))) if j.nv == 1 => {
+                let mut t = T6::zero();
+                *t.get_mut(c) = v[j.idx_v] * s;
+                t
+            }
+            _ => {
+                let mut t = T6::zero();
+                for k in j.dofs() {
+                    t += self.S[k].scale(v[k]);
+                }
+                t
+            }
+        }
+    }
+
+    /// `c_J = Ṡ q̇` of joint `i` per lane, or `None` when its motion subspace is constant.
+    #[inline(always)]
+    pub(crate) fn joint_bias(&self, model: &Model, i: usize) -> Option<T6<W>> {
+        if !model.plan().varies[i] {
+            return None;
+        }
+        let j = &model.joints()[i];
+        let (mut q, mut v) = ([0.0; 7], [0.0; 6]);
+        let mut out = T6::zero();
+        for l in 0..W {
+            for (t, qt) in q[..j.nq].iter_mut().enumerate() {
+                *qt = self.q[j.idx_q + t].0[l];
+            }
+            for (t, vt) in v[..j.nv].iter_mut().enumerate() {
+                *vt = self.v[j.idx_v + t].0[l];
+            }
+            set_lane(&mut out, l, &j.kind.bias(&q[..j.nq], &v[..j.nv]));
+        }
+        Some(out)
+    }
+}
+
+/// `S_iᵀ F` of joint `i` into `out[dofs]` (per lane), with the motion subspaces `S` of
+/// [`Pack::S`].
+#[inline(always)]
+pub(crate) fn project<const W: usize>(
+    model: &Model,
+    S: &[T6<W>],
+    i: usize,
+    F: &T6<W>,
+    out: &mut [L<W>],
+) {
+    let j = &model.joints()[i];
+    match (j.kind.shape(), model.plan().dof_axis[j.idx_v]) {
+        (Shape::FreeFlyer, _) => {
+            for c in 0..6 {
+                out[j.idx_v + c] = F.get(c);
+            }
+        }
+        (_, Some((c, s))) if j.nv == 1 => out[j.idx_v] = F.get(c) * s,
+        _ => {
+            for k in j.dofs() {
+                out[k] = S[k].dot(F);
+            }
+        }
+    }
+}
+
+/// Lane `l` of `t` set to the twist `x`.
+#[inline(always)]
+fn set_lane<const W: usize>(t: &mut T6<W>, l: usize, x: &crate::spatial::Twist) {
+    for c in 0..3 {
+        t.w.0[c].0[l] = x.w[c];
+        t.v.0[c].0[l] = x.v[c];
+    }
+}
+
+impl<const W: usize> X<W> {
+    /// The identity pose in every lane.
+    pub(crate) fn identity() -> Self {
+        Self {
+            r: M3::splat(&Mat3::identity()),
+            p: V3::zero(),
+        }
+    }
+}
+
+/// `liMi = X_T X_J(q_i)` of joint `i` per lane (Featherstone's `jcalc`). Revolute, prismatic and
+/// free-flyer joints in lanes; the other joints one lane at a time through
+/// [`JointType::placed_transform`].
+#[inline(always)]
+pub(crate) fn placement<const W: usize>(model: &Model, i: usize, q: &[L<W>]) -> X<W> {
+    let j = &model.joints()[i];
+    let T = &j.placement;
+    let iq = j.idx_q;
+    match j.kind {
+        JointType::Revolute { axis } => {
+            let (s, c) = trig::sin_cos_lanes(q[iq].0);
+            X {
+                r: rotate_about(&T.rotation, &axis, L(s), L(c)),
+                p: V3::splat(&T.translation),
+            }
+        }
+        JointType::Prismatic { axis } => X {
+            r: M3::splat(&T.rotation),
+            p: V3::c_scale(&(T.rotation * axis), q[iq]) + V3::splat(&T.translation),
+        },
+        JointType::FreeFlyer => {
+            let r = quat_to_rot(q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]);
+            let p = V3([q[iq], q[iq + 1], q[iq + 2]]);
+            if T.rotation == Mat3::identity() {
+                X {
+                    r,
+                    p: p + V3::splat(&T.translation),
+                }
+            } else {
+                X {
+                    r: M3::c_mul(&T.rotation, &r),
+                    p: V3::c_mat(&T.rotation, &p) + V3::splat(&T.translation),
+                }
+            }
+        }
+        _ => {
+            let mut out = X::identity();
+            let mut ql = [0.0; 7];
+            for l in 0..W {
+                for (t, x) in ql[..j.nq].iter_mut().enumerate() {
+                    *x = q[iq + t].0[l];
+                }
+                let m = j.kind.placed_transform(T, &ql[..j.nq]);
+                for r in 0..3 {
+                    for c in 0..3 {
+                        out.r.0[r][c].0[l] = m.rotation[(r, c)];
+                    }
+                    out.p.0[r].0[l] = m.translation[r];
+                }
+            }
+            out
+        }
+    }
+}
+
+/// `R exp([a] q)` for a constant `R` and unit axis `a`, given `s = sin q`, `c = cos q` per lane:
+/// for `a = ±e_k` two columns of `R` turn, otherwise `R` times Rodrigues' formula
+/// ([`rotate_about_sc`](crate::spatial::rotate_about_sc)).
+#[inline(always)]
+fn rotate_about<const W: usize>(r: &Mat3, a: &Vec3, s: L<W>, c: L<W>) -> M3<W> {
+    // columns j and k turn: u' = c u + s w, w' = c w - s u
+    #[inline(always)]
+    fn turn<const W: usize>(r: &Mat3, j: usize, k: usize, s: L<W>, c: L<W>) -> M3<W> {
+        let mut out = M3::splat(r);
+        for t in 0..3 {
+            let (u, w) = (r[(t, j)], r[(t, k)]);
+            out.0[t][j] = c * u + s * w;
+            out.0[t][k] = c * w - s * u;
+        }
+        out
+    }
+    if a.x == 0.0 && a.y == 0.0 {
+        turn(r, 0, 1, s * a.z, c)
+    } else if a.y == 0.0 && a.z == 0.0 {
+        turn(r, 1, 2, s * a.x, c)
+    } else if a.x == 0.0 && a.z == 0.0 {
+        turn(r, 2, 0, s * a.y, c)
+    } else {
+        let t = L::splat(1.0) - c;
+        let (x, y, z) = (a.x, a.y, a.z);
+        let rod = M3([
+            [c + t * (x * x), t * (x * y) - s * z, t * (x * z) + s * y],
+            [t * (x * y) + s * z, c + t * (y * y), t * (y * z) - s * x],
+            [t * (x * z) - s * y, t * (y * z) + s * x, c + t * (z * z)],
+        ]);
+        M3::c_mul(r, &rod)
+    }
+}
+
+/// The rotation of the unit quaternion `(x, y, z, w)` per lane
+/// ([`quat_to_rot`](crate::spatial::quat_to_rot)).
+#[inline(always)]
+fn quat_to_rot<const W: usize>(x: L<W>, y: L<W>, z: L<W>, w: L<W>) -> M3<W> {
+    let n2 = x * x + y * y + z * z + w * w;
+    let s = n2.map(|n| 2.0 / n);
+    let (xx, yy, zz) = (x * x * s, y * y * s, z * z * s);
+    let (xy, xz, yz) = (x * y * s, x * z * s, y * z * s);
+    let (wx, wy, wz) = (w * x * s, w * y * s, w * z * s);
+    let one = L::splat(1.0);
+    M3([
+        [one - yy - zz, xy - wz, xz + wy],
+        [xy + wz, one - xx - zz, yz - wx],
+        [xz - wy, yz + wx, one - xx - yy],
+    ])
+}
+
+impl<const W: usize> V3<W> {
+    /// `C x` for a constant matrix `C`.
+    #[inline(always)]
+    pub(crate) fn c_mat(c: &Mat3, x: &Self) -> Self {
+        let x = &x.0;
+        Self([
+            x[0] * c[(0, 0)] + x[1] * c[(0, 1)] + x[2] * c[(0, 2)],
+            x[0] * c[(1, 0)] + x[1] * c[(1, 1)] + x[2] * c[(1, 2)],
+            x[0] * c[(2, 0)] + x[1] * c[(2, 1)] + x[2] * c[(2, 2)],
+        ])
+    }
+}
+
+/// `G T` of a body's constant spatial inertia `G = (m, h, I_O)` (mass, first moment `h = m c`,
+/// rotational inertia about the frame origin) and a twist per lane:
+/// `(I_O ω + h × v, m v − h × ω)` ([`SpatialInertia::momentum`]).
+#[inline(always)]
+pub(crate) fn momentum<const W: usize>(G: &SpatialInertia, t: &T6<W>) -> T6<W> {
+    let h = G.first_moment();
+    T6 {
+        w: V3::c_mat(G.inertia_origin_matrix(), &t.w) + V3::c_cross(&h, &t.v),
+        v: t.v.scale(L::splat(G.mass())) - V3::c_cross(&h, &t.w),
+    }
+}
+
+/// A spatial inertia per lane `(m, h, I_O)`: mass, first moment, rotational inertia about the
+/// frame origin (CRBA's composite inertias in the world frame).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct I3<const W: usize> {
+    pub(crate) m: L<W>,
+    pub(crate) h: V3<W>,
+    pub(crate) i: M3<W>,
+}
+
+impl<const W: usize> I3<W> {
+    pub(crate) fn zero() -> Self {
+        Self {
+            m: L::zero(),
+            h: V3::zero(),
+            i: M3::splat(&Mat3::zeros()),
+        }
+    }
+}
+
+/// A symmetric 6x6 inertia per lane in blocks, angular first: `[[A, B], [Bᵀ, C]]` (ABA's
+/// articulated inertias).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct I6<const W: usize> {
+    pub(crate) a: M3<W>,
+    pub(crate) b: M3<W>,
+    pub(crate) c: M3<W>,
+}
+
+impl<const W: usize> I6<W> {
+    pub(crate) fn zero() -> Self {
+        let z = M3::splat(&Mat3::zeros());
+        Self { a: z, b: z, c: z }
+    }
+}

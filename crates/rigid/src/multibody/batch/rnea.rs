@@ -1,0 +1,49 @@
+//! RNEA on a pack of `W` states: [`rnea`](crate::multibody::rnea)'s two loops (Featherstone
+//! 2008, Table 5.1), every quantity a lane vector.
+
+use super::lanes::{T6, V3};
+use super::pack::{momentum, placement, project, Pack};
+use crate::multibody::Model;
+
+/// `τ = ID(q, v, a)` for the pack's states: `q`, `v`, `x = a` in, `out = τ`.
+///
+/// forward, i = 1..n (`V_0 = 0`, `A_0 = -g`): `V_i = [Ad_{liMi⁻¹}] V_λ + S_i q̇_i`,
+/// `A_i = [Ad_{liMi⁻¹}] A_λ + S_i q̈_i + V_i × S_i q̇_i + c_J`, `F_i = G_i A_i + V_i ×* G_i V_i`;
+/// backward, i = n..1: `τ_i = S_iᵀ F_i + armature q̈_i`, `F_λ += [Ad_{liMi}]⁻ᵀ F_i`.
+#[inline(always)]
+pub(super) fn rnea<const W: usize>(model: &Model, p: &mut Pack<W>) {
+    let a_world = T6 {
+        w: V3::zero(),
+        v: V3::splat(&-model.gravity()),
+    };
+    p.update_subspaces(model);
+    for (i, j) in model.joints().iter().enumerate() {
+        let X = placement(model, i, &p.q);
+        let (mut V, mut A) = match j.parent {
+            Some(par) => (X.inv_act(&p.V[par.0]), X.inv_act(&p.A[par.0])),
+            None => (T6::zero(), X.inv_act(&a_world)),
+        };
+        let vJ = p.joint_twist(model, i, &p.v);
+        V += vJ;
+        A += p.joint_twist(model, i, &p.x) + V.cross(&vJ);
+        if let Some(cJ) = p.joint_bias(model, i) {
+            A += cJ;
+        }
+        let G = &model.inertias()[i];
+        p.F[i] = momentum(G, &A) + V.cross_star(&momentum(G, &V));
+        p.X[i] = X;
+        p.V[i] = V;
+        p.A[i] = A;
+    }
+    for (i, j) in model.joints().iter().enumerate().rev() {
+        let F = p.F[i];
+        project(model, &p.S, i, &F, &mut p.out);
+        for k in j.dofs() {
+            p.out[k] += p.x[k] * model.armature()[k];
+        }
+        if let Some(par) = j.parent {
+            let Fp = p.X[i].act_wrench(&F);
+            p.F[par.0] += Fp;
+        }
+    }
+}

@@ -1,0 +1,218 @@
+//! The lane kernels compiled for the vector unit the CPU has, chosen at run time: 8 doubles
+//! with AVX-512, 4 with AVX2, 2 with SSE2 (the x86-64 baseline, and the width elsewhere).
+//!
+//! The kernels are written once, generic over the width `W` ([`super::lanes`]), and compiled
+//! into a function per instruction set with `#[target_feature]`; everything they call is
+//! `#[inline(always)]`, so the whole pack is compiled with the wider registers. This is
+//! `core::arch`-style run-time dispatch (as [`trig`](crate::spatial::trig)'s `sin_cos` does)
+//! rather than the `wide` crate, because `wide` fixes its width when the crate is compiled
+//! (`-C target-cpu`), and a binary built for any x86-64 must still use AVX2 where it runs.
+
+use super::aba::aba;
+use super::crba::{crba, packed_at};
+use super::pack::Pack;
+use super::rnea::rnea;
+use crate::multibody::{Model, MultibodyError};
+
+/// Which batch entry point a pack computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Algo {
+    /// `τ = rnea(q, v, a)`: `nv` numbers per state.
+    Rnea,
+    /// `q̈ = aba(q, v, τ)`: `nv` numbers per state.
+    Aba,
+    /// `M(q)`, the full `nv x nv` matrix per state.
+    Crba,
+    /// `M(q)`'s lower triangle packed by columns, `nv (nv + 1) / 2` numbers per state.
+    CrbaLower,
+}
+
+impl Algo {
+    /// Numbers written per state.
+    pub(crate) fn per_state(self, nv: usize) -> usize {
+        match self {
+            Self::Rnea | Self::Aba => nv,
+            Self::Crba => nv * nv,
+            Self::CrbaLower => nv * (nv + 1) / 2,
+        }
+    }
+}
+
+/// The widest lanes this CPU runs natively: 8 with AVX-512F, 4 with AVX2, else 2.
+#[must_use]
+pub(crate) fn native_width() -> usize {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            return 8;
+        }
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+        {
+            return 4;
+        }
+    }
+    2
+}
+
+/// One task's workspace, of the width chosen when it was made.
+#[derive(Clone, Debug)]
+pub(crate) enum Lanes {
+    W2(Box<Pack<2>>),
+    W4(Box<Pack<4>>),
+    W8(Box<Pack<8>>),
+}
+
+impl Lanes {
+    /// A workspace of `width` lanes (2, 4 or 8; anything else is 2) for `model`.
+    pub(crate) fn new(model: &Model, width: usize) -> Self {
+        match width {
+            8 => Self::W8(Box::new(Pack::new(model))),
+            4 => Self::W4(Box::new(Pack::new(model))),
+            _ => Self::W2(Box::new(Pack::new(model))),
+        }
+    }
+
+    /// The number of lanes.
+    pub(crate) fn width(&self) -> usize {
+        match self {
+            Self::W2(_) => 2,
+            Self::W4(_) => 4,
+            Self::W8(_) => 8,
+        }
+    }
+
+    /// Whether the workspace was made for a model of `model`'s shape.
+    pub(crate) fn fits(&self, model: &Model) -> bool {
+        match self {
+            Self::W2(p) => p.fits(model),
+            Self::W4(p) => p.fits(model),
+            Self::W8(p) => p.fits(model),
+        }
+    }
+
+    /// `algo` for the `count` states from `first` on of the row-major inputs (`xs` is `a` or
+    /// `τ`, and with `vs` empty for CRBA), written to `out` (`count` blocks of
+    /// [`Algo::per_state`]), a pack of states at a time, in the widest instructions the CPU
+    /// has for this width. The inputs were checked.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn run(
+        &mut self,
+        algo: Algo,
+        model: &Model,
+        qs: &[f64],
+        vs: &[f64],
+        xs: &[f64],
+        first: usize,
+        out: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        let io = Io { qs, vs, xs, first };
+        match self {
+            #[cfg(target_arch = "x86_64")]
+            Self::W8(p) if std::arch::is_x86_feature_detected!("avx512f") => {
+                // SAFETY: the CPU has AVX-512F (checked above).
+                unsafe { avx512(p, algo, model, &io, out) }
+            }
+            #[cfg(target_arch = "x86_64")]
+            Self::W4(p)
+                if std::arch::is_x86_feature_detected!("avx2")
+                    && std::arch::is_x86_feature_detected!("fma") =>
+            {
+                // SAFETY: the CPU has AVX2 and FMA (checked above).
+                unsafe { avx2(p, algo, model, &io, out) }
+            }
+            Self::W2(p) => packs(p, algo, model, &io, out),
+            Self::W4(p) => packs(p, algo, model, &io, out),
+            Self::W8(p) => packs(p, algo, model, &io, out),
+        }
+    }
+}
+
+/// The row-major inputs and the index of the first state of a task.
+struct Io<'a> {
+    qs: &'a [f64],
+    vs: &'a [f64],
+    xs: &'a [f64],
+    first: usize,
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn avx512(
+    p: &mut Pack<8>,
+    algo: Algo,
+    model: &Model,
+    io: &Io,
+    out: &mut [f64],
+) -> Result<(), MultibodyError> {
+    packs(p, algo, model, io, out)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn avx2(
+    p: &mut Pack<4>,
+    algo: Algo,
+    model: &Model,
+    io: &Io,
+    out: &mut [f64],
+) -> Result<(), MultibodyError> {
+    packs(p, algo, model, io, out)
+}
+
+/// The task's states `W` at a time: transposed into the lanes (the last pack's missing lanes
+/// repeat its last state, so that every lane computes a valid state), computed, and the lanes
+/// that hold states transposed back out.
+#[inline(always)]
+fn packs<const W: usize>(
+    p: &mut Pack<W>,
+    algo: Algo,
+    model: &Model,
+    io: &Io,
+    out: &mut [f64],
+) -> Result<(), MultibodyError> {
+    let nv = model.nv();
+    let per = algo.per_state(nv);
+    let count = out.len() / per.max(1);
+    let mut s = 0;
+    while s < count {
+        let m = (count - s).min(W);
+        for l in 0..W {
+            p.gather(l, io.first + s + l.min(m - 1), io.qs, io.vs, io.xs);
+        }
+        match algo {
+            Algo::Rnea => rnea(model, p),
+            Algo::Aba => aba(model, p)?,
+            Algo::Crba | Algo::CrbaLower => crba(model, p),
+        }
+        let o = &mut out[s * per..(s + m) * per];
+        match algo {
+            Algo::Rnea | Algo::Aba => {
+                for (t, x) in p.out.iter().enumerate() {
+                    for l in 0..m {
+                        o[l * per + t] = x.0[l];
+                    }
+                }
+            }
+            Algo::Crba => {
+                for c in 0..nv {
+                    for r in c..nv {
+                        let x = p.M[packed_at(nv, r, c)];
+                        for l in 0..m {
+                            o[l * per + c * nv + r] = x.0[l];
+                            o[l * per + r * nv + c] = x.0[l];
+                        }
+                    }
+                }
+            }
+            Algo::CrbaLower => {
+                for (t, x) in p.M.iter().enumerate() {
+                    for l in 0..m {
+                        o[l * per + t] = x.0[l];
+                    }
+                }
+            }
+        }
+        s += W;
+    }
+    Ok(())
+}
