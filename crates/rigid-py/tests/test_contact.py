@@ -53,8 +53,8 @@ def test_bad_friction_and_restitution_raise(tmp_path):
         rigid.simulate(m, duration=0.01, friction=0.5)
 
 
-# a 2 kg cylinder (axis z) with a 1.5 kg box bolted to its side and a 0.5 kg point mass (which
-# weighs but does not collide), like examples/compound.toml
+# a 2 kg cylinder (axis z) with a 1.5 kg box bolted to its side, as tall as it, and a 0.5 kg
+# point mass (which weighs but does not collide), like examples/compound.toml
 COMPOUND = """
 [[part]]
 name = "drum"
@@ -67,7 +67,7 @@ position = [0.0, 0.0, 0.0]
 [[part]]
 name = "arm"
 shape = "box"
-size = [0.3, 0.1, 0.08]
+size = [0.3, 0.1, 0.2]
 mass = 1.5
 position = [0.25, 0.0, 0.0]
 
@@ -101,7 +101,8 @@ def test_a_body_spec_dropped_on_the_ground_comes_to_rest_carrying_its_weight(tmp
 def test_a_body_spec_set_down_on_the_ground_stays_and_bad_options_raise(tmp_path):
     spec = tmp_path / "compound.toml"
     spec.write_text(COMPOUND)
-    run = rigid.simulate_body(str(spec), ground=0.0, duration=0.5)
+    with pytest.warns(UserWarning, match="bolt: has no shape to collide with"):
+        run = rigid.simulate_body(str(spec), ground=0.0, duration=0.5)
     # set down upright on the drum's face: the CoM stays put
     assert np.max(np.abs(run["position"] - run["position"][0])) < 1e-4
     assert run["normal_force"][-1] == pytest.approx(4.0 * 9.81, rel=0.01)
