@@ -24,8 +24,8 @@ pub const LEGEND_TOP: usize = 6;
 
 /// The curves a legend names when a panel has more than [`LEGEND_ALL`] named ones: the
 /// [`LEGEND_TOP`] with the largest peak `|value|` (non-finite values ignored), largest first
-/// (ties: the earlier curve). `None` when the panel has at most [`LEGEND_ALL`] named curves
-/// (all are named).
+/// (ties: the earlier curve), leaving out those that stay at 0 (so none when all do). `None`
+/// when the panel has at most [`LEGEND_ALL`] named curves (all are named).
 #[must_use]
 pub fn legend_choice(curves: &[(String, Vec<f64>, RGBColor)]) -> Option<Vec<usize>> {
     let named: Vec<usize> = (0..curves.len())
@@ -41,7 +41,7 @@ pub fn legend_choice(curves: &[(String, Vec<f64>, RGBColor)]) -> Option<Vec<usiz
             .filter(|x| x.is_finite())
             .fold(0.0f64, |m, x| m.max(x.abs()))
     };
-    let mut order = named;
+    let mut order: Vec<usize> = named.into_iter().filter(|&i| peak(i) > 0.0).collect();
     order.sort_by(|&a, &b| peak(b).total_cmp(&peak(a)).then(a.cmp(&b)));
     order.truncate(LEGEND_TOP);
     Some(order)
@@ -154,12 +154,17 @@ where
                 .legend(move |xy| line(xy, c));
         }
         let others = p.curves.len() - top.len();
-        chart
-            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
-            .label(format!(
+        let note = if top.is_empty() {
+            format!("{others} curves in grey, unnamed: all stay at 0")
+        } else {
+            format!(
                 "{others} others in grey, unnamed (named: the {} largest peak |value|)",
                 top.len()
-            ))
+            )
+        };
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
+            .label(note)
             .legend(move |xy| line(xy, grey));
         legend = true;
     } else {
@@ -262,4 +267,36 @@ pub fn save(path: &Path, t: &[f64], panels: &[Panel]) -> Result<(), String> {
         s.into_bytes()
     };
     crate::util::write_atomic(path, &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn curves(peaks: &[f64]) -> Vec<(String, Vec<f64>, RGBColor)> {
+        peaks
+            .iter()
+            .enumerate()
+            // a curve from 0 to -peak and back: its peak |value| is `peak`
+            .map(|(i, p)| (format!("c{i}"), vec![0.0, -p, 0.5 * p], color(i)))
+            .collect()
+    }
+
+    #[test]
+    fn legend_names_the_six_largest_peaks_and_never_a_curve_at_zero() {
+        assert_eq!(legend_choice(&curves(&[1.0; 12])), None, "12: all named");
+        let peaks = [
+            0.1, 5.0, 0.2, 3.0, 0.0, 7.0, 0.3, 3.0, 0.4, 9.0, 0.5, 0.6, 2.0, 0.7,
+        ];
+        assert_eq!(
+            legend_choice(&curves(&peaks)),
+            Some(vec![9, 5, 1, 3, 7, 12])
+        );
+        // two non-zero curves among 14: only they are named
+        let mut two = [0.0; 14];
+        two[4] = 1.0;
+        two[2] = 2.0;
+        assert_eq!(legend_choice(&curves(&two)), Some(vec![2, 4]));
+        assert_eq!(legend_choice(&curves(&[0.0; 13])), Some(vec![]));
+    }
 }
