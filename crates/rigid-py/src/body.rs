@@ -244,7 +244,7 @@ pub fn spatial_inertia<'py>(
 }
 
 /// Simulates one rigid body, free or on a pivot, and returns its trajectory; with `ground`, the
-/// body of a spec file on the ground (see [`BodyOnGround`]).
+/// body of a spec file on the ground (see [`crate::simulation::BodyOnGround`]).
 #[pyfunction]
 #[pyo3(signature = (spec, omega = None, velocity = None, gravity = None, pivot = None,
                     duration = 10.0, dt = 1e-3, integrator = "rk4", ground = None,
