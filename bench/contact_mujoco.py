@@ -11,7 +11,16 @@ ratio compares the cost of a step, not identical trajectories; the contacts at t
 printed for both. Reported: steps per second of the stepping loop (rigid's from its own summary
 line, which excludes loading and, without --csv, writes nothing), the median of --rounds runs.
 
-    python3 bench/contact_mujoco.py [--rigid target/release/rigid] [--rounds 5]
+Solo-12 standing (also run by default; `--only solo` for it alone): example-robot-data's URDF compiled by MuJoCo
+(`MjSpec.from_file` with `<compiler discardvisual="true"/>`, meshes as convex hulls as in rigid,
+a free joint added to the base, a floor plane, self-contact off as in rigid), started at rigid's
+set-down stance (the first row of `rigid simulate solo12 --floating --ground --controller pd
+--target STANCE --csv`) and held for 3 s by MuJoCo position servos on the 12 joints (kp 20
+N·m/rad, kv 0.5 N·m·s/rad; rigid: its stance controller, PD plus the contact feedforward). The
+base height at the end is printed for both. Needs `pip install example-robot-data` in this
+Python (or `EXAMPLE_ROBOT_DATA`; rigid must find the same files, e.g. `RIGID_PYTHON` set to it).
+
+    python3 bench/contact_mujoco.py [--rigid target/release/rigid] [--rounds 5] [--only solo|mjcf]
 
 Needs `pip install mujoco gymnasium` and a release build (`cargo build --release -p rigid-cli`).
 """
@@ -57,15 +66,116 @@ def rigid_rate(rigid, path):
     return rate, active
 
 
+STANCE = [0, 0, 0.3, 0, 0, 0, 1, 0.1, 0.8, -1.6, -0.1, 0.8, -1.6, 0.1, -0.8, 1.6, -0.1, -0.8, 1.6]
+
+
+def solo_args(seconds):
+    return ["solo12", "--floating", "--ground", "--controller", "pd", "--target",
+            ",".join(map(str, STANCE)), "--duration", str(seconds), "--dt", str(DT)]
+
+
+def solo_start(rigid, tmp):
+    """rigid's set-down stance: the first row of its CSV (q, rigid's layout, x-y-z-w)."""
+    csv = tmp / "solo.csv"
+    subprocess.run([rigid, "simulate", *solo_args(DT), "--csv", str(csv)], check=True,
+                   capture_output=True)
+    header, first = csv.read_text().splitlines()[:2]
+    cols = dict(zip(header.split(","), map(float, first.split(","))))
+    return [v for k, v in cols.items() if k.startswith("q_")]
+
+
+def robots_dir():
+    """example-robot-data's robots/ folder: $EXAMPLE_ROBOT_DATA, else where pip puts it under
+    this Python's site-packages (two of the places rigid looks)."""
+    import os
+    import site
+    import sysconfig
+
+    if os.environ.get("EXAMPLE_ROBOT_DATA"):
+        return pathlib.Path(os.environ["EXAMPLE_ROBOT_DATA"])
+    for sp in site.getsitepackages() + [sysconfig.get_paths()["purelib"]]:
+        p = pathlib.Path(sp) / "cmeel.prefix/share/example-robot-data/robots"
+        if p.is_dir():
+            return p
+    raise SystemExit("no example-robot-data: pip install example-robot-data")
+
+
+def solo_model(tmp):
+    robots = robots_dir()
+    text = (robots / "solo_description/robots/solo12.urdf").read_text()
+    text = text.replace("package://example-robot-data/robots/", str(robots) + "/")
+    text = re.sub(r"(<robot[^>]*>)", r'\1<mujoco><compiler discardvisual="true" '
+                  r'strippath="false"/></mujoco>', text, count=1)
+    path = tmp / "solo12.urdf"
+    path.write_text(text)
+    spec = mujoco.MjSpec.from_file(str(path))
+    spec.worldbody.first_body().add_freejoint()
+    for g in spec.geoms:
+        g.contype, g.conaffinity = 1, 0  # the robot touches the floor, not itself (as rigid)
+    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1], contype=0,
+                            conaffinity=1)
+    for j in spec.joints:
+        if j.type == mujoco.mjtJoint.mjJNT_HINGE:
+            a = spec.add_actuator(name=j.name, target=j.name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+            a.set_to_position(kp=20.0, kv=0.5)
+    return spec.compile()
+
+
+def solo_mujoco_rate(m, start):
+    m.opt.timestep = DT
+    d = mujoco.MjData(m)
+    x, y, z, qx, qy, qz, qw = start[:7]
+    d.qpos[:] = [x, y, z, qw, qx, qy, qz, *start[7:]]
+    d.ctrl[:] = start[7:]
+    mujoco.mj_forward(m, d)
+    n = round(SECONDS / DT)
+    t0 = time.perf_counter()
+    for _ in range(n):
+        mujoco.mj_step(m, d)
+    return n / (time.perf_counter() - t0), d.ncon, d.qpos[2]
+
+
+def solo_rigid_rate(rigid):
+    out = subprocess.run([rigid, "simulate", *solo_args(SECONDS)], capture_output=True,
+                         text=True, check=True).stdout
+    rate = float(re.search(r"\(([0-9.]+) steps/s\)", out).group(1))
+    active = int(re.search(r"contacts at the end: (\d+) active", out).group(1))
+    z = float(re.search(r"root_joint=[^,]+,[^,]+,([^,]+),", out).group(1))
+    return rate, active, z
+
+
+def solo(args):
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        start = solo_start(args.rigid, tmp)
+        m = solo_model(tmp)
+        r, mj = [], []
+        for k in range(args.rounds):
+            pair = [lambda: solo_rigid_rate(args.rigid), lambda: solo_mujoco_rate(m, start)]
+            res = [f() for f in (pair if k % 2 == 0 else pair[::-1])]
+            rr, mm = res if k % 2 == 0 else res[::-1]
+            r.append(rr)
+            mj.append(mm)
+    rr = statistics.median(x[0] for x in r)
+    mm = statistics.median(x[0] for x in mj)
+    print(f"| solo12.urdf standing (nv 18) | {rr:.0f} | {mm:.0f} | {mm / rr:.2f} | "
+          f"{r[-1][1]}, {mj[-1][1]} |")
+    print(f"base height: start {start[2]:.4f} m, end rigid {r[-1][2]:.4f} m, "
+          f"MuJoCo {mj[-1][2]:.4f} m")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rigid", default="target/release/rigid")
     ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--only", choices=["solo", "mjcf"])
     args = ap.parse_args()
     print(f"mujoco {mujoco.__version__}; {SECONDS} s at dt = {DT} s; median of {args.rounds}")
     print("| model | rigid steps/s | MuJoCo steps/s | rigid / MuJoCo time | contacts at the end (rigid, MuJoCo) |")
     print("| --- | --- | --- | --- | --- |")
-    for name in MODELS:
+    for name in MODELS if args.only != "solo" else []:
         path = assets() / name
         r, mj = [], []
         for k in range(args.rounds):
@@ -79,6 +189,8 @@ def main():
         rr = statistics.median(x[0] for x in r)
         mm = statistics.median(x[0] for x in mj)
         print(f"| {name} | {rr:.0f} | {mm:.0f} | {mm / rr:.2f} | {r[-1][1]}, {mj[-1][1]} |")
+    if args.only != "mjcf":
+        solo(args)
 
 
 if __name__ == "__main__":

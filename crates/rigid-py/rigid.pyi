@@ -452,6 +452,8 @@ def simulate_body(spec: Spec, omega: ArrayLike | None = None, velocity: ArrayLik
                   gravity: ArrayLike | None = None, pivot: ArrayLike | None = None,
                   duration: float = 10.0, dt: float = 1e-3,
                   integrator: Literal["rk4", "variational", "semi-implicit", "lgvi"] = "rk4",
+                  ground: float | None = None, friction: float | None = None,
+                  restitution: float | None = None, q0: ArrayLike | None = None,
                   ) -> dict[str, Vector]:
     """One rigid body (a spec, as for ``mass_properties``), free or on a spherical pivot (a point
     of the spec frame fixed at the world origin), integrated on SE(3) (``rigid simulate``):
@@ -462,7 +464,17 @@ def simulate_body(spec: Spec, omega: ArrayLike | None = None, velocity: ArrayLik
     body to round-off), which ``"variational"`` named here before. Returns arrays of N + 1 rows: ``t`` (s),
     ``position`` (N+1, 3) and ``quaternion`` (N+1, 4, x-y-z-w) of the frame at the CoM with the
     spec frame's axes, its body twist ``omega`` and ``velocity`` (N+1, 3), and the total
-    ``energy`` (J)."""
+    ``energy`` (J).
+
+    ``ground`` (a height, m; ``spec`` then a path to a TOML spec file) puts the body on the
+    ground plane ``z = ground``, as ``rigid simulate SPEC.toml --ground``: it collides through
+    its parts' shapes (meshes as convex hulls; points and given inertias do not) with Coulomb
+    ``friction`` (default 0.8) and ``restitution`` (default 0), gravity defaults to
+    ``(0, 0, -9.81)``, the integrator is the time-stepping ``"semi-implicit"`` (``"rk4"``
+    replaced, others refused), ``pivot`` is refused, and ``q0`` is the pose
+    ``(x, y, z, qx, qy, qz, qw)`` of the CoM frame (default: set down on the ground, spec axes
+    upright). The dict gains ``contacts`` (N+1, active contacts) and ``normal_force`` (N+1, their
+    normal force sum, N)."""
 
 def regressor(model: Model, data: Data, q: ArrayLike, v: ArrayLike, a: ArrayLike) -> Matrix:
     """The joint-torque regressor ``Y(q, v, a)``, (nv, 10·nb), with ``rnea(q, v, a) = Y π``

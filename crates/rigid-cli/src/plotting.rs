@@ -12,8 +12,39 @@ pub struct Panel {
     pub title: String,
     /// The y-axis label (unit).
     pub y_label: String,
-    /// `(name, values, colour)`; a legend is drawn when there are 2 to 12 named curves.
+    /// `(name, values, colour)`; a legend is drawn when there are 2 to [`LEGEND_ALL`] named
+    /// curves; with more, see [`legend_choice`].
     pub curves: Vec<(String, Vec<f64>, RGBColor)>,
+}
+
+/// The most named curves a legend lists in full.
+pub const LEGEND_ALL: usize = 12;
+/// With more named curves than [`LEGEND_ALL`], how many the legend names.
+pub const LEGEND_TOP: usize = 6;
+
+/// The curves a legend names when a panel has more than [`LEGEND_ALL`] named ones: the
+/// [`LEGEND_TOP`] with the largest peak `|value|` (non-finite values ignored), largest first
+/// (ties: the earlier curve), leaving out those that stay at 0 (so none when all do). `None`
+/// when the panel has at most [`LEGEND_ALL`] named curves (all are named).
+#[must_use]
+pub fn legend_choice(curves: &[(String, Vec<f64>, RGBColor)]) -> Option<Vec<usize>> {
+    let named: Vec<usize> = (0..curves.len())
+        .filter(|&i| !curves[i].0.is_empty())
+        .collect();
+    if named.len() <= LEGEND_ALL {
+        return None;
+    }
+    let peak = |i: usize| {
+        curves[i]
+            .1
+            .iter()
+            .filter(|x| x.is_finite())
+            .fold(0.0f64, |m, x| m.max(x.abs()))
+    };
+    let mut order: Vec<usize> = named.into_iter().filter(|&i| peak(i) > 0.0).collect();
+    order.sort_by(|&a, &b| peak(b).total_cmp(&peak(a)).then(a.cmp(&b)));
+    order.truncate(LEGEND_TOP);
+    Some(order)
 }
 
 /// A colour per curve index (Tableau 10).
@@ -96,20 +127,61 @@ where
         .y_label_formatter(&fmt)
         .label_style(("sans-serif", 13))
         .draw()?;
-    for (name, ys, color) in &p.curves {
-        let color = *color;
-        let series = chart.draw_series(LineSeries::new(
-            t.iter().copied().zip(ys.iter().copied()),
-            color.stroke_width(2),
-        ))?;
-        if !name.is_empty() {
-            series
+    let line = |xy: (i32, i32), c: RGBColor| PathElement::new(vec![xy, (xy.0 + 18, xy.1)], c);
+    let named = p.curves.iter().filter(|c| !c.0.is_empty()).count();
+    let mut legend = (2..=LEGEND_ALL).contains(&named);
+    if let Some(top) = legend_choice(&p.curves) {
+        // too many for one legend: the others thin and light grey, then the top ones over
+        // them, each in its own colour and named
+        let grey = RGBColor(200, 200, 200);
+        for (i, (_, ys, _)) in p.curves.iter().enumerate() {
+            if !top.contains(&i) {
+                chart.draw_series(LineSeries::new(
+                    t.iter().copied().zip(ys.iter().copied()),
+                    grey.stroke_width(1),
+                ))?;
+            }
+        }
+        for (rank, &i) in top.iter().enumerate() {
+            let (name, ys, _) = &p.curves[i];
+            let c = color(rank);
+            chart
+                .draw_series(LineSeries::new(
+                    t.iter().copied().zip(ys.iter().copied()),
+                    c.stroke_width(2),
+                ))?
                 .label(name.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color));
+                .legend(move |xy| line(xy, c));
+        }
+        let others = p.curves.len() - top.len();
+        let note = if top.is_empty() {
+            format!("{others} curves in grey, unnamed: all stay at 0")
+        } else {
+            format!(
+                "{others} others in grey, unnamed (named: the {} largest peak |value|)",
+                top.len()
+            )
+        };
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
+            .label(note)
+            .legend(move |xy| line(xy, grey));
+        legend = true;
+    } else {
+        for (name, ys, color) in &p.curves {
+            let color = *color;
+            let series = chart.draw_series(LineSeries::new(
+                t.iter().copied().zip(ys.iter().copied()),
+                color.stroke_width(2),
+            ))?;
+            if !name.is_empty() {
+                series
+                    .label(name.as_str())
+                    .legend(move |xy| line(xy, color));
+            }
         }
     }
-    let named = p.curves.iter().filter(|c| !c.0.is_empty()).count();
-    if (2..=12).contains(&named) {
+    if legend {
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperRight)
@@ -195,4 +267,36 @@ pub fn save(path: &Path, t: &[f64], panels: &[Panel]) -> Result<(), String> {
         s.into_bytes()
     };
     crate::util::write_atomic(path, &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn curves(peaks: &[f64]) -> Vec<(String, Vec<f64>, RGBColor)> {
+        peaks
+            .iter()
+            .enumerate()
+            // a curve from 0 to -peak and back: its peak |value| is `peak`
+            .map(|(i, p)| (format!("c{i}"), vec![0.0, -p, 0.5 * p], color(i)))
+            .collect()
+    }
+
+    #[test]
+    fn legend_names_the_six_largest_peaks_and_never_a_curve_at_zero() {
+        assert_eq!(legend_choice(&curves(&[1.0; 12])), None, "12: all named");
+        let peaks = [
+            0.1, 5.0, 0.2, 3.0, 0.0, 7.0, 0.3, 3.0, 0.4, 9.0, 0.5, 0.6, 2.0, 0.7,
+        ];
+        assert_eq!(
+            legend_choice(&curves(&peaks)),
+            Some(vec![9, 5, 1, 3, 7, 12])
+        );
+        // two non-zero curves among 14: only they are named
+        let mut two = [0.0; 14];
+        two[4] = 1.0;
+        two[2] = 2.0;
+        assert_eq!(legend_choice(&curves(&two)), Some(vec![2, 4]));
+        assert_eq!(legend_choice(&curves(&[0.0; 13])), Some(vec![]));
+    }
 }

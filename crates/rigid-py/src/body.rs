@@ -243,10 +243,12 @@ pub fn spatial_inertia<'py>(
     Ok(array2(py, 6, 6, |r, c| g[(r, c)]).into_any())
 }
 
-/// Simulates one rigid body, free or on a pivot, and returns its trajectory.
+/// Simulates one rigid body, free or on a pivot, and returns its trajectory; with `ground`, the
+/// body of a spec file on the ground (see [`crate::simulation::BodyOnGround`]).
 #[pyfunction]
 #[pyo3(signature = (spec, omega = None, velocity = None, gravity = None, pivot = None,
-                    duration = 10.0, dt = 1e-3, integrator = "rk4"))]
+                    duration = 10.0, dt = 1e-3, integrator = "rk4", ground = None,
+                    friction = None, restitution = None, q0 = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_body<'py>(
     py: Python<'py>,
@@ -258,6 +260,10 @@ pub fn simulate_body<'py>(
     duration: f64,
     dt: f64,
     integrator: &str,
+    ground: Option<f64>,
+    friction: Option<f64>,
+    restitution: Option<f64>,
+    q0: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     const F: &str = "simulate_body";
     let opt =
@@ -267,6 +273,50 @@ pub fn simulate_body<'py>(
         opt(velocity, "velocity")?,
         opt(gravity, "gravity")?,
     );
+    if ground.is_none() && (friction.is_some() || restitution.is_some() || q0.is_some()) {
+        return Err(value_error(
+            F,
+            "friction, restitution and q0 apply with ground",
+        ));
+    }
+    if let Some(height) = ground {
+        if pivot.is_some() {
+            return Err(value_error(
+                F,
+                "pivot does not apply to a body on the ground",
+            ));
+        }
+        if !matches!(integrator, "rk4" | "semi-implicit") {
+            return Err(value_error(
+                F,
+                format!("on the ground the integrator is \"semi-implicit\", not \"{integrator}\""),
+            ));
+        }
+        let path: PathBuf = match spec.extract::<PathBuf>() {
+            Ok(p) if !spec.is_instance_of::<PyDict>() => p,
+            _ => {
+                return Err(PyTypeError::new_err(format!(
+                    "{F}: on the ground the spec is a path to a TOML spec file"
+                )))
+            }
+        };
+        let q0 = q0
+            .map(|x| crate::convert::vector(x, F, "q0", "7", 7).map(|v| v.as_slice().to_vec()))
+            .transpose()?;
+        let run = crate::simulation::BodyOnGround {
+            path: &path,
+            height,
+            friction,
+            restitution,
+            q0,
+            twist: [w0.x, w0.y, w0.z, v0.x, v0.y, v0.z],
+            gravity: gravity.map(|_| g),
+            duration,
+            dt,
+            every: 1,
+        };
+        return run.run(py, F);
+    }
     let pivot = pivot.map(|p| vec3(p, F, "pivot")).transpose()?;
     let integrator: Integrator = integrator.parse().map_err(|e| value_error(F, e))?;
     let steps = step_count(duration, dt).map_err(|e| value_error(F, e))?;

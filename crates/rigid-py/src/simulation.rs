@@ -351,3 +351,87 @@ pub fn replay_html(
             )
         })
 }
+
+/// `simulate_body(spec, ground=...)`: the body of the spec file at `path` as one free body at
+/// its CoM ([`rigid::io::collision::spec_body`]) colliding through its parts' shapes with the
+/// ground `z = height` ([`rigid::io::collision::ground_model`]), stepped by the time-stepping
+/// integrator with no control, as `rigid simulate SPEC.toml --ground`. `q0` is the pose
+/// `(x, y, z, qx, qy, qz, qw)` of the CoM frame (`None`: set down on the ground, spec axes
+/// upright), `twist` its body twist `(ω, v)`, `gravity` replaces the default `-9.81 ẑ` m/s².
+/// Returns the rows of `simulate_body` plus `contacts` and `normal_force`.
+pub(crate) struct BodyOnGround<'a> {
+    pub path: &'a std::path::Path,
+    pub height: f64,
+    pub friction: Option<f64>,
+    pub restitution: Option<f64>,
+    pub q0: Option<Vec<f64>>,
+    pub twist: [f64; 6],
+    pub gravity: Option<rigid::spatial::Vec3>,
+    pub duration: f64,
+    pub dt: f64,
+    pub every: u64,
+}
+
+impl BodyOnGround<'_> {
+    /// Runs the simulation (see the type) and returns the trajectory's dict.
+    pub(crate) fn run<'py>(&self, py: Python<'py>, func: &str) -> PyResult<Bound<'py, PyDict>> {
+        let err = |e: SimulationError| value_error(func, e);
+        let steps = step_count(self.duration, self.dt).map_err(err)?;
+        let (mut model, geometries, warnings) =
+            rigid::io::collision::spec_body(self.path).map_err(|e| value_error(func, e))?;
+        if let Some(g) = self.gravity {
+            model = model.with_gravity(g);
+        }
+        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+        for w in warnings {
+            let text = std::ffi::CString::new(format!("{func}: {w}").replace('\0', " "))
+                .unwrap_or_default();
+            PyErr::warn(py, category.as_any(), &text, 2)?;
+        }
+        let cm = rigid::io::collision::ground_model(
+            self.height,
+            self.friction,
+            self.restitution,
+            geometries,
+        )
+        .map_err(|e| value_error(func, e))?;
+        let q0 = match &self.q0 {
+            Some(q) => q.clone(),
+            None => {
+                let mut q = rigid::multibody::neutral(&model);
+                rigid::collision::place_on_ground(&model, &cm, &mut q)
+                    .map_err(|e| value_error(func, e))?;
+                q
+            }
+        };
+        let opts = SimulationOptions {
+            dt: self.dt,
+            integrator: Integrator::SemiImplicitEuler,
+            ..SimulationOptions::default()
+        };
+        let ctrl = Controller::none(&model);
+        let mut sim = Simulator::new(&model, &q0, &self.twist, opts, ctrl)
+            .map_err(err)?
+            .with_collision(cm)
+            .map_err(err)?;
+        let mut rec = Record::default();
+        py.detach(|| run(&mut sim, steps, self.every, &mut rec))
+            .map_err(err)?;
+        let n = rec.t.len();
+        let cols = |x: &[f64], stride: usize, r: std::ops::Range<usize>| -> Vec<f64> {
+            x.chunks_exact(stride)
+                .flat_map(|row| row[r.clone()].to_vec())
+                .collect()
+        };
+        let d = PyDict::new(py);
+        d.set_item("t", PyArray1::from_vec(py, rec.t))?;
+        d.set_item("position", rows_array(py, cols(&rec.q, 7, 0..3), n, 3)?)?;
+        d.set_item("quaternion", rows_array(py, cols(&rec.q, 7, 3..7), n, 4)?)?;
+        d.set_item("omega", rows_array(py, cols(&rec.v, 6, 0..3), n, 3)?)?;
+        d.set_item("velocity", rows_array(py, cols(&rec.v, 6, 3..6), n, 3)?)?;
+        d.set_item("energy", PyArray1::from_vec(py, rec.energy))?;
+        d.set_item("contacts", PyArray1::from_vec(py, rec.contacts))?;
+        d.set_item("normal_force", PyArray1::from_vec(py, rec.normal_force))?;
+        Ok(d)
+    }
+}

@@ -51,3 +51,64 @@ def test_bad_friction_and_restitution_raise(tmp_path):
         rigid.simulate(m, duration=0.01, ground=0.0, restitution=2.0)
     with pytest.raises(ValueError, match="apply with ground"):
         rigid.simulate(m, duration=0.01, friction=0.5)
+
+
+# a 2 kg cylinder (axis z) with a 1.5 kg box bolted to its side, as tall as it, and a 0.5 kg
+# point mass (which weighs but does not collide), like examples/compound.toml
+COMPOUND = """
+[[part]]
+name = "drum"
+shape = "cylinder"
+radius = 0.1
+length = 0.2
+mass = 2.0
+position = [0.0, 0.0, 0.0]
+
+[[part]]
+name = "arm"
+shape = "box"
+size = [0.3, 0.1, 0.2]
+mass = 1.5
+position = [0.25, 0.0, 0.0]
+
+[[part]]
+name = "bolt"
+shape = "point"
+mass = 0.5
+position = [0.0, 0.05, 0.0]
+"""
+
+
+def test_a_body_spec_dropped_on_the_ground_comes_to_rest_carrying_its_weight(tmp_path):
+    spec = tmp_path / "compound.toml"
+    spec.write_text(COMPOUND)
+    weight = 4.0 * 9.81  # the parts' masses
+    # dropped from 0.4 m, tilted 20 degrees about x, spinning and sliding
+    s, c = np.sin(np.radians(10)), np.cos(np.radians(10))
+    run = rigid.simulate_body(str(spec), ground=0.0, q0=[0, 0, 0.4, s, 0, 0, c],
+                              omega=[0.5, 1.0, 2.0], velocity=[0.3, 0, 0], duration=3.0)
+    assert run["t"][-1] == pytest.approx(3.0)
+    speed = np.hypot(np.linalg.norm(run["omega"][-1]), np.linalg.norm(run["velocity"][-1]))
+    assert speed < 1e-3
+    # at rest on the ground: CoM between the arm's half-thickness and the drum's radius above it
+    assert 0.04 - 1e-3 < run["position"][-1, 2] < 0.2
+    assert run["contacts"][-1] >= 3
+    assert run["normal_force"][-1] == pytest.approx(weight, rel=0.01)
+    # nothing added energy: it ends below where it started
+    assert run["energy"][-1] < run["energy"][0]
+
+
+def test_a_body_spec_set_down_on_the_ground_stays_and_bad_options_raise(tmp_path):
+    spec = tmp_path / "compound.toml"
+    spec.write_text(COMPOUND)
+    with pytest.warns(UserWarning, match="bolt: has no shape to collide with"):
+        run = rigid.simulate_body(str(spec), ground=0.0, duration=0.5)
+    # set down upright on the drum's face: the CoM stays put
+    assert np.max(np.abs(run["position"] - run["position"][0])) < 1e-4
+    assert run["normal_force"][-1] == pytest.approx(4.0 * 9.81, rel=0.01)
+    with pytest.raises(ValueError, match="pivot does not apply"):
+        rigid.simulate_body(str(spec), ground=0.0, pivot=[0, 0, 0], duration=0.01)
+    with pytest.raises(ValueError, match="apply with ground"):
+        rigid.simulate_body(str(spec), friction=0.5, duration=0.01)
+    with pytest.raises(TypeError, match="path to a TOML spec"):
+        rigid.simulate_body({"part": []}, ground=0.0, duration=0.01)

@@ -116,6 +116,16 @@
     }
     return smooth(P, N);
   }
+  function cone(seg) { // base radius 1 at z = 0, apex at z = 1
+    const P = [], N = [], k = 1 / Math.SQRT2;
+    for (let j = 0; j < seg; j++) {
+      const a0 = 2 * Math.PI * j / seg, a1 = 2 * Math.PI * (j + 1) / seg;
+      const c0 = Math.cos(a0), s0 = Math.sin(a0), c1 = Math.cos(a1), s1 = Math.sin(a1);
+      P.push(c0, s0, 0, c1, s1, 0, 0, 0, 1); N.push(c0 * k, s0 * k, k, c1 * k, s1 * k, k, c0 * k, s0 * k, k);
+      P.push(0, 0, 0, c1, s1, 0, c0, s0, 0); N.push(0, 0, -1, 0, 0, -1, 0, 0, -1);
+    }
+    return smooth(P, N);
+  }
 
   // ---- GL ----
   const VS = "attribute vec3 p; attribute vec3 n; uniform mat4 mvp, model; uniform mat3 nm;" +
@@ -139,6 +149,11 @@
   const nodes = scene.nodes || [];
   const poses = b64(scene.poses, Float32Array);
   const com = scene.com ? b64(scene.com, Float32Array) : null;
+  // contact forces: per frame, CONTACT_MARKERS slots of point (m) and force (N); drawn as arrows
+  // force_scale metres per newton long
+  const forces = scene.forces ? b64(scene.forces, Float32Array) : new Float32Array(0);
+  const forceScale = scene.force_scale || 0;
+  const SLOTS = scene.force_slots || 16, ARROW_COLOR = [0.1, 0.65, 0.25, 1];
   const geo = {};
   function prepare() {
     prog = gl.createProgram();
@@ -151,6 +166,7 @@
     geo.box = upload(box());
     geo.sphere = upload(sphere(0, 12));
     geo.cylinder = upload(cylinder(24));
+    geo.cone = upload(cone(16));
     geo.meshes = (scene.meshes || []).map((m) => upload(flat(b64(m.positions, Float32Array), b64(m.indices, Uint32Array))));
     geo.capsules = {};
   }
@@ -228,6 +244,55 @@
     return d;
   }
 
+  // ---- force arrows ----
+  // the arrows of frame f: start point, unit direction, length (m)
+  function arrows(f) {
+    const out = [];
+    if (!(forceScale > 0) || forces.length < (f + 1) * SLOTS * 6) return out;
+    for (let k = 0; k < SLOTS; k++) {
+      const o = (f * SLOTS + k) * 6;
+      const F = [forces[o + 3], forces[o + 4], forces[o + 5]], n = Math.hypot(F[0], F[1], F[2]);
+      if (!(n > 0)) continue;
+      out.push({ at: [forces[o], forces[o + 1], forces[o + 2]], dir: F.map((x) => x / n), length: forceScale * n, force: n });
+    }
+    return out;
+  }
+  // a frame whose z axis is d (unit), at p, scaled by (r, r, l)
+  function along(p, d, r, l) {
+    const h = Math.abs(d[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+    let x = [h[1] * d[2] - h[2] * d[1], h[2] * d[0] - h[0] * d[2], h[0] * d[1] - h[1] * d[0]];
+    const n = Math.hypot(x[0], x[1], x[2]); x = x.map((v) => v / n);
+    const y = [d[1] * x[2] - d[2] * x[1], d[2] * x[0] - d[0] * x[2], d[0] * x[1] - d[1] * x[0]];
+    return { M: [x[0] * r, x[1] * r, x[2] * r, 0, y[0] * r, y[1] * r, y[2] * r, 0, d[0] * l, d[1] * l, d[2] * l, 0, p[0], p[1], p[2], 1],
+      nm: [x[0], x[1], x[2], y[0], y[1], y[2], d[0], d[1], d[2]] };
+  }
+  function drawSolid(vp, gm, T) {
+    gl.bindBuffer(gl.ARRAY_BUFFER, gm.p); gl.vertexAttribPointer(loc.p, 3, gl.FLOAT, false, 0, 0);
+    gl.enableVertexAttribArray(loc.n);
+    gl.bindBuffer(gl.ARRAY_BUFFER, gm.n); gl.vertexAttribPointer(loc.n, 3, gl.FLOAT, false, 0, 0);
+    gl.uniformMatrix4fv(loc.mvp, false, M.mul(vp, T.M));
+    gl.uniformMatrix4fv(loc.model, false, T.M);
+    gl.uniformMatrix3fv(loc.nm, false, T.nm);
+    gl.uniform4fv(loc.color, ARROW_COLOR);
+    gl.uniform1f(loc.lit, 1);
+    gl.drawArrays(gl.TRIANGLES, 0, gm.count);
+  }
+  // shaft and head, over the bodies (no depth test): a force on a foot points into the leg
+  function drawArrows(vp) {
+    const list = arrows(frame);
+    if (!list.length) return;
+    gl.disable(gl.DEPTH_TEST);
+    const r = Math.max(0.002, 0.006 * (scene.extent || 0.5));
+    for (const a of list) {
+      const head = Math.min(0.35 * a.length, 4 * r), shaft = a.length - head;
+      const mid = a.at.map((x, k) => x + a.dir[k] * shaft / 2);
+      const tip = a.at.map((x, k) => x + a.dir[k] * shaft);
+      if (shaft > 0) drawSolid(vp, geo.cylinder, along(mid, a.dir, r, shaft));
+      drawSolid(vp, geo.cone, along(tip, a.dir, 2.2 * r, head));
+    }
+    gl.enable(gl.DEPTH_TEST);
+  }
+
   // ---- drawing ----
   let frame = 0;
   function nodePose(f, i) {
@@ -272,6 +337,7 @@
         gl.drawArrays(gl.TRIANGLES, 0, gm.count);
       }
     }
+    drawArrows(vp);
     if (document.getElementById("frames").checked) {
       const d = [];
       for (let i = 0; i < nodes.length; i++) {
@@ -345,5 +411,6 @@
     return [(c[12] / c[15] + 1) * w / 2, (1 - c[13] / c[15]) * h / 2];
   }
   window.replay = { ready: true, nframes, nodes: nodes.length, frame: () => frame, setFrame, screen,
+    arrows: () => arrows(frame),
     pause: () => { if (playing) toggle(); } };
 })();

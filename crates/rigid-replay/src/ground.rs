@@ -1,20 +1,28 @@
-//! The ground of a simulation with contact: a plane under the scene and markers at the contact
-//! points, moved frame by frame.
+//! The ground of a simulation with contact: a plane under the scene, markers at the contact
+//! points moved frame by frame, and the contact forces recorded for the page's arrows.
 
 use crate::shapes::shape;
 use crate::{Node, Scene};
 use rigid::collision::{CollisionModel, Shape as Solid};
 use rigid::spatial::{Transform, Vec3};
 
-/// How many contact points the page marks at most per frame.
+/// How many contact points the page marks (and draws the force of) at most per frame.
 pub const CONTACT_MARKERS: usize = 16;
+
+/// The length of the arrow of a force equal to the weight, as a share of the scene's
+/// [`extent`](Scene::extent).
+pub const WEIGHT_ARROW: f64 = 0.5;
 
 impl Scene {
     /// Adds the ground plane `z = height` (a grey slab centred under `center`, 2 mm thick, its
     /// top at the height) and [`CONTACT_MARKERS`] red markers, parked under the ground until
-    /// [`set_contacts`](Self::set_contacts) places them. Returns the index of the first marker
-    /// node.
-    pub fn add_ground(&mut self, height: f64, center: Vec3) -> usize {
+    /// [`set_contacts`](Self::set_contacts) places them, and sets
+    /// [`force_scale`](Self::force_scale) so that a force equal to `weight` (N; taken as 1 N
+    /// when not positive) is drawn [`WEIGHT_ARROW`] × `extent` long. Returns the index of the
+    /// first marker node.
+    pub fn add_ground(&mut self, height: f64, center: Vec3, weight: f64) -> usize {
+        let weight = if weight > 0.0 { weight } else { 1.0 };
+        self.force_scale = WEIGHT_ARROW * self.extent.max(0.1) / weight;
         let side = 4.0 * self.extent.max(0.5);
         let slab = Transform::from_translation(Vec3::new(center.x, center.y, height - 1e-3));
         self.nodes.push(Node {
@@ -49,17 +57,33 @@ impl Scene {
         first
     }
 
-    /// Puts the markers from node `first` (see [`add_ground`](Self::add_ground)) at `points`
-    /// (the first [`CONTACT_MARKERS`]) and the others back under the ground, for the next
-    /// recorded frame.
-    pub fn set_contacts(&mut self, first: usize, points: &[Vec3], height: f64) {
+    /// For the next recorded frame: puts the markers from node `first` (see
+    /// [`add_ground`](Self::add_ground)) at the points of `contacts` (point in the world, m;
+    /// force on the body, N, world axes; the first [`CONTACT_MARKERS`]), the others back under
+    /// the ground, and keeps the contacts as [`contact_forces`](Self::contact_forces).
+    pub fn set_contacts(&mut self, first: usize, contacts: &[(Vec3, Vec3)], height: f64) {
         let ground = self.nodes[first - 1].placement.translation;
         let radius = self.nodes[first].shapes[0].size[0];
         let parked = Vec3::new(ground.x, ground.y, height - 3e-3 - radius);
         for i in 0..CONTACT_MARKERS {
-            let at = points.get(i).copied().unwrap_or(parked);
+            let at = contacts.get(i).map_or(parked, |c| c.0);
             self.nodes[first + i].placement = Transform::from_translation(at);
         }
+        self.contact_forces = contacts.iter().take(CONTACT_MARKERS).copied().collect();
+    }
+
+    /// The page's statement of the arrows' scale (`None` without force arrows): millimetres per
+    /// newton, and the length of the weight's arrow.
+    #[must_use]
+    pub fn force_note(&self) -> Option<String> {
+        (self.force_scale > 0.0).then(|| {
+            let weight = WEIGHT_ARROW * self.extent.max(0.1) / self.force_scale;
+            format!(
+                "green arrows: contact forces on the body, {:.4} mm per N (the weight, {weight:.4} N, would be {:.4} m)",
+                1e3 * self.force_scale,
+                WEIGHT_ARROW * self.extent.max(0.1)
+            )
+        })
     }
 }
 

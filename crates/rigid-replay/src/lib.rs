@@ -16,7 +16,7 @@ mod ground;
 mod mjcf;
 mod shapes;
 
-pub use ground::{collision_nodes, CONTACT_MARKERS};
+pub use ground::{collision_nodes, CONTACT_MARKERS, WEIGHT_ARROW};
 pub use shapes::{body_box, robot_nodes};
 
 use base64::Engine;
@@ -81,14 +81,23 @@ pub struct Scene {
     pub meshes: Vec<Mesh>,
     /// A size (m) for the camera margin.
     pub extent: f64,
+    /// Metres of arrow per newton of contact force (0: no force arrows; set by
+    /// [`add_ground`](Self::add_ground)).
+    pub force_scale: f64,
+    /// The pushing contacts of the frame to be recorded next: the point (m) and the force on the
+    /// body (N, world axes), at most [`CONTACT_MARKERS`] (set by
+    /// [`set_contacts`](Self::set_contacts)).
+    pub contact_forces: Vec<(Vec3, Vec3)>,
 }
 
-/// The recorded trajectory: times, the pose of every node at each frame, the CoM.
+/// The recorded trajectory: times, the pose of every node at each frame, the CoM, and with a
+/// ground the contact forces ([`CONTACT_MARKERS`] slots of point and force per frame).
 #[derive(Clone, Debug, Default)]
 pub struct Recording {
     times: Vec<f32>,
     poses: Vec<f32>,
     com: Vec<f32>,
+    forces: Vec<f32>,
     next: f64,
 }
 
@@ -113,7 +122,8 @@ impl Recording {
     }
 
     /// Append the frame of configuration `q` at `t` if one is due: the nodes' poses from
-    /// forward kinematics of `model` (placements in `data`), and the CoM.
+    /// forward kinematics of `model` (placements in `data`), the CoM, and when the scene draws
+    /// force arrows (`force_scale > 0`) its [`contact_forces`](Scene::contact_forces).
     ///
     /// # Errors
     /// A bad `q`.
@@ -136,6 +146,14 @@ impl Recording {
         });
         let poses: Vec<Transform> = poses.collect();
         self.push(t, poses, com);
+        if scene.force_scale > 0.0 {
+            let none = (Vec3::zeros(), Vec3::zeros());
+            for k in 0..CONTACT_MARKERS {
+                let (p, f) = scene.contact_forces.get(k).copied().unwrap_or(none);
+                self.forces
+                    .extend([p.x, p.y, p.z, f.x, f.y, f.z].map(|v| v as f32));
+            }
+        }
         Ok(())
     }
 }
@@ -210,9 +228,14 @@ impl Scene {
                 serde_json::json!({"positions": b64(&f32_bytes(&m.positions)), "indices": b64(&idx)})
             })
             .collect();
+        let info = match self.force_note() {
+            Some(note) if self.info.is_empty() => note,
+            Some(note) => format!("{}\n{note}", self.info),
+            None => self.info.clone(),
+        };
         let json = serde_json::json!({
             "title": self.title,
-            "info": self.info,
+            "info": info,
             "warnings": self.warnings,
             "nodes": nodes,
             "meshes": meshes,
@@ -220,6 +243,9 @@ impl Scene {
             "times": b64(&f32_bytes(&rec.times)),
             "poses": b64(&f32_bytes(&rec.poses)),
             "com": b64(&f32_bytes(&rec.com)),
+            "forces": b64(&f32_bytes(&rec.forces)),
+            "force_scale": self.force_scale,
+            "force_slots": CONTACT_MARKERS,
         });
         // inside <script>, "</" would end the element
         let json = json.to_string().replace("</", "<\\/");

@@ -63,12 +63,6 @@ pub fn body_on_ground(args: &SimulateArgs) -> Result<(Loaded, CollisionModel), S
     for w in &warnings {
         eprintln!("warning: {}: {w}", args.model);
     }
-    if geometries.is_empty() {
-        return Err(format!(
-            "{}: no part has a shape to collide with the ground",
-            args.model
-        ));
-    }
     let cm = on_ground(args, height, geometries)?;
     let loaded = Loaded {
         model,

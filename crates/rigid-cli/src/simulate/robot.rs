@@ -217,23 +217,25 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     };
     let mut rec = Recording::default();
     let mut data = Data::new(&model);
-    // with --ground the page draws the ground and marks the contacts that push
+    // with --ground the page draws the ground, marks the contacts that push and draws their
+    // forces (the last step's impulse over dt), the weight's arrow half the robot's size
     let height = args.ground.unwrap_or_default();
     let markers = match (&args.html, contacts) {
         (Some(_), true) => {
             let c = center_of_mass(&model, &mut data, &q0).map_err(|e| e.to_string())?;
-            Some(scene.add_ground(height, c))
+            let weight = model.total_mass() * model.gravity().norm();
+            Some(scene.add_ground(height, c, weight))
         }
         _ => None,
     };
     let mark = |scene: &mut rigid_replay::Scene, sim: &Simulator| {
         if let Some(first) = markers {
-            let pushing: Vec<Vec3> = sim
+            let pushing: Vec<(Vec3, Vec3)> = sim
                 .contacts()
                 .iter()
                 .zip(sim.contact_impulses())
                 .filter(|(_, p)| p.norm() > 0.0)
-                .map(|(c, _)| c.point)
+                .map(|(c, p)| (c.point, p / args.dt))
                 .collect();
             scene.set_contacts(first, &pushing, height);
         }

@@ -6,6 +6,8 @@
 //! - screenshots at t = 0 and t = end show the robot: pixels of its colours where each link's
 //!   origin is drawn (`replay.screen(i)`), and the two pictures differ;
 //! - moving the slider moves the pose (the frame and the picture change);
+//! - a body resting on the ground (`--ground`) has green force arrows, as long as its forces at
+//!   the scale the page states, their vertical parts summing to its weight within 1 %;
 //! - the PNG plot of the same run is not blank and has four panels.
 //!
 //! The PNG is checked in every run; the browser is a live check, run when `RIGID_CROSSCHECK=1`
@@ -158,6 +160,67 @@ impl Browser {
                 return v["result"].clone();
             }
             self.events.push(v);
+        }
+    }
+
+    /// Attach to the page, enable the domains whose events the tests check, and load `html`
+    /// paused at its first frame.
+    fn open(&mut self, html: &Path) {
+        let targets = self.call("Target.getTargets", json!({}));
+        let page = targets["targetInfos"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|t| t["type"] == "page")
+            .expect("a page target")["targetId"]
+            .clone();
+        let attached = self.call(
+            "Target.attachToTarget",
+            json!({"targetId": page, "flatten": true}),
+        );
+        self.session = Some(attached["sessionId"].as_str().unwrap().to_string());
+        for domain in [
+            "Runtime.enable",
+            "Log.enable",
+            "Network.enable",
+            "Page.enable",
+        ] {
+            self.call(domain, json!({}));
+        }
+        self.call(
+            "Emulation.setDeviceMetricsOverride",
+            json!({"width": WIDTH, "height": HEIGHT, "deviceScaleFactor": 1, "mobile": false}),
+        );
+        let url = format!("file://{}?paused", html.display());
+        self.call("Page.navigate", json!({"url": url}));
+        self.wait_for(
+            "document.readyState === 'complete' && !!window.replay && window.replay.ready",
+        );
+    }
+
+    /// Asserts that nothing went wrong in the page (no exception, no console error) and that
+    /// nothing but the page itself was fetched.
+    fn assert_clean(&self, html: &Path) {
+        let page_url = format!("file://{}", html.display());
+        for e in &self.events {
+            let m = e["method"].as_str().unwrap_or("");
+            match m {
+                "Runtime.exceptionThrown" => panic!("exception in the page: {}", e["params"]),
+                "Runtime.consoleAPICalled" if e["params"]["type"] == "error" => {
+                    panic!("console error: {}", e["params"])
+                }
+                "Log.entryAdded" if e["params"]["entry"]["level"] == "error" => {
+                    panic!("console error: {}", e["params"]["entry"])
+                }
+                "Network.requestWillBeSent" => {
+                    let u = e["params"]["request"]["url"].as_str().unwrap_or("");
+                    assert!(
+                        u.starts_with(&page_url),
+                        "the page made a network request: {u}"
+                    );
+                }
+                _ => {}
+            }
         }
     }
 
@@ -342,36 +405,8 @@ fn replay_page_shows_the_moving_robot_in_a_browser_without_errors_or_requests() 
     );
     let (dir, html, _) = simulate_arm("page");
 
-    let profile = dir.join("profile");
-    let mut b = Browser::launch(&exe, &profile);
-    let targets = b.call("Target.getTargets", json!({}));
-    let page = targets["targetInfos"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|t| t["type"] == "page")
-        .expect("a page target")["targetId"]
-        .clone();
-    let attached = b.call(
-        "Target.attachToTarget",
-        json!({"targetId": page, "flatten": true}),
-    );
-    b.session = Some(attached["sessionId"].as_str().unwrap().to_string());
-    for domain in [
-        "Runtime.enable",
-        "Log.enable",
-        "Network.enable",
-        "Page.enable",
-    ] {
-        b.call(domain, json!({}));
-    }
-    b.call(
-        "Emulation.setDeviceMetricsOverride",
-        json!({"width": WIDTH, "height": HEIGHT, "deviceScaleFactor": 1, "mobile": false}),
-    );
-    let url = format!("file://{}?paused", html.display());
-    b.call("Page.navigate", json!({"url": url}));
-    b.wait_for("document.readyState === 'complete' && !!window.replay && window.replay.ready");
+    let mut b = Browser::launch(&exe, &dir.join("profile"));
+    b.open(&html);
     let nframes = b.eval("replay.nframes").as_u64().unwrap();
     let nodes = b.eval("replay.nodes").as_u64().unwrap();
     assert_eq!(nodes, 3, "base, upper and lower links");
@@ -438,28 +473,79 @@ fn replay_page_shows_the_moving_robot_in_a_browser_without_errors_or_requests() 
         "t = 0 and t = end differ in {moved} pixels only"
     );
 
-    // nothing went wrong in the page, and nothing was fetched
-    let page_url = format!("file://{}", html.display());
-    for e in &b.events {
-        let m = e["method"].as_str().unwrap_or("");
-        match m {
-            "Runtime.exceptionThrown" => panic!("exception in the page: {}", e["params"]),
-            "Runtime.consoleAPICalled" if e["params"]["type"] == "error" => {
-                panic!("console error: {}", e["params"])
-            }
-            "Log.entryAdded" if e["params"]["entry"]["level"] == "error" => {
-                panic!("console error: {}", e["params"]["entry"])
-            }
-            "Network.requestWillBeSent" => {
-                let u = e["params"]["request"]["url"].as_str().unwrap_or("");
-                assert!(
-                    u.starts_with(&page_url),
-                    "the page made a network request: {u}"
-                );
-            }
-            _ => {}
-        }
+    b.assert_clean(&html);
+    drop(b);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The number of pixels of the force arrows' green (far greener than red and blue).
+fn green_pixels(img: &Image) -> usize {
+    img.rgb
+        .chunks(3)
+        .filter(|p| p[1] as i32 > p[0] as i32 + 60 && p[1] as i32 > p[2] as i32 + 40)
+        .count()
+}
+
+#[test]
+fn replay_page_draws_the_contact_forces_as_arrows_at_the_stated_scale() {
+    if !crate::common::live("the contact force arrows in chromium") {
+        return;
     }
+    let exe = chromium().expect("no chromium on PATH (RIGID_CROSSCHECK=1 needs it)");
+    let dir = std::env::temp_dir().join(format!("rigid_replay_arrows_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let html = dir.join("compound.html");
+    let spec = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/compound.toml");
+    let out = Command::new(env!("CARGO_BIN_EXE_rigid"))
+        .arg("simulate")
+        .arg(&spec)
+        .args(["--ground", "--duration", "1", "--html"])
+        .arg(&html)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut b = Browser::launch(&exe, &dir.join("profile"));
+    b.open(&html);
+    // frame 0 comes before the first step: no force, no arrow
+    assert_eq!(b.eval("replay.arrows().length"), json!(0));
+    let before = green_pixels(&b.screenshot());
+    b.eval("replay.setFrame(replay.nframes - 1)");
+    let after = green_pixels(&b.screenshot());
+    eprintln!("green pixels: {before} at t = 0, {after} at the end");
+    assert!(after > before + 200, "{before} -> {after} green pixels");
+    // the scale the page states, in mm per N
+    let info = b.eval("document.getElementById('info').textContent");
+    let info = info.as_str().unwrap();
+    let mm_per_n: f64 = info
+        .split(" mm per N")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no scale on the page: {info}"));
+    // at rest, the drawn arrows: each as long as its force at that scale, their vertical parts
+    // together as long as the 3 kg compound's weight
+    let arrows = b.eval("replay.arrows()");
+    let arrows = arrows.as_array().unwrap();
+    assert!(!arrows.is_empty());
+    let mut up = 0.0;
+    for a in arrows {
+        let (length, force) = (a["length"].as_f64().unwrap(), a["force"].as_f64().unwrap());
+        assert!(
+            (length - 1e-3 * mm_per_n * force).abs() < 1e-4 * length,
+            "{a}"
+        );
+        up += length * a["dir"][2].as_f64().unwrap();
+    }
+    let weight = 1e-3 * mm_per_n * 3.0 * 9.81;
+    assert!(
+        (up - weight).abs() < 0.01 * weight,
+        "{up} m of arrows up, weight {weight} m"
+    );
+    b.assert_clean(&html);
     drop(b);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -311,3 +311,84 @@ fn view_writes_a_self_contained_page() {
     // nothing to fetch: no external URL in a src or href
     assert!(!page.contains("src=\"http") && !page.contains("href=\"http"));
 }
+
+/// A chain of `n` hinges named `hinge_a`, `hinge_b`, … (axis y, 0.1 m apart, 1 kg links).
+fn chain_urdf(dir: &std::path::Path, n: usize) -> PathBuf {
+    let name = |k: usize| format!("hinge_{}", (b'a' + k as u8) as char);
+    let mut urdf = String::from(r#"<robot name="chain"><link name="base"/>"#);
+    for k in 0..n {
+        let parent = if k == 0 {
+            "base".to_string()
+        } else {
+            format!("link{}", k - 1)
+        };
+        urdf += &format!(
+            r#"<link name="link{k}"><inertial><origin xyz="0 0 -0.05"/><mass value="1"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+<joint name="{}" type="continuous"><parent link="{parent}"/><child link="link{k}"/><origin xyz="0 0 -0.1"/><axis xyz="0 1 0"/></joint>"#,
+            name(k)
+        );
+    }
+    urdf += "</robot>";
+    let path = dir.join(format!("chain{n}.urdf"));
+    std::fs::write(&path, urdf).unwrap();
+    path
+}
+
+/// The texts of the SVG plot's joint-position panel of the chain of `n` hinges held (gravity
+/// compensation) at `q_k = 0.05 (k + 1)`: from its caption to the next panel's.
+fn chain_position_panel(n: usize) -> Vec<String> {
+    let dir = scratch(&format!("legend{n}"));
+    let urdf = chain_urdf(&dir, n);
+    let svg = dir.join("chain.svg");
+    let q0: Vec<String> = (0..n)
+        .map(|k| format!("{}", 0.05 * (k + 1) as f64))
+        .collect();
+    let out = rigid(&[
+        "simulate",
+        urdf.to_str().unwrap(),
+        "--q0",
+        &q0.join(","),
+        "--controller",
+        "gravity",
+        "--duration",
+        "0.01",
+        "--plot",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let start = text.find("joint positions").unwrap();
+    let end = start + text[start..].find("joint velocities").unwrap();
+    text[start..end]
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| Some(t.split_once('>')?.1.split_once('<')?.0.trim().to_string()))
+        .collect()
+}
+
+#[test]
+fn a_plot_of_many_joints_names_the_six_largest_and_counts_the_others() {
+    // 14 hinges: the legend names the six that reach the largest |q| (the last six), and says
+    // how many others are drawn unnamed
+    let panel = chain_position_panel(14);
+    for c in 'a'..='n' {
+        let name = format!("hinge_{c}");
+        assert_eq!(panel.contains(&name), c >= 'i', "{name} in {panel:?}");
+    }
+    assert!(
+        panel
+            .iter()
+            .any(|t| t.starts_with("8 others in grey, unnamed")),
+        "{panel:?}"
+    );
+    // 12 hinges: every one named, no note
+    let panel = chain_position_panel(12);
+    for c in 'a'..='l' {
+        assert!(panel.contains(&format!("hinge_{c}")), "{panel:?}");
+    }
+    assert!(!panel.iter().any(|t| t.contains("others in grey")));
+}

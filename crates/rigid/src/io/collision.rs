@@ -143,8 +143,9 @@ pub fn compound_geometries(
 /// --ground`.
 ///
 /// # Errors
-/// The spec or a mesh cannot be read, or its mass properties are not physical (the messages of
-/// [`read_spec`](super::spec::read_spec) and `Compound::mass_properties`, with the file).
+/// The spec or a mesh cannot be read, its mass properties are not physical (the messages of
+/// [`read_spec`](super::spec::read_spec) and `Compound::mass_properties`, with the file), or
+/// no part has a shape that collides (points and given inertias do not).
 #[cfg(feature = "spec")]
 pub fn spec_body(
     path: &Path,
@@ -166,6 +167,12 @@ pub fn spec_body(
     let model = b.build().map_err(|e| format!("{}: {e}", path.display()))?;
     let meshes = spec_mesh_vertices(path)?;
     let (geometries, warnings) = compound_geometries(&compound, &meshes, joint, props.com);
+    if geometries.is_empty() {
+        return Err(format!(
+            "{}: no part has a shape to collide with the ground",
+            path.display()
+        ));
+    }
     Ok((model, geometries, warnings))
 }
 
