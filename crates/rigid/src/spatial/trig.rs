@@ -54,40 +54,72 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
 
 /// [`sin_cos`] of `W` angles side by side, one per lane, for the batch kernels
 /// ([`multibody::batch`](crate::multibody::batch)): the same operations in each lane (the
-/// quadrant picked by bit masks instead of a `match`), so the results are [`sin_cos`]'s bit for
-/// bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the standard library, as there.
+/// quadrant picked by comparisons instead of a `match`), so the results are [`sin_cos`]'s bit
+/// for bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the standard library, as there.
 #[inline(always)]
 #[must_use]
 pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W]) {
     const ROUND: f64 = 6_755_399_441_055_744.0;
-    let (mut sin, mut cos) = ([0.0; W], [0.0; W]);
-    for i in 0..W {
-        let x = q[i];
-        let shifted = x * std::f64::consts::FRAC_2_PI + ROUND;
-        let n = shifted - ROUND;
-        // n mod 4 in the low bits of the mantissa of n + 1.5·2⁵²
-        let t = shifted.to_bits();
-        let r = ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_2T;
-        let z = r * r;
-        let s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
+    // each step a loop over the lanes, which the compiler makes one vector instruction
+    #[inline(always)]
+    fn map<const W: usize>(x: [f64; W], f: impl Fn(f64) -> f64) -> [f64; W] {
+        let mut r = x;
+        for v in &mut r {
+            *v = f(*v);
+        }
+        r
+    }
+    #[inline(always)]
+    fn zip<const W: usize>(x: [f64; W], y: [f64; W], f: impl Fn(f64, f64) -> f64) -> [f64; W] {
+        let mut r = x;
+        for (v, y) in r.iter_mut().zip(y) {
+            *v = f(*v, y);
+        }
+        r
+    }
+    let n = map(q, |x| (x * std::f64::consts::FRAC_2_PI + ROUND) - ROUND);
+    let r = zip(q, n, |x, n| ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_2T);
+    let z = map(r, |r| r * r);
+    let sp = map(z, |z| S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
+    let s = zip(zip(r, z, |r, z| r * z), sp, |rz, p| rz * p);
+    let s = zip(r, s, |r, s| r + s);
+    let cp = map(z, |z| C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+    let c = zip(z, cp, |z, p| {
         let hz = 0.5 * z;
         let w = 1.0 - hz;
-        let c = w
-            + (((1.0 - w) - hz)
-                + z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6))))));
-        // quadrant 0: (s, c); 1: (c, -s); 2: (-s, -c); 3: (-c, s)
-        let swap = 0u64.wrapping_sub(t & 1);
-        let (sb, cb) = (s.to_bits(), c.to_bits());
-        let (s0, c0) = ((sb & !swap) | (cb & swap), (cb & !swap) | (sb & swap));
-        sin[i] = f64::from_bits(s0 ^ ((t & 2) << 62));
-        cos[i] = f64::from_bits(c0 ^ (((t + 1) & 2) << 62));
-    }
+        w + (((1.0 - w) - hz) + z * z * p)
+    });
+    // the quadrant n mod 4 as -2..=2 (exact: n is an integer below 2²⁰), picked and signed by
+    // comparisons, which the lanes do together (0: (s, c); ±1: (c, -s) / (-c, s); ±2: (-s, -c))
+    let quadrant = map(n, |n| n - 4.0 * ((n * 0.25 + ROUND) - ROUND));
+    let (mut sin, mut cos) = (s, c);
     for i in 0..W {
-        if q[i].abs().partial_cmp(&1e5) != Some(std::cmp::Ordering::Less) {
-            (sin[i], cos[i]) = q[i].sin_cos();
-        }
+        let k = quadrant[i];
+        let (a, b) = if k * k == 1.0 { (c[i], s[i]) } else { (s[i], c[i]) };
+        sin[i] = if k < -0.5 || k > 1.5 { -a } else { a };
+        cos[i] = if k > 0.5 || k < -1.5 { -b } else { b };
+    }
+    // the lanes out of the reduction's range, apart (a branch per lane here would keep the
+    // compiler from computing the lanes together)
+    let mut inside = true;
+    for x in q {
+        inside &= x.abs() < 1e5;
+    }
+    if !inside {
+        library_lanes(&q, &mut sin, &mut cos);
     }
     (sin, cos)
+}
+
+/// [`sin_cos_lanes`]' lanes with `|q| ≥ 10⁵` or NaN, by the standard library.
+#[cold]
+#[inline(never)]
+fn library_lanes(q: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    for ((q, s), c) in q.iter().zip(sin).zip(cos) {
+        if q.abs().partial_cmp(&1e5) != Some(std::cmp::Ordering::Less) {
+            (*s, *c) = q.sin_cos();
+        }
+    }
 }
 
 /// `out[k] = [sin q_k, cos q_k]` for the entries `k` of `q` listed in `at`, several at a time in

@@ -43,7 +43,7 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
         }
     }
     let nv = model.nv();
-    p.M.fill(L::zero());
+    // the entries of M outside the ancestor pairs are zero: set by Pack::new, never written
     for (i, j) in joints.iter().enumerate() {
         for k in j.dofs() {
             p.oS[k] = world_column(model, &p.S, i, k, &p.oX[i]);

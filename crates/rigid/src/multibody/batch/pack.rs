@@ -39,6 +39,9 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) Dinv: Vec<[L<W>; 36]>,
     pub(crate) U: Vec<T6<W>>,
     pub(crate) u: Vec<L<W>>,
+    /// CRBA: the `W` states' packed lower triangles, before they are unfolded into full
+    /// matrices.
+    pub(crate) scratch: Vec<f64>,
 }
 
 impl<const W: usize> Pack<W> {
@@ -64,6 +67,7 @@ impl<const W: usize> Pack<W> {
             Dinv: vec![[z; 36]; n],
             U: vec![T6::zero(); nv],
             u: vec![z; nv],
+            scratch: vec![0.0; W * nv * (nv + 1) / 2],
         }
     }
 
@@ -72,21 +76,22 @@ impl<const W: usize> Pack<W> {
         self.q.len() == model.nq() && self.v.len() == model.nv() && self.X.len() == model.njoints()
     }
 
-    /// Lane `l` of the inputs from state `k` of the row-major inputs (`x` may be empty).
+    /// Lane `l` of the inputs from state `k` of the row-major inputs (`vs` and `xs` may be
+    /// empty).
     #[inline(always)]
     pub(crate) fn gather(&mut self, l: usize, k: usize, qs: &[f64], vs: &[f64], xs: &[f64]) {
         let (nq, nv) = (self.q.len(), self.v.len());
-        for (t, x) in qs[k * nq..][..nq].iter().enumerate() {
-            self.q[t].0[l] = *x;
+        for (y, x) in self.q.iter_mut().zip(&qs[k * nq..][..nq]) {
+            y.0[l] = *x;
         }
         if !vs.is_empty() {
-            for (t, x) in vs[k * nv..][..nv].iter().enumerate() {
-                self.v[t].0[l] = *x;
+            for (y, x) in self.v.iter_mut().zip(&vs[k * nv..][..nv]) {
+                y.0[l] = *x;
             }
         }
         if !xs.is_empty() {
-            for (t, x) in xs[k * nv..][..nv].iter().enumerate() {
-                self.x[t].0[l] = *x;
+            for (y, x) in self.x.iter_mut().zip(&xs[k * nv..][..nv]) {
+                y.0[l] = *x;
             }
         }
     }

@@ -10,6 +10,7 @@
 
 use super::aba::aba;
 use super::crba::{crba, packed_at};
+use super::lanes::L;
 use super::pack::Pack;
 use super::rnea::rnea;
 use crate::multibody::{Model, MultibodyError};
@@ -186,33 +187,50 @@ fn packs<const W: usize>(
         }
         let o = &mut out[s * per..(s + m) * per];
         match algo {
-            Algo::Rnea | Algo::Aba => {
-                for (t, x) in p.out.iter().enumerate() {
-                    for l in 0..m {
-                        o[l * per + t] = x.0[l];
-                    }
-                }
-            }
+            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o),
+            Algo::CrbaLower => transpose_out(&p.M, m, o),
             Algo::Crba => {
-                for c in 0..nv {
-                    for r in c..nv {
-                        let x = p.M[packed_at(nv, r, c)];
-                        for l in 0..m {
-                            o[l * per + c * nv + r] = x.0[l];
-                            o[l * per + r * nv + c] = x.0[l];
+                let lower = nv * (nv + 1) / 2;
+                let mut scratch = std::mem::take(&mut p.scratch);
+                transpose_out(&p.M, m, &mut scratch[..m * lower]);
+                for (o, packed) in o.chunks_exact_mut(per).zip(scratch.chunks_exact(lower)) {
+                    for c in 0..nv {
+                        let col = &packed[packed_at(nv, c, c)..][..nv - c];
+                        for (r, x) in (c..nv).zip(col) {
+                            o[c * nv + r] = *x;
+                            o[r * nv + c] = *x;
                         }
                     }
                 }
-            }
-            Algo::CrbaLower => {
-                for (t, x) in p.M.iter().enumerate() {
-                    for l in 0..m {
-                        o[l * per + t] = x.0[l];
-                    }
-                }
+                p.scratch = scratch;
             }
         }
         s += W;
     }
     Ok(())
+}
+
+/// Lanes `0..m` of `src` (one lane vector per output index) into the `m` rows of `dst`, each
+/// `src.len()` long (row `l` is lane `l`'s state): `W x W` blocks transposed in registers, then
+/// the remainder one by one.
+#[inline(always)]
+fn transpose_out<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64]) {
+    let per = src.len();
+    let full = per / W * W;
+    for b in (0..full).step_by(W) {
+        let mut block = [[0.0; W]; W];
+        for (t, x) in src[b..b + W].iter().enumerate() {
+            for (l, row) in block.iter_mut().enumerate() {
+                row[t] = x.0[l];
+            }
+        }
+        for (l, row) in block[..m].iter().enumerate() {
+            dst[l * per + b..][..W].copy_from_slice(row);
+        }
+    }
+    for (t, x) in src.iter().enumerate().skip(full) {
+        for l in 0..m {
+            dst[l * per + t] = x.0[l];
+        }
+    }
 }
