@@ -45,59 +45,79 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
     }
     for (i, j) in joints.iter().enumerate().rev() {
         let iv = j.idx_v;
-        let (IA, pA) = (p.IA[i], p.F[i]);
         let axis = match (j.kind.shape(), model.plan().dof_axis[iv]) {
             (Shape::FreeFlyer, _) => None,
             (_, Some((c, s))) if j.nv == 1 => Some((c, s)),
             _ => None,
         };
-        let ff = j.kind.shape() == Shape::FreeFlyer;
-        for k in j.dofs() {
-            p.U[k] = match axis {
-                Some((c, s)) => IA.col(c).scale(L::splat(s)),
-                None if ff => IA.col(k - iv),
-                None => IA.mul(&p.S[k]),
-            };
-        }
-        // D = Sᵀ U + armature (nv x nv, row-major), u = τ − Sᵀ p^A
-        let n = j.nv;
-        let mut D = [L::zero(); 36];
-        for a in 0..n {
-            for b in 0..n {
-                D[a * n + b] = match axis {
-                    Some((c, s)) => p.U[iv + b].get(c) * s,
-                    None if ff => p.U[iv + b].get(a),
-                    None => p.S[iv + a].dot(&p.U[iv + b]),
-                };
-            }
-            D[a * n + a] += model.armature()[iv + a];
-            let Sp = match axis {
-                Some((c, s)) => pA.get(c) * s,
-                None if ff => pA.get(a),
-                None => p.S[iv + a].dot(&pA),
-            };
-            p.u[iv + a] = p.x[iv + a] - Sp;
-        }
-        let Dinv = spd_inverse(&D, n)?;
-        p.Dinv[i] = Dinv;
-        if let Some(par) = j.parent {
-            // I^a = I^A − Σ_a U_a (Σ_b D⁻¹_ab U_b)ᵀ, p^a = p^A + I^a c + Σ_a U_a (Σ_b D⁻¹_ab u_b)
-            let mut Ia = IA;
-            let mut pa = pA;
-            for a in 0..n {
-                let mut Wa = T6::zero();
-                let mut s = L::zero();
-                for b in 0..n {
-                    Wa += p.U[iv + b].scale(Dinv[a * n + b]);
-                    s += Dinv[a * n + b] * p.u[iv + b];
+        let (head, tail) = p.IA.split_at_mut(i);
+        let IA = &mut tail[0];
+        let pA = p.F[i];
+        let mut pa = pA;
+        if j.nv == 1 {
+            // one dof: U = I^A S, D = Sᵀ U + armature, u = τ − Sᵀ p^A, all lane scalars
+            let (U, D, Sp) = match axis {
+                Some((c, s)) => {
+                    let col = IA.col(c);
+                    (col.scale(L::splat(s)), col.get(c), pA.get(c) * s)
                 }
-                Ia.sub_outer(&p.U[iv + a], &Wa);
-                pa += p.U[iv + a].scale(s);
+                None => {
+                    let U = IA.mul(&p.S[iv]);
+                    (U, p.S[iv].dot(&U), p.S[iv].dot(&pA))
+                }
+            };
+            let D = D + model.armature()[iv];
+            positive(D)?;
+            let dinv = D.map(|x| 1.0 / x);
+            let u = p.x[iv] - Sp;
+            p.U[iv] = U;
+            p.u[iv] = u;
+            p.Dinv[i][0] = dinv;
+            if j.parent.is_some() {
+                IA.sub_outer(&U, &U.scale(dinv));
+                pa += U.scale(dinv * u);
             }
-            pa += Ia.mul(&p.A[i]);
+        } else {
+            let n = j.nv;
+            let ff = j.kind.shape() == Shape::FreeFlyer;
+            for k in j.dofs() {
+                p.U[k] = if ff { IA.col(k - iv) } else { IA.mul(&p.S[k]) };
+            }
+            // D = Sᵀ U + armature (nv x nv, row-major), u = τ − Sᵀ p^A
+            let mut D = [L::zero(); 36];
+            for a in 0..n {
+                for b in 0..n {
+                    D[a * n + b] = if ff {
+                        p.U[iv + b].get(a)
+                    } else {
+                        p.S[iv + a].dot(&p.U[iv + b])
+                    };
+                }
+                D[a * n + a] += model.armature()[iv + a];
+                let Sp = if ff { pA.get(a) } else { p.S[iv + a].dot(&pA) };
+                p.u[iv + a] = p.x[iv + a] - Sp;
+            }
+            let Dinv = spd_inverse(&D, n)?;
+            p.Dinv[i] = Dinv;
+            if j.parent.is_some() {
+                // I^a = I^A − Σ_a U_a (Σ_b D⁻¹_ab U_b)ᵀ, p^a = p^A + Σ_a U_a (Σ_b D⁻¹_ab u_b)
+                for a in 0..n {
+                    let mut Wa = T6::zero();
+                    let mut s = L::zero();
+                    for b in 0..n {
+                        Wa += p.U[iv + b].scale(Dinv[a * n + b]);
+                        s += Dinv[a * n + b] * p.u[iv + b];
+                    }
+                    IA.sub_outer(&p.U[iv + a], &Wa);
+                    pa += p.U[iv + a].scale(s);
+                }
+            }
+        }
+        if let Some(par) = j.parent {
+            // I^A now holds I^a; p^a += I^a c; both moved to the parent
+            pa += IA.mul(&p.A[i]);
             let X = p.X[i];
-            let moved = Ia.congruence(&X);
-            p.IA[par.0].add(&moved);
+            head[par.0].add_congruence(IA, &X);
             let f = X.act_wrench(&pa);
             p.F[par.0] += f;
         }
@@ -114,21 +134,40 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
             None => X.inv_act(&a_world),
         } + p.A[i];
         let n = j.nv;
-        let mut r = [L::zero(); 6];
-        for (b, rb) in r[..n].iter_mut().enumerate() {
-            *rb = p.u[iv + b] - p.U[iv + b].dot(&a);
-        }
-        for a_ in 0..n {
-            let mut x = L::zero();
-            for (b, rb) in r[..n].iter().enumerate() {
-                x += p.Dinv[i][a_ * n + b] * *rb;
+        if n == 1 {
+            p.out[iv] = p.Dinv[i][0] * (p.u[iv] - p.U[iv].dot(&a));
+        } else {
+            let mut r = [L::zero(); 6];
+            for (b, rb) in r[..n].iter_mut().enumerate() {
+                *rb = p.u[iv + b] - p.U[iv + b].dot(&a);
             }
-            p.out[iv + a_] = x;
+            for a_ in 0..n {
+                let mut x = L::zero();
+                for (b, rb) in r[..n].iter().enumerate() {
+                    x += p.Dinv[i][a_ * n + b] * *rb;
+                }
+                p.out[iv + a_] = x;
+            }
         }
         a += p.joint_twist(model, i, &p.out);
         p.A[i] = a;
     }
     Ok(())
+}
+
+/// `Ok` when every lane of `d` is positive (not NaN), else
+/// [`MultibodyError::NotPositiveDefinite`].
+#[inline(always)]
+fn positive<const W: usize>(d: L<W>) -> Result<(), MultibodyError> {
+    let mut ok = true;
+    for x in d.0 {
+        ok &= x > 0.0;
+    }
+    if ok {
+        Ok(())
+    } else {
+        Err(MultibodyError::NotPositiveDefinite)
+    }
 }
 
 /// `D⁻¹` of a symmetric positive definite `n x n` matrix per lane (row-major), by Gauss-Jordan
@@ -221,46 +260,42 @@ impl<const W: usize> I6<W> {
         }
     }
 
-    /// `I += J`.
+    /// `I += X* J X⁻¹` for `X = [Ad_{(R, p)}]`: `J`, an inertia of the child frame, moved to the
+    /// parent frame and added. Turned first, `(A, B, C) ← (R A Rᵀ, R B Rᵀ, R C Rᵀ)` (`A` and `C`
+    /// symmetric: their upper triangles copied), then moved by `p`: `C' = C`, `B' = B + [p] C`,
+    /// `A' = A − B [p] + [p] B'ᵀ`.
     #[inline(always)]
-    fn add(&mut self, o: &Self) {
-        for r in 0..3 {
-            for c in 0..3 {
-                self.a.0[r][c] += o.a.0[r][c];
-                self.b.0[r][c] += o.b.0[r][c];
-                self.c.0[r][c] += o.c.0[r][c];
-            }
-        }
-    }
-
-    /// `X* I X⁻¹` for `X = [Ad_{(R, p)}]`: the inertia of the child frame in the parent frame.
-    /// Turned first, `(A, B, C) ← (R A Rᵀ, R B Rᵀ, R C Rᵀ)`, then moved by `p`:
-    /// `C' = C`, `B' = B + [p] C`, `A' = A − B [p] + [p] B'ᵀ`.
-    #[inline(always)]
-    fn congruence(&self, x: &X<W>) -> Self {
+    fn add_congruence(&mut self, j: &Self, x: &X<W>) {
         let r = &x.r;
         let (a, b, c) = (
-            r.mul(&self.a).mul_tr(r),
-            r.mul(&self.b).mul_tr(r),
-            r.mul(&self.c).mul_tr(r),
+            r.mul(&j.a).mul_tr_sym(r),
+            r.mul(&j.b).mul_tr(r),
+            r.mul(&j.c).mul_tr_sym(r),
         );
         let p = &x.p;
         let mut bn = b;
-        for j in 0..3 {
-            let pc = p.cross(&c.col(j));
+        for k in 0..3 {
+            let pc = p.cross(&c.col(k));
             for i in 0..3 {
-                bn.0[i][j] += pc.0[i];
+                bn.0[i][k] += pc.0[i];
             }
         }
         let mut an = a;
         for i in 0..3 {
             let e = p.cross(&V3(b.0[i])); // −(B [p]) row i
             let h = p.cross(&V3(bn.0[i])); // ([p] B'ᵀ) column i
-            for j in 0..3 {
-                an.0[i][j] += e.0[j];
-                an.0[j][i] += h.0[j];
+            for k in 0..3 {
+                an.0[i][k] += e.0[k];
+                an.0[k][i] += h.0[k];
             }
         }
-        Self { a: an, b: bn, c }
+        for r in 0..3 {
+            for k in 0..3 {
+                self.a.0[r][k] += an.0[r][k];
+                self.b.0[r][k] += bn.0[r][k];
+                self.c.0[r][k] += c.0[r][k];
+            }
+        }
     }
 }
+

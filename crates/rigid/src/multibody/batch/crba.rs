@@ -3,7 +3,7 @@
 //! world-frame inertias, so the backward pass is additions, and each entry of `M` is one product
 //! `M_kl = S_lᵀ (I^c_i S_k)` of world-frame columns.
 
-use super::lanes::{L, M3, T6, V3, X};
+use super::lanes::{L, T6, V3, X};
 use super::pack::{placement, Pack, I3};
 use crate::mass::SpatialInertia;
 use crate::multibody::joint::Shape;
@@ -50,15 +50,8 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
         }
         for k in j.dofs() {
             let F = inertia_twist(&p.Yc[i], &p.oS[k]);
-            for l in j.idx_v..=k {
-                p.M[packed_at(nv, k, l)] = p.oS[l].dot(&F);
-            }
-            let mut a = j.parent;
-            while let Some(par) = a {
-                for l in joints[par.0].dofs() {
-                    p.M[packed_at(nv, k, l)] = p.oS[l].dot(&F);
-                }
-                a = joints[par.0].parent;
+            for &(l, at) in &p.support[p.support_of[k]..p.support_of[k + 1]] {
+                p.M[at] = p.oS[l].dot(&F);
             }
             p.M[packed_at(nv, k, k)] += model.armature()[k];
         }
@@ -119,7 +112,7 @@ fn world_inertia<const W: usize>(G: &SpatialInertia, oX: &X<W>) -> I3<W> {
     let m = G.mass();
     let (r, p) = (&oX.r, &oX.p);
     let rh = r.mul_c(&G.first_moment());
-    let rir = r.mul_cm(G.inertia_origin_matrix()).mul_tr(r);
+    let rir = r.mul_cm(G.inertia_origin_matrix()).mul_tr_sym(r);
     let d = p.dot(p) * m + p.dot(&rh) * 2.0;
     let mp = p.scale(L::splat(m));
     let mut i = rir;
@@ -142,20 +135,5 @@ fn inertia_twist<const W: usize>(y: &I3<W>, t: &T6<W>) -> T6<W> {
     T6 {
         w: y.i.mul_v(&t.w) + y.h.cross(&t.v),
         v: t.v.scale(y.m) - y.h.cross(&t.w),
-    }
-}
-
-impl<const W: usize> M3<W> {
-    /// `A Bᵀ`.
-    #[inline(always)]
-    pub(crate) fn mul_tr(&self, b: &Self) -> Self {
-        let (a, b) = (&self.0, &b.0);
-        let mut r = [[L::zero(); 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                r[i][j] = a[i][0] * b[j][0] + a[i][1] * b[j][1] + a[i][2] * b[j][2];
-            }
-        }
-        Self(r)
     }
 }

@@ -261,6 +261,33 @@ impl<const W: usize> M3<W> {
         Self(r)
     }
 
+    /// `A Bᵀ`.
+    #[inline(always)]
+    pub(crate) fn mul_tr(&self, b: &Self) -> Self {
+        let (a, b) = (&self.0, &b.0);
+        let mut r = [[L::zero(); 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] = a[i][0] * b[j][0] + a[i][1] * b[j][1] + a[i][2] * b[j][2];
+            }
+        }
+        Self(r)
+    }
+
+    /// `A Bᵀ` known to be symmetric (`R S Rᵀ`): the lower triangle computed, the upper copied.
+    #[inline(always)]
+    pub(crate) fn mul_tr_sym(&self, b: &Self) -> Self {
+        let (a, b) = (&self.0, &b.0);
+        let mut r = [[L::zero(); 3]; 3];
+        for i in 0..3 {
+            for j in 0..=i {
+                r[i][j] = a[i][0] * b[j][0] + a[i][1] * b[j][1] + a[i][2] * b[j][2];
+                r[j][i] = r[i][j];
+            }
+        }
+        Self(r)
+    }
+
     /// `A C` for a constant `C`.
     #[inline(always)]
     pub(crate) fn mul_cm(&self, c: &Mat3) -> Self {

@@ -33,6 +33,10 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) Yc: Vec<I3<W>>,
     pub(crate) oS: Vec<T6<W>>,
     pub(crate) M: Vec<L<W>>,
+    /// CRBA: for dof `k`, `support[support_of[k]..support_of[k + 1]]` lists `(l, where M_kl
+    /// is in M)` for the dofs `l ≤ k` of its joint and of the joint's ancestors.
+    pub(crate) support: Vec<(usize, usize)>,
+    pub(crate) support_of: Vec<usize>,
     /// ABA: per joint the articulated inertia `I^A_i` and `D⁻¹` (`nv x nv`, row-major); per
     /// dof `U_k = I^A S_k` and `u_k = τ_k − S_kᵀ p^A`.
     pub(crate) IA: Vec<I6<W>>,
@@ -63,6 +67,8 @@ impl<const W: usize> Pack<W> {
             Yc: vec![I3::zero(); n],
             oS: vec![T6::zero(); nv],
             M: vec![z; nv * (nv + 1) / 2],
+            support: support(model).0,
+            support_of: support(model).1,
             IA: vec![I6::zero(); n],
             Dinv: vec![[z; 36]; n],
             U: vec![T6::zero(); nv],
@@ -187,6 +193,25 @@ pub(crate) fn project<const W: usize>(
             }
         }
     }
+}
+
+/// [`Pack::support`] and [`Pack::support_of`] of `model`.
+fn support(model: &Model) -> (Vec<(usize, usize)>, Vec<usize>) {
+    let joints = model.joints();
+    let (mut list, mut of) = (Vec::new(), vec![0]);
+    for j in joints {
+        for k in j.dofs() {
+            let mut ls: Vec<usize> = (j.idx_v..=k).collect();
+            let mut a = j.parent;
+            while let Some(p) = a {
+                ls.extend(joints[p.0].dofs());
+                a = joints[p.0].parent;
+            }
+            list.extend(ls.into_iter().map(|l| (l, super::crba::packed_at(model.nv(), k, l))));
+            of.push(list.len());
+        }
+    }
+    (list, of)
 }
 
 /// Lane `l` of `t` set to the twist `x`.
