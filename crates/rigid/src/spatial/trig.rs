@@ -58,6 +58,7 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
 /// for bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the standard library, as there.
 #[inline(always)]
 #[must_use]
+#[allow(clippy::manual_range_contains)] // two comparisons per lane, which vectorise
 pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W]) {
     const ROUND: f64 = 6_755_399_441_055_744.0;
     // each step a loop over the lanes, which the compiler makes one vector instruction
