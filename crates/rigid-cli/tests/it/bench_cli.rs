@@ -68,3 +68,37 @@ fn bench_unknown_model_fails_cleanly() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("no_such_robot"));
 }
+
+/// `rigid bench --batch --json`: the lanes the batch uses (2, 4 or 8, a power of two), and per
+/// algorithm the states per second of the loop of single calls and of each thread count, with
+/// the speed-ups (positive, finite).
+#[test]
+fn bench_batch_json_reports_lanes_and_rates() {
+    let out = rigid(&[
+        "bench",
+        "puma560",
+        "--batch",
+        "--json",
+        "--threads",
+        "1",
+        "--repetitions",
+        "1",
+        "--states",
+        "9",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let lanes = v["lanes"].as_u64().unwrap();
+    assert!([2, 4, 8].contains(&lanes), "lanes {lanes}");
+    for algo in ["rnea", "aba", "crba", "crba_lower"] {
+        let row = &v["states_per_second"][algo];
+        for key in ["loop", "threads_1", "threads_1_vs_loop"] {
+            let x = row[key].as_f64().unwrap_or_else(|| panic!("{algo}.{key}"));
+            assert!(x > 0.0 && x.is_finite(), "{algo}.{key} = {x}");
+        }
+    }
+}
