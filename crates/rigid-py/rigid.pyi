@@ -379,8 +379,9 @@ def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -
 def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
                threads: int | None = None) -> Matrix:
     """``rnea`` for every row: Q (N, nq), V and A (N, nv) → τ (N, nv), on ``threads`` threads
-    (None: every core; a pool per size, made once) with the GIL released; each row equals the
-    single call bit for bit, for any ``threads``. Read-only arrays are accepted; a dask array is
+    (None: every core; a pool per size, made once) with the GIL released, several states side
+    by side in SIMD lanes; each row equals the single call to round-off (1e-13; RNEA bit for
+    bit), the same bits for any ``threads``. Read-only arrays are accepted; a dask array is
     refused (use ``rigid.dask``). Not in Pinocchio's Python."""
 
 def aba_batch(model: Model, Q: ArrayLike, V: ArrayLike, TAU: ArrayLike, *,

@@ -1,6 +1,7 @@
 //! Many states at once, on every core, with the GIL released: `rnea_batch`, `aba_batch`,
-//! `crba_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's `multibody::batch`). Each state's
-//! result is that of the single call, bit for bit.
+//! `crba_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's `multibody::batch`: several states
+//! side by side in SIMD lanes). Each state's result is that of the single call to round-off,
+//! and the same bits for any number of threads.
 
 use crate::convert::{matrix, rows_array, value_error, Matrix};
 use crate::model::{Model, ModelCore};

@@ -1,5 +1,6 @@
-"""The batch verbs: each row is the single call's result, bit for bit, in both layouts; the GIL
-is released while they run; shapes are checked."""
+"""The batch verbs: each row is the single call's result (to round-off: the batch computes
+several states side by side in SIMD lanes, in another order of operations), in both layouts; the
+GIL is released while they run; shapes are checked."""
 
 import threading
 import time
@@ -22,7 +23,7 @@ def states(m, n, seed):
 
 @pytest.mark.parametrize("name", ["ur5", "anymal", "all_joints_floating"])
 @pytest.mark.parametrize("layout", ["rigid", "pinocchio"])
-def test_batch_rows_equal_single_calls_bit_for_bit(name, layout):
+def test_batch_rows_equal_single_calls(name, layout):
     p = pair(name)
     m = p.rp if layout == "pinocchio" else p.rr
     d = m.create_data()
@@ -32,9 +33,9 @@ def test_batch_rows_equal_single_calls_bit_for_bit(name, layout):
     M = rigid.crba_batch(m, Q)
     assert tau.shape == (57, m.nv) and ddq.shape == (57, m.nv) and M.shape == (57, m.nv, m.nv)
     for k in range(len(Q)):
-        assert np.array_equal(tau[k], rigid.rnea(m, d, Q[k], V[k], A[k]))
-        assert np.array_equal(ddq[k], rigid.aba(m, d, Q[k], V[k], tau[k]))
-        assert np.array_equal(M[k], rigid.crba(m, d, Q[k]))
+        assert_close(tau[k], rigid.rnea(m, d, Q[k], V[k], A[k]), "rnea_batch", tol=1e-13)
+        assert_close(ddq[k], rigid.aba(m, d, Q[k], V[k], tau[k]), "aba_batch", tol=1e-13)
+        assert_close(M[k], rigid.crba(m, d, Q[k]), "crba_batch", tol=1e-13)
     # and ABA inverts RNEA
     assert_close(ddq, A, "aba_batch(rnea_batch(a))", tol=1e-8)
 

@@ -81,10 +81,14 @@ pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W])
     let n = map(q, |x| (x * std::f64::consts::FRAC_2_PI + ROUND) - ROUND);
     let r = zip(q, n, |x, n| ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_2T);
     let z = map(r, |r| r * r);
-    let sp = map(z, |z| S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
+    let sp = map(z, |z| {
+        S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6))))
+    });
     let s = zip(zip(r, z, |r, z| r * z), sp, |rz, p| rz * p);
     let s = zip(r, s, |r, s| r + s);
-    let cp = map(z, |z| C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+    let cp = map(z, |z| {
+        C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6))))
+    });
     let c = zip(z, cp, |z, p| {
         let hz = 0.5 * z;
         let w = 1.0 - hz;
@@ -96,7 +100,11 @@ pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W])
     let (mut sin, mut cos) = (s, c);
     for i in 0..W {
         let k = quadrant[i];
-        let (a, b) = if k * k == 1.0 { (c[i], s[i]) } else { (s[i], c[i]) };
+        let (a, b) = if k * k == 1.0 {
+            (c[i], s[i])
+        } else {
+            (s[i], c[i])
+        };
         sin[i] = if k < -0.5 || k > 1.5 { -a } else { a };
         cos[i] = if k > 0.5 || k < -1.5 { -b } else { b };
     }

@@ -298,4 +298,3 @@ impl<const W: usize> I6<W> {
         }
     }
 }
-

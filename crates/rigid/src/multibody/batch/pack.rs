@@ -207,7 +207,10 @@ fn support(model: &Model) -> (Vec<(usize, usize)>, Vec<usize>) {
                 ls.extend(joints[p.0].dofs());
                 a = joints[p.0].parent;
             }
-            list.extend(ls.into_iter().map(|l| (l, super::crba::packed_at(model.nv(), k, l))));
+            list.extend(
+                ls.into_iter()
+                    .map(|l| (l, super::crba::packed_at(model.nv(), k, l))),
+            );
             of.push(list.len());
         }
     }
