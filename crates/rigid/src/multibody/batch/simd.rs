@@ -193,13 +193,14 @@ fn packs<const W: usize>(
                 let lower = nv * (nv + 1) / 2;
                 let mut scratch = std::mem::take(&mut p.scratch);
                 transpose_out(&p.M, m, &mut scratch[..m * lower]);
+                // column c of M: rows c.. are packed column c (contiguous), rows ..c are row c
+                // of the lower triangle (M is symmetric)
                 for (o, packed) in o.chunks_exact_mut(per).zip(scratch.chunks_exact(lower)) {
-                    for c in 0..nv {
-                        let col = &packed[packed_at(nv, c, c)..][..nv - c];
-                        for (r, x) in (c..nv).zip(col) {
-                            o[c * nv + r] = *x;
-                            o[r * nv + c] = *x;
+                    for (c, col) in o.chunks_exact_mut(nv).enumerate() {
+                        for (r, y) in col[..c].iter_mut().enumerate() {
+                            *y = packed[packed_at(nv, c, r)];
                         }
+                        col[c..].copy_from_slice(&packed[packed_at(nv, c, c)..][..nv - c]);
                     }
                 }
                 p.scratch = scratch;
