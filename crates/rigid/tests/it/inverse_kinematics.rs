@@ -381,26 +381,9 @@ fn report(files: &[std::path::PathBuf], trials: usize) {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-fn urdfs_under(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap().flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "urdf") {
-                out.push(p);
-            }
-        }
-    }
-    out.sort();
-    out
-}
-
 #[test]
 fn every_checked_in_robot_reaches_targets_of_its_own_forward_kinematics() {
-    let files = urdfs_under(&common::fixtures_dir().join("robots"));
+    let files = common::urdfs_under(&common::fixtures_dir().join("robots"));
     assert!(files.len() >= 10);
     report(&files, 6);
 }
@@ -412,7 +395,7 @@ fn every_robot_of_the_installed_example_robot_data_reaches_its_targets() {
     }
     let dir = rigid::io::robots::example_robot_data()
         .expect("example-robot-data not found (RIGID_CROSSCHECK=1 needs it installed)");
-    report(&urdfs_under(&dir), 4);
+    report(&common::urdfs_under(&dir), 4);
 }
 
 #[test]

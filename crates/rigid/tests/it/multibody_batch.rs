@@ -5,7 +5,6 @@
 use crate::common;
 use rigid::io::urdf::load_urdf;
 use rigid::multibody::*;
-use std::path::{Path, PathBuf};
 
 /// Relative agreement asked of the lanes with the single calls: they take other steps in
 /// another order (CRBA in the world frame, ABA's inertias in blocks), so round-off differs.
@@ -127,24 +126,6 @@ fn batch_results_equal_single_calls_for_every_width_and_joint_type() {
     }
 }
 
-/// The `*.urdf` files under `dir`, sorted.
-fn urdfs(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).into_iter().flatten().flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "urdf") {
-                out.push(p);
-            }
-        }
-    }
-    out.sort();
-    out
-}
-
 /// Every robot of example-robot-data that rigid loads, fixed and with a free-flyer, in the
 /// CPU's own lanes: the checked-in files, and with `RIGID_CROSSCHECK=1` every file of the
 /// installed package.
@@ -157,7 +138,7 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
     }
     let width = batch::Batch::new(&common::random_tree(1, 3, false)).lanes();
     for dir in dirs {
-        let files = urdfs(&dir);
+        let files = common::urdfs_under(&dir);
         let mut compared = 0;
         for file in &files {
             for floating in [false, true] {

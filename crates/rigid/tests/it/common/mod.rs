@@ -290,3 +290,21 @@ pub fn robots(package: &str) -> std::path::PathBuf {
 pub fn example_robot_data() -> std::path::PathBuf {
     robots("example-robot-data")
 }
+
+/// The `*.urdf` files under `dir`, recursively, sorted.
+pub fn urdfs_under(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).into_iter().flatten().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "urdf") {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    out
+}
