@@ -56,6 +56,7 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
 /// ([`multibody::batch`](crate::multibody::batch)): the same operations in each lane (the
 /// quadrant picked by comparisons instead of a `match`), so the results are [`sin_cos`]'s bit
 /// for bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the standard library, as there.
+#[cfg(feature = "parallel")]
 #[inline(always)]
 #[must_use]
 #[allow(clippy::manual_range_contains)] // two comparisons per lane, which vectorise
@@ -121,6 +122,7 @@ pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W])
 }
 
 /// [`sin_cos_lanes`]' lanes with `|q| ≥ 10⁵` or NaN, by the standard library.
+#[cfg(feature = "parallel")]
 #[cold]
 #[inline(never)]
 fn library_lanes(q: &[f64], sin: &mut [f64], cos: &mut [f64]) {
@@ -386,6 +388,7 @@ mod tests {
     /// The vector paths (four AVX2 lanes, two SSE2 lanes) give `sin_cos` bit for bit, in every
     /// quadrant and lane, and fall back for large or non-finite angles.
     #[test]
+    #[cfg(feature = "parallel")]
     fn sin_cos_lanes_equals_sin_cos_bit_for_bit() {
         let qs = [
             0.0,
