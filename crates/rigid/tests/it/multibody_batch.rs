@@ -22,19 +22,9 @@ fn states(model: &Model, n: usize, seed: u64) -> (Vec<f64>, Vec<f64>, Vec<f64>) 
     (qs, vs, as_)
 }
 
-/// `‖x − y‖∞ / max(1, ‖y‖∞)`.
+/// `‖x − y‖∞ / max(1, ‖y‖∞)`, infinite for NaN.
 fn rel(x: &[f64], y: &[f64]) -> f64 {
-    let d = x
-        .iter()
-        .zip(y)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
-    let e = d / y.iter().map(|b| b.abs()).fold(1.0, f64::max);
-    if e.is_nan() {
-        f64::INFINITY
-    } else {
-        e
-    }
+    common::reference::rel(x, y, 1.0)
 }
 
 /// The largest relative difference, over `n` random states, between a batch of `width` lanes

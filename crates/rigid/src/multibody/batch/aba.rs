@@ -2,9 +2,8 @@
 //! 2008, Table 7.1), every quantity a lane vector, the articulated inertias in 3x3 blocks.
 
 use super::lanes::{L, M3, T6, V3, X};
-use super::pack::{momentum, placement, Pack, I6};
+use super::pack::{momentum, placement, s_dot, Pack, I6};
 use crate::mass::SpatialInertia;
-use crate::multibody::joint::Shape;
 use crate::multibody::{Model, MultibodyError};
 
 /// `q̈ = FD(q, v, τ)` for the pack's states: `q`, `v`, `x = τ` in, `out = q̈`.
@@ -45,57 +44,38 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
     }
     for (i, j) in joints.iter().enumerate().rev() {
         let iv = j.idx_v;
-        let axis = match (j.kind.shape(), model.plan().dof_axis[iv]) {
-            (Shape::FreeFlyer, _) => None,
-            (_, Some((c, s))) if j.nv == 1 => Some((c, s)),
-            _ => None,
-        };
         let (head, tail) = p.IA.split_at_mut(i);
         let IA = &mut tail[0];
         let pA = p.F[i];
         let mut pa = pA;
-        if j.nv == 1 {
-            // one dof: U = I^A S, D = Sᵀ U + armature, u = τ − Sᵀ p^A, all lane scalars
-            let (U, D, Sp) = match axis {
-                Some((c, s)) => {
-                    let col = IA.col(c);
-                    (col.scale(L::splat(s)), col.get(c), pA.get(c) * s)
-                }
-                None => {
-                    let U = IA.mul(&p.S[iv]);
-                    (U, p.S[iv].dot(&U), p.S[iv].dot(&pA))
-                }
+        // U = I^A S (a column of I^A for a coordinate-axis S_k), u = τ − Sᵀ p^A
+        for k in j.dofs() {
+            p.U[k] = match model.plan().dof_axis[k] {
+                Some((c, s)) => IA.col(c).scale(L::splat(s)),
+                None => IA.mul(&p.S[k]),
             };
-            let D = D + model.armature()[iv];
+            p.u[k] = p.x[k] - s_dot(model, &p.S, k, &pA);
+        }
+        let n = j.nv;
+        if n == 1 {
+            // one dof: D = Sᵀ U + armature and its inverse are lane scalars
+            let D = s_dot(model, &p.S, iv, &p.U[iv]) + model.armature()[iv];
             positive(D)?;
             let dinv = D.map(|x| 1.0 / x);
-            let u = p.x[iv] - Sp;
-            p.U[iv] = U;
-            p.u[iv] = u;
             p.Dinv[i][0] = dinv;
             if j.parent.is_some() {
+                let U = p.U[iv];
                 IA.sub_outer(&U, &U.scale(dinv));
-                pa += U.scale(dinv * u);
+                pa += U.scale(dinv * p.u[iv]);
             }
         } else {
-            let n = j.nv;
-            let ff = j.kind.shape() == Shape::FreeFlyer;
-            for k in j.dofs() {
-                p.U[k] = if ff { IA.col(k - iv) } else { IA.mul(&p.S[k]) };
-            }
-            // D = Sᵀ U + armature (nv x nv, row-major), u = τ − Sᵀ p^A
+            // D = Sᵀ U + armature (nv x nv, row-major)
             let mut D = [L::zero(); 36];
             for a in 0..n {
                 for b in 0..n {
-                    D[a * n + b] = if ff {
-                        p.U[iv + b].get(a)
-                    } else {
-                        p.S[iv + a].dot(&p.U[iv + b])
-                    };
+                    D[a * n + b] = s_dot(model, &p.S, iv + a, &p.U[iv + b]);
                 }
                 D[a * n + a] += model.armature()[iv + a];
-                let Sp = if ff { pA.get(a) } else { p.S[iv + a].dot(&pA) };
-                p.u[iv + a] = p.x[iv + a] - Sp;
             }
             let Dinv = spd_inverse(&D, n)?;
             p.Dinv[i] = Dinv;

@@ -6,7 +6,6 @@
 use super::lanes::{L, T6, V3, X};
 use super::pack::{placement, Pack, I3};
 use crate::mass::SpatialInertia;
-use crate::multibody::joint::Shape;
 use crate::multibody::Model;
 
 /// `M(q)` for the pack's states into `p.M` (the lower triangle, packed by columns: column `c`'s
@@ -46,7 +45,7 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
     // the entries of M outside the ancestor pairs are zero: set by Pack::new, never written
     for (i, j) in joints.iter().enumerate() {
         for k in j.dofs() {
-            p.oS[k] = world_column(model, &p.S, i, k, &p.oX[i]);
+            p.oS[k] = world_column(model, &p.S, k, &p.oX[i]);
         }
         for k in j.dofs() {
             let F = inertia_twist(&p.Yc[i], &p.oS[k]);
@@ -65,23 +64,11 @@ pub(super) fn packed_at(nv: usize, r: usize, c: usize) -> usize {
     c * (2 * nv - c + 1) / 2 + (r - c)
 }
 
-/// `[Ad_{⁰X_i}] S_k`: column `k` of joint `i` in the world frame, `(R s_ω, R s_v + p × R s_ω)`
-/// (a column of `R` when `S_k` is a coordinate axis).
+/// `[Ad_{⁰X_i}] S_k`: column `k` in the world frame, `(R s_ω, R s_v + p × R s_ω)` (a column
+/// of `R` when `S_k` is a coordinate axis, `Plan::dof_axis`).
 #[inline(always)]
-fn world_column<const W: usize>(
-    model: &Model,
-    S: &[T6<W>],
-    i: usize,
-    k: usize,
-    oX: &X<W>,
-) -> T6<W> {
-    let j = &model.joints()[i];
-    let axis = match (j.kind.shape(), model.plan().dof_axis[k]) {
-        (Shape::FreeFlyer, _) => Some((k - j.idx_v, 1.0)),
-        (_, Some((c, s))) if j.nv == 1 => Some((c, s)),
-        _ => None,
-    };
-    match axis {
+fn world_column<const W: usize>(model: &Model, S: &[T6<W>], k: usize, oX: &X<W>) -> T6<W> {
+    match model.plan().dof_axis[k] {
         Some((c, s)) if c < 3 => {
             let w = oX.r.col(c).scale(L::splat(s));
             T6 {

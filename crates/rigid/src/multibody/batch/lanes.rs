@@ -145,6 +145,17 @@ impl<const W: usize> V3<W> {
         ])
     }
 
+    /// `C x` for a constant matrix `C`.
+    #[inline(always)]
+    pub(crate) fn c_mat(c: &Mat3, x: &Self) -> Self {
+        let x = &x.0;
+        Self([
+            x[0] * c[(0, 0)] + x[1] * c[(0, 1)] + x[2] * c[(0, 2)],
+            x[0] * c[(1, 0)] + x[1] * c[(1, 1)] + x[2] * c[(1, 2)],
+            x[0] * c[(2, 0)] + x[1] * c[(2, 1)] + x[2] * c[(2, 2)],
+        ])
+    }
+
     /// `c x` for a constant `c` and a lane scalar `x`.
     #[inline(always)]
     pub(crate) fn c_scale(c: &Vec3, x: L<W>) -> Self {
@@ -433,6 +444,14 @@ pub(crate) struct X<const W: usize> {
 }
 
 impl<const W: usize> X<W> {
+    /// The identity pose in every lane.
+    pub(crate) fn identity() -> Self {
+        Self {
+            r: M3::splat(&Mat3::identity()),
+            p: V3::zero(),
+        }
+    }
+
     /// `[Ad_{X⁻¹}] T`: a twist of the parent frame in the child frame,
     /// `(Rᵀ ω, Rᵀ (v − p × ω))` ([`Transform::inv_act_twist`](crate::spatial::Transform::inv_act_twist)).
     #[inline(always)]

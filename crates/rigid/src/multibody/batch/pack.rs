@@ -5,7 +5,6 @@
 
 use super::lanes::{L, M3, T6, V3, X};
 use crate::mass::SpatialInertia;
-use crate::multibody::joint::Shape;
 use crate::multibody::{JointType, Model};
 use crate::spatial::{trig, Mat3, Vec3};
 
@@ -53,6 +52,7 @@ impl<const W: usize> Pack<W> {
     pub(crate) fn new(model: &Model) -> Self {
         let (n, nq, nv) = (model.njoints(), model.nq(), model.nv());
         let z = L::zero();
+        let (support, support_of) = support(model);
         Self {
             q: vec![z; nq],
             v: vec![z; nv],
@@ -67,8 +67,8 @@ impl<const W: usize> Pack<W> {
             Yc: vec![I3::zero(); n],
             oS: vec![T6::zero(); nv],
             M: vec![z; nv * (nv + 1) / 2],
-            support: support(model).0,
-            support_of: support(model).1,
+            support,
+            support_of,
             IA: vec![I6::zero(); n],
             Dinv: vec![[z; 36]; n],
             U: vec![T6::zero(); nv],
@@ -111,9 +111,7 @@ impl<const W: usize> Pack<W> {
         for &i in &model.plan().variable_subspace {
             let j = &model.joints()[i];
             for l in 0..W {
-                for (t, qt) in q[..j.nq].iter_mut().enumerate() {
-                    *qt = self.q[j.idx_q + t].0[l];
-                }
+                read_lane(&self.q[j.coordinates()], l, &mut q[..j.nq]);
                 j.kind.subspace(&q[..j.nq], &mut S[..j.nv]);
                 for (k, Sk) in S[..j.nv].iter().enumerate() {
                     set_lane(&mut self.S[j.idx_v + k], l, Sk);
@@ -123,28 +121,19 @@ impl<const W: usize> Pack<W> {
     }
 
     /// `S_i v_i` of joint `i`, the joint twist (per lane), with `S` as [`Pack::update_subspaces`]
-    /// left it.
+    /// left it: a column that is a coordinate axis `s e_c` (`Plan::dof_axis`: a revolute or
+    /// prismatic axis, a free-flyer's or spherical joint's columns) adds `s v_k` to component
+    /// `c`, any other column `S_k v_k`.
     #[inline(always)]
     pub(crate) fn joint_twist(&self, model: &Model, i: usize, v: &[L<W>]) -> T6<W> {
-        let j = &model.joints()[i];
-        match (j.kind.shape(), model.plan().dof_axis[j.idx_v]) {
-            (Shape::FreeFlyer, _) => T6 {
-                w: V3([v[j.idx_v], v[j.idx_v + 1], v[j.idx_v + 2]]),
-                v: V3([v[j.idx_v + 3], v[j.idx_v + 4], v[j.idx_v + 5]]),
-            },
-            (_, Some((c, s))) if j.nv == 1 => {
-                let mut t = T6::zero();
-                *t.get_mut(c) = v[j.idx_v] * s;
-                t
-            }
-            _ => {
-                let mut t = T6::zero();
-                for k in j.dofs() {
-                    t += self.S[k].scale(v[k]);
-                }
-                t
+        let mut t = T6::zero();
+        for k in model.joints()[i].dofs() {
+            match model.plan().dof_axis[k] {
+                Some((c, s)) => *t.get_mut(c) += v[k] * s,
+                None => t += self.S[k].scale(v[k]),
             }
         }
+        t
     }
 
     /// `c_J = Ṡ q̇` of joint `i` per lane, or `None` when its motion subspace is constant.
@@ -157,41 +146,21 @@ impl<const W: usize> Pack<W> {
         let (mut q, mut v) = ([0.0; 7], [0.0; 6]);
         let mut out = T6::zero();
         for l in 0..W {
-            for (t, qt) in q[..j.nq].iter_mut().enumerate() {
-                *qt = self.q[j.idx_q + t].0[l];
-            }
-            for (t, vt) in v[..j.nv].iter_mut().enumerate() {
-                *vt = self.v[j.idx_v + t].0[l];
-            }
+            read_lane(&self.q[j.coordinates()], l, &mut q[..j.nq]);
+            read_lane(&self.v[j.dofs()], l, &mut v[..j.nv]);
             set_lane(&mut out, l, &j.kind.bias(&q[..j.nq], &v[..j.nv]));
         }
         Some(out)
     }
 }
 
-/// `S_iᵀ F` of joint `i` into `out[dofs]` (per lane), with the motion subspaces `S` of
-/// [`Pack::S`].
+/// `S_kᵀ F` of degree of freedom `k` (per lane), with the motion subspaces `S` of [`Pack::S`]:
+/// `s F_c` for a column `s e_c` (`Plan::dof_axis`), else the dot product.
 #[inline(always)]
-pub(crate) fn project<const W: usize>(
-    model: &Model,
-    S: &[T6<W>],
-    i: usize,
-    F: &T6<W>,
-    out: &mut [L<W>],
-) {
-    let j = &model.joints()[i];
-    match (j.kind.shape(), model.plan().dof_axis[j.idx_v]) {
-        (Shape::FreeFlyer, _) => {
-            for c in 0..6 {
-                out[j.idx_v + c] = F.get(c);
-            }
-        }
-        (_, Some((c, s))) if j.nv == 1 => out[j.idx_v] = F.get(c) * s,
-        _ => {
-            for k in j.dofs() {
-                out[k] = S[k].dot(F);
-            }
-        }
+pub(crate) fn s_dot<const W: usize>(model: &Model, S: &[T6<W>], k: usize, F: &T6<W>) -> L<W> {
+    match model.plan().dof_axis[k] {
+        Some((c, s)) => F.get(c) * s,
+        None => S[k].dot(F),
     }
 }
 
@@ -217,22 +186,20 @@ fn support(model: &Model) -> (Vec<(usize, usize)>, Vec<usize>) {
     (list, of)
 }
 
+/// Lane `l` of `src` into `dst`.
+#[inline(always)]
+fn read_lane<const W: usize>(src: &[L<W>], l: usize, dst: &mut [f64]) {
+    for (d, x) in dst.iter_mut().zip(src) {
+        *d = x.0[l];
+    }
+}
+
 /// Lane `l` of `t` set to the twist `x`.
 #[inline(always)]
 fn set_lane<const W: usize>(t: &mut T6<W>, l: usize, x: &crate::spatial::Twist) {
     for c in 0..3 {
         t.w.0[c].0[l] = x.w[c];
         t.v.0[c].0[l] = x.v[c];
-    }
-}
-
-impl<const W: usize> X<W> {
-    /// The identity pose in every lane.
-    pub(crate) fn identity() -> Self {
-        Self {
-            r: M3::splat(&Mat3::identity()),
-            p: V3::zero(),
-        }
     }
 }
 
@@ -275,9 +242,7 @@ pub(crate) fn placement<const W: usize>(model: &Model, i: usize, q: &[L<W>]) -> 
             let mut out = X::identity();
             let mut ql = [0.0; 7];
             for l in 0..W {
-                for (t, x) in ql[..j.nq].iter_mut().enumerate() {
-                    *x = q[iq + t].0[l];
-                }
+                read_lane(&q[j.coordinates()], l, &mut ql[..j.nq]);
                 let m = j.kind.placed_transform(T, &ql[..j.nq]);
                 for r in 0..3 {
                     for c in 0..3 {
@@ -340,19 +305,6 @@ fn quat_to_rot<const W: usize>(x: L<W>, y: L<W>, z: L<W>, w: L<W>) -> M3<W> {
         [xy + wz, one - xx - zz, yz - wx],
         [xz - wy, yz + wx, one - xx - yy],
     ])
-}
-
-impl<const W: usize> V3<W> {
-    /// `C x` for a constant matrix `C`.
-    #[inline(always)]
-    pub(crate) fn c_mat(c: &Mat3, x: &Self) -> Self {
-        let x = &x.0;
-        Self([
-            x[0] * c[(0, 0)] + x[1] * c[(0, 1)] + x[2] * c[(0, 2)],
-            x[0] * c[(1, 0)] + x[1] * c[(1, 1)] + x[2] * c[(1, 2)],
-            x[0] * c[(2, 0)] + x[1] * c[(2, 1)] + x[2] * c[(2, 2)],
-        ])
-    }
 }
 
 /// `G T` of a body's constant spatial inertia `G = (m, h, I_O)` (mass, first moment `h = m c`,

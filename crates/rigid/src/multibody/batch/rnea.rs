@@ -2,7 +2,7 @@
 //! 2008, Table 5.1), every quantity a lane vector.
 
 use super::lanes::{T6, V3};
-use super::pack::{momentum, placement, project, Pack};
+use super::pack::{momentum, placement, s_dot, Pack};
 use crate::multibody::Model;
 
 /// `τ = ID(q, v, a)` for the pack's states: `q`, `v`, `x = a` in, `out = τ`.
@@ -37,9 +37,8 @@ pub(super) fn rnea<const W: usize>(model: &Model, p: &mut Pack<W>) {
     }
     for (i, j) in model.joints().iter().enumerate().rev() {
         let F = p.F[i];
-        project(model, &p.S, i, &F, &mut p.out);
         for k in j.dofs() {
-            p.out[k] += p.x[k] * model.armature()[k];
+            p.out[k] = s_dot(model, &p.S, k, &F) + p.x[k] * model.armature()[k];
         }
         if let Some(par) = j.parent {
             let Fp = p.X[i].act_wrench(&F);
