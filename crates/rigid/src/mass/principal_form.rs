@@ -29,11 +29,11 @@ use crate::spatial::{Mat3, ModelVec3, Vec3};
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrincipalForm {
-    mass: f64,
-    com: ModelVec3,
-    lambda1: f64,
-    u2: ModelVec3,
-    u3: ModelVec3,
+    pub(crate) mass: f64,
+    pub(crate) com: ModelVec3,
+    pub(crate) lambda1: f64,
+    pub(crate) u2: ModelVec3,
+    pub(crate) u3: ModelVec3,
 }
 
 impl PrincipalForm {

@@ -1,37 +1,63 @@
-//! CRBA on a pack of `W` states, in the world frame (Pinocchio's `crba` with
-//! `Convention::WORLD`; Featherstone 2008, §6.2): the composite inertias are sums of the bodies'
-//! world-frame inertias, so the backward pass is additions, and each entry of `M` is one product
-//! `M_kl = S_lᵀ (I^c_i S_k)` of world-frame columns.
+//! CRBA on a pack of `W` states: the single call's algorithm ([`crba`](crate::multibody::crba),
+//! Featherstone 2008, Table 6.2, with every quantity in the root body's frame {r} of its tree),
+//! step for step in lanes. The composite inertias are sums of the bodies' inertias in {r}, so the
+//! backward pass is additions, and each entry of `M` is one product `M_lk = J_kᵀ F_l` of
+//! {r}-frame columns, written down a contiguous column of the packed lower triangle.
 
-use super::lanes::{L, T6, V3, X};
-use super::pack::{placement, Pack, I3};
-use crate::mass::SpatialInertia;
+use super::lanes::{L, M3, T6, V3, X};
+use super::pack::{placement, rotate_about, s_dot, Pack, I3};
+use crate::mass::{PrincipalForm, SpatialInertia};
+use crate::multibody::joint::Shape;
+use crate::multibody::plan::PlacementKind;
 use crate::multibody::Model;
+use crate::spatial::{trig, ModelVec3};
 
-/// `M(q)` for the pack's states into `p.M` (the lower triangle, packed by columns: column `c`'s
-/// rows `c..nv` from [`packed_at`]`(nv, c, c)`):
+/// `M(q)` for the pack's states into `p.M` (the lower triangle, packed by columns: column `k`'s
+/// rows `k..nv` from [`packed_at`]`(nv, k, k)`):
 ///
-/// forward: `⁰X_i = ⁰X_λ liMi`, `I⁰_i = ⁰X_i · G_i` (the body's inertia in the world frame);
-/// backward: `I^c_λ += I^c_i`; then for each dof `k` of joint `i`: `⁰S_k = [Ad_{⁰X_i}] S_k`,
-/// `F_k = I^c_i ⁰S_k`, and `M_kl = ⁰S_lᵀ F_k` for the dofs `l ≤ k` of `i` and of its ancestors,
-/// plus the armature on the diagonal.
+/// forward ([`root_frame_body`]): `rMi`, the columns `J_k = [Ad_{rMi}] S_k` and the body's
+/// inertia `rG_i` in its tree's root frame;
+/// backward, `i = n..1`: `F_k = Ic_i J_k` for the dofs `k` of joint `i`, then
+/// `M_lk = J_kᵀ F_l` for `l` from `k` to the end of `i`'s subtree (a root's `J_k = s e_c` reads
+/// `M_lk = s F_l[c]`), plus the armature on the diagonal, and `Ic_λ(i) += Ic_i`.
 #[inline(always)]
 pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
     p.update_subspaces(model);
     let joints = model.joints();
-    for (i, j) in joints.iter().enumerate() {
-        let X = placement(model, i, &p.q);
-        let oX = match j.parent {
-            Some(par) => p.oX[par.0].compose(&X),
-            None => X,
-        };
-        p.Yc[i] = world_inertia(&model.inertias()[i], &oX);
-        p.oX[i] = oX;
+    for i in 0..joints.len() {
+        root_frame_body(model, p, i);
     }
+    let nv = model.nv();
+    // the entries of M outside a dof's subtree are zero: set by Pack::new, never written
     for (i, j) in joints.iter().enumerate().rev() {
+        let end_v = {
+            let last = &joints[j.subtree_end - 1];
+            last.idx_v + last.nv
+        };
+        for k in j.dofs() {
+            p.Fk[k] = inertia_twist(&p.Ic[i], &p.J[k]);
+        }
+        for k in j.dofs() {
+            let at = packed_at(nv, k, k);
+            let column = p.M[at..at + end_v - k].iter_mut().zip(&p.Fk[k..end_v]);
+            match (j.parent, model.plan().dof_axis[k]) {
+                (None, Some(_)) => {
+                    for (m, F) in column {
+                        *m = s_dot(model, &p.S, k, F);
+                    }
+                }
+                _ => {
+                    let Jk = p.J[k];
+                    for (m, F) in column {
+                        *m = Jk.dot(F);
+                    }
+                }
+            }
+            p.M[at] += model.armature()[k];
+        }
         if let Some(par) = j.parent {
-            let y = p.Yc[i];
-            let c = &mut p.Yc[par.0];
+            let y = p.Ic[i];
+            let c = &mut p.Ic[par.0];
             c.m += y.m;
             c.h += y.h;
             for r in 0..3 {
@@ -39,20 +65,6 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
                     c.i.0[r][s] += y.i.0[r][s];
                 }
             }
-        }
-    }
-    let nv = model.nv();
-    // the entries of M outside the ancestor pairs are zero: set by Pack::new, never written
-    for (i, j) in joints.iter().enumerate() {
-        for k in j.dofs() {
-            p.oS[k] = world_column(model, &p.S, k, &p.oX[i]);
-        }
-        for k in j.dofs() {
-            let F = inertia_twist(&p.Yc[i], &p.oS[k]);
-            for &(l, at) in &p.support[p.support_of[k]..p.support_of[k + 1]] {
-                p.M[at] = p.oS[l].dot(&F);
-            }
-            p.M[packed_at(nv, k, k)] += model.armature()[k];
         }
     }
 }
@@ -64,38 +76,154 @@ pub(super) fn packed_at(nv: usize, r: usize, c: usize) -> usize {
     c * (2 * nv - c + 1) / 2 + (r - c)
 }
 
-/// `[Ad_{⁰X_i}] S_k`: column `k` in the world frame, `(R s_ω, R s_v + p × R s_ω)` (a column
-/// of `R` when `S_k` is a coordinate axis, `Plan::dof_axis`).
+/// Body `i` in its tree's root frame {r}, per lane, with the shortcuts of the single call's
+/// [`root_frame_bodies`](crate::multibody::algorithms::root_frame_bodies): `rMi` into `p.rX`,
+/// `J_k` into `p.J`, and its inertia `rG_i` into `p.Ic` (the start of its composite inertia).
+///
+/// - a root: `rMi = 1`, `J_k = S_k`, `rG_i = G_i`;
+/// - a root's child: `rMi = liMi = X_T X_J(q)`;
+/// - deeper, a revolute joint whose `X_T` has no rotation turns two columns of `R_λ`; one whose
+///   `R_T` is a signed permutation picks and signs columns of `R_λ` first; one whose `R_T` turns
+///   about a coordinate axis turns two columns twice; a prismatic joint without rotation keeps
+///   `R_λ`; anything else is the product `rM_λ liMi`;
+/// - `rG_i` by the body's [`PrincipalForm`] when it has one, else by the adjoint congruence.
 #[inline(always)]
-fn world_column<const W: usize>(model: &Model, S: &[T6<W>], k: usize, oX: &X<W>) -> T6<W> {
+fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
+    let plan = model.plan();
+    let j = &model.joints()[i];
+    let shape = j.kind.shape();
+    let rMi = match j.parent {
+        None => {
+            p.rX[i] = X::identity();
+            p.Ic[i] = I3::splat(&model.inertias()[i]);
+            for k in j.dofs() {
+                p.J[k] = p.S[k];
+            }
+            return;
+        }
+        Some(par) if model.joints()[par.0].parent.is_none() => placement(model, i, &p.q),
+        Some(par) => {
+            let rMp = p.rX[par.0];
+            let (R, t) = (&rMp.r, &plan.placement_translation[i]);
+            let angle = || trig::sin_cos_lanes(p.q[j.idx_q].0);
+            match (shape, plan.placement[i]) {
+                (Shape::Revolute(axis), PlacementKind::Identity) => {
+                    let (s, c) = angle();
+                    X {
+                        r: rotate_about(R, &axis, L(s), L(c)),
+                        p: rotated(t, R) + rMp.p,
+                    }
+                }
+                (Shape::Revolute(axis), PlacementKind::SignedPermutation(perm)) => {
+                    let col = |n: usize| R.col(perm[n].0).scale(L::splat(perm[n].1));
+                    let RT = M3::from_columns(&[col(0), col(1), col(2)]);
+                    let (s, c) = angle();
+                    X {
+                        r: rotate_about(&RT, &axis, L(s), L(c)),
+                        p: rotated(t, R) + rMp.p,
+                    }
+                }
+                (
+                    Shape::Revolute(axis),
+                    PlacementKind::AxisTurn {
+                        axis: e,
+                        s: sT,
+                        c: cT,
+                    },
+                ) => {
+                    let (s, c) = angle();
+                    let RT = rotate_about(R, &e, L::splat(sT), L::splat(cT));
+                    X {
+                        r: rotate_about(&RT, &axis, L(s), L(c)),
+                        p: rotated(t, R) + rMp.p,
+                    }
+                }
+                (Shape::Prismatic(axis), PlacementKind::Identity) => {
+                    let d = V3::c_scale(&axis, p.q[j.idx_q]) + V3::splat(&j.placement.translation);
+                    X {
+                        r: *R,
+                        p: R.mul_v(&d) + rMp.p,
+                    }
+                }
+                _ => rMp.compose(&placement(model, i, &p.q)),
+            }
+        }
+    };
+    p.Ic[i] = match &plan.principal[i] {
+        Some(form) => principal_moved(form, &rMi),
+        None => moved(&model.inertias()[i], &rMi),
+    };
+    for k in j.dofs() {
+        p.J[k] = column(model, &p.S, k, &rMi);
+    }
+    p.rX[i] = rMi;
+}
+
+/// `[Ad_{rMi}] S_k`: column `k` in the root frame, `(R s_ω, R s_v + p × R s_ω)` (a column of `R`
+/// when `S_k` is a coordinate axis, `Plan::dof_axis`).
+#[inline(always)]
+fn column<const W: usize>(model: &Model, S: &[T6<W>], k: usize, rX: &X<W>) -> T6<W> {
     match model.plan().dof_axis[k] {
         Some((c, s)) if c < 3 => {
-            let w = oX.r.col(c).scale(L::splat(s));
+            let w = rX.r.col(c).scale(L::splat(s));
             T6 {
-                v: oX.p.cross(&w),
+                v: rX.p.cross(&w),
                 w,
             }
         }
         Some((c, s)) => T6 {
             w: V3::zero(),
-            v: oX.r.col(c - 3).scale(L::splat(s)),
+            v: rX.r.col(c - 3).scale(L::splat(s)),
         },
         None => {
-            let w = oX.r.mul_v(&S[k].w);
+            let w = rX.r.mul_v(&S[k].w);
             T6 {
-                v: oX.r.mul_v(&S[k].v) + oX.p.cross(&w),
+                v: rX.r.mul_v(&S[k].v) + rX.p.cross(&w),
                 w,
             }
         }
     }
 }
 
-/// `⁰X · G`: the constant body inertia `G = (m, h, I_O)` moved to the world frame by the pose
-/// `(R, p)`: `h⁰ = m p + R h` and, about the world origin,
-/// `I⁰ = R I_O Rᵀ + (m |p|² + 2 p · R h) 1 − (m p pᵀ + p (R h)ᵀ + (R h) pᵀ)` (the parallel-axis
-/// theorem with the body's first moment; [`SpatialInertia::transformed`]).
+/// `R x` for a constant `x` kept as `s e_k` when it lies on an axis ([`ModelVec3::rotated`]).
 #[inline(always)]
-fn world_inertia<const W: usize>(G: &SpatialInertia, oX: &X<W>) -> I3<W> {
+fn rotated<const W: usize>(x: &ModelVec3, r: &M3<W>) -> V3<W> {
+    match *x {
+        ModelVec3::Axis(k, s) => r.col(k).scale(L::splat(s)),
+        ModelVec3::General(x) => r.mul_c(&x),
+    }
+}
+
+/// [`PrincipalForm::transformed`] per lane: `c' = R c + p`, `h' = m c'`,
+/// `I'_O = λ₁ 1 + (R u₂)(R u₂)ᵀ + (R u₃)(R u₃)ᵀ + (h'·c') 1 − h' c'ᵀ`.
+#[inline(always)]
+fn principal_moved<const W: usize>(f: &PrincipalForm, x: &X<W>) -> I3<W> {
+    let c = rotated(&f.com, &x.r) + x.p;
+    let (a, b) = (rotated(&f.u2, &x.r), rotated(&f.u3, &x.r));
+    let h = c.scale(L::splat(f.mass));
+    let d = h.dot(&c) + f.lambda1;
+    let mut i = M3([[L::zero(); 3]; 3]);
+    for r in 0..3 {
+        for s in 0..=r {
+            let e = a.0[r] * a.0[s] + b.0[r] * b.0[s] - h.0[r] * c.0[s];
+            i.0[r][s] = if r == s { d + e } else { e };
+            i.0[s][r] = i.0[r][s];
+        }
+    }
+    I3 {
+        m: L::splat(f.mass),
+        h,
+        i,
+    }
+}
+
+/// `rMi · G`: the constant body inertia `G = (m, h, I_O)` moved by the pose `(R, p)`:
+/// `h' = m p + R h` and, about the new origin,
+/// `I' = R I_O Rᵀ + (m |p|² + 2 p · R h) 1 − (m p pᵀ + p (R h)ᵀ + (R h) pᵀ)` (the parallel-axis
+/// theorem with the body's first moment; [`SpatialInertia::transformed`]), for the bodies that
+/// have no principal form.
+#[inline(always)]
+fn moved<const W: usize>(G: &SpatialInertia, oX: &X<W>) -> I3<W> {
     let m = G.mass();
     let (r, p) = (&oX.r, &oX.p);
     let rh = r.mul_c(&G.first_moment());

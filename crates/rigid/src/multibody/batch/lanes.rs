@@ -218,6 +218,18 @@ impl<const W: usize> M3<W> {
         Self(r)
     }
 
+    /// The matrix with these columns.
+    #[inline(always)]
+    pub(crate) fn from_columns(c: &[V3<W>; 3]) -> Self {
+        let mut m = [[L::zero(); 3]; 3];
+        for (j, col) in c.iter().enumerate() {
+            for (i, row) in m.iter_mut().enumerate() {
+                row[j] = col.0[i];
+            }
+        }
+        Self(m)
+    }
+
     /// Column `c`.
     #[inline(always)]
     pub(crate) fn col(&self, c: usize) -> V3<W> {

@@ -26,16 +26,14 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) V: Vec<T6<W>>,
     pub(crate) A: Vec<T6<W>>,
     pub(crate) F: Vec<T6<W>>,
-    /// CRBA: per joint the world pose and the composite inertia in the world frame; per dof
-    /// `S_k` in the world frame; `M`'s lower triangle, packed by columns.
-    pub(crate) oX: Vec<X<W>>,
-    pub(crate) Yc: Vec<I3<W>>,
-    pub(crate) oS: Vec<T6<W>>,
+    /// CRBA: per joint the pose in its tree's root frame and the composite inertia there; per
+    /// dof the column `J_k` and the force `F_k = Ic J_k` in that frame; `M`'s lower triangle,
+    /// packed by columns.
+    pub(crate) rX: Vec<X<W>>,
+    pub(crate) Ic: Vec<I3<W>>,
+    pub(crate) J: Vec<T6<W>>,
+    pub(crate) Fk: Vec<T6<W>>,
     pub(crate) M: Vec<L<W>>,
-    /// CRBA: for dof `k`, `support[support_of[k]..support_of[k + 1]]` lists `(l, where M_kl
-    /// is in M)` for the dofs `l ≤ k` of its joint and of the joint's ancestors.
-    pub(crate) support: Vec<(usize, usize)>,
-    pub(crate) support_of: Vec<usize>,
     /// ABA: per joint the articulated inertia `I^A_i` and `D⁻¹` (`nv x nv`, row-major); per
     /// dof `U_k = I^A S_k` and `u_k = τ_k − S_kᵀ p^A`.
     pub(crate) IA: Vec<I6<W>>,
@@ -52,7 +50,6 @@ impl<const W: usize> Pack<W> {
     pub(crate) fn new(model: &Model) -> Self {
         let (n, nq, nv) = (model.njoints(), model.nq(), model.nv());
         let z = L::zero();
-        let (support, support_of) = support(model);
         Self {
             q: vec![z; nq],
             v: vec![z; nv],
@@ -63,12 +60,11 @@ impl<const W: usize> Pack<W> {
             V: vec![T6::zero(); n],
             A: vec![T6::zero(); n],
             F: vec![T6::zero(); n],
-            oX: vec![X::identity(); n],
-            Yc: vec![I3::zero(); n],
-            oS: vec![T6::zero(); nv],
+            rX: vec![X::identity(); n],
+            Ic: vec![I3::zero(); n],
+            J: vec![T6::zero(); nv],
+            Fk: vec![T6::zero(); nv],
             M: vec![z; nv * (nv + 1) / 2],
-            support,
-            support_of,
             IA: vec![I6::zero(); n],
             Dinv: vec![[z; 36]; n],
             U: vec![T6::zero(); nv],
@@ -164,28 +160,6 @@ pub(crate) fn s_dot<const W: usize>(model: &Model, S: &[T6<W>], k: usize, F: &T6
     }
 }
 
-/// [`Pack::support`] and [`Pack::support_of`] of `model`.
-fn support(model: &Model) -> (Vec<(usize, usize)>, Vec<usize>) {
-    let joints = model.joints();
-    let (mut list, mut of) = (Vec::new(), vec![0]);
-    for j in joints {
-        for k in j.dofs() {
-            let mut ls: Vec<usize> = (j.idx_v..=k).collect();
-            let mut a = j.parent;
-            while let Some(p) = a {
-                ls.extend(joints[p.0].dofs());
-                a = joints[p.0].parent;
-            }
-            list.extend(
-                ls.into_iter()
-                    .map(|l| (l, super::crba::packed_at(model.nv(), k, l))),
-            );
-            of.push(list.len());
-        }
-    }
-    (list, of)
-}
-
 /// Lane `l` of `src` into `dst`.
 #[inline(always)]
 fn read_lane<const W: usize>(src: &[L<W>], l: usize, dst: &mut [f64]) {
@@ -215,7 +189,7 @@ pub(crate) fn placement<const W: usize>(model: &Model, i: usize, q: &[L<W>]) -> 
         JointType::Revolute { axis } => {
             let (s, c) = trig::sin_cos_lanes(q[iq].0);
             X {
-                r: rotate_about(&T.rotation, &axis, L(s), L(c)),
+                r: rotate_about(&M3::splat(&T.rotation), &axis, L(s), L(c)),
                 p: V3::splat(&T.translation),
             }
         }
@@ -256,19 +230,19 @@ pub(crate) fn placement<const W: usize>(model: &Model, i: usize, q: &[L<W>]) -> 
     }
 }
 
-/// `R exp([a] q)` for a constant `R` and unit axis `a`, given `s = sin q`, `c = cos q` per lane:
-/// for `a = ±e_k` two columns of `R` turn, otherwise `R` times Rodrigues' formula
+/// `R exp([a] q)` per lane given `s = sin q`, `c = cos q`: for `a = ±e_k` two columns of `R`
+/// turn, otherwise `R` times Rodrigues' formula
 /// ([`rotate_about_sc`](crate::spatial::rotate_about_sc)).
 #[inline(always)]
-fn rotate_about<const W: usize>(r: &Mat3, a: &Vec3, s: L<W>, c: L<W>) -> M3<W> {
-    // columns j and k turn: u' = c u + s w, w' = c w - s u
+pub(crate) fn rotate_about<const W: usize>(r: &M3<W>, a: &Vec3, s: L<W>, c: L<W>) -> M3<W> {
+    // columns j and k turn: u' = u c + w s, w' = w c - u s
     #[inline(always)]
-    fn turn<const W: usize>(r: &Mat3, j: usize, k: usize, s: L<W>, c: L<W>) -> M3<W> {
-        let mut out = M3::splat(r);
+    fn turn<const W: usize>(r: &M3<W>, j: usize, k: usize, s: L<W>, c: L<W>) -> M3<W> {
+        let mut out = *r;
         for t in 0..3 {
-            let (u, w) = (r[(t, j)], r[(t, k)]);
-            out.0[t][j] = c * u + s * w;
-            out.0[t][k] = c * w - s * u;
+            let (u, w) = (r.0[t][j], r.0[t][k]);
+            out.0[t][j] = u * c + w * s;
+            out.0[t][k] = w * c - u * s;
         }
         out
     }
@@ -286,7 +260,7 @@ fn rotate_about<const W: usize>(r: &Mat3, a: &Vec3, s: L<W>, c: L<W>) -> M3<W> {
             [t * (x * y) + s * z, c + t * (y * y), t * (y * z) - s * x],
             [t * (x * z) - s * y, t * (y * z) + s * x, c + t * (z * z)],
         ]);
-        M3::c_mul(r, &rod)
+        r.mul(&rod)
     }
 }
 
@@ -329,6 +303,15 @@ pub(crate) struct I3<const W: usize> {
 }
 
 impl<const W: usize> I3<W> {
+    /// A constant inertia in every lane.
+    pub(crate) fn splat(g: &SpatialInertia) -> Self {
+        Self {
+            m: L::splat(g.mass()),
+            h: V3::splat(&g.first_moment()),
+            i: M3::splat(g.inertia_origin_matrix()),
+        }
+    }
+
     pub(crate) fn zero() -> Self {
         Self {
             m: L::zero(),

@@ -106,7 +106,13 @@ impl Lanes {
         first: usize,
         out: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        let io = Io { qs, vs, xs, first };
+        let mut io = Io {
+            qs,
+            vs,
+            xs,
+            first,
+            avx: false,
+        };
         match self {
             #[cfg(target_arch = "x86_64")]
             Self::W8(p) if std::arch::is_x86_feature_detected!("avx512f") => {
@@ -118,6 +124,7 @@ impl Lanes {
                 if std::arch::is_x86_feature_detected!("avx2")
                     && std::arch::is_x86_feature_detected!("fma") =>
             {
+                io.avx = true;
                 // SAFETY: the CPU has AVX2 and FMA (checked above).
                 unsafe { avx2(p, algo, model, &io, out) }
             }
@@ -128,12 +135,14 @@ impl Lanes {
     }
 }
 
-/// The row-major inputs and the index of the first state of a task.
+/// The row-major inputs, the index of the first state of a task, and whether the CPU has AVX
+/// (for the transposition out of 4 lanes in registers).
 struct Io<'a> {
     qs: &'a [f64],
     vs: &'a [f64],
     xs: &'a [f64],
     first: usize,
+    avx: bool,
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -187,12 +196,12 @@ fn packs<const W: usize>(
         }
         let o = &mut out[s * per..(s + m) * per];
         match algo {
-            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o),
-            Algo::CrbaLower => transpose_out(&p.M, m, o),
+            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o, io.avx),
+            Algo::CrbaLower => transpose_out(&p.M, m, o, io.avx),
             Algo::Crba => {
                 let lower = nv * (nv + 1) / 2;
                 let mut scratch = std::mem::take(&mut p.scratch);
-                transpose_out(&p.M, m, &mut scratch[..m * lower]);
+                transpose_out(&p.M, m, &mut scratch[..m * lower], io.avx);
                 // column c of M: rows c.. are packed column c (contiguous), rows ..c are row c
                 // of the lower triangle (M is symmetric)
                 for (o, packed) in o.chunks_exact_mut(per).zip(scratch.chunks_exact(lower)) {
@@ -213,12 +222,43 @@ fn packs<const W: usize>(
 
 /// Lanes `0..m` of `src` (one lane vector per output index) into the `m` rows of `dst`, each
 /// `src.len()` long (row `l` is lane `l`'s state): `W x W` blocks transposed in registers, then
-/// the remainder one by one.
+/// the remainder one by one. With 4 lanes and `avx` (the CPU has it), each block is four
+/// unpacks and four lane permutes ([`transpose4`]); the compiler makes scalar moves through
+/// the stack of the generic loop.
 #[inline(always)]
-fn transpose_out<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64]) {
+fn transpose_out<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], avx: bool) {
     let per = src.len();
     let full = per / W * W;
-    for b in (0..full).step_by(W) {
+    #[cfg(target_arch = "x86_64")]
+    if W == 4 && avx {
+        let src4 = src.as_ptr().cast::<[f64; 4]>();
+        for b in (0..full).step_by(4) {
+            // SAFETY: `src[b..b + 4]` are four `[f64; 4]` (W = 4), and the CPU has AVX.
+            let rows = unsafe { transpose4(src4.add(b)) };
+            for (l, row) in rows[..m].iter().enumerate() {
+                dst[l * per + b..][..4].copy_from_slice(row);
+            }
+        }
+    } else {
+        transpose_blocks(src, m, dst);
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let _ = avx;
+        transpose_blocks(src, m, dst);
+    }
+    for (t, x) in src.iter().enumerate().skip(full) {
+        for l in 0..m {
+            dst[l * per + t] = x.0[l];
+        }
+    }
+}
+
+/// The `W x W` blocks of [`transpose_out`], lane by lane.
+#[inline(always)]
+fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64]) {
+    let per = src.len();
+    for b in (0..per / W * W).step_by(W) {
         let mut block = [[0.0; W]; W];
         for (t, x) in src[b..b + W].iter().enumerate() {
             for (l, row) in block.iter_mut().enumerate() {
@@ -229,9 +269,36 @@ fn transpose_out<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64]) {
             dst[l * per + b..][..W].copy_from_slice(row);
         }
     }
-    for (t, x) in src.iter().enumerate().skip(full) {
-        for l in 0..m {
-            dst[l * per + t] = x.0[l];
+}
+
+/// The 4x4 block at `src` (four rows of four) transposed: `unpacklo/hi` pair the rows' even and
+/// odd entries within each 128-bit half, `permute2f128` joins the halves.
+///
+/// # Safety
+/// `src` points to four readable `[f64; 4]`, and the CPU has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+unsafe fn transpose4(src: *const [f64; 4]) -> [[f64; 4]; 4] {
+    use std::arch::x86_64::{
+        _mm256_loadu_pd, _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
+        _mm256_unpacklo_pd,
+    };
+    // SAFETY: the caller's promise; the stores write the four arrays of `out`.
+    unsafe {
+        let [a, b, c, d] = [0, 1, 2, 3].map(|k| _mm256_loadu_pd(src.add(k).cast()));
+        let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
+        let (t2, t3) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
+        let rows = [
+            _mm256_permute2f128_pd(t0, t2, 0x20),
+            _mm256_permute2f128_pd(t1, t3, 0x20),
+            _mm256_permute2f128_pd(t0, t2, 0x31),
+            _mm256_permute2f128_pd(t1, t3, 0x31),
+        ];
+        let mut out = [[0.0; 4]; 4];
+        for (o, r) in out.iter_mut().zip(rows) {
+            _mm256_storeu_pd(o.as_mut_ptr(), r);
         }
+        out
     }
 }
