@@ -145,6 +145,21 @@ fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
                         p: R.mul_v(&d) + rMp.p,
                     }
                 }
+                (
+                    Shape::Prismatic(axis),
+                    PlacementKind::AxisTurn {
+                        axis: e,
+                        s: sT,
+                        c: cT,
+                    },
+                ) => {
+                    let r = rotate_about(R, &e, L::splat(sT), L::splat(cT));
+                    let d = r.mul_v(&V3::c_scale(&axis, p.q[j.idx_q]));
+                    X {
+                        p: rotated(t, R) + d + rMp.p,
+                        r,
+                    }
+                }
                 _ => rMp.compose(&placement(model, i, &p.q)),
             }
         }
@@ -204,9 +219,14 @@ fn principal_moved<const W: usize>(f: &PrincipalForm, x: &X<W>) -> I3<W> {
     let d = h.dot(&c) + f.lambda1;
     let mut i = M3([[L::zero(); 3]; 3]);
     for r in 0..3 {
-        for s in 0..=r {
-            let e = a.0[r] * a.0[s] + b.0[r] * b.0[s] - h.0[r] * c.0[s];
-            i.0[r][s] = if r == s { d + e } else { e };
+        for s in r..3 {
+            // in the single call's order: `h_r c_s` for r ≤ s, ((d + a a) + b b) − h c on the diagonal
+            let (aa, bb, hc) = (a.0[r] * a.0[s], b.0[r] * b.0[s], h.0[r] * c.0[s]);
+            i.0[r][s] = if r == s {
+                d + aa + bb - hc
+            } else {
+                aa + bb - hc
+            };
             i.0[s][r] = i.0[r][s];
         }
     }
@@ -217,29 +237,30 @@ fn principal_moved<const W: usize>(f: &PrincipalForm, x: &X<W>) -> I3<W> {
     }
 }
 
-/// `rMi · G`: the constant body inertia `G = (m, h, I_O)` moved by the pose `(R, p)`:
-/// `h' = m p + R h` and, about the new origin,
-/// `I' = R I_O Rᵀ + (m |p|² + 2 p · R h) 1 − (m p pᵀ + p (R h)ᵀ + (R h) pᵀ)` (the parallel-axis
-/// theorem with the body's first moment; [`SpatialInertia::transformed`]), for the bodies that
-/// have no principal form.
+/// [`SpatialInertia::transformed`] per lane, in its order, for the bodies without a principal
+/// form: the constant `G = (m, h, I_O)` moved by the pose `(R, p)`, with `g = R h + (m/2) p`,
+/// `I' = R I_O Rᵀ − p gᵀ − g pᵀ + 2 (g · p) 1` (the parallel-axis theorem with the body's first
+/// moment) and `h' = R h + m p`.
 #[inline(always)]
-fn moved<const W: usize>(G: &SpatialInertia, oX: &X<W>) -> I3<W> {
+fn moved<const W: usize>(G: &SpatialInertia, x: &X<W>) -> I3<W> {
     let m = G.mass();
-    let (r, p) = (&oX.r, &oX.p);
-    let rh = r.mul_c(&G.first_moment());
-    let rir = r.mul_cm(G.inertia_origin_matrix()).mul_tr_sym(r);
-    let d = p.dot(p) * m + p.dot(&rh) * 2.0;
-    let mp = p.scale(L::splat(m));
-    let mut i = rir;
+    let (r, p) = (&x.r, &x.p);
+    let h = r.mul_c(&G.first_moment());
+    let ri = r.mul_cm(G.inertia_origin_matrix());
+    let g = h + p.scale(L::splat(0.5 * m));
+    let d = g.dot(p) * 2.0;
+    let mut i = M3([[L::zero(); 3]; 3]);
     for a in 0..3 {
-        for b in 0..3 {
-            i.0[a][b] -= mp.0[a] * p.0[b] + p.0[a] * rh.0[b] + rh.0[a] * p.0[b];
+        for b in a..3 {
+            let rir = ri.0[a][0] * r.0[b][0] + ri.0[a][1] * r.0[b][1] + ri.0[a][2] * r.0[b][2];
+            i.0[a][b] = rir - p.0[a] * g.0[b] - g.0[a] * p.0[b];
+            i.0[b][a] = i.0[a][b];
         }
         i.0[a][a] += d;
     }
     I3 {
         m: L::splat(m),
-        h: mp + rh,
+        h: h + p.scale(L::splat(m)),
         i,
     }
 }

@@ -255,10 +255,11 @@ pub(crate) fn rotate_about<const W: usize>(r: &M3<W>, a: &Vec3, s: L<W>, c: L<W>
     } else {
         let t = L::splat(1.0) - c;
         let (x, y, z) = (a.x, a.y, a.z);
+        // in the order of the single call's `rodrigues`
         let rod = M3([
-            [c + t * (x * x), t * (x * y) - s * z, t * (x * z) + s * y],
-            [t * (x * y) + s * z, c + t * (y * y), t * (y * z) - s * x],
-            [t * (x * z) - s * y, t * (y * z) + s * x, c + t * (z * z)],
+            [c + t * x * x, t * x * y - s * z, t * x * z + s * y],
+            [t * x * y + s * z, c + t * y * y, t * y * z - s * x],
+            [t * x * z - s * y, t * y * z + s * x, c + t * z * z],
         ]);
         r.mul(&rod)
     }
