@@ -5,10 +5,11 @@
     python3 bench/flops.py --models ur5 --algos rnea,crba --json out.json
     python3 bench/flops.py --pinocchio             # also Pinocchio's compiled library, same method
     python3 bench/flops.py --no-build --times run.json   # + ns per call from `compare.py --json run.json`
+    python3 bench/flops.py --batch                 # the SIMD batch kernels per state, against the single call
 
 Method (no hardware counters needed): `rigid bench MODEL --only ALGO --states N --repetitions 1`
 runs under Valgrind's callgrind with collection switched on only inside the timing loop
-(`--toggle-collect=rigid::bench::pass`: one call of the algorithm per state, in a warm-up pass
+(`--toggle-collect=rigid::timing::pass`: one call of the algorithm per state, in a warm-up pass
 and one timed pass, so `2 N` calls; the public function itself may be inlined there) and one
 execution count per machine instruction (`--dump-instr=yes`). Each executed instruction is looked up in
 `objdump -d` of the same binary and classified: `mulsd` = 1 multiplication, `mulpd` on an xmm
@@ -32,6 +33,17 @@ callee: the derivatives' public functions call `impl::` overloads of the same na
 into the timing program, some not. So a first run with collection on throughout gives the call
 graph, and only the outermost functions of the family (those called from outside it) are toggled.
 
+--batch: the SIMD batch kernels (`rigid::multibody::batch`, `rnea`, `aba`, `crba`, `crba_lower`),
+per state. `rigid bench MODEL --batch --only ALGO --threads 1 --states N --repetitions 1` runs
+under callgrind with collection on inside `rigid::multibody::batch::simd::Lanes::run` (one call
+per thread's block of states: the transposition into the lanes, the pack kernels, the
+transposition out; not the input checks before it), in an untimed and a timed pass, so `2 N`
+states (N a multiple of 8, so that no pack has idle lanes). Valgrind runs AVX2 but not AVX-512,
+so the counted code is the 4-lane (AVX2) kernel; the table says which width ran. The single
+call's count (`crba` for both CRBA rows) sits beside it, and each is timed natively in the same
+run (`rigid bench --batch --threads 1`, pinned to one core: the loop of single calls and the
+batch on one thread, median of the passes) for flops per ns and the fraction of the core's peak.
+
 Self-checks: the per-call count must not depend on how many calls were made (N and 2N states give
 the same count up to the data-dependent branches of sin/cos range reduction, < 1 %), for rigid and
 for Pinocchio; and Pinocchio's counting run must collect the instructions per call that the first
@@ -54,7 +66,8 @@ sys.path.insert(0, HERE)
 import compare  # noqa: E402  (model manifest, rigid's model argument)
 
 EXE = os.path.join(ROOT, "target", "release", "rigid")
-LOOP = "rigid::bench::pass"
+LOOP = "rigid::timing::pass"
+BATCH_RUN = "rigid::multibody::batch::simd::Lanes::run"
 INSN = re.compile(r"^\s*([0-9a-f]+):\s+(\S+)\s*(.*)$")
 
 
@@ -201,6 +214,89 @@ def count(model, algo, states):
     return tally(counts, 2 * states)  # warm-up pass + one timed pass
 
 
+def count_batch(model, algo, states):
+    """rigid's batch kernel `algo`, per state: an untimed and a timed pass of `states` states
+    on one thread; also the number of lanes the run used."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "cg.out")
+        cmd = ["valgrind", "--tool=callgrind", "--dump-instr=yes", "--toggle-collect=" + BATCH_RUN,
+               "--callgrind-out-file=" + out, EXE, "bench", compare.rigid_model_arg(model)]
+        if model["floating"]:
+            cmd.append("--floating")
+        cmd += ["--batch", "--only", algo, "--threads", "1", "--states", str(states), "--repetitions", "1",
+                "--json"]
+        p = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=True)
+        counts, _ = parse_callgrind(out)
+    result = tally(counts, 2 * states)
+    result["lanes"] = json.loads(p.stdout)["lanes"]
+    return result
+
+
+def time_batch(model, states=1000, reps=21):
+    """Native states per second, one thread: {algo: (loop of single calls, batch)}."""
+    cmd = [EXE, "bench", compare.rigid_model_arg(model), "--batch", "--threads", "1", "--json",
+           "--states", str(states), "--repetitions", str(reps)]
+    if model["floating"]:
+        cmd.insert(3, "--floating")
+    rates = json.loads(subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=True).stdout)
+    return {a: (r["loop"], r["threads_1"]) for a, r in rates["states_per_second"].items()}, rates["lanes"]
+
+
+def main_batch(args, models):
+    """--batch: flops per state of the batch kernels and of the single call, and their rates."""
+    states = -(-args.states // 8) * 8
+    pinned = compare.pin_to_core(args.cpu)
+    rows, bad = [], []
+    print("| model | nv | algorithm | single call mul + add | batch mul + add per state (lanes) | check (2N) "
+          "| batch instructions per state | single instructions |")
+    print("|---|---:|---|---:|---:|---|---:|---:|")
+    for m in models:
+        single = {}
+        for algo in args.algos.split(","):
+            key = "crba" if algo == "crba_lower" else algo
+            if key not in single:
+                single[key] = count(m, key, args.states)
+            s = single[key]
+            a = count_batch(m, algo, states)
+            b = count_batch(m, algo, 2 * states)
+            fa, fb = a["mul"] + a["add"], b["mul"] + b["add"]
+            ok = fa > 0 and abs(fa - fb) <= 0.01 * fa
+            if not ok:
+                bad.append("%s %s batch: %.0f vs %.0f" % (m["name"], algo, fa, fb))
+            rows.append((m, algo, s, a))
+            print("| %s | %d | %s | %.0f | %.0f (%d) | %s | %.0f | %.0f |" % (
+                m["name"], m["nv"], algo, s["mul"] + s["add"], fa, a["lanes"],
+                "%.0f ok" % fb if ok else "**%.0f**" % fb, a["instructions"], s["instructions"]))
+            sys.stdout.flush()
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"%s/%s" % (m["name"], algo): {"single": s, "batch": a} for m, algo, s, a in rows}, f, indent=1)
+    if not args.no_time:
+        print()
+        print("Rates: `rigid bench --batch --threads 1` (1000 states, 21 passes, median), %s, load %s; "
+              "peak of one core at %.2f GHz: AVX2 FMA %.1f flops/ns, SSE2 %.1f" % (
+                  pinned, " ".join("%.2f" % x for x in os.getloadavg()), args.ghz,
+                  args.ghz * PEAK_PER_CYCLE["AVX2 FMA"], args.ghz * PEAK_PER_CYCLE["SSE2"]))
+        print()
+        print("| model | algorithm | single ns | single flops/ns | %% of peak (AVX2 FMA / SSE2) | batch ns per state "
+              "| batch flops/ns | %% of peak (AVX2 FMA / SSE2) |")
+        print("|---|---|---:|---:|---:|---:|---:|---:|")
+        timed = {}
+        for m, algo, s, a in rows:
+            if m["name"] not in timed:
+                timed[m["name"]] = time_batch(m)[0]
+            loop, batch = timed[m["name"]][algo]
+            cells = []
+            for flops, rate in ((s["mul"] + s["add"], loop), (a["mul"] + a["add"], batch)):
+                ns = 1e9 / rate
+                r = flops / ns
+                cells += ["%.0f" % ns, "%.2f" % r, " / ".join("%.1f" % (100 * r / (args.ghz * c))
+                                                             for c in PEAK_PER_CYCLE.values())]
+            print("| %s | %s | %s |" % (m["name"], algo, " | ".join(cells)))
+    if bad:
+        sys.exit("self-check failed: " + "; ".join(bad))
+
+
 # Pinocchio's functions, regular expressions over callgrind's demangled names (which start with the
 # return type). The derivatives' public overloads forward to `impl::` overloads of the same name
 # (`computeABADerivatives(model, data, q, v, tau)` -> `impl::…(…, q, v, tau)` -> `impl::…(…, q, v,
@@ -302,12 +398,22 @@ def main():
     ap.add_argument("--ghz", type=float, default=cpu_ghz(), help="clock for the peak rate (default: /proc/cpuinfo)")
     ap.add_argument("--pinocchio", action="store_true",
                     help="also count Pinocchio's compiled library (bench/pinocchio's timing program, lib build)")
+    ap.add_argument("--batch", action="store_true",
+                    help="count the SIMD batch kernels per state (algorithms rnea,aba,crba,crba_lower) and time them")
+    ap.add_argument("--no-time", action="store_true", help="--batch: count only")
+    ap.add_argument("--cpu", default="auto", help="--batch timing: the core to pin to (see compare.py)")
     args = ap.parse_args()
+    if args.batch and args.algos == ap.get_default("algos"):
+        args.algos = "rnea,aba,crba,crba_lower"
+    if args.batch and args.models == ap.get_default("models"):
+        args.models = "ur5,panda,solo12,talos"
     if shutil.which("valgrind") is None or shutil.which("objdump") is None:
         sys.exit("needs valgrind (callgrind) and objdump")
     if not args.no_build:
         subprocess.run(["cargo", "build", "--release", "-p", "rigid-cli"], cwd=ROOT, check=True)
     models = compare.read_manifest(set(args.models.split(",")))
+    if args.batch:
+        return main_batch(args, models)
     result = {}
     print("| model | nv | algorithm | code | mul | add | mul + add | div | sqrt | instructions | check (2N states) |")
     print("|---|---:|---|---|---:|---:|---:|---:|---:|---:|---|")
@@ -317,7 +423,7 @@ def main():
             a = count(m, algo, args.states)
             b = count(m, algo, 2 * args.states)
             flops_a, flops_b = a["mul"] + a["add"], b["mul"] + b["add"]
-            ok = abs(flops_a - flops_b) <= 0.01 * flops_a
+            ok = flops_a > 0 and abs(flops_a - flops_b) <= 0.01 * flops_a
             if not ok:
                 bad.append("%s %s: %.0f vs %.0f" % (m["name"], algo, flops_a, flops_b))
             result.setdefault(m["name"], {})[algo] = a

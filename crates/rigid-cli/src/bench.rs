@@ -32,7 +32,8 @@ pub struct BenchArgs {
     /// packs spread over threads) on each `--threads` count.
     #[arg(long)]
     batch: bool,
-    /// Time only these algorithms (comma separated keys, e.g. `rnea,crba`).
+    /// Time only these algorithms (comma separated keys, e.g. `rnea,crba`; with `--batch`, of
+    /// `rnea`, `aba`, `crba`, `crba_lower`).
     #[arg(long, value_delimiter = ',')]
     only: Vec<String>,
     /// Thread counts for `--batch`, comma separated.
@@ -88,8 +89,9 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
 /// `rigid bench --batch`: states per second of a loop of single calls and of the batch entry
 /// points per thread count, and the speed-up over the loop.
 fn run_batch(args: &BenchArgs, model: &Model, s: &States) -> Result<(), String> {
-    let rates =
-        batch_throughput(model, s, &args.threads, args.repetitions).map_err(|e| e.to_string())?;
+    let only: Vec<&str> = args.only.iter().map(String::as_str).collect();
+    let rates = batch_throughput(model, s, &only, &args.threads, args.repetitions)
+        .map_err(|e| e.to_string())?;
     // `{"rnea": {"loop": states/s, "threads_1": …, "threads_2": …, "threads_2_vs_loop": speed-up,
     // "threads_2_vs_1": speed-up, …}, "aba": …, "crba": …, "crba_lower": …}`
     let first = args.threads.first().copied().unwrap_or(1);

@@ -158,7 +158,9 @@ fn call_of(name: &str) -> Option<Call> {
     Some(f)
 }
 
-/// Mean ns per call of one pass of `f` through every state.
+/// Mean ns per call of one pass of `f` through every state. Never inlined: bench/flops.py
+/// counts the operations executed inside it (callgrind's `--toggle-collect`).
+#[inline(never)]
 fn pass(
     model: &Model,
     data: &mut Data,
@@ -343,19 +345,27 @@ pub struct ThreadThroughput {
     pub vs_first: f64,
 }
 
-/// States per second of a loop of single calls and of the batch entry points (`rnea`, `aba`,
-/// `crba`, `crba_lower`) on each of `threads`, median of `reps` passes through `states`; a
-/// speed-up is the median over passes of the ratio of the two configurations' times within the
-/// pass.
+/// The batch entry points [`batch_throughput`] times.
+pub const BATCH_ALGORITHMS: [&str; 4] = ["rnea", "aba", "crba", "crba_lower"];
+
+/// States per second of a loop of single calls and of the batch entry points `names` (keys of
+/// [`BATCH_ALGORITHMS`]; empty: all of them) on each of `threads`, median of `reps` passes
+/// through `states`; a speed-up is the median over passes of the ratio of the two
+/// configurations' times within the pass.
 ///
 /// # Errors
-/// An algorithm error, or a thread pool that cannot be built.
+/// [`TimingError::UnknownAlgorithm`] for a name not in [`BATCH_ALGORITHMS`], an algorithm
+/// error, or a thread pool that cannot be built.
 pub fn batch_throughput(
     model: &Model,
     states: &States,
+    names: &[&str],
     threads: &[usize],
     reps: usize,
 ) -> Result<Vec<BatchThroughput>, TimingError> {
+    if let Some(n) = names.iter().find(|n| !BATCH_ALGORITHMS.contains(n)) {
+        return Err(TimingError::UnknownAlgorithm((*n).to_string()));
+    }
     let rows = Rows::new(states);
     let nv = model.nv();
     let kernels: [(&str, usize, Kernel, Single); 4] = [
@@ -390,6 +400,9 @@ pub fn batch_throughput(
         .collect::<Result<Vec<_>, _>>()?;
     let mut out = Vec::with_capacity(kernels.len());
     for (name, per, par, single) in kernels {
+        if !names.is_empty() && !names.contains(&name) {
+            continue;
+        }
         let mut buf = vec![0.0; rows.n * per];
         let mut data = Data::new(model);
         let mut batches: Vec<batch::Batch> = pools

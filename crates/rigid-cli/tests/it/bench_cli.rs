@@ -102,3 +102,38 @@ fn bench_batch_json_reports_lanes_and_rates() {
         }
     }
 }
+
+/// `rigid bench --batch --only`: only the named batch entry points are timed, and a name that is
+/// not one of them is refused with its name.
+#[test]
+fn bench_batch_only_times_the_named_entry_points() {
+    let args = |only: &'static str| {
+        [
+            "bench",
+            "puma560",
+            "--batch",
+            "--json",
+            "--threads",
+            "1",
+            "--repetitions",
+            "1",
+            "--states",
+            "5",
+            "--only",
+            only,
+        ]
+    };
+    let out = rigid(&args("rnea,crba_lower"));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let keys: Vec<&String> = v["states_per_second"].as_object().unwrap().keys().collect();
+    assert_eq!(keys, ["crba_lower", "rnea"]);
+    let out = rigid(&args("minverse"));
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("minverse"), "{err}");
+}

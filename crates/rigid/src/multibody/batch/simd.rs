@@ -94,8 +94,10 @@ impl Lanes {
     /// `algo` for the `count` states from `first` on of the row-major inputs (`xs` is `a` or
     /// `τ`, and with `vs` empty for CRBA), written to `out` (`count` blocks of
     /// [`Algo::per_state`]), a pack of states at a time, in the widest instructions the CPU
-    /// has for this width. The inputs were checked.
+    /// has for this width. The inputs were checked. Never inlined (one call per task):
+    /// bench/flops.py counts the operations executed inside it.
     #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
     pub(crate) fn run(
         &mut self,
         algo: Algo,
