@@ -33,7 +33,8 @@ callee: the derivatives' public functions call `impl::` overloads of the same na
 into the timing program, some not. So a first run with collection on throughout gives the call
 graph, and only the outermost functions of the family (those called from outside it) are toggled.
 
---batch: the SIMD batch kernels (`rigid::multibody::batch`, `rnea`, `aba`, `crba`, `crba_lower`),
+--batch: the SIMD batch kernels (`rigid::multibody::batch`, `rnea`, `aba`, `crba`, `crba_lower`,
+`rnea_derivatives`),
 per state. `rigid bench MODEL --batch --only ALGO --threads 1 --states N --repetitions 1` runs
 under callgrind with collection on inside `rigid::multibody::batch::simd::Lanes::run` (one call
 per thread's block of states: the transposition into the lanes, the pack kernels, the
@@ -399,12 +400,12 @@ def main():
     ap.add_argument("--pinocchio", action="store_true",
                     help="also count Pinocchio's compiled library (bench/pinocchio's timing program, lib build)")
     ap.add_argument("--batch", action="store_true",
-                    help="count the SIMD batch kernels per state (algorithms rnea,aba,crba,crba_lower) and time them")
+                    help="count the SIMD batch kernels per state (algorithms rnea,aba,crba,crba_lower,rnea_derivatives) and time them")
     ap.add_argument("--no-time", action="store_true", help="--batch: count only")
     ap.add_argument("--cpu", default="auto", help="--batch timing: the core to pin to (see compare.py)")
     args = ap.parse_args()
     if args.batch and args.algos == ap.get_default("algos"):
-        args.algos = "rnea,aba,crba,crba_lower"
+        args.algos = "rnea,aba,crba,crba_lower,rnea_derivatives"
     if args.batch and args.models == ap.get_default("models"):
         args.models = "ur5,panda,solo12,talos"
     if shutil.which("valgrind") is None or shutil.which("objdump") is None:

@@ -5,11 +5,19 @@
 use crate::common;
 use rigid::io::urdf::load_urdf;
 use rigid::multibody::*;
+use rigid::spatial::{Mat3, Vec3};
 
 /// Relative agreement asked of the lanes with the single calls: they take other steps in
 /// another order in places (ABA's inertias in blocks; CRBA through the joint module for the
 /// joints without a lane path), so round-off differs.
 const TOLERANCE: f64 = 1e-13;
+
+/// Relative agreement asked of the lane RNEA derivatives (`∂τ/∂q`, `∂τ/∂v`) with the single
+/// call's.
+const DERIVATIVES_TOLERANCE: f64 = 1e-12;
+
+/// Which results [`worst`] compares, in its order.
+const NAMES: [&str; 6] = ["rnea", "aba", "crba", "crba_lower", "dtau_dq", "dtau_dv"];
 
 fn states(model: &Model, n: usize, seed: u64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     let mut rng = Rng::new(seed);
@@ -29,8 +37,10 @@ fn rel(x: &[f64], y: &[f64]) -> f64 {
 }
 
 /// The largest relative difference, over `n` random states, between a batch of `width` lanes
-/// and single calls, for RNEA, ABA, CRBA and CRBA's packed lower triangle.
-fn worst(model: &Model, width: usize, n: usize, seed: u64) -> [f64; 4] {
+/// and single calls, for RNEA, ABA, CRBA, CRBA's packed lower triangle and the RNEA derivatives
+/// `∂τ/∂q`, `∂τ/∂v` (those of a model the single call refuses, with a joint whose motion
+/// subspace varies, must be refused with its error).
+fn worst(model: &Model, width: usize, n: usize, seed: u64) -> [f64; 6] {
     let (nq, nv) = (model.nq(), model.nv());
     let (qs, vs, as_) = states(model, n, seed);
     let mut b = batch::Batch::with_lanes(model, width);
@@ -44,8 +54,10 @@ fn worst(model: &Model, width: usize, n: usize, seed: u64) -> [f64; 4] {
     let mut single_aba_ok = true;
     b.crba(model, &qs, &mut mass).unwrap();
     b.crba_lower(model, &qs, &mut lower).unwrap();
+    let (mut dq, mut dv) = (vec![f64::NAN; n * nv * nv], vec![f64::NAN; n * nv * nv]);
+    let derivatives = b.rnea_derivatives(model, &qs, &vs, &as_, &mut dq, &mut dv);
     let mut data = Data::new(model);
-    let mut e = [0.0f64; 4];
+    let mut e = [0.0f64; 6];
     for k in 0..n {
         let (q, v, a) = (
             &qs[k * nq..][..nq],
@@ -77,6 +89,19 @@ fn worst(model: &Model, width: usize, n: usize, seed: u64) -> [f64; 4] {
         let mut packed = vec![0.0; per];
         batch::pack_lower(m.as_slice(), nv, &mut packed).unwrap();
         e[3] = e[3].max(rel(&lower[k * per..][..per], &packed));
+        match (rnea_derivatives(model, &mut data, q, v, a), &derivatives) {
+            (Ok(d), Ok(())) => {
+                let nn = nv * nv;
+                e[4] = e[4].max(rel(&dq[k * nn..][..nn], &row_major(d.dtau_dq)));
+                e[5] = e[5].max(rel(&dv[k * nn..][..nn], &row_major(d.dtau_dv)));
+            }
+            (Err(single), Err(batched)) => assert_eq!(single.to_string(), batched.to_string()),
+            (single, batched) => panic!(
+                "{}: rnea_derivatives: single {:?}, batch {batched:?}",
+                model.name(),
+                single.err()
+            ),
+        }
     }
     assert_eq!(
         aba_ok,
@@ -87,15 +112,94 @@ fn worst(model: &Model, width: usize, n: usize, seed: u64) -> [f64; 4] {
     e
 }
 
-fn assert_close(what: &str, e: [f64; 4]) {
+/// A column-major matrix's entries row by row.
+fn row_major(m: &nalgebra::DMatrix<f64>) -> Vec<f64> {
+    m.transpose().as_slice().to_vec()
+}
+
+/// `name x` for each of [`worst`]'s results.
+fn sci(e: &[f64; 6]) -> String {
+    let report: Vec<String> = NAMES
+        .iter()
+        .zip(e)
+        .map(|(n, x)| format!("{n} {x:.1e}"))
+        .collect();
+    report.join(", ")
+}
+
+fn assert_close(what: &str, e: [f64; 6]) {
     assert!(
-        e.iter().all(|x| *x <= TOLERANCE),
-        "{what}: batch vs single calls, relative: rnea {:.1e}, aba {:.1e}, crba {:.1e}, crba_lower {:.1e}",
-        e[0],
-        e[1],
-        e[2],
-        e[3]
+        e[..4].iter().all(|x| *x <= TOLERANCE)
+            && e[4..].iter().all(|x| *x <= DERIVATIVES_TOLERANCE),
+        "{what}: batch vs single calls, relative: {}",
+        sci(&e)
     );
+}
+
+/// A tree of `n` joints drawn from every joint type the RNEA derivatives accept (revolute about
+/// random and coordinate axes, with and without a rotated `X_T`, continuous, prismatic, helical,
+/// spherical, planar and a free-flyer below the root), with random armature, under a free-flyer
+/// root and beside a second tree whose root is the joint `root2`.
+fn accepted_joint_forest(seed: u64, n: usize, root2: JointType) -> Model {
+    let mut rng = Rng::new(seed);
+    let mut b = ModelBuilder::new(&format!("accepted_joints_{seed}"));
+    b.set_gravity(Vec3::new(0.3, -0.2, -9.81));
+    for (t, root_kind) in [JointType::FreeFlyer, root2].into_iter().enumerate() {
+        let root = b
+            .add_joint(
+                None,
+                &format!("root{t}"),
+                root_kind,
+                common::transform(&mut rng),
+                common::inertia(&mut rng),
+            )
+            .unwrap();
+        let mut stack = vec![root];
+        for k in 0..n {
+            stack.truncate((1 + (rng.next_u64() as usize) % stack.len()).max(1));
+            let kind = match (k + t) % 9 {
+                0 => JointType::Helical {
+                    axis: common::unit(&mut rng),
+                    pitch: rng.uniform(-0.3, 0.3),
+                },
+                1 | 2 => JointType::Revolute {
+                    axis: Vec3::ith(k % 3, if k % 2 == 0 { 1.0 } else { -1.0 }),
+                },
+                3 => JointType::Revolute {
+                    axis: common::unit(&mut rng),
+                },
+                4 => JointType::Prismatic {
+                    axis: common::unit(&mut rng),
+                },
+                5 => JointType::Prismatic {
+                    axis: Vec3::ith(k % 3, 1.0),
+                },
+                6 => JointType::Spherical,
+                7 => JointType::Planar,
+                _ => JointType::FreeFlyer,
+            };
+            let mut x_t = common::transform(&mut rng);
+            if (k + t) % 9 == 2 || (k + t) % 9 == 5 {
+                x_t.rotation = Mat3::identity();
+            }
+            let id = b
+                .add_joint(
+                    Some(*stack.last().unwrap()),
+                    &format!("j{t}_{k}"),
+                    kind,
+                    x_t,
+                    common::inertia(&mut rng),
+                )
+                .unwrap();
+            if k % 4 == 3 && matches!(kind, JointType::Revolute { .. }) {
+                b.set_continuous(id).unwrap();
+            }
+            let arm: Vec<f64> = (0..kind.nv()).map(|_| rng.uniform(0.0, 0.2)).collect();
+            b.set_armature(id, &arm).unwrap();
+            stack.push(id);
+        }
+    }
+    b.build().unwrap()
 }
 
 /// Every built-in model, random trees (armature, every joint type among them) and the tree of
@@ -105,16 +209,26 @@ fn batch_results_equal_single_calls_for_every_width_and_joint_type() {
     let mut models = common::models();
     models.push(common::every_joint_tree(3, 14));
     models.push(common::every_joint_tree(8, 9));
+    models.push(accepted_joint_forest(
+        21,
+        12,
+        JointType::Revolute { axis: Vec3::z() },
+    ));
+    models.push(accepted_joint_forest(22, 10, JointType::Planar));
+    models.push(accepted_joint_forest(23, 9, JointType::Spherical));
+    let mut largest = [0.0f64; 6];
     for model in &models {
         for width in [2, 4, 8] {
             for n in [1, width + 3, 37] {
-                assert_close(
-                    &format!("{} ({width} lanes, {n} states)", model.name()),
-                    worst(model, width, n, 11 + n as u64),
-                );
+                let e = worst(model, width, n, 11 + n as u64);
+                assert_close(&format!("{} ({width} lanes, {n} states)", model.name()), e);
+                for (l, x) in largest.iter_mut().zip(e) {
+                    *l = l.max(x);
+                }
             }
         }
     }
+    eprintln!("largest relative differences: {}", sci(&largest));
 }
 
 /// Every robot of example-robot-data that rigid loads, fixed and with a free-flyer, in the
@@ -130,7 +244,8 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
     let width = batch::Batch::new(&common::random_tree(1, 3, false)).lanes();
     for dir in dirs {
         let files = common::urdfs_under(&dir);
-        let (mut compared, mut bitwise) = (0, 0);
+        let (mut compared, mut bitwise, mut derivatives_bitwise) = (0, 0, 0);
+        let mut largest = [0.0f64; 6];
         for file in &files {
             for floating in [false, true] {
                 let Ok(model) = load_urdf(file, floating) else {
@@ -140,14 +255,11 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
                     continue;
                 }
                 let e = worst(&model, width, 2 * width + 1, 5);
-                eprintln!(
-                    "{}: {:.1e} {:.1e} {:.1e} {:.1e}",
-                    file.display(),
-                    e[0],
-                    e[1],
-                    e[2],
-                    e[3]
-                );
+                eprintln!("{} (floating {floating}): {}", file.display(), sci(&e));
+                for (l, x) in largest.iter_mut().zip(e) {
+                    *l = l.max(x);
+                }
+                derivatives_bitwise += usize::from(e[4..] == [0.0, 0.0]);
                 assert_close(&format!("{} (floating {floating})", file.display()), e);
                 // the batch CRBA takes the single call's steps in the same order (revolute,
                 // prismatic and free-flyer joints in lanes): the same numbers, bit for bit
@@ -160,7 +272,7 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
                     )
                 }) {
                     assert_eq!(
-                        e[2..],
+                        e[2..4],
                         [0.0, 0.0],
                         "{}: CRBA not bit for bit",
                         file.display()
@@ -171,8 +283,10 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
             }
         }
         eprintln!(
-            "{}: {compared} models in {width} lanes, CRBA bit for bit on {bitwise}",
-            dir.display()
+            "{}: {compared} models in {width} lanes, CRBA bit for bit on {bitwise}, the RNEA \
+             derivatives on {derivatives_bitwise}; largest relative differences {}",
+            dir.display(),
+            sci(&largest)
         );
         assert!(compared >= 8, "{}: only {compared} models", dir.display());
     }
@@ -191,12 +305,14 @@ fn batch_results_do_not_depend_on_the_thread_count() {
             .unwrap();
         let (mut tau, mut ddq, mut mass) =
             (vec![0.0; n * nv], vec![0.0; n * nv], vec![0.0; n * nv * nv]);
+        let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
         pool.install(|| {
             batch::rnea_batch(&model, &qs, &vs, &as_, &mut tau).unwrap();
             batch::aba_batch(&model, &qs, &vs, &as_, &mut ddq).unwrap();
             batch::crba_batch(&model, &qs, &mut mass).unwrap();
+            batch::rnea_derivatives_batch(&model, &qs, &vs, &as_, &mut dq, &mut dv).unwrap();
         });
-        (tau, ddq, mass)
+        (tau, ddq, mass, dq, dv)
     };
     assert_eq!(run(1), run(2));
 }
@@ -259,6 +375,43 @@ fn batch_refuses_what_single_calls_refuse() {
     ] {
         assert!(matches!(e, MultibodyError::NotUnitQuaternion { .. }), "{e}");
     }
+    // the RNEA derivatives refuse the tree's universal joints (their motion subspace varies)
+    // with the single call's error, and then bad states as the single call does
+    let mut dv = vec![0.0; n * nv * nv];
+    let single = rnea_derivatives(&model, &mut data, &qs[..nq], &vs[..nv], &as_[..nv])
+        .unwrap_err()
+        .to_string();
+    let batched =
+        batch::rnea_derivatives_batch(&model, &qs, &vs, &as_, &mut mass, &mut dv).unwrap_err();
+    assert!(matches!(batched, MultibodyError::Unsupported { .. }));
+    assert_eq!(batched.to_string(), single);
+    let model = accepted_joint_forest(4, 7, JointType::Planar);
+    let (nq, nv) = (model.nq(), model.nv());
+    let (qs, vs, as_) = states(&model, n, 4);
+    let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+    let mut bad = as_.clone();
+    bad[6 * nv + 2] = f64::NAN;
+    let mut data = Data::new(&model);
+    let single = rnea_derivatives(
+        &model,
+        &mut data,
+        &qs[..nq],
+        &vs[..nv],
+        &bad[6 * nv..][..nv],
+    )
+    .unwrap_err()
+    .to_string();
+    let batched = batch::rnea_derivatives_batch(&model, &qs, &vs, &bad, &mut dq, &mut dv);
+    assert_eq!(batched.unwrap_err().to_string(), single);
+    let o = model.joints()[0].kind.quaternion_offset().unwrap(); // the free-flyer root's
+    let mut q2 = qs.clone();
+    for x in &mut q2[8 * nq + o..][..4] {
+        *x *= 2.0;
+    }
+    assert!(matches!(
+        batch::rnea_derivatives_batch(&model, &q2, &vs, &as_, &mut dq, &mut dv),
+        Err(MultibodyError::NotUnitQuaternion { .. })
+    ));
 }
 
 /// A reused `Batch` gives the free functions' results bit for bit on every call (no state left
@@ -281,6 +434,11 @@ fn a_reused_batch_equals_fresh_calls_and_checks_the_model() {
         b.crba(&model, &qs, &mut m1).unwrap();
         batch::crba_batch(&model, &qs, &mut m2).unwrap();
         assert_eq!(m1, m2);
+        let (mut v1, mut v2) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+        b.rnea_derivatives(&model, &qs, &vs, &as_, &mut m1, &mut v1)
+            .unwrap();
+        batch::rnea_derivatives_batch(&model, &qs, &vs, &as_, &mut m2, &mut v2).unwrap();
+        assert_eq!((m1, v1), (m2, v2));
     }
     let other = puma560(Puma560Options::default());
     let mut tau = vec![0.0; 6];
@@ -311,4 +469,60 @@ fn crba_lower_packs_the_full_matrices_lower_triangles() {
     }
     assert!(batch::crba_lower_batch(&model, &qs[..nq * n - 1], &mut packed).is_err());
     assert!(batch::crba_lower_batch(&model, &qs, &mut packed[..per * n - 1]).is_err());
+}
+
+/// A rough timing of the lane RNEA derivatives against a loop of single calls, one thread
+/// (`cargo test -p rigid --test it rnea_derivatives_batch_timing -- --ignored --nocapture`;
+/// the test profile is `opt-level = 1`, so only the ratio means anything).
+#[test]
+#[ignore]
+fn rnea_derivatives_batch_timing() {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let dir = common::example_robot_data();
+    for (file, floating) in [
+        ("ur_description/urdf/ur5_robot.urdf", false),
+        ("talos_data/robots/talos_reduced.urdf", true),
+    ] {
+        let model = load_urdf(dir.join(file), floating).unwrap();
+        let (nq, nv, n) = (model.nq(), model.nv(), 256);
+        let (qs, vs, as_) = states(&model, n, 9);
+        let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+        let mut data = Data::new(&model);
+        let (single, lanes) = pool.install(|| {
+            let mut b = batch::Batch::new(&model);
+            let time = |f: &mut dyn FnMut()| {
+                f();
+                let t = std::time::Instant::now();
+                for _ in 0..5 {
+                    f();
+                }
+                t.elapsed().as_secs_f64() / (5 * n) as f64
+            };
+            let single = time(&mut || {
+                for k in 0..n {
+                    let (q, v, a) = (
+                        &qs[k * nq..][..nq],
+                        &vs[k * nv..][..nv],
+                        &as_[k * nv..][..nv],
+                    );
+                    std::hint::black_box(rnea_derivatives(&model, &mut data, q, v, a).unwrap());
+                }
+            });
+            let lanes = time(&mut || {
+                b.rnea_derivatives(&model, &qs, &vs, &as_, &mut dq, &mut dv)
+                    .unwrap();
+            });
+            (single, lanes)
+        });
+        eprintln!(
+            "{file}: single call {:.2} µs/state, {} lanes {:.2} µs/state ({:.2}x)",
+            single * 1e6,
+            batch::Batch::new(&model).lanes(),
+            lanes * 1e6,
+            single / lanes
+        );
+    }
 }

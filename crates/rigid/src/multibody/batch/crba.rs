@@ -57,14 +57,7 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
         }
         if let Some(par) = j.parent {
             let y = p.Ic[i];
-            let c = &mut p.Ic[par.0];
-            c.m += y.m;
-            c.h += y.h;
-            for r in 0..3 {
-                for s in 0..3 {
-                    c.i.0[r][s] += y.i.0[r][s];
-                }
-            }
+            p.Ic[par.0] += y;
         }
     }
 }
@@ -88,7 +81,7 @@ pub(super) fn packed_at(nv: usize, r: usize, c: usize) -> usize {
 ///   `R_λ`; anything else is the product `rM_λ liMi`;
 /// - `rG_i` by the body's [`PrincipalForm`] when it has one, else by the adjoint congruence.
 #[inline(always)]
-fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
+pub(super) fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
     let plan = model.plan();
     let j = &model.joints()[i];
     let shape = j.kind.shape();
@@ -103,7 +96,7 @@ fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
         }
         Some(par) if model.joints()[par.0].parent.is_none() => placement(model, i, &p.q),
         Some(par) => {
-            let rMp = p.rX[par.0];
+            let rMp = &p.rX[par.0];
             let (R, t) = (&rMp.r, &plan.placement_translation[i]);
             let angle = || trig::sin_cos_lanes(p.q[j.idx_q].0);
             match (shape, plan.placement[i]) {
@@ -171,7 +164,7 @@ fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
     for k in j.dofs() {
         p.J[k] = column(model, &p.S, k, &rMi);
     }
-    p.rX[i] = rMi;
+    p.rX[i].set(&rMi);
 }
 
 /// `[Ad_{rMi}] S_k`: column `k` in the root frame, `(R s_ω, R s_v + p × R s_ω)` (a column of `R`
@@ -267,7 +260,7 @@ fn moved<const W: usize>(G: &SpatialInertia, x: &X<W>) -> I3<W> {
 
 /// `I T` of a spatial inertia `(m, h, I_O)` and a twist per lane: `(I_O ω + h × v, m v − h × ω)`.
 #[inline(always)]
-fn inertia_twist<const W: usize>(y: &I3<W>, t: &T6<W>) -> T6<W> {
+pub(super) fn inertia_twist<const W: usize>(y: &I3<W>, t: &T6<W>) -> T6<W> {
     T6 {
         w: y.i.mul_v(&t.w) + y.h.cross(&t.v),
         v: t.v.scale(y.m) - y.h.cross(&t.w),

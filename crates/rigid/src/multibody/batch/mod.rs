@@ -2,15 +2,17 @@
 //! and the derivatives of inverse and forward dynamics for `N` states, each written to a
 //! caller-owned, row-major output.
 //!
-//! RNEA, ABA and CRBA run `W` states side by side in the lanes of the CPU's vector registers
-//! (`W` = 8 with AVX-512, 4 with AVX2, 2 otherwise, chosen at run time; [`Batch::lanes`]): the
-//! model's tree is walked once per pack of `W` states, and every scalar of the single-state
-//! algorithm becomes a `W`-wide vector (`lanes.rs`, one file per kernel: `rnea.rs`, `crba.rs`,
-//! `aba.rs`). The packs are spread across the cores (rayon). The kernels compute what the single
-//! calls do, in a different order of operations (CRBA in the world frame, ABA's articulated
-//! inertias in 3x3 blocks), so the results equal [`rnea`](super::rnea), [`aba`](super::aba) and [`crba`](super::crba) to round-off
-//! (1e-13 relative, checked on every robot of example-robot-data), not bit for bit. The
-//! derivatives are single calls, spread across the cores.
+//! RNEA, ABA, CRBA and the RNEA derivatives run `W` states side by side in the lanes of the
+//! CPU's vector registers (`W` = 8 with AVX-512, 4 with AVX2, 2 otherwise, chosen at run time;
+//! [`Batch::lanes`]): the model's tree is walked once per pack of `W` states, and every scalar
+//! of the single-state algorithm becomes a `W`-wide vector (`lanes.rs`, one file per kernel:
+//! `rnea.rs`, `crba.rs`, `aba.rs`, `derivatives.rs`). The packs are spread across the cores
+//! (rayon). The kernels compute what the single calls do, mostly in their order of operations
+//! (ABA's articulated inertias in 3x3 blocks in another), so the results equal
+//! [`rnea`](super::rnea), [`aba`](super::aba), [`crba`](super::crba) and
+//! [`rnea_derivatives`](super::rnea_derivatives) to round-off (1e-13 relative, the derivatives
+//! 1e-12, checked on every robot of example-robot-data). The ABA derivatives are single calls,
+//! spread across the cores.
 //!
 //! Inputs are row-major: state `k`'s configuration is `qs[k nq..(k + 1) nq]`, its velocity
 //! `vs[k nv..(k + 1) nv]`, and so on. The states are cut into a few contiguous blocks per
@@ -34,6 +36,7 @@
 
 mod aba;
 mod crba;
+mod derivatives;
 mod lanes;
 mod pack;
 mod rnea;
@@ -65,8 +68,8 @@ fn count(
     Ok(n)
 }
 
-/// The workspaces of the batch entry points: one lane workspace (RNEA, ABA, CRBA) and one
-/// [`Data`] (the derivatives) per task, a few tasks per thread of the current rayon pool, made
+/// The workspaces of the batch entry points: one lane workspace (RNEA, ABA, CRBA, the RNEA
+/// derivatives) and one [`Data`] (the ABA derivatives) per task, a few tasks per thread of the current rayon pool, made
 /// once and reused by every call, so that a batch call allocates nothing per state and nothing
 /// per call (as Pinocchio's `ModelPool`).
 ///
@@ -134,7 +137,7 @@ impl Batch {
         as_: &[f64],
         tau: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        self.packs(Algo::Rnea, model, qs, (vs, "v"), (as_, "a"), tau)
+        self.packs(Algo::Rnea, model, qs, (vs, "v"), (as_, "a"), tau, &mut [])
     }
 
     /// `q̈_k = aba(q_k, v_k, τ_k)` for every state k (see [`aba_batch`]).
@@ -149,7 +152,7 @@ impl Batch {
         taus: &[f64],
         ddq: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        self.packs(Algo::Aba, model, qs, (vs, "v"), (taus, "tau"), ddq)
+        self.packs(Algo::Aba, model, qs, (vs, "v"), (taus, "tau"), ddq, &mut [])
     }
 
     /// `M(q_k)` for every state k (see [`crba_batch`]).
@@ -162,7 +165,7 @@ impl Batch {
         qs: &[f64],
         mass: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        self.packs(Algo::Crba, model, qs, (&[], "v"), (&[], "a"), mass)
+        self.packs(Algo::Crba, model, qs, (&[], "v"), (&[], "a"), mass, &mut [])
     }
 
     /// The lower triangle of `M(q_k)` for every state k (see [`crba_lower_batch`]).
@@ -175,13 +178,23 @@ impl Batch {
         qs: &[f64],
         packed: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        self.packs(Algo::CrbaLower, model, qs, (&[], "v"), (&[], "a"), packed)
+        self.packs(
+            Algo::CrbaLower,
+            model,
+            qs,
+            (&[], "v"),
+            (&[], "a"),
+            packed,
+            &mut [],
+        )
     }
 
     /// `algo` for every state, in packs of [`Batch::lanes`] states, the packs cut into one
     /// contiguous block per task, run in parallel; each block's states are checked as a single
     /// call checks them before any is computed. `vs` and `xs` (named for the errors) are empty
-    /// for CRBA.
+    /// for CRBA; `out2` is the derivatives' `∂τ/∂v` (its length checked by the caller), empty
+    /// for the others.
+    #[allow(clippy::too_many_arguments)]
     fn packs(
         &mut self,
         algo: Algo,
@@ -190,14 +203,19 @@ impl Batch {
         (vs, v_name): (&[f64], &'static str),
         (xs, x_name): (&[f64], &'static str),
         out: &mut [f64],
+        out2: &mut [f64],
     ) -> Result<(), MultibodyError> {
         let per = algo.per_state(model.nv);
-        let inputs: &[&[f64]] = if algo == Algo::Rnea || algo == Algo::Aba {
-            &[vs, xs]
-        } else {
+        let inputs: &[&[f64]] = if algo == Algo::Crba || algo == Algo::CrbaLower {
             &[]
+        } else {
+            &[vs, xs]
         };
         let n = count(model, qs, inputs, out.len(), per)?;
+        if algo == Algo::RneaDerivatives && n * per > 0 {
+            // as the single call, before any state is looked at
+            super::algorithms::require_constant_subspaces(model, "the analytical derivatives")?;
+        }
         if !self.lanes.iter().all(|l| l.fits(model)) {
             let d = &self.datas[0];
             return Err(MultibodyError::DataMismatch {
@@ -212,21 +230,31 @@ impl Batch {
         let w = self.lanes();
         let per_task = per_task(n, self.lanes.len()).div_ceil(w) * w;
         let (nq, nv) = (model.nq, model.nv);
-        out.par_chunks_mut(per_task * per)
-            .zip(self.lanes.par_iter_mut())
-            .enumerate()
-            .map(|(c, (block, lanes))| {
-                let first = c * per_task;
-                for k in first..first + block.len() / per {
-                    check_q(model, &qs[k * nq..][..nq])?;
-                    if !inputs.is_empty() {
-                        check_v(model, v_name, &vs[k * nv..][..nv])?;
-                        check_v(model, x_name, &xs[k * nv..][..nv])?;
-                    }
+        let task = |c: usize, block: &mut [f64], block2: &mut [f64], lanes: &mut Lanes| {
+            let first = c * per_task;
+            for k in first..first + block.len() / per {
+                check_q(model, &qs[k * nq..][..nq])?;
+                if !inputs.is_empty() {
+                    check_v(model, v_name, &vs[k * nv..][..nv])?;
+                    check_v(model, x_name, &xs[k * nv..][..nv])?;
                 }
-                lanes.run(algo, model, qs, vs, xs, first, block)
-            })
-            .collect()
+            }
+            lanes.run(algo, model, qs, vs, xs, first, block, block2)
+        };
+        let tasks = out
+            .par_chunks_mut(per_task * per)
+            .zip(self.lanes.par_iter_mut())
+            .enumerate();
+        if algo == Algo::RneaDerivatives {
+            tasks
+                .zip(out2.par_chunks_mut(per_task * per))
+                .map(|((c, (block, lanes)), block2)| task(c, block, block2, lanes))
+                .collect()
+        } else {
+            tasks
+                .map(|(c, (block, lanes))| task(c, block, &mut [], lanes))
+                .collect()
+        }
     }
 }
 
@@ -273,26 +301,8 @@ impl Batch {
         let nn = model.nv * model.nv;
         let n = count(model, qs, &[vs, as_], dtau_dq.len(), nn)?;
         DimensionError::check("dtau_dv", n * nn, dtau_dv.len())?;
-        if n * nn == 0 {
-            return Ok(());
-        }
-        let per_task = per_task(n, self.datas.len());
-        let blocks = dtau_dq
-            .par_chunks_mut(per_task * nn)
-            .zip(dtau_dv.par_chunks_mut(per_task * nn));
-        blocks
-            .zip(self.datas.par_iter_mut())
-            .enumerate()
-            .map(|(c, ((bq, bv), data))| {
-                for (j, (oq, ov)) in bq.chunks_mut(nn).zip(bv.chunks_mut(nn)).enumerate() {
-                    let (q, v, a) = state(model, c * per_task + j, qs, vs, as_);
-                    let d = super::rnea_derivatives(model, data, q, v, a)?;
-                    row_major(d.dtau_dq, oq);
-                    row_major(d.dtau_dv, ov);
-                }
-                Ok(())
-            })
-            .collect()
+        let (v, a) = ((vs, "v"), (as_, "a"));
+        self.packs(Algo::RneaDerivatives, model, qs, v, a, dtau_dq, dtau_dv)
     }
 
     /// `∂q̈/∂q`, `∂q̈/∂v` and `∂q̈/∂τ = M⁻¹` at `(q_k, v_k, τ_k)` for every state k (see
@@ -447,9 +457,12 @@ pub fn crba_lower_batch(
 /// `∂τ/∂q` and `∂τ/∂v` at `(q_k, v_k, a_k)` for every state k (see
 /// [`rnea_derivatives`](super::rnea_derivatives); workspaces made for this call, see [`Batch`]),
 /// into `dtau_dq` and `dtau_dv` (each `N` matrices of `nv x nv`, row-major, one after the other).
+/// The states run side by side in SIMD lanes (`derivatives.rs`: Carpentier & Mansard, RSS 2018,
+/// Alg. 1, in each tree's root frame, in the single call's order of operations).
 ///
 /// # Errors
-/// Lengths that are not `N nq` / `N nv` / `N nv²`, or the first failing state's error.
+/// Lengths that are not `N nq` / `N nv` / `N nv²`, a joint whose motion subspace depends on `q`
+/// ([`MultibodyError::Unsupported`], as the single call), or the first failing state's error.
 ///
 /// ```
 /// use rigid::multibody::{batch, puma560, Puma560Options};

@@ -3,6 +3,7 @@
 //! joint, per lane: its pose in the parent `X_T X_J(q)` (Featherstone's `jcalc`), its motion
 //! subspace `S(q)` and the joint twist `S q̇` with its bias terms.
 
+use super::derivatives::DerivPack;
 use super::lanes::{L, M3, T6, V3, X};
 use crate::mass::SpatialInertia;
 use crate::multibody::{JointType, Model};
@@ -43,6 +44,8 @@ pub(crate) struct Pack<const W: usize> {
     /// CRBA: the `W` states' packed lower triangles, before they are unfolded into full
     /// matrices.
     pub(crate) scratch: Vec<f64>,
+    /// The RNEA derivatives' workspace, made on their first call.
+    pub(crate) deriv: Option<Box<DerivPack<W>>>,
 }
 
 impl<const W: usize> Pack<W> {
@@ -70,6 +73,7 @@ impl<const W: usize> Pack<W> {
             U: vec![T6::zero(); nv],
             u: vec![z; nv],
             scratch: vec![0.0; W * nv * (nv + 1) / 2],
+            deriv: None,
         }
     }
 
@@ -318,6 +322,21 @@ impl<const W: usize> I3<W> {
             m: L::zero(),
             h: V3::zero(),
             i: M3::splat(&Mat3::zeros()),
+        }
+    }
+}
+
+impl<const W: usize> std::ops::AddAssign for I3<W> {
+    /// The inertia of two bodies rigidly joined, both in the same frame (entry by entry, as
+    /// [`SpatialInertia`]'s `+=`).
+    #[inline(always)]
+    fn add_assign(&mut self, y: Self) {
+        self.m += y.m;
+        self.h += y.h;
+        for r in 0..3 {
+            for s in 0..3 {
+                self.i.0[r][s] += y.i.0[r][s];
+            }
         }
     }
 }

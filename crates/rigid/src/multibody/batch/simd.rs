@@ -10,6 +10,7 @@
 
 use super::aba::aba;
 use super::crba::{crba, packed_at};
+use super::derivatives::rnea_derivatives;
 use super::lanes::L;
 use super::pack::Pack;
 use super::rnea::rnea;
@@ -26,14 +27,17 @@ pub(crate) enum Algo {
     Crba,
     /// `M(q)`'s lower triangle packed by columns, `nv (nv + 1) / 2` numbers per state.
     CrbaLower,
+    /// `∂τ/∂q` and `∂τ/∂v` at `(q, v, a)`: two outputs, each the `nv x nv` matrix per state,
+    /// row-major.
+    RneaDerivatives,
 }
 
 impl Algo {
-    /// Numbers written per state.
+    /// Numbers written per state (to each output: the derivatives have two).
     pub(crate) fn per_state(self, nv: usize) -> usize {
         match self {
             Self::Rnea | Self::Aba => nv,
-            Self::Crba => nv * nv,
+            Self::Crba | Self::RneaDerivatives => nv * nv,
             Self::CrbaLower => nv * (nv + 1) / 2,
         }
     }
@@ -93,8 +97,9 @@ impl Lanes {
 
     /// `algo` for the `count` states from `first` on of the row-major inputs (`xs` is `a` or
     /// `τ`, and with `vs` empty for CRBA), written to `out` (`count` blocks of
-    /// [`Algo::per_state`]), a pack of states at a time, in the widest instructions the CPU
-    /// has for this width. The inputs were checked. Never inlined (one call per task):
+    /// [`Algo::per_state`]; the derivatives' `∂τ/∂v` to `out2`, empty for the others), a pack
+    /// of states at a time, in the widest instructions the CPU has for this width. The inputs
+    /// were checked. Never inlined (one call per task):
     /// bench/flops.py counts the operations executed inside it.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
@@ -107,6 +112,7 @@ impl Lanes {
         xs: &[f64],
         first: usize,
         out: &mut [f64],
+        out2: &mut [f64],
     ) -> Result<(), MultibodyError> {
         let mut io = Io {
             qs,
@@ -119,7 +125,7 @@ impl Lanes {
             #[cfg(target_arch = "x86_64")]
             Self::W8(p) if std::arch::is_x86_feature_detected!("avx512f") => {
                 // SAFETY: the CPU has AVX-512F (checked above).
-                unsafe { avx512(p, algo, model, &io, out) }
+                unsafe { avx512(p, algo, model, &io, out, out2) }
             }
             #[cfg(target_arch = "x86_64")]
             Self::W4(p)
@@ -128,11 +134,11 @@ impl Lanes {
             {
                 io.avx = true;
                 // SAFETY: the CPU has AVX2 and FMA (checked above).
-                unsafe { avx2(p, algo, model, &io, out) }
+                unsafe { avx2(p, algo, model, &io, out, out2) }
             }
-            Self::W2(p) => packs(p, algo, model, &io, out),
-            Self::W4(p) => packs(p, algo, model, &io, out),
-            Self::W8(p) => packs(p, algo, model, &io, out),
+            Self::W2(p) => packs(p, algo, model, &io, out, out2),
+            Self::W4(p) => packs(p, algo, model, &io, out, out2),
+            Self::W8(p) => packs(p, algo, model, &io, out, out2),
         }
     }
 }
@@ -155,8 +161,9 @@ fn avx512(
     model: &Model,
     io: &Io,
     out: &mut [f64],
+    out2: &mut [f64],
 ) -> Result<(), MultibodyError> {
-    packs(p, algo, model, io, out)
+    packs(p, algo, model, io, out, out2)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -167,13 +174,14 @@ fn avx2(
     model: &Model,
     io: &Io,
     out: &mut [f64],
+    out2: &mut [f64],
 ) -> Result<(), MultibodyError> {
-    packs(p, algo, model, io, out)
+    packs(p, algo, model, io, out, out2)
 }
 
 /// The task's states `W` at a time: transposed into the lanes (the last pack's missing lanes
 /// repeat its last state, so that every lane computes a valid state), computed, and the lanes
-/// that hold states transposed back out.
+/// that hold states transposed back out (the derivatives' second output to `out2`).
 #[inline(always)]
 fn packs<const W: usize>(
     p: &mut Pack<W>,
@@ -181,6 +189,7 @@ fn packs<const W: usize>(
     model: &Model,
     io: &Io,
     out: &mut [f64],
+    out2: &mut [f64],
 ) -> Result<(), MultibodyError> {
     let nv = model.nv();
     let per = algo.per_state(nv);
@@ -195,11 +204,18 @@ fn packs<const W: usize>(
             Algo::Rnea => rnea(model, p),
             Algo::Aba => aba(model, p)?,
             Algo::Crba | Algo::CrbaLower => crba(model, p),
+            Algo::RneaDerivatives => rnea_derivatives(model, p),
         }
         let o = &mut out[s * per..(s + m) * per];
         match algo {
             Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o, io.avx),
             Algo::CrbaLower => transpose_out(&p.M, m, o, io.avx),
+            Algo::RneaDerivatives => {
+                if let Some(d) = &p.deriv {
+                    transpose_out(&d.dq, m, o, io.avx);
+                    transpose_out(&d.dv, m, &mut out2[s * per..(s + m) * per], io.avx);
+                }
+            }
             Algo::Crba => {
                 let lower = nv * (nv + 1) / 2;
                 let mut scratch = std::mem::take(&mut p.scratch);
@@ -233,13 +249,12 @@ fn transpose_out<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], avx: b
     let full = per / W * W;
     #[cfg(target_arch = "x86_64")]
     if W == 4 && avx {
-        let src4 = src.as_ptr().cast::<[f64; 4]>();
+        assert!(m <= 4 && dst.len() >= m * per, "transpose_out: {m} rows of {per}");
+        let (src4, out) = (src.as_ptr().cast::<[f64; 4]>(), dst.as_mut_ptr());
         for b in (0..full).step_by(4) {
-            // SAFETY: `src[b..b + 4]` are four `[f64; 4]` (W = 4), and the CPU has AVX.
-            let rows = unsafe { transpose4(src4.add(b)) };
-            for (l, row) in rows[..m].iter().enumerate() {
-                dst[l * per + b..][..4].copy_from_slice(row);
-            }
+            // SAFETY: `src[b..b + 4]` are four `[f64; 4]` (W = 4); the rows `l < m` of `dst`
+            // hold `per ≥ b + 4` numbers each (asserted above); the CPU has AVX.
+            unsafe { transpose4(src4.add(b), out.add(b), per, m) };
         }
     } else {
         transpose_blocks(src, m, dst);
@@ -273,20 +288,22 @@ fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64]) {
     }
 }
 
-/// The 4x4 block at `src` (four rows of four) transposed: `unpacklo/hi` pair the rows' even and
-/// odd entries within each 128-bit half, `permute2f128` joins the halves.
+/// The 4x4 block at `src` (four rows of four) transposed into the first `m` rows at `dst`,
+/// `stride` apart: `unpacklo/hi` pair the rows' even and odd entries within each 128-bit half,
+/// `permute2f128` joins the halves.
 ///
 /// # Safety
-/// `src` points to four readable `[f64; 4]`, and the CPU has AVX.
+/// `src` points to four readable `[f64; 4]`, `dst + l stride` to four writable `f64` for
+/// `l < m ≤ 4`, and the CPU has AVX.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[inline]
-unsafe fn transpose4(src: *const [f64; 4]) -> [[f64; 4]; 4] {
+unsafe fn transpose4(src: *const [f64; 4], dst: *mut f64, stride: usize, m: usize) {
     use std::arch::x86_64::{
         _mm256_loadu_pd, _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
         _mm256_unpacklo_pd,
     };
-    // SAFETY: the caller's promise; the stores write the four arrays of `out`.
+    // SAFETY: the caller's promise.
     unsafe {
         let [a, b, c, d] = [0, 1, 2, 3].map(|k| _mm256_loadu_pd(src.add(k).cast()));
         let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
@@ -297,10 +314,14 @@ unsafe fn transpose4(src: *const [f64; 4]) -> [[f64; 4]; 4] {
             _mm256_permute2f128_pd(t0, t2, 0x31),
             _mm256_permute2f128_pd(t1, t3, 0x31),
         ];
-        let mut out = [[0.0; 4]; 4];
-        for (o, r) in out.iter_mut().zip(rows) {
-            _mm256_storeu_pd(o.as_mut_ptr(), r);
+        if m == 4 {
+            for (l, r) in rows.into_iter().enumerate() {
+                _mm256_storeu_pd(dst.add(l * stride), r);
+            }
+        } else {
+            for (l, r) in rows.into_iter().take(m).enumerate() {
+                _mm256_storeu_pd(dst.add(l * stride), r);
+            }
         }
-        out
     }
 }
