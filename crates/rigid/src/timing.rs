@@ -313,7 +313,11 @@ fn loop_rnea_derivatives(
     let nn = nv * nv;
     let (dq, dv) = out.split_at_mut(r.n * nn);
     for k in 0..r.n {
-        let (q, v, a) = (&r.qs[k * nq..][..nq], &r.vs[k * nv..][..nv], &r.as_[k * nv..][..nv]);
+        let (q, v, a) = (
+            &r.qs[k * nq..][..nq],
+            &r.vs[k * nv..][..nv],
+            &r.as_[k * nv..][..nv],
+        );
         let t = rnea_derivatives(m, d, q, v, a)?;
         dq[k * nn..][..nn].copy_from_slice(t.dtau_dq.as_slice());
         dv[k * nn..][..nn].copy_from_slice(t.dtau_dv.as_slice());

@@ -32,7 +32,27 @@ pub(crate) enum Algo {
     RneaDerivatives,
 }
 
+/// The algorithms as the const parameter `A` of [`packs`], so that each (width, algorithm)
+/// pair is a function of its own: the kernels are `#[inline(always)]`, and one function holding
+/// them all took LLVM far longer to compile than the sum of its parts.
+const RNEA: u8 = 0;
+const ABA: u8 = 1;
+const CRBA: u8 = 2;
+const CRBA_LOWER: u8 = 3;
+const RNEA_DERIVATIVES: u8 = 4;
+
 impl Algo {
+    /// The code of this algorithm for [`packs`].
+    const fn code(self) -> u8 {
+        match self {
+            Self::Rnea => RNEA,
+            Self::Aba => ABA,
+            Self::Crba => CRBA,
+            Self::CrbaLower => CRBA_LOWER,
+            Self::RneaDerivatives => RNEA_DERIVATIVES,
+        }
+    }
+
     /// Numbers written per state (to each output: the derivatives have two).
     pub(crate) fn per_state(self, nv: usize) -> usize {
         match self {
@@ -114,18 +134,37 @@ impl Lanes {
         out: &mut [f64],
         out2: &mut [f64],
     ) -> Result<(), MultibodyError> {
-        let mut io = Io {
+        let io = Io {
             qs,
             vs,
             xs,
             first,
             avx: false,
         };
+        match algo.code() {
+            RNEA => self.run_as::<RNEA>(model, io, out, out2),
+            ABA => self.run_as::<ABA>(model, io, out, out2),
+            CRBA => self.run_as::<CRBA>(model, io, out, out2),
+            CRBA_LOWER => self.run_as::<CRBA_LOWER>(model, io, out, out2),
+            _ => self.run_as::<RNEA_DERIVATIVES>(model, io, out, out2),
+        }
+    }
+
+    /// [`Lanes::run`] for the algorithm of code `A`, in the widest instructions the CPU has for
+    /// this width.
+    #[inline(always)]
+    fn run_as<const A: u8>(
+        &mut self,
+        model: &Model,
+        mut io: Io,
+        out: &mut [f64],
+        out2: &mut [f64],
+    ) -> Result<(), MultibodyError> {
         match self {
             #[cfg(target_arch = "x86_64")]
             Self::W8(p) if std::arch::is_x86_feature_detected!("avx512f") => {
                 // SAFETY: the CPU has AVX-512F (checked above).
-                unsafe { avx512(p, algo, model, &io, out, out2) }
+                unsafe { avx512::<A>(p, model, &io, out, out2) }
             }
             #[cfg(target_arch = "x86_64")]
             Self::W4(p)
@@ -134,11 +173,11 @@ impl Lanes {
             {
                 io.avx = true;
                 // SAFETY: the CPU has AVX2 and FMA (checked above).
-                unsafe { avx2(p, algo, model, &io, out, out2) }
+                unsafe { avx2::<A>(p, model, &io, out, out2) }
             }
-            Self::W2(p) => packs(p, algo, model, &io, out, out2),
-            Self::W4(p) => packs(p, algo, model, &io, out, out2),
-            Self::W8(p) => packs(p, algo, model, &io, out, out2),
+            Self::W2(p) => generic::<2, A>(p, model, &io, out, out2),
+            Self::W4(p) => generic::<4, A>(p, model, &io, out, out2),
+            Self::W8(p) => generic::<8, A>(p, model, &io, out, out2),
         }
     }
 }
@@ -155,42 +194,59 @@ struct Io<'a> {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-fn avx512(
+fn avx512<const A: u8>(
     p: &mut Pack<8>,
-    algo: Algo,
     model: &Model,
     io: &Io,
     out: &mut [f64],
     out2: &mut [f64],
 ) -> Result<(), MultibodyError> {
-    packs(p, algo, model, io, out, out2)
+    packs::<8, A>(p, model, io, out, out2)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn avx2(
+fn avx2<const A: u8>(
     p: &mut Pack<4>,
-    algo: Algo,
     model: &Model,
     io: &Io,
     out: &mut [f64],
     out2: &mut [f64],
 ) -> Result<(), MultibodyError> {
-    packs(p, algo, model, io, out, out2)
+    packs::<4, A>(p, model, io, out, out2)
+}
+
+/// The kernels in the baseline instruction set (SSE2 on x86-64), for widths the CPU has no
+/// wider instructions for (and the tests' forced widths).
+#[inline(never)]
+fn generic<const W: usize, const A: u8>(
+    p: &mut Pack<W>,
+    model: &Model,
+    io: &Io,
+    out: &mut [f64],
+    out2: &mut [f64],
+) -> Result<(), MultibodyError> {
+    packs::<W, A>(p, model, io, out, out2)
 }
 
 /// The task's states `W` at a time: transposed into the lanes (the last pack's missing lanes
 /// repeat its last state, so that every lane computes a valid state), computed, and the lanes
 /// that hold states transposed back out (the derivatives' second output to `out2`).
 #[inline(always)]
-fn packs<const W: usize>(
+fn packs<const W: usize, const A: u8>(
     p: &mut Pack<W>,
-    algo: Algo,
     model: &Model,
     io: &Io,
     out: &mut [f64],
     out2: &mut [f64],
 ) -> Result<(), MultibodyError> {
+    let algo = match A {
+        RNEA => Algo::Rnea,
+        ABA => Algo::Aba,
+        CRBA => Algo::Crba,
+        CRBA_LOWER => Algo::CrbaLower,
+        _ => Algo::RneaDerivatives,
+    };
     let nv = model.nv();
     let per = algo.per_state(nv);
     let count = out.len() / per.max(1);
@@ -249,7 +305,10 @@ fn transpose_out<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], avx: b
     let full = per / W * W;
     #[cfg(target_arch = "x86_64")]
     if W == 4 && avx {
-        assert!(m <= 4 && dst.len() >= m * per, "transpose_out: {m} rows of {per}");
+        assert!(
+            m <= 4 && dst.len() >= m * per,
+            "transpose_out: {m} rows of {per}"
+        );
         let (src4, out) = (src.as_ptr().cast::<[f64; 4]>(), dst.as_mut_ptr());
         for b in (0..full).step_by(4) {
             // SAFETY: `src[b..b + 4]` are four `[f64; 4]` (W = 4); the rows `l < m` of `dst`
