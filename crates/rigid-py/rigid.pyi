@@ -392,6 +392,14 @@ def crba_batch(model: Model, Q: ArrayLike, *, threads: int | None = None
                ) -> npt.NDArray[np.float64]:
     """``crba`` for every row: (N, nv, nv) mass matrices, on ``threads`` threads, GIL released."""
 
+def rnea_derivatives_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
+                           threads: int | None = None
+                           ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """``rnea_derivatives`` for every row: ``(dtau_dq, dtau_dv)``, two (N, nv, nv) arrays, on
+    ``threads`` threads with the GIL released (a single call per state: not yet in SIMD lanes),
+    each block the single call's. The third derivative, ``dtau_da = M``, is
+    ``crba_batch(model, Q)``."""
+
 def regressor_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
                     threads: int | None = None) -> npt.NDArray[np.float64]:
     """``regressor`` for every row: (N, nv, 10·nb), so that ``Y @ π`` is τ for a parameter

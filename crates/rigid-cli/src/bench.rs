@@ -27,13 +27,14 @@ pub struct BenchArgs {
     /// Seed of the random states.
     #[arg(long, default_value_t = 7)]
     seed: u64,
-    /// Report the throughput (states/s) of the batch entry points (RNEA, ABA, CRBA) instead: a
+    /// Report the throughput (states/s) of the batch entry points (RNEA, ABA, CRBA, the RNEA
+    /// derivatives) instead: a
     /// loop of single calls, then `rigid::multibody::batch` (states side by side in SIMD lanes,
     /// packs spread over threads) on each `--threads` count.
     #[arg(long)]
     batch: bool,
     /// Time only these algorithms (comma separated keys, e.g. `rnea,crba`; with `--batch`, of
-    /// `rnea`, `aba`, `crba`, `crba_lower`).
+    /// `rnea`, `aba`, `crba`, `crba_lower`, `rnea_derivatives`).
     #[arg(long, value_delimiter = ',')]
     only: Vec<String>,
     /// Thread counts for `--batch`, comma separated.

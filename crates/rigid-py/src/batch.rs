@@ -1,5 +1,5 @@
 //! Many states at once, on every core, with the GIL released: `rnea_batch`, `aba_batch`,
-//! `crba_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's `multibody::batch`: several states
+//! `crba_batch`, `rnea_derivatives_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's `multibody::batch`: several states
 //! side by side in SIMD lanes). Each state's result is that of the single call to round-off,
 //! and the same bits for any number of threads.
 
@@ -242,13 +242,59 @@ pub fn crba_batch<'py>(
             mb::crba(&core.model, d, q).map(|_| ())
         })
     })?;
-    if let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) {
-        // M_pin[r][c] = M[p(r)][p(c)] in every state
-        let mut m = vec![0.0; nv * nv];
-        for block in out.chunks_exact_mut(nv * nv) {
-            m.copy_from_slice(block);
-            l.permute_matrix(&m, block);
-        }
-    }
+    permute_matrices(core, &mut out);
     numpy::PyArray1::from_vec(py, out).reshape([n, nv, nv])
+}
+
+/// Each state's `nv x nv` blocks of `out` in the model's velocity layout:
+/// `X_pin[r][c] = X[p(r)][p(c)]`.
+fn permute_matrices(core: &ModelCore, out: &mut [f64]) {
+    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
+        return;
+    };
+    let nv = core.nv();
+    let mut m = vec![0.0; nv * nv];
+    for block in out.chunks_exact_mut(nv * nv) {
+        m.copy_from_slice(block);
+        l.permute_matrix(&m, block);
+    }
+}
+
+/// `N` matrices, `(N, rows, cols)`.
+type Matrices<'py> = Bound<'py, PyArray3<f64>>;
+
+/// The derivatives of inverse dynamics for every row: `(∂τ/∂q, ∂τ/∂v)` at `(Q[k], V[k], A[k])`,
+/// two `(N, nv, nv)` arrays, on `threads` threads (None: every core).
+#[pyfunction]
+#[pyo3(signature = (model, q, v, a, *, threads = None))]
+pub fn rnea_derivatives_batch<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    a: &Bound<'py, PyAny>,
+    threads: Option<i64>,
+) -> PyResult<(Matrices<'py>, Matrices<'py>)> {
+    const F: &str = "rnea_derivatives_batch";
+    let pool = crate::scale::pool(F, threads)?;
+    let core = &*model.inner;
+    let (n, qs, va) = inputs(core, F, q, &[("V", v), ("A", a)])?;
+    let (vs, as_) = (&va[0], &va[1]);
+    let nv = core.nv();
+    let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+    crate::scale::detach(py, pool.as_deref(), || {
+        batch::rnea_derivatives_batch(&core.model, &qs, vs, as_, &mut dq, &mut dv)
+    })
+    .map_err(|e| {
+        state_error(core, F, e, &qs, |d, k, q| {
+            let r = k * nv..(k + 1) * nv;
+            mb::rnea_derivatives(&core.model, d, q, &vs[r.clone()], &as_[r]).map(|_| ())
+        })
+    })?;
+    permute_matrices(core, &mut dq);
+    permute_matrices(core, &mut dv);
+    Ok((
+        numpy::PyArray1::from_vec(py, dq).reshape([n, nv, nv])?,
+        numpy::PyArray1::from_vec(py, dv).reshape([n, nv, nv])?,
+    ))
 }

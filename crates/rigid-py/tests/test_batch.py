@@ -112,3 +112,36 @@ def test_batch_releases_the_gil():
     assert t1 - t0 > 0.05, "batch too short to tell"
     inside = [x for x in ticks if t0 + 0.02 < x < t1 - 0.001]
     assert len(inside) >= 3, f"{len(inside)} ticks of the other thread in {t1 - t0:.3f} s"
+
+
+@pytest.mark.parametrize("name", ["ur5", "talos", "all_joints_floating"])
+@pytest.mark.parametrize("layout", ["rigid", "pinocchio"])
+def test_rnea_derivatives_batch_equals_single_calls(name, layout):
+    p = pair(name)
+    m = p.rr if layout == "rigid" else p.rp
+    d = m.create_data()
+    Q, V, A = states(m, 11, 4)
+    dq, dv = rigid.rnea_derivatives_batch(m, Q, V, A)
+    assert dq.shape == dv.shape == (11, m.nv, m.nv)
+    for k in range(len(Q)):
+        sq, sv, _ = rigid.rnea_derivatives(m, d, Q[k], V[k], A[k])
+        assert_close(dq[k], sq, "rnea_derivatives_batch dtau_dq", tol=1e-12)
+        assert_close(dv[k], sv, "rnea_derivatives_batch dtau_dv", tol=1e-12)
+    if layout == "pinocchio":
+        for k in range(3):
+            pdq, pdv, _ = pin.computeRNEADerivatives(p.pm, p.pd, Q[k], V[k], A[k])
+            assert_close(dq[k], pdq, "rnea_derivatives_batch vs Pinocchio dtau_dq")
+            assert_close(dv[k], pdv, "rnea_derivatives_batch vs Pinocchio dtau_dv")
+
+
+def test_rnea_derivatives_batch_refuses_bad_states():
+    m = rigid.Model.builtin("puma560")
+    Q = np.zeros((3, 6))
+    bad = Q.copy()
+    bad[2, 1] = np.inf
+    with pytest.raises(ValueError, match=r"rnea_derivatives_batch: V\[2, 1\] is not finite"):
+        rigid.rnea_derivatives_batch(m, Q, bad, Q)
+    with pytest.raises(ValueError, match=r"rnea_derivatives_batch: state 2 .*q\[1\] is not finite"):
+        rigid.rnea_derivatives_batch(m, bad, Q, Q)
+    with pytest.raises(ValueError, match=r"A has 2 rows, Q has 3"):
+        rigid.rnea_derivatives_batch(m, Q, Q, np.zeros((2, 6)))

@@ -301,6 +301,30 @@ fn loop_crba_lower(
     loop_crba_into(m, r, out, d, nv * (nv + 1) / 2, batch::pack_lower)
 }
 
+/// Single `rnea_derivatives` calls, each state's `∂τ/∂q` then `∂τ/∂v` (column-major, as the
+/// single call leaves them; the batch writes row-major blocks of the same size).
+fn loop_rnea_derivatives(
+    m: &Model,
+    r: &Rows,
+    out: &mut [f64],
+    d: &mut Data,
+) -> Result<(), MultibodyError> {
+    let (nq, nv) = (m.nq(), m.nv());
+    let nn = nv * nv;
+    let (dq, dv) = out.split_at_mut(r.n * nn);
+    for k in 0..r.n {
+        let (q, v, a) = (
+            &r.qs[k * nq..][..nq],
+            &r.vs[k * nv..][..nv],
+            &r.as_[k * nv..][..nv],
+        );
+        let t = rnea_derivatives(m, d, q, v, a)?;
+        dq[k * nn..][..nn].copy_from_slice(t.dtau_dq.as_slice());
+        dv[k * nn..][..nn].copy_from_slice(t.dtau_dv.as_slice());
+    }
+    Ok(())
+}
+
 fn loop_crba(m: &Model, r: &Rows, out: &mut [f64], d: &mut Data) -> Result<(), MultibodyError> {
     loop_crba_into(m, r, out, d, m.nv() * m.nv(), |t, _, out| {
         out.copy_from_slice(t);
@@ -323,8 +347,8 @@ fn median(mut x: Vec<f64>) -> f64 {
 /// The throughput of one batch entry point ([`batch_throughput`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct BatchThroughput {
-    /// `rnea`, `aba`, `crba` or `crba_lower` (the packed lower triangles of
-    /// `Batch::crba_lower`).
+    /// `rnea`, `aba`, `crba`, `crba_lower` (the packed lower triangles of `Batch::crba_lower`)
+    /// or `rnea_derivatives` (`∂τ/∂q` and `∂τ/∂v`).
     pub name: &'static str,
     /// States per second of a loop of single calls.
     pub single: f64,
@@ -346,7 +370,7 @@ pub struct ThreadThroughput {
 }
 
 /// The batch entry points [`batch_throughput`] times.
-pub const BATCH_ALGORITHMS: [&str; 4] = ["rnea", "aba", "crba", "crba_lower"];
+pub const BATCH_ALGORITHMS: [&str; 5] = ["rnea", "aba", "crba", "crba_lower", "rnea_derivatives"];
 
 /// States per second of a loop of single calls and of the batch entry points `names` (keys of
 /// [`BATCH_ALGORITHMS`]; empty: all of them) on each of `threads`, median of `reps` passes
@@ -368,7 +392,7 @@ pub fn batch_throughput(
     }
     let rows = Rows::new(states);
     let nv = model.nv();
-    let kernels: [(&str, usize, Kernel, Single); 4] = [
+    let kernels: [(&str, usize, Kernel, Single); 5] = [
         (
             "rnea",
             nv,
@@ -387,6 +411,15 @@ pub fn batch_throughput(
             nv * (nv + 1) / 2,
             |b, m, r, o| b.crba_lower(m, &r.qs, o),
             loop_crba_lower,
+        ),
+        (
+            "rnea_derivatives",
+            2 * nv * nv,
+            |b, m, r, o| {
+                let (dq, dv) = o.split_at_mut(o.len() / 2);
+                b.rnea_derivatives(m, &r.qs, &r.vs, &r.as_, dq, dv)
+            },
+            loop_rnea_derivatives,
         ),
     ];
     let pools = threads

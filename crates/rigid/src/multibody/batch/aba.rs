@@ -38,7 +38,7 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
         let G = &model.inertias()[i];
         p.IA[i] = I6::from_inertia(G);
         p.F[i] = V.cross_star(&momentum(G, &V));
-        p.X[i] = X;
+        p.X[i].set(&X);
         p.V[i] = V;
         p.A[i] = c;
     }

@@ -56,8 +56,9 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
             p.M[at] += model.armature()[k];
         }
         if let Some(par) = j.parent {
-            let y = p.Ic[i];
-            let c = &mut p.Ic[par.0];
+            // a parent comes before its child
+            let (before, from_i) = p.Ic.split_at_mut(i);
+            let (y, c) = (&from_i[0], &mut before[par.0]);
             c.m += y.m;
             c.h += y.h;
             for r in 0..3 {
@@ -103,7 +104,7 @@ fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
         }
         Some(par) if model.joints()[par.0].parent.is_none() => placement(model, i, &p.q),
         Some(par) => {
-            let rMp = p.rX[par.0];
+            let rMp = &p.rX[par.0];
             let (R, t) = (&rMp.r, &plan.placement_translation[i]);
             let angle = || trig::sin_cos_lanes(p.q[j.idx_q].0);
             match (shape, plan.placement[i]) {
@@ -171,7 +172,7 @@ fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
     for k in j.dofs() {
         p.J[k] = column(model, &p.S, k, &rMi);
     }
-    p.rX[i] = rMi;
+    p.rX[i].set(&rMi);
 }
 
 /// `[Ad_{rMi}] S_k`: column `k` in the root frame, `(R s_ω, R s_v + p × R s_ω)` (a column of `R`

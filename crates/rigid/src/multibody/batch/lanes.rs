@@ -464,6 +464,16 @@ impl<const W: usize> X<W> {
         }
     }
 
+    /// `*self = *x`, row by row: a copy of the whole pose (12 lane vectors, 384 bytes with 4
+    /// lanes) would be a call to `memcpy` in the kernels' loops.
+    #[inline(always)]
+    pub(crate) fn set(&mut self, x: &Self) {
+        for r in 0..3 {
+            self.r.0[r] = x.r.0[r];
+        }
+        self.p = x.p;
+    }
+
     /// `[Ad_{X⁻¹}] T`: a twist of the parent frame in the child frame,
     /// `(Rᵀ ω, Rᵀ (v − p × ω))` ([`Transform::inv_act_twist`](crate::spatial::Transform::inv_act_twist)).
     #[inline(always)]

@@ -31,7 +31,7 @@ pub(super) fn rnea<const W: usize>(model: &Model, p: &mut Pack<W>) {
         }
         let G = &model.inertias()[i];
         p.F[i] = momentum(G, &A) + V.cross_star(&momentum(G, &V));
-        p.X[i] = X;
+        p.X[i].set(&X);
         p.V[i] = V;
         p.A[i] = A;
     }

@@ -233,13 +233,15 @@ fn transpose_out<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], avx: b
     let full = per / W * W;
     #[cfg(target_arch = "x86_64")]
     if W == 4 && avx {
-        let src4 = src.as_ptr().cast::<[f64; 4]>();
+        assert!(
+            m <= 4 && dst.len() >= m * per,
+            "transpose_out: {m} rows of {per}"
+        );
+        let (src4, out) = (src.as_ptr().cast::<[f64; 4]>(), dst.as_mut_ptr());
         for b in (0..full).step_by(4) {
-            // SAFETY: `src[b..b + 4]` are four `[f64; 4]` (W = 4), and the CPU has AVX.
-            let rows = unsafe { transpose4(src4.add(b)) };
-            for (l, row) in rows[..m].iter().enumerate() {
-                dst[l * per + b..][..4].copy_from_slice(row);
-            }
+            // SAFETY: `src[b..b + 4]` are four `[f64; 4]` (W = 4); the rows `l < m` of `dst`
+            // hold `per ≥ b + 4` numbers each (asserted above); the CPU has AVX.
+            unsafe { transpose4(src4.add(b), out.add(b), per, m) };
         }
     } else {
         transpose_blocks(src, m, dst);
@@ -273,20 +275,22 @@ fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64]) {
     }
 }
 
-/// The 4x4 block at `src` (four rows of four) transposed: `unpacklo/hi` pair the rows' even and
-/// odd entries within each 128-bit half, `permute2f128` joins the halves.
+/// The 4x4 block at `src` (four rows of four) transposed into the first `m` rows at `dst`,
+/// `stride` apart: `unpacklo/hi` pair the rows' even and odd entries within each 128-bit half,
+/// `permute2f128` joins the halves.
 ///
 /// # Safety
-/// `src` points to four readable `[f64; 4]`, and the CPU has AVX.
+/// `src` points to four readable `[f64; 4]`, `dst + l stride` to four writable `f64` for
+/// `l < m ≤ 4`, and the CPU has AVX.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[inline]
-unsafe fn transpose4(src: *const [f64; 4]) -> [[f64; 4]; 4] {
+unsafe fn transpose4(src: *const [f64; 4], dst: *mut f64, stride: usize, m: usize) {
     use std::arch::x86_64::{
         _mm256_loadu_pd, _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
         _mm256_unpacklo_pd,
     };
-    // SAFETY: the caller's promise; the stores write the four arrays of `out`.
+    // SAFETY: the caller's promise.
     unsafe {
         let [a, b, c, d] = [0, 1, 2, 3].map(|k| _mm256_loadu_pd(src.add(k).cast()));
         let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
@@ -297,10 +301,14 @@ unsafe fn transpose4(src: *const [f64; 4]) -> [[f64; 4]; 4] {
             _mm256_permute2f128_pd(t0, t2, 0x31),
             _mm256_permute2f128_pd(t1, t3, 0x31),
         ];
-        let mut out = [[0.0; 4]; 4];
-        for (o, r) in out.iter_mut().zip(rows) {
-            _mm256_storeu_pd(o.as_mut_ptr(), r);
+        if m == 4 {
+            for (l, r) in rows.into_iter().enumerate() {
+                _mm256_storeu_pd(dst.add(l * stride), r);
+            }
+        } else {
+            for (l, r) in rows.into_iter().take(m).enumerate() {
+                _mm256_storeu_pd(dst.add(l * stride), r);
+            }
         }
-        out
     }
 }
