@@ -1,7 +1,8 @@
 //! Many states at once, on every core, with the GIL released: `rnea_batch`, `aba_batch`,
-//! `crba_batch`, `rnea_derivatives_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's `multibody::batch`: several states
-//! side by side in SIMD lanes). Each state's result is that of the single call to round-off,
-//! and the same bits for any number of threads.
+//! `crba_batch` (rigid's `multibody::batch`: several states side by side in SIMD lanes) and
+//! `rnea_derivatives_batch` (single calls spread over the threads) over `(N, nq)` / `(N, nv)`
+//! arrays. Each state's result is that of the single call to round-off, and the same bits for
+//! any number of threads.
 
 use crate::convert::{matrix, rows_array, value_error, Matrix};
 use crate::model::{Model, ModelCore};
