@@ -28,9 +28,8 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 7)]
     seed: u64,
     /// Report the throughput (states/s) of the batch entry points (RNEA, ABA, CRBA, the RNEA
-    /// derivatives) instead: a
-    /// loop of single calls, then `rigid::multibody::batch` (states side by side in SIMD lanes,
-    /// packs spread over threads) on each `--threads` count.
+    /// derivatives) instead: a loop of single calls, then `rigid::multibody::batch` (states side
+    /// by side in SIMD lanes, packs spread over threads) on each `--threads` count.
     #[arg(long)]
     batch: bool,
     /// Time only these algorithms (comma separated keys, e.g. `rnea,crba`; with `--batch`, of

@@ -1,7 +1,7 @@
 //! Many states at once, on every core, with the GIL released: `rnea_batch`, `aba_batch`,
-//! `crba_batch`, `rnea_derivatives_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's `multibody::batch`: several states
-//! side by side in SIMD lanes). Each state's result is that of the single call to round-off,
-//! and the same bits for any number of threads.
+//! `crba_batch`, `rnea_derivatives_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's
+//! `multibody::batch`: several states side by side in SIMD lanes). Each state's result is that
+//! of the single call to round-off, and the same bits for any number of threads.
 
 use crate::convert::{matrix, rows_array, value_error, Matrix};
 use crate::model::{Model, ModelCore};
@@ -260,6 +260,9 @@ fn permute_matrices(core: &ModelCore, out: &mut [f64]) {
     }
 }
 
+/// `N` matrices, `(N, rows, cols)`.
+type Matrices<'py> = Bound<'py, PyArray3<f64>>;
+
 /// The derivatives of inverse dynamics for every row: `(∂τ/∂q, ∂τ/∂v)` at `(Q[k], V[k], A[k])`,
 /// two `(N, nv, nv)` arrays, on `threads` threads (None: every core).
 #[pyfunction]
@@ -271,7 +274,7 @@ pub fn rnea_derivatives_batch<'py>(
     v: &Bound<'py, PyAny>,
     a: &Bound<'py, PyAny>,
     threads: Option<i64>,
-) -> PyResult<(Bound<'py, PyArray3<f64>>, Bound<'py, PyArray3<f64>>)> {
+) -> PyResult<(Matrices<'py>, Matrices<'py>)> {
     const F: &str = "rnea_derivatives_batch";
     let pool = crate::scale::pool(F, threads)?;
     let core = &*model.inner;

@@ -235,6 +235,16 @@ impl Rows {
             as_: s.a.concat(),
         }
     }
+
+    /// State `k`: its `q`, `v` and `a` rows.
+    fn state(&self, m: &Model, k: usize) -> (&[f64], &[f64], &[f64]) {
+        let (nq, nv) = (m.nq(), m.nv());
+        (
+            &self.qs[k * nq..][..nq],
+            &self.vs[k * nv..][..nv],
+            &self.as_[k * nv..][..nv],
+        )
+    }
 }
 
 /// A batch entry point on row-major states, with workspaces made once per thread pool.
@@ -250,15 +260,10 @@ fn loop_qvx(
     out: &mut [f64],
     d: &mut Data,
 ) -> Result<(), MultibodyError> {
-    let (nq, nv) = (m.nq(), m.nv());
+    let nv = m.nv();
     for k in 0..r.n {
-        let t = f(
-            m,
-            d,
-            &r.qs[k * nq..][..nq],
-            &r.vs[k * nv..][..nv],
-            &r.as_[k * nv..][..nv],
-        )?;
+        let (q, v, x) = r.state(m, k);
+        let t = f(m, d, q, v, x)?;
         out[k * nv..][..nv].copy_from_slice(t.as_slice());
     }
     Ok(())
@@ -309,15 +314,10 @@ fn loop_rnea_derivatives(
     out: &mut [f64],
     d: &mut Data,
 ) -> Result<(), MultibodyError> {
-    let (nq, nv) = (m.nq(), m.nv());
-    let nn = nv * nv;
+    let nn = m.nv() * m.nv();
     let (dq, dv) = out.split_at_mut(r.n * nn);
     for k in 0..r.n {
-        let (q, v, a) = (
-            &r.qs[k * nq..][..nq],
-            &r.vs[k * nv..][..nv],
-            &r.as_[k * nv..][..nv],
-        );
+        let (q, v, a) = r.state(m, k);
         let t = rnea_derivatives(m, d, q, v, a)?;
         dq[k * nn..][..nn].copy_from_slice(t.dtau_dq.as_slice());
         dv[k * nn..][..nn].copy_from_slice(t.dtau_dv.as_slice());

@@ -56,8 +56,16 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
             p.M[at] += model.armature()[k];
         }
         if let Some(par) = j.parent {
-            let y = p.Ic[i];
-            p.Ic[par.0] += y;
+            // a parent comes before its child
+            let (before, from_i) = p.Ic.split_at_mut(i);
+            let (y, c) = (&from_i[0], &mut before[par.0]);
+            c.m += y.m;
+            c.h += y.h;
+            for r in 0..3 {
+                for s in 0..3 {
+                    c.i.0[r][s] += y.i.0[r][s];
+                }
+            }
         }
     }
 }
@@ -81,7 +89,7 @@ pub(super) fn packed_at(nv: usize, r: usize, c: usize) -> usize {
 ///   `R_λ`; anything else is the product `rM_λ liMi`;
 /// - `rG_i` by the body's [`PrincipalForm`] when it has one, else by the adjoint congruence.
 #[inline(always)]
-pub(super) fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
+fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
     let plan = model.plan();
     let j = &model.joints()[i];
     let shape = j.kind.shape();
@@ -260,7 +268,7 @@ fn moved<const W: usize>(G: &SpatialInertia, x: &X<W>) -> I3<W> {
 
 /// `I T` of a spatial inertia `(m, h, I_O)` and a twist per lane: `(I_O ω + h × v, m v − h × ω)`.
 #[inline(always)]
-pub(super) fn inertia_twist<const W: usize>(y: &I3<W>, t: &T6<W>) -> T6<W> {
+fn inertia_twist<const W: usize>(y: &I3<W>, t: &T6<W>) -> T6<W> {
     T6 {
         w: y.i.mul_v(&t.w) + y.h.cross(&t.v),
         v: t.v.scale(y.m) - y.h.cross(&t.w),

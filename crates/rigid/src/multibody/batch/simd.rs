@@ -373,6 +373,7 @@ unsafe fn transpose4(src: *const [f64; 4], dst: *mut f64, stride: usize, m: usiz
             _mm256_permute2f128_pd(t0, t2, 0x31),
             _mm256_permute2f128_pd(t1, t3, 0x31),
         ];
+        // every pack but a task's last is full: four stores with no count to test
         if m == 4 {
             for (l, r) in rows.into_iter().enumerate() {
                 _mm256_storeu_pd(dst.add(l * stride), r);
