@@ -89,7 +89,7 @@ pub(super) fn packed_at(nv: usize, r: usize, c: usize) -> usize {
 ///   `R_λ`; anything else is the product `rM_λ liMi`;
 /// - `rG_i` by the body's [`PrincipalForm`] when it has one, else by the adjoint congruence.
 #[inline(always)]
-fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
+pub(super) fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
     let plan = model.plan();
     let j = &model.joints()[i];
     let shape = j.kind.shape();
@@ -268,7 +268,7 @@ fn moved<const W: usize>(G: &SpatialInertia, x: &X<W>) -> I3<W> {
 
 /// `I T` of a spatial inertia `(m, h, I_O)` and a twist per lane: `(I_O ω + h × v, m v − h × ω)`.
 #[inline(always)]
-fn inertia_twist<const W: usize>(y: &I3<W>, t: &T6<W>) -> T6<W> {
+pub(super) fn inertia_twist<const W: usize>(y: &I3<W>, t: &T6<W>) -> T6<W> {
     T6 {
         w: y.i.mul_v(&t.w) + y.h.cross(&t.v),
         v: t.v.scale(y.m) - y.h.cross(&t.w),

@@ -199,7 +199,8 @@ pub(crate) fn placement<const W: usize>(model: &Model, i: usize, q: &[L<W>]) -> 
         }
         JointType::Prismatic { axis } => X {
             r: M3::splat(&T.rotation),
-            p: V3::c_scale(&(T.rotation * axis), q[iq]) + V3::splat(&T.translation),
+            // R_T (a q) + t_T, in the single call's order (not (R_T a) q)
+            p: V3::c_mat(&T.rotation, &V3::c_scale(&axis, q[iq])) + V3::splat(&T.translation),
         },
         JointType::FreeFlyer => {
             let r = quat_to_rot(q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]);
