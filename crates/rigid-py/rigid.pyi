@@ -397,7 +397,7 @@ def rnea_derivatives_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLik
                            ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """``rnea_derivatives`` for every row: ``(dtau_dq, dtau_dv)``, two (N, nv, nv) arrays, on
     ``threads`` threads with the GIL released, several states side by side in SIMD lanes; each
-    block equals the single call's to round-off (1e-12). The third derivative, ``dtau_da = M``, is
+    block equals the single call's (bit for bit on revolute, prismatic and free-flyer joints). The third derivative, ``dtau_da = M``, is
     ``crba_batch(model, Q)``."""
 
 def regressor_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
