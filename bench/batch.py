@@ -7,9 +7,10 @@
 Each round runs, back to back on one pinned core (the order alternating between rounds):
   - `rigid bench MODEL [--floating] --batch --threads 1 --json` (release build): states per
     second of the loop of single calls and of the SIMD batch on one thread, for RNEA, ABA, CRBA
-    (the full matrices) and CRBA's packed lower triangles;
+    (the full matrices), CRBA's packed lower triangles and the RNEA derivatives;
   - Pinocchio's timing program (bench/pinocchio, the fastest of its build variants per
-    algorithm): ns per single call of rnea, aba, crba.
+    algorithm): ns per single call of rnea, aba, crba, computeRNEADerivatives (which also fills
+    M's upper triangle).
 It prints, per model and algorithm, the median over rounds of:
   - batch / Pinocchio: rigid's batch time per state over Pinocchio's time per call (the issue's
     bar: at most 0.25);
@@ -29,7 +30,10 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import compare  # noqa: E402  (the model manifest, Pinocchio's runner, core pinning)
 
-ALGOS = [("rnea", "rnea"), ("aba", "aba"), ("crba", "crba"), ("crba_lower", "crba")]
+# (rigid's batch key, Pinocchio's single-call key); Pinocchio's computeRNEADerivatives also
+# fills M's upper triangle, which rigid's batch derivatives do not compute
+ALGOS = [("rnea", "rnea"), ("aba", "aba"), ("crba", "crba"), ("crba_lower", "crba"),
+         ("rnea_derivatives", "rnea_derivatives")]
 
 
 def run_rigid_batch(model, states, reps):
