@@ -261,8 +261,9 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
                 }
                 derivatives_bitwise += usize::from(e[4..] == [0.0, 0.0]);
                 assert_close(&format!("{} (floating {floating})", file.display()), e);
-                // the batch CRBA takes the single call's steps in the same order (revolute,
-                // prismatic and free-flyer joints in lanes): the same numbers, bit for bit
+                // the batch CRBA and RNEA derivatives take the single calls' steps in the same
+                // order (revolute, prismatic and free-flyer joints in lanes): the same numbers,
+                // bit for bit
                 if model.joints().iter().all(|j| {
                     matches!(
                         j.kind,
@@ -277,14 +278,20 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
                         "{}: CRBA not bit for bit",
                         file.display()
                     );
+                    assert_eq!(
+                        e[4..],
+                        [0.0, 0.0],
+                        "{}: RNEA derivatives not bit for bit",
+                        file.display()
+                    );
                     bitwise += 1;
                 }
                 compared += 1;
             }
         }
         eprintln!(
-            "{}: {compared} models in {width} lanes, CRBA bit for bit on {bitwise}, the RNEA \
-             derivatives on {derivatives_bitwise}; largest relative differences {}",
+            "{}: {compared} models in {width} lanes, CRBA and the RNEA derivatives bit for bit on \
+             {bitwise} (asked), the RNEA derivatives on {derivatives_bitwise}; largest relative differences {}",
             dir.display(),
             sci(&largest)
         );
