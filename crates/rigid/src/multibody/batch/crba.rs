@@ -58,14 +58,7 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
         if let Some(par) = j.parent {
             // a parent comes before its child
             let (before, from_i) = p.Ic.split_at_mut(i);
-            let (y, c) = (&from_i[0], &mut before[par.0]);
-            c.m += y.m;
-            c.h += y.h;
-            for r in 0..3 {
-                for s in 0..3 {
-                    c.i.0[r][s] += y.i.0[r][s];
-                }
-            }
+            before[par.0] += &from_i[0];
         }
     }
 }

@@ -201,7 +201,7 @@ fn backward<const W: usize>(model: &Model, p: &mut Pack<W>, d: &mut DerivPack<W>
             d.df_dq[k] += p.J[k].cross_star(&F);
         }
         if let Some(par) = j.parent {
-            p.Ic[par.0] += Y;
+            p.Ic[par.0] += &Y;
             d.force[par.0] += F;
             d.momentum[par.0] += H;
             for (x, y) in d.sym[par.0].iter_mut().zip(S) {

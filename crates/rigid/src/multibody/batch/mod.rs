@@ -70,9 +70,9 @@ fn count(
 }
 
 /// The workspaces of the batch entry points: one lane workspace (RNEA, ABA, CRBA, the RNEA
-/// derivatives) and one [`Data`] (the ABA derivatives) per task, a few tasks per thread of the current rayon pool, made
-/// once and reused by every call, so that a batch call allocates nothing per state and nothing
-/// per call (as Pinocchio's `ModelPool`).
+/// derivatives) and one [`Data`] (the ABA derivatives) per task, a few tasks per thread of the
+/// current rayon pool, made once and reused by every call, so that a batch call allocates
+/// nothing per state and nothing per call (as Pinocchio's `ModelPool`).
 ///
 /// ```
 /// use rigid::multibody::{batch::Batch, puma560, Puma560Options};

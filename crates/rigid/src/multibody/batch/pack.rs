@@ -327,11 +327,12 @@ impl<const W: usize> I3<W> {
     }
 }
 
-impl<const W: usize> std::ops::AddAssign for I3<W> {
+impl<const W: usize> std::ops::AddAssign<&I3<W>> for I3<W> {
     /// The inertia of two bodies rigidly joined, both in the same frame (entry by entry, as
-    /// [`SpatialInertia`]'s `+=`).
+    /// [`SpatialInertia`]'s `+=`), `y` borrowed (a copy of its 13 lane vectors would be a call to
+    /// `memcpy`).
     #[inline(always)]
-    fn add_assign(&mut self, y: Self) {
+    fn add_assign(&mut self, y: &Self) {
         self.m += y.m;
         self.h += y.h;
         for r in 0..3 {
