@@ -4,8 +4,8 @@
 //! backward pass is additions, and each entry of `M` is one product `M_lk = J_kᵀ F_l` of
 //! {r}-frame columns, written down a contiguous column of the packed lower triangle.
 
-use super::lanes::{L, M3, T6, V3, X};
-use super::pack::{placement, rotate_about, s_dot, Pack, I3};
+use super::lanes::{one_iteration_at_a_time, L, M3, T6, V3, X};
+use super::pack::{placement, rotate_about, Pack, I3};
 use crate::mass::{PrincipalForm, SpatialInertia};
 use crate::multibody::joint::Shape;
 use crate::multibody::plan::PlacementKind;
@@ -41,14 +41,16 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
             let at = packed_at(nv, k, k);
             let column = p.M[at..at + end_v - k].iter_mut().zip(&p.Fk[k..end_v]);
             match (j.parent, model.plan().dof_axis[k]) {
-                (None, Some(_)) => {
+                (None, Some((c, s))) => {
                     for (m, F) in column {
-                        *m = s_dot(model, &p.S, k, F);
+                        one_iteration_at_a_time();
+                        *m = F.get(c) * s;
                     }
                 }
                 _ => {
                     let Jk = p.J[k];
                     for (m, F) in column {
+                        one_iteration_at_a_time();
                         *m = Jk.dot(F);
                     }
                 }

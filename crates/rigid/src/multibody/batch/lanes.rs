@@ -95,6 +95,23 @@ impl<const W: usize> Neg for L<W> {
     }
 }
 
+/// Marks the body of a loop over lane vectors that LLVM must not vectorize a second time.
+///
+/// LLVM's loop vectorizer runs before its SLP vectorizer, so it sees each lane operation as `W`
+/// scalar ones and may vectorize *across iterations*: four of a column's dot products at once,
+/// their operands gathered lane by lane (`vmovsd`, `vmovhpd`, `vinsertf128`). In the lane CRBA's
+/// columns on TALOS that took 180 instructions per four entries where the loop it replaced takes
+/// 17 per entry. The loop vectorizer cannot widen an assembly block, so an empty one keeps it off
+/// the loop; the block emits nothing and touches no memory, register or flag.
+#[inline(always)]
+pub(crate) fn one_iteration_at_a_time() {
+    #[cfg(any(target_arch = "x86_64", target_arch = "aarch64"))]
+    // SAFETY: the block is empty; `nomem` and `preserves_flags` say it touches nothing.
+    unsafe {
+        std::arch::asm!("", options(nomem, nostack, preserves_flags));
+    }
+}
+
 /// A 3-vector per lane.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct V3<const W: usize>(pub(crate) [L<W>; 3]);

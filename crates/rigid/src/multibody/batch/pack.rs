@@ -41,9 +41,6 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) Dinv: Vec<[L<W>; 36]>,
     pub(crate) U: Vec<T6<W>>,
     pub(crate) u: Vec<L<W>>,
-    /// CRBA: the `W` states' packed lower triangles, before they are unfolded into full
-    /// matrices.
-    pub(crate) scratch: Vec<f64>,
     /// The RNEA derivatives' workspace, made on their first call.
     pub(crate) deriv: Option<Box<DerivPack<W>>>,
 }
@@ -72,7 +69,6 @@ impl<const W: usize> Pack<W> {
             Dinv: vec![[z; 36]; n],
             U: vec![T6::zero(); nv],
             u: vec![z; nv],
-            scratch: vec![0.0; W * nv * (nv + 1) / 2],
             deriv: None,
         }
     }

@@ -264,29 +264,25 @@ fn packs<const W: usize, const A: u8>(
         }
         let o = &mut out[s * per..(s + m) * per];
         match algo {
-            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o, io.avx),
-            Algo::CrbaLower => transpose_out(&p.M, m, o, io.avx),
+            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o, p.out.len(), io.avx),
+            Algo::CrbaLower => transpose_out(&p.M, m, o, per, io.avx),
             Algo::RneaDerivatives => {
                 if let Some(d) = &p.deriv {
-                    transpose_out(&d.dq, m, o, io.avx);
-                    transpose_out(&d.dv, m, &mut out2[s * per..(s + m) * per], io.avx);
+                    transpose_out(&d.dq, m, o, per, io.avx);
+                    let o2 = &mut out2[s * per..(s + m) * per];
+                    transpose_out(&d.dv, m, o2, per, io.avx);
                 }
             }
             Algo::Crba => {
-                let lower = nv * (nv + 1) / 2;
-                let mut scratch = std::mem::take(&mut p.scratch);
-                transpose_out(&p.M, m, &mut scratch[..m * lower], io.avx);
-                // column c of M: rows c.. are packed column c (contiguous), rows ..c are row c
-                // of the lower triangle (M is symmetric)
-                for (o, packed) in o.chunks_exact_mut(per).zip(scratch.chunks_exact(lower)) {
-                    for (c, col) in o.chunks_exact_mut(nv).enumerate() {
-                        for (r, y) in col[..c].iter_mut().enumerate() {
-                            *y = packed[packed_at(nv, c, r)];
-                        }
-                        col[c..].copy_from_slice(&packed[packed_at(nv, c, c)..][..nv - c]);
-                    }
+                // M is symmetric: row c from column c of the packed triangle (its entries from
+                // the diagonal on), then each row's entries left of the diagonal from the rows above
+                for c in 0..nv {
+                    let at = packed_at(nv, c, c);
+                    transpose_out(&p.M[at..at + nv - c], m, &mut o[c * nv + c..], per, io.avx);
                 }
-                p.scratch = scratch;
+                for o in o.chunks_exact_mut(per) {
+                    mirror_upper(o, nv);
+                }
             }
         }
         s += W;
@@ -294,45 +290,52 @@ fn packs<const W: usize, const A: u8>(
     Ok(())
 }
 
-/// Lanes `0..m` of `src` (one lane vector per output index) into the `m` rows of `dst`, each
-/// `src.len()` long (row `l` is lane `l`'s state): `W x W` blocks transposed in registers, then
-/// the remainder one by one. With 4 lanes and `avx` (the CPU has it), each block is four
-/// unpacks and four lane permutes ([`transpose4`]); the compiler makes scalar moves through
-/// the stack of the generic loop.
+/// Lanes `0..m` of `src` (one lane vector per output index) into `m` rows of `dst`, `stride`
+/// apart (row `l`, lane `l`'s numbers, is `dst[l stride..][..src.len()]`): `W x W` blocks
+/// transposed in registers, then the remainder one by one. With 4 lanes and `avx` (the CPU has
+/// it), each block is four unpacks and four lane permutes ([`transpose4`]); the compiler makes
+/// scalar moves through the stack of the generic loop.
 #[inline(always)]
-fn transpose_out<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], avx: bool) {
+fn transpose_out<const W: usize>(
+    src: &[L<W>],
+    m: usize,
+    dst: &mut [f64],
+    stride: usize,
+    avx: bool,
+) {
     let per = src.len();
     let full = per / W * W;
+    assert!(
+        m <= W && per <= stride && (m == 0 || dst.len() >= (m - 1) * stride + per),
+        "transpose_out: {m} rows of {per}, {stride} apart, into {}",
+        dst.len()
+    );
     #[cfg(target_arch = "x86_64")]
     if W == 4 && avx {
-        assert!(
-            m <= 4 && dst.len() >= m * per,
-            "transpose_out: {m} rows of {per}"
-        );
         let (src4, out) = (src.as_ptr().cast::<[f64; 4]>(), dst.as_mut_ptr());
         for b in (0..full).step_by(4) {
             // SAFETY: `src[b..b + 4]` are four `[f64; 4]` (W = 4); the rows `l < m` of `dst`
             // hold `per ≥ b + 4` numbers each (asserted above); the CPU has AVX.
-            unsafe { transpose4(src4.add(b), out.add(b), per, m) };
+            unsafe { transpose4(src4.add(b), out.add(b), stride, m) };
         }
     } else {
-        transpose_blocks(src, m, dst);
+        transpose_blocks(src, m, dst, stride);
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
         let _ = avx;
-        transpose_blocks(src, m, dst);
+        transpose_blocks(src, m, dst, stride);
     }
     for (t, x) in src.iter().enumerate().skip(full) {
         for l in 0..m {
-            dst[l * per + t] = x.0[l];
+            dst[l * stride + t] = x.0[l];
         }
     }
 }
 
 /// The `W x W` blocks of [`transpose_out`], lane by lane.
 #[inline(always)]
-fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64]) {
+fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], stride: usize) {
     let per = src.len();
     for b in (0..per / W * W).step_by(W) {
         let mut block = [[0.0; W]; W];
@@ -342,7 +345,7 @@ fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64]) {
             }
         }
         for (l, row) in block[..m].iter().enumerate() {
-            dst[l * per + b..][..W].copy_from_slice(row);
+            dst[l * stride + b..][..W].copy_from_slice(row);
         }
     }
 }
@@ -382,6 +385,18 @@ unsafe fn transpose4(src: *const [f64; 4], dst: *mut f64, stride: usize, m: usiz
             for (l, r) in rows.into_iter().take(m).enumerate() {
                 _mm256_storeu_pd(dst.add(l * stride), r);
             }
+        }
+    }
+}
+
+/// The entries left of the diagonal of the row-major `n x n` symmetric matrix `a` from those
+/// right of it: `a_rc = a_cr` for `r > c`.
+#[inline(always)]
+fn mirror_upper(a: &mut [f64], n: usize) {
+    for r in 1..n {
+        let (above, row) = a.split_at_mut(r * n);
+        for (c, y) in row[..r].iter_mut().enumerate() {
+            *y = above[c * n + r];
         }
     }
 }
