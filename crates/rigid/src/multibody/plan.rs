@@ -8,6 +8,7 @@
 //! | `dof_S`, `dof_joint`, `dof_axis` | the motion-subspace columns of constant-`S` joints, and when a column is `±e_c` (then `I S` is a column of `I` and `Sᵀ F` one component of `F`) |
 //! | `placement` ([`PlacementKind`]) | `R_λ R_T` as a column pick (signed permutation) or two columns turned (a turn about a coordinate axis) instead of a 3x3 product |
 //! | `placement_translation` | `R_λ t` as a scaled column when `t` lies on a coordinate axis |
+//! | `subtree_end_v` | where each joint's subtree's dofs end (`idx_v..subtree_end_v[i]`), read by every backward pass over a subtree's columns |
 //! | `chain_angles` | the angles whose sines and cosines CRBA's first pass computes ahead of the chain, several at a time |
 //! | `principal` | each body's inertia in its [`PrincipalForm`], cheaper to rotate |
 //!
@@ -63,6 +64,9 @@ pub(crate) struct Plan {
     pub(crate) placement: Vec<PlacementKind>,
     /// Per joint: `X_T`'s translation, kept as `s e_k` when it lies on a coordinate axis.
     pub(crate) placement_translation: Vec<ModelVec3>,
+    /// Per joint: the end of its subtree's dofs, `idx_v + nv` of the subtree's last joint (the
+    /// subtree's dofs are `idx_v..subtree_end_v`, joints being depth-first).
+    pub(crate) subtree_end_v: Vec<usize>,
     /// The `q` indices of the joints for which [`Plan::reads_chain_angle`] holds.
     pub(crate) chain_angles: Vec<usize>,
     /// Per body: its inertia's principal form, `None` when it has none.
@@ -86,6 +90,13 @@ impl Plan {
             placement_translation: joints
                 .iter()
                 .map(|j| ModelVec3::new(&j.placement.translation))
+                .collect(),
+            subtree_end_v: joints
+                .iter()
+                .map(|j| {
+                    let last = &joints[j.subtree_end - 1];
+                    last.idx_v + last.nv
+                })
                 .collect(),
             chain_angles: Vec::new(),
             principal: inertias.iter().map(PrincipalForm::new).collect(),

@@ -78,10 +78,7 @@ pub fn crba<'a>(
     for i in (0..n).rev() {
         let ji = &model.joints()[i];
         let Ic = data.composite_inertias[i];
-        let end_v = {
-            let last = &model.joints()[ji.subtree_end - 1];
-            last.idx_v + last.nv
-        };
+        let end_v = model.plan().subtree_end_v[i];
         let dofs = ji.idx_v..ji.idx_v + ji.nv;
         if ji.parent.is_none() && ji.kind == JointType::FreeFlyer {
             // J = 1₆ in the root frame: the 6x6 block is Ic itself, row r of column l is F_l[r]

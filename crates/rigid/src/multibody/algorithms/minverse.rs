@@ -99,8 +99,7 @@ pub(crate) fn minverse_unchecked(
     let minv = data.minv.as_mut_slice();
     for i in (0..n).rev() {
         let j = &model.joints()[i];
-        let last = &model.joints()[j.subtree_end - 1];
-        let end = last.idx_v + last.nv;
+        let end = model.plan().subtree_end_v[i];
         let (head, tail) = data.ia.split_at_mut(i);
         let parent_ia = j.parent.map(|p| &mut head[p.0]);
         let bw = Backward {
@@ -126,8 +125,7 @@ pub(crate) fn minverse_unchecked(
     }
     for i in 0..n {
         let j = &model.joints()[i];
-        let last = &model.joints()[j.subtree_end - 1];
-        let end = last.idx_v + last.nv;
+        let end = model.plan().subtree_end_v[i];
         let d = data.minv_depth[i];
         // rows of the depth stack: A of the joint being processed at depth d, its parent at d - 1
         // (depth-first order: the last joint seen at depth d - 1 is the parent)

@@ -163,10 +163,7 @@ fn backward<const W: usize>(model: &Model, p: &mut Pack<W>, d: &mut DerivPack<W>
     for (i, j) in joints.iter().enumerate().rev() {
         let (Y, F, S, H) = (p.Ic[i], d.force[i], d.sym[i], d.momentum[i]);
         let (iv, own) = (j.idx_v, j.idx_v + j.nv);
-        let end = {
-            let last = &joints[j.subtree_end - 1];
-            last.idx_v + last.nv
-        };
+        let end = model.plan().subtree_end_v[i];
         for k in iv..own {
             let Jk = p.J[k];
             d.yj[k] = inertia_twist(&Y, &Jk);

@@ -281,7 +281,7 @@ fn packs<const W: usize, const A: u8>(
                     transpose_out(&p.M[at..at + nv - c], m, &mut o[c * nv + c..], per, io.avx);
                 }
                 for o in o.chunks_exact_mut(per) {
-                    mirror_upper(o, nv);
+                    mirror_upper(o, nv, io.avx);
                 }
             }
         }
@@ -312,11 +312,11 @@ fn transpose_out<const W: usize>(
     );
     #[cfg(target_arch = "x86_64")]
     if W == 4 && avx {
-        let (src4, out) = (src.as_ptr().cast::<[f64; 4]>(), dst.as_mut_ptr());
+        let (src4, out) = (src.as_ptr().cast::<f64>(), dst.as_mut_ptr());
         for b in (0..full).step_by(4) {
-            // SAFETY: `src[b..b + 4]` are four `[f64; 4]` (W = 4); the rows `l < m` of `dst`
-            // hold `per ≥ b + 4` numbers each (asserted above); the CPU has AVX.
-            unsafe { transpose4(src4.add(b), out.add(b), stride, m) };
+            // SAFETY: `src[b..b + 4]` are four rows of four `f64` (W = 4); the rows `l < m` of
+            // `dst` hold `per ≥ b + 4` numbers each (asserted above); the CPU has AVX.
+            unsafe { transpose4(src4.add(4 * b), 4, out.add(b), stride, m) };
         }
     } else {
         transpose_blocks(src, m, dst, stride);
@@ -350,24 +350,24 @@ fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], str
     }
 }
 
-/// The 4x4 block at `src` (four rows of four) transposed into the first `m` rows at `dst`,
-/// `stride` apart: `unpacklo/hi` pair the rows' even and odd entries within each 128-bit half,
-/// `permute2f128` joins the halves.
+/// The 4x4 block at `src` (four rows of four, `src_stride` apart) transposed into the first `m`
+/// rows at `dst`, `stride` apart: `unpacklo/hi` pair the rows' even and odd entries within each
+/// 128-bit half, `permute2f128` joins the halves.
 ///
 /// # Safety
-/// `src` points to four readable `[f64; 4]`, `dst + l stride` to four writable `f64` for
-/// `l < m ≤ 4`, and the CPU has AVX.
+/// `src + k src_stride` points to four readable `f64` for `k < 4`, `dst + l stride` to four
+/// writable `f64` for `l < m ≤ 4`, the two blocks do not overlap, and the CPU has AVX.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[inline]
-unsafe fn transpose4(src: *const [f64; 4], dst: *mut f64, stride: usize, m: usize) {
+unsafe fn transpose4(src: *const f64, src_stride: usize, dst: *mut f64, stride: usize, m: usize) {
     use std::arch::x86_64::{
         _mm256_loadu_pd, _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
         _mm256_unpacklo_pd,
     };
     // SAFETY: the caller's promise.
     unsafe {
-        let [a, b, c, d] = [0, 1, 2, 3].map(|k| _mm256_loadu_pd(src.add(k).cast()));
+        let [a, b, c, d] = [0, 1, 2, 3].map(|k| _mm256_loadu_pd(src.add(k * src_stride)));
         let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
         let (t2, t3) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
         let rows = [
@@ -390,12 +390,36 @@ unsafe fn transpose4(src: *const [f64; 4], dst: *mut f64, stride: usize, m: usiz
 }
 
 /// The entries left of the diagonal of the row-major `n x n` symmetric matrix `a` from those
-/// right of it: `a_rc = a_cr` for `r > c`.
+/// right of it: `a_rc = a_cr` for `r > c`. With `avx` (the CPU has it), the 4x4 blocks wholly
+/// below the diagonal are transposed in registers ([`transpose4`]), the rest one by one.
 #[inline(always)]
-fn mirror_upper(a: &mut [f64], n: usize) {
+fn mirror_upper(a: &mut [f64], n: usize, avx: bool) {
+    assert!(
+        a.len() >= n * n,
+        "mirror_upper: {} numbers for {n} x {n}",
+        a.len()
+    );
+    // rows r < blocked start their one-by-one entries at their diagonal block
+    let mut blocked = 0;
+    #[cfg(target_arch = "x86_64")]
+    if avx {
+        blocked = n / 4 * 4;
+        let at = a.as_mut_ptr();
+        for c in (0..blocked).step_by(4) {
+            for r in (c + 4..blocked).step_by(4) {
+                // SAFETY: rows c..c + 4 and r..r + 4 of the n x n matrix (asserted above) hold
+                // columns r..r + 4 and c..c + 4 (r ≥ c + 4, both < n): the block above the
+                // diagonal read, its mirror below written, apart; the CPU has AVX.
+                unsafe { transpose4(at.add(c * n + r), n, at.add(r * n + c), n, 4) };
+            }
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = avx;
     for r in 1..n {
+        let first = if r < blocked { r / 4 * 4 } else { 0 };
         let (above, row) = a.split_at_mut(r * n);
-        for (c, y) in row[..r].iter_mut().enumerate() {
+        for (c, y) in row.iter_mut().enumerate().take(r).skip(first) {
             *y = above[c * n + r];
         }
     }

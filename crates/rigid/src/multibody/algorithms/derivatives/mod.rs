@@ -126,10 +126,9 @@ impl Derivatives {
         let (n, nv) = (model.njoints(), model.nv());
         let mut dof_parent = vec![usize::MAX; nv];
         let mut dof_end = vec![0; nv];
-        for j in model.joints() {
-            let last = &model.joints()[j.subtree_end - 1];
+        for (j, &end) in model.joints().iter().zip(&model.plan().subtree_end_v) {
             for k in j.idx_v..j.idx_v + j.nv {
-                dof_end[k] = last.idx_v + last.nv;
+                dof_end[k] = end;
                 dof_parent[k] = if k > j.idx_v {
                     k - 1
                 } else {
