@@ -183,7 +183,7 @@ impl Lanes {
 }
 
 /// The row-major inputs, the index of the first state of a task, and whether the CPU has AVX
-/// (for the transposition out of 4 lanes in registers).
+/// (for the transpositions in registers: out of 4 lanes, and the full CRBA matrices' mirror).
 struct Io<'a> {
     qs: &'a [f64],
     vs: &'a [f64],
@@ -314,8 +314,9 @@ fn transpose_out<const W: usize>(
     if W == 4 && avx {
         let (src4, out) = (src.as_ptr().cast::<f64>(), dst.as_mut_ptr());
         for b in (0..full).step_by(4) {
-            // SAFETY: `src[b..b + 4]` are four rows of four `f64` (W = 4); the rows `l < m` of
-            // `dst` hold `per ≥ b + 4` numbers each (asserted above); the CPU has AVX.
+            // SAFETY: `src[b..b + 4]` are four rows of four `f64` (W = 4); row `l < m` of `dst`
+            // starts at `l stride` and holds `per ≥ b + 4` numbers, `(m − 1) stride + per ≤
+            // dst.len()` (asserted above); the CPU has AVX.
             unsafe { transpose4(src4.add(4 * b), 4, out.add(b), stride, m) };
         }
     } else {
@@ -400,10 +401,15 @@ fn mirror_upper(a: &mut [f64], n: usize, avx: bool) {
         a.len()
     );
     // rows r < blocked start their one-by-one entries at their diagonal block
-    let mut blocked = 0;
     #[cfg(target_arch = "x86_64")]
-    if avx {
-        blocked = n / 4 * 4;
+    let blocked = if avx { n / 4 * 4 } else { 0 };
+    #[cfg(not(target_arch = "x86_64"))]
+    let blocked = {
+        let _ = avx;
+        0
+    };
+    #[cfg(target_arch = "x86_64")]
+    if blocked > 0 {
         let at = a.as_mut_ptr();
         for c in (0..blocked).step_by(4) {
             for r in (c + 4..blocked).step_by(4) {
@@ -414,8 +420,6 @@ fn mirror_upper(a: &mut [f64], n: usize, avx: bool) {
             }
         }
     }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = avx;
     for r in 1..n {
         let first = if r < blocked { r / 4 * 4 } else { 0 };
         let (above, row) = a.split_at_mut(r * n);
