@@ -6,7 +6,7 @@
 //! (not `τ`, not `M`), row-major per lane, into [`DerivPack::dq`] and [`DerivPack::dv`].
 
 use super::crba::{inertia_twist, root_frame_body};
-use super::lanes::{one_iteration_at_a_time, L, T6, V3};
+use super::lanes::{L, T6, V3};
 use super::pack::{placement, Pack, I3};
 use crate::multibody::{JointType, Model};
 
@@ -179,11 +179,9 @@ fn backward<const W: usize>(model: &Model, p: &mut Pack<W>, d: &mut DerivPack<W>
         for k in iv..own {
             let (Jk, row) = (p.J[k], k * nv);
             for c in iv..end {
-                one_iteration_at_a_time();
                 d.dq[row + c] = Jk.dot(&d.df_dq[c]);
             }
             for c in iv..end {
-                one_iteration_at_a_time();
                 d.dv[row + c] = Jk.dot(&d.df_dv[c]);
             }
         }
@@ -191,7 +189,6 @@ fn backward<const W: usize>(model: &Model, p: &mut Pack<W>, d: &mut DerivPack<W>
         for k in iv..own {
             let (daq, dvq, dav, Jw) = (d.da_dq[k], d.dv_dq[k].w, d.da_dv[k], p.J[k].w);
             for c in own..end {
-                one_iteration_at_a_time();
                 d.dq[c * nv + k] = daq.dot(&d.yj[c]) + d.bj[c].dot(&dvq);
                 d.dv[c * nv + k] = dav.dot(&d.yj[c]) + d.bj[c].dot(&Jw);
             }

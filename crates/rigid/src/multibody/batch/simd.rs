@@ -264,7 +264,7 @@ fn packs<const W: usize, const A: u8>(
         }
         let o = &mut out[s * per..(s + m) * per];
         match algo {
-            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o, p.out.len(), io.avx),
+            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o, per, io.avx),
             Algo::CrbaLower => transpose_out(&p.M, m, o, per, io.avx),
             Algo::RneaDerivatives => {
                 if let Some(d) = &p.deriv {
