@@ -377,16 +377,20 @@ def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -
     geometry, or a stick figure), 60 frames per second; it opens offline, nothing is fetched."""
 
 def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
-               threads: int | None = None) -> Matrix:
+               threads: int | None = None, out: Matrix | None = None) -> Matrix:
     """``rnea`` for every row: Q (N, nq), V and A (N, nv) → τ (N, nv), on ``threads`` threads
     (None: every core; a pool per size, made once) with the GIL released, several states side
     by side in SIMD lanes; each row equals the single call to round-off (1e-13; RNEA bit for
-    bit), the same bits for any ``threads``. Read-only arrays are accepted; a dask array is
-    refused (use ``rigid.dask``). Not in Pinocchio's Python."""
+    bit), the same bits for any ``threads``. Contiguous float64 inputs are read in place (do
+    not write to them from another thread during the call); read-only arrays are accepted; a
+    dask array is refused (use ``rigid.dask``). ``out``: a writeable C-contiguous float64
+    (N, nv) array to write τ into (and return), so that repeated calls allocate nothing. Not in
+    Pinocchio's Python."""
 
 def aba_batch(model: Model, Q: ArrayLike, V: ArrayLike, TAU: ArrayLike, *,
-              threads: int | None = None) -> Matrix:
-    """``aba`` for every row: (N, nv) accelerations, on ``threads`` threads, GIL released."""
+              threads: int | None = None, out: Matrix | None = None) -> Matrix:
+    """``aba`` for every row: (N, nv) accelerations, on ``threads`` threads, GIL released;
+    ``out`` as ``rnea_batch``."""
 
 def crba_batch(model: Model, Q: ArrayLike, *, threads: int | None = None
                ) -> npt.NDArray[np.float64]:

@@ -3,72 +3,167 @@
 //! `multibody::batch`: several states side by side in SIMD lanes). Each state's result is that
 //! of the single call to round-off, and the same bits for any number of threads.
 
-use crate::convert::{matrix, rows_array, value_error, Matrix};
+use crate::convert::{matrix, value_error, Matrix};
 use crate::model::{Model, ModelCore};
-use numpy::{PyArray2, PyArray3, PyArrayMethods};
+use numpy::{PyArray2, PyArray3, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use rayon::prelude::*;
+use rayon::ThreadPool;
 use rigid::multibody::{self as mb, batch, Data};
 
-/// The states in rigid's layout: the caller's rows, or converted rows.
-fn q_rows(core: &ModelCore, func: &str, name: &str, x: &Matrix<'_>) -> PyResult<Vec<f64>> {
-    let (nq, nq_r) = (core.nq(), core.model.nq());
-    if let Some(l) = &core.mujoco {
-        let mut out = vec![0.0; x.rows * nq_r];
-        for (k, (src, dst)) in x
-            .as_slice()
-            .chunks_exact(nq)
-            .zip(out.chunks_exact_mut(nq_r))
-            .enumerate()
-        {
-            l.q_from_mujoco(src, dst)
-                .map_err(|e| value_error(func, format!("{name}[{k}]: {e}")))?;
-        }
-        return Ok(out);
-    }
-    let l = core.layout.as_ref().filter(|_| core.convert_q);
-    let Some(l) = l else {
-        return Ok(x.as_slice().to_vec());
-    };
-    let mut out = vec![0.0; x.rows * nq_r];
-    for (k, (src, dst)) in x
-        .as_slice()
-        .chunks_exact(nq)
-        .zip(out.chunks_exact_mut(nq_r))
-        .enumerate()
-    {
-        l.q_from_pinocchio(src, dst)
-            .map_err(|e| value_error(func, format!("{name}[{k}]: {e}")))?;
-    }
-    Ok(out)
+/// A batch input in rigid's layout: the caller's array, read in place when it is a C-contiguous
+/// float64 array already in that layout (no copy: see [`Matrix`] on reading it with the GIL
+/// released), or its rows converted.
+pub(crate) enum Rows<'py> {
+    /// The caller's numbers.
+    Caller(Matrix<'py>),
+    /// The rows converted between the layouts.
+    Converted(Vec<f64>),
 }
 
-/// Velocity-space rows (`V`, `A`, `TAU`, results) permuted between the layouts.
+impl Rows<'_> {
+    /// The numbers, row-major.
+    pub(crate) fn as_slice(&self) -> &[f64] {
+        match self {
+            Self::Caller(m) => m.as_slice(),
+            Self::Converted(v) => v,
+        }
+    }
+
+    /// The numbers, owned.
+    pub(crate) fn into_vec(self) -> Vec<f64> {
+        match self {
+            Self::Caller(m) => m.as_slice().to_vec(),
+            Self::Converted(v) => v,
+        }
+    }
+}
+
+/// The states in rigid's layout: the caller's rows, or converted rows.
+fn q_rows<'py>(core: &ModelCore, func: &str, name: &str, x: Matrix<'py>) -> PyResult<Rows<'py>> {
+    if let Some(l) = &core.mujoco {
+        return converted(core, func, name, &x, |s, d| {
+            l.q_from_mujoco(s, d).map_err(|e| e.to_string())
+        });
+    }
+    match core.layout.as_ref().filter(|_| core.convert_q) {
+        Some(l) => converted(core, func, name, &x, |s, d| {
+            l.q_from_pinocchio(s, d).map_err(|e| e.to_string())
+        }),
+        None => Ok(Rows::Caller(x)),
+    }
+}
+
+/// Each row of `x` (`nq` in the model's layout) converted into rigid's by `f`.
+fn converted<'py>(
+    core: &ModelCore,
+    func: &str,
+    name: &str,
+    x: &Matrix<'_>,
+    f: impl Fn(&[f64], &mut [f64]) -> Result<(), String>,
+) -> PyResult<Rows<'py>> {
+    let (nq, nq_r) = (core.nq(), core.model.nq());
+    let mut out = vec![0.0; x.rows * nq_r];
+    let rows = x
+        .as_slice()
+        .chunks_exact(nq)
+        .zip(out.chunks_exact_mut(nq_r));
+    for (k, (src, dst)) in rows.enumerate() {
+        f(src, dst).map_err(|e| value_error(func, format!("{name}[{k}]: {e}")))?;
+    }
+    Ok(Rows::Converted(out))
+}
+
+/// Rows of `nv` numbers at a time for the parallel permutations: enough to share out.
+const ROWS_PER_TASK: usize = 256;
+
+/// Velocity-space rows (`V`, `A`, `TAU`, results) permuted between the layouts, in place, on
+/// the threads of the current rayon pool.
 fn permute_rows(core: &ModelCore, x: &mut [f64]) {
     let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
         return;
     };
-    let nv = core.nv();
-    let mut row = vec![0.0; nv];
-    for r in x.chunks_exact_mut(nv) {
-        l.permute_v(r, &mut row);
-        r.copy_from_slice(&row);
-    }
+    let nv = core.nv().max(1);
+    x.par_chunks_mut(nv * ROWS_PER_TASK).for_each_init(
+        || vec![0.0; nv],
+        |row, block| {
+            for r in block.chunks_exact_mut(nv) {
+                l.permute_v(r, row);
+                r.copy_from_slice(row);
+            }
+        },
+    );
 }
 
-fn v_rows(core: &ModelCore, x: &Matrix<'_>) -> Vec<f64> {
-    let mut out = x.as_slice().to_vec();
-    permute_rows(core, &mut out);
-    out
+/// Each state's `nv x nv` blocks of `out` in the model's velocity layout,
+/// `X_pin[r][c] = X[p(r)][p(c)]`, on the threads of the current rayon pool.
+fn permute_matrices(core: &ModelCore, out: &mut [f64]) {
+    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
+        return;
+    };
+    let nn = core.nv() * core.nv();
+    out.par_chunks_mut(nn.max(1)).for_each_init(
+        || vec![0.0; nn],
+        |m, block| {
+            m.copy_from_slice(block);
+            l.permute_matrix(m, block);
+        },
+    );
+}
+
+/// `x` in rigid's velocity layout: the caller's rows, or their permutation (on `pool`).
+fn v_rows<'py>(core: &ModelCore, pool: Option<&ThreadPool>, x: Matrix<'py>) -> Rows<'py> {
+    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
+        return Rows::Caller(x);
+    };
+    let (nv, src) = (core.nv().max(1), x.as_slice());
+    let mut out = vec![0.0; src.len()];
+    crate::scale::on(pool, || {
+        out.par_chunks_mut(nv * ROWS_PER_TASK)
+            .zip(src.par_chunks(nv * ROWS_PER_TASK))
+            .for_each(|(o, s)| {
+                for (o, s) in o.chunks_exact_mut(nv).zip(s.chunks_exact(nv)) {
+                    l.permute_v(s, o);
+                }
+            });
+    });
+    Rows::Converted(out)
+}
+
+/// The first entry of `x` that is not finite: blocks summed as `Σ 0·x_i` (0 when every entry
+/// is finite, NaN otherwise, and no branch per entry), the first failing block searched.
+fn first_non_finite(x: &[f64]) -> Option<usize> {
+    const BLOCK: usize = 512;
+    x.chunks(BLOCK).enumerate().find_map(|(b, block)| {
+        let mut sums = [0.0; 8];
+        let mut eights = block.chunks_exact(8);
+        for e in &mut eights {
+            for (s, v) in sums.iter_mut().zip(e) {
+                *s += 0.0 * v;
+            }
+        }
+        for (s, v) in sums.iter_mut().zip(eights.remainder()) {
+            *s += 0.0 * v;
+        }
+        if sums.iter().sum::<f64>() == 0.0 {
+            return None;
+        }
+        block
+            .iter()
+            .position(|x| !x.is_finite())
+            .map(|i| b * BLOCK + i)
+    })
 }
 
 /// The inputs of a batch call: `Q` and the velocity-space arrays, checked and in rigid's layout.
-pub(crate) fn inputs(
+pub(crate) fn inputs<'py>(
     core: &ModelCore,
+    pool: Option<&ThreadPool>,
     func: &str,
-    q: &Bound<'_, PyAny>,
-    vs: &[(&str, &Bound<'_, PyAny>)],
-) -> PyResult<(usize, Vec<f64>, Vec<Vec<f64>>)> {
+    q: &Bound<'py, PyAny>,
+    vs: &[(&str, &Bound<'py, PyAny>)],
+) -> PyResult<(usize, Rows<'py>, Vec<Rows<'py>>)> {
     if core.mujoco_free().is_some() {
         return Err(value_error(
             func,
@@ -93,15 +188,15 @@ pub(crate) fn inputs(
             )));
         }
         let cols = core.nv().max(1);
-        if let Some(i) = m.as_slice().iter().position(|x| !x.is_finite()) {
+        if let Some(i) = first_non_finite(m.as_slice()) {
             return Err(value_error(
                 func,
                 format!("{name}[{}, {}] is not finite", i / cols, i % cols),
             ));
         }
-        out.push(v_rows(core, &m));
+        out.push(v_rows(core, pool, m));
     }
-    Ok((n, q_rows(core, func, "Q", &qm)?, out))
+    Ok((n, q_rows(core, func, "Q", qm)?, out))
 }
 
 /// The first failing state's error, with its row (the batch error does not say which state).
@@ -154,38 +249,72 @@ fn qvx_batch<'py>(
     f: Qvx,
     q: &Bound<'py, PyAny>,
     args: [(&str, &Bound<'py, PyAny>); 2],
-    threads: Option<i64>,
+    (threads, out): (Option<i64>, Option<&Bound<'py, PyAny>>),
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let py = q.py();
     let pool = crate::scale::pool(func, threads)?;
     let core = &*model.inner;
-    let (n, qs, vx) = inputs(core, func, q, &args)?;
+    let (n, qs, vx) = inputs(core, pool.as_deref(), func, q, &args)?;
     let nv = core.nv();
-    let mut out = vec![0.0; n * nv];
-    let (vs, xs) = (&vx[0], &vx[1]);
+    let array = match out {
+        Some(o) => out_array(func, o, n, nv)?,
+        None => PyArray2::<f64>::zeros(py, [n, nv], false),
+    };
+    let mut guard = array.try_readwrite().map_err(|e| {
+        value_error(
+            func,
+            format!("out cannot be written ({e}): pass a writeable array that is not an input"),
+        )
+    })?;
+    let out = guard.as_slice_mut().unwrap_or(&mut []);
+    let (qs, vs, xs) = (qs.as_slice(), vx[0].as_slice(), vx[1].as_slice());
     crate::scale::detach(py, pool.as_deref(), || {
-        f.batch(&core.model, &qs, vs, xs, &mut out)
+        f.batch(&core.model, qs, vs, xs, out)?;
+        permute_rows(core, out);
+        Ok(())
     })
     .map_err(|e| {
-        state_error(core, func, e, &qs, |d, k, q| {
+        state_error(core, func, e, qs, |d, k, q| {
             let r = k * nv..(k + 1) * nv;
             f.single(&core.model, d, q, &vs[r.clone()], &xs[r])
         })
     })?;
-    permute_rows(core, &mut out);
-    rows_array(py, out, n, nv)
+    drop(guard);
+    Ok(array)
+}
+
+/// The caller's `out=` array: a writeable, C-contiguous float64 array of shape `(n, nv)`.
+fn out_array<'py>(
+    func: &str,
+    o: &Bound<'py, PyAny>,
+    n: usize,
+    nv: usize,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let wrong = || {
+        value_error(
+            func,
+            format!("out must be a writeable, C-contiguous float64 array of shape ({n}, {nv})"),
+        )
+    };
+    let a = o.cast::<PyArray2<f64>>().map_err(|_| wrong())?;
+    if a.shape() != [n, nv] || !a.is_c_contiguous() || !a.is_aligned() {
+        return Err(wrong());
+    }
+    Ok(a.clone())
 }
 
 /// Inverse dynamics for every row: `TAU[k] = rnea(Q[k], V[k], A[k])`, an `(N, nv)` array, on
-/// `threads` threads (None: every core).
+/// `threads` threads (None: every core), written to `out` when given (a writeable C-contiguous
+/// float64 `(N, nv)` array, returned: repeated calls then allocate nothing).
 #[pyfunction]
-#[pyo3(signature = (model, q, v, a, *, threads = None))]
+#[pyo3(signature = (model, q, v, a, *, threads = None, out = None))]
 pub fn rnea_batch<'py>(
     model: PyRef<'py, Model>,
     q: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
     a: &Bound<'py, PyAny>,
     threads: Option<i64>,
+    out: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     qvx_batch(
         &model,
@@ -193,20 +322,21 @@ pub fn rnea_batch<'py>(
         Qvx::Rnea,
         q,
         [("V", v), ("A", a)],
-        threads,
+        (threads, out),
     )
 }
 
 /// Forward dynamics for every row: `DDQ[k] = aba(Q[k], V[k], TAU[k])`, an `(N, nv)` array, on
-/// `threads` threads (None: every core).
+/// `threads` threads (None: every core), written to `out` when given (as `rnea_batch`).
 #[pyfunction]
-#[pyo3(signature = (model, q, v, tau, *, threads = None))]
+#[pyo3(signature = (model, q, v, tau, *, threads = None, out = None))]
 pub fn aba_batch<'py>(
     model: PyRef<'py, Model>,
     q: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
     tau: &Bound<'py, PyAny>,
     threads: Option<i64>,
+    out: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     qvx_batch(
         &model,
@@ -214,7 +344,7 @@ pub fn aba_batch<'py>(
         Qvx::Aba,
         q,
         [("V", v), ("TAU", tau)],
-        threads,
+        (threads, out),
     )
 }
 
@@ -231,33 +361,21 @@ pub fn crba_batch<'py>(
     const F: &str = "crba_batch";
     let pool = crate::scale::pool(F, threads)?;
     let core = &*model.inner;
-    let (n, qs, _) = inputs(core, F, q, &[])?;
+    let (n, qs, _) = inputs(core, pool.as_deref(), F, q, &[])?;
+    let qs = qs.as_slice();
     let nv = core.nv();
     let mut out = vec![0.0; n * nv * nv];
     crate::scale::detach(py, pool.as_deref(), || {
-        batch::crba_batch(&core.model, &qs, &mut out)
+        batch::crba_batch(&core.model, qs, &mut out)?;
+        permute_matrices(core, &mut out);
+        Ok(())
     })
     .map_err(|e| {
-        state_error(core, F, e, &qs, |d, _, q| {
+        state_error(core, F, e, qs, |d, _, q| {
             mb::crba(&core.model, d, q).map(|_| ())
         })
     })?;
-    permute_matrices(core, &mut out);
     numpy::PyArray1::from_vec(py, out).reshape([n, nv, nv])
-}
-
-/// Each state's `nv x nv` blocks of `out` in the model's velocity layout:
-/// `X_pin[r][c] = X[p(r)][p(c)]`.
-fn permute_matrices(core: &ModelCore, out: &mut [f64]) {
-    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
-        return;
-    };
-    let nv = core.nv();
-    let mut m = vec![0.0; nv * nv];
-    for block in out.chunks_exact_mut(nv * nv) {
-        m.copy_from_slice(block);
-        l.permute_matrix(&m, block);
-    }
 }
 
 /// `N` matrices, `(N, rows, cols)`.
@@ -278,21 +396,22 @@ pub fn rnea_derivatives_batch<'py>(
     const F: &str = "rnea_derivatives_batch";
     let pool = crate::scale::pool(F, threads)?;
     let core = &*model.inner;
-    let (n, qs, va) = inputs(core, F, q, &[("V", v), ("A", a)])?;
-    let (vs, as_) = (&va[0], &va[1]);
+    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)])?;
+    let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let nv = core.nv();
     let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
     crate::scale::detach(py, pool.as_deref(), || {
-        batch::rnea_derivatives_batch(&core.model, &qs, vs, as_, &mut dq, &mut dv)
+        batch::rnea_derivatives_batch(&core.model, qs, vs, as_, &mut dq, &mut dv)?;
+        permute_matrices(core, &mut dq);
+        permute_matrices(core, &mut dv);
+        Ok(())
     })
     .map_err(|e| {
-        state_error(core, F, e, &qs, |d, k, q| {
+        state_error(core, F, e, qs, |d, k, q| {
             let r = k * nv..(k + 1) * nv;
             mb::rnea_derivatives(&core.model, d, q, &vs[r.clone()], &as_[r]).map(|_| ())
         })
     })?;
-    permute_matrices(core, &mut dq);
-    permute_matrices(core, &mut dv);
     Ok((
         numpy::PyArray1::from_vec(py, dq).reshape([n, nv, nv])?,
         numpy::PyArray1::from_vec(py, dv).reshape([n, nv, nv])?,

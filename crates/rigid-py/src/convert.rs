@@ -3,7 +3,8 @@
 //! rigid's errors as Python exceptions.
 
 use numpy::{
-    PyArray1, PyArray2, PyArrayDescrMethods, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
+    PyArray1, PyArray2, PyArrayDescrMethods, PyArrayMethods, PyReadonlyArray2, PyUntypedArray,
+    PyUntypedArrayMethods,
 };
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -31,9 +32,12 @@ impl Vector<'_> {
 }
 
 /// An input matrix of `rows × cols`, row-major: a C-contiguous, aligned float64 array (the
-/// caller's, or a converted copy).
+/// caller's, or a converted copy), borrowed read-only through rust-numpy's borrow checking, so
+/// that its numbers can be read with the GIL released (the batch verbs do) while no Rust code
+/// can write them. As with numpy's own functions that release the GIL, Python code in another
+/// thread that writes to an input during such a call leaves its result unspecified.
 pub struct Matrix<'py> {
-    array: Bound<'py, PyArray2<f64>>,
+    array: PyReadonlyArray2<'py, f64>,
     /// Number of rows.
     pub rows: usize,
 }
@@ -41,9 +45,8 @@ pub struct Matrix<'py> {
 impl Matrix<'_> {
     /// The numbers, row-major.
     pub fn as_slice(&self) -> &[f64] {
-        // SAFETY: as for `Vector::as_slice` (C-contiguous and aligned checked in `matrix`); the
-        // batch verbs copy it before releasing the GIL.
-        unsafe { self.array.as_slice().unwrap_or(&[]) }
+        // contiguous: checked in `matrix`
+        self.array.as_slice().unwrap_or(&[])
     }
 }
 
@@ -210,7 +213,10 @@ pub fn matrix<'py>(
         return Err(shape_error(shape));
     }
     let rows = shape[0];
-    Ok(Matrix { array: a, rows })
+    let array = a
+        .try_readonly()
+        .map_err(|e| value_error(func, format!("{name} cannot be read: {e}")))?;
+    Ok(Matrix { array, rows })
 }
 
 /// A fresh 1-D float64 array.

@@ -145,7 +145,8 @@ fn read_samples(core: &ModelCore, samples: &Bound<'_, PyAny>, window: f64) -> Py
             })
         };
         let (q, v, a, tau) = (get("q")?, get("v")?, get("a")?, get("tau")?);
-        let (n, q, mut rest) = inputs(core, func, &q, &[("v", &v), ("a", &a), ("tau", &tau)])?;
+        let (n, q, mut rest) =
+            inputs(core, None, func, &q, &[("v", &v), ("a", &a), ("tau", &tau)])?;
         let t = vector(&get("t")?, func, "samples[\"t\"]", "the rows of q", n)?;
         let (tau, a, v) = (
             rest.pop().unwrap(),
@@ -154,10 +155,10 @@ fn read_samples(core: &ModelCore, samples: &Bound<'_, PyAny>, window: f64) -> Py
         );
         return Ok(Samples {
             t: t.as_slice().to_vec(),
-            q,
-            v,
-            a,
-            tau,
+            q: q.into_vec(),
+            v: v.into_vec(),
+            a: a.into_vec(),
+            tau: tau.into_vec(),
         });
     }
     let path: std::path::PathBuf = samples.extract().map_err(|_| {

@@ -59,10 +59,15 @@ pub fn detach<T: Send>(
     pool: Option<&ThreadPool>,
     f: impl FnOnce() -> T + Send,
 ) -> T {
-    py.detach(|| match pool {
+    py.detach(|| on(pool, f))
+}
+
+/// `f()` on `pool` (or rayon's global pool), the GIL kept.
+pub fn on<T: Send>(pool: Option<&ThreadPool>, f: impl FnOnce() -> T + Send) -> T {
+    match pool {
         Some(p) => p.install(f),
         None => f(),
-    })
+    }
 }
 
 /// `TypeError` for a dask array (duck-typed: it has `__dask_graph__`), pointing to `rigid.dask`.
@@ -93,11 +98,12 @@ pub fn regressor_batch<'py>(
     const F: &str = "regressor_batch";
     let pool = pool(F, threads)?;
     let core = &*model.inner;
-    let (n, qs, va) = inputs(core, F, q, &[("V", v), ("A", a)])?;
+    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)])?;
+    let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let (nv, cols) = (core.nv(), 10 * core.model.njoints());
     let mut out = vec![0.0; n * nv * cols];
     detach(py, pool.as_deref(), || {
-        rigid::identification::regressor_batch(&core.model, &qs, &va[0], &va[1], &mut out)
+        rigid::identification::regressor_batch(&core.model, qs, vs, as_, &mut out)
     })
     .map_err(|e| value_error(F, e))?;
     if core.convert_v {

@@ -86,6 +86,46 @@ def test_batch_shape_errors_name_the_argument():
         rigid.crba_batch(m, Q.astype(complex))
 
 
+def test_batch_reads_inputs_in_place_and_leaves_them_alone():
+    """Contiguous float64 inputs are read where they are (no copy), never written, and may be
+    one array passed twice; a NaN far into a long array is found at its row and column."""
+    p = pair("talos")
+    for m in (p.rr, p.rp):  # the pinocchio layout permutes TALOS's velocity rows
+        Q, V, _ = states(m, 300, 11)
+        before = (Q.copy(), V.copy())
+        tau = rigid.rnea_batch(m, Q, V, V)
+        assert np.array_equal(Q, before[0]) and np.array_equal(V, before[1])
+        d = m.create_data()
+        assert_close(tau[299], rigid.rnea(m, d, Q[299], V[299], V[299]), "rnea_batch", tol=1e-13)
+        bad = V.copy()
+        bad[250, 7] = np.inf
+        with pytest.raises(ValueError, match=r"aba_batch: TAU\[250, 7\] is not finite"):
+            rigid.aba_batch(m, Q, V, bad)
+
+
+def test_batch_writes_into_out():
+    p = pair("anymal")
+    for m in (p.rr, p.rp):
+        Q, V, A = states(m, 21, 4)
+        out = np.full((21, m.nv), np.nan)
+        tau = rigid.rnea_batch(m, Q, V, A, out=out)
+        assert tau is out
+        assert np.array_equal(out, rigid.rnea_batch(m, Q, V, A))
+        ddq = rigid.aba_batch(m, Q, V, tau, out=np.empty((21, m.nv)))
+        assert_close(ddq, A, "aba_batch(out=)", tol=1e-8)
+        with pytest.raises(ValueError, match=r"out must be a writeable, C-contiguous float64 array of shape \(21, 18\)"):
+            rigid.rnea_batch(m, Q, V, A, out=np.empty((20, m.nv)))
+        with pytest.raises(ValueError, match="out must be"):
+            rigid.rnea_batch(m, Q, V, A, out=np.empty((m.nv, 21)).T)
+        if m is p.rr:  # (read in place: an input converted between layouts is a copy)
+            with pytest.raises(ValueError, match="not an input"):
+                rigid.rnea_batch(m, Q, V, A, out=A)
+        frozen = np.empty((21, m.nv))
+        frozen.flags.writeable = False
+        with pytest.raises(ValueError, match="out cannot be written"):
+            rigid.rnea_batch(m, Q, V, A, out=frozen)
+
+
 def test_batch_releases_the_gil():
     """Another Python thread runs while a batch computes: with the GIL held it could not."""
     p = pair("talos")

@@ -278,8 +278,19 @@ pub(crate) fn check_v(model: &Model, what: &'static str, v: &[f64]) -> Result<()
 }
 
 fn check_finite(what: &'static str, x: &[f64]) -> Result<(), MultibodyError> {
-    // fast path: `Σ 0·x_i` is 0 when every entry is finite, NaN otherwise (no branch per entry)
-    if x.iter().fold(0.0, |acc, v| acc + 0.0 * v) == 0.0 {
+    // fast path: `Σ 0·x_i` is 0 when every entry is finite, NaN otherwise (no branch per entry),
+    // summed in 8 independent partial sums: one chain of additions waits 3-4 cycles per entry
+    let mut sums = [0.0; 8];
+    let mut blocks = x.chunks_exact(8);
+    for b in &mut blocks {
+        for (s, v) in sums.iter_mut().zip(b) {
+            *s += 0.0 * v;
+        }
+    }
+    for (s, v) in sums.iter_mut().zip(blocks.remainder()) {
+        *s += 0.0 * v;
+    }
+    if sums.iter().sum::<f64>() == 0.0 {
         return Ok(());
     }
     match x.iter().position(|x| !x.is_finite()) {
