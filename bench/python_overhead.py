@@ -12,7 +12,9 @@ Needs `pip install ./crates/rigid-py` and scripts/requirements-test.txt (pin, ex
    cycling through 100 random states. A side's time per call is the median over rounds; the
    ratio is the median over rounds of rigid / Pinocchio within the round.
 2. Batch: `rigid.rnea_batch` on `--states` states (N x nq, N x nv arrays) against the Python loop
-   `for k in range(N): pinocchio.rnea(model, data, Q[k], V[k], A[k])`, interleaved the same way;
+   `for k in range(N): pinocchio.rnea(model, data, Q[k], V[k], A[k])`, interleaved the same way,
+   with a fresh output per call, with `out=` (one output array written by every call), and in
+   rigid's layout with `out=` (no permutation of the free-flyer's velocity rows);
    speed-up = median over rounds of loop time / batch time.
 """
 import argparse
@@ -110,26 +112,42 @@ def main():
             pin.rnea(pm, pd, Q[k], V[k], A[k])
         return time.perf_counter() - t0
 
-    def batch():
+    TAU = np.empty((n, nv))
+    # the same robot in rigid's layout (V and A then other numbers: the time is the same)
+    mr = rigid.Model.from_urdf(path, floating=floating)
+    assert mr.nq == pm.nq
+    variants = {
+        "rigid.rnea_batch": lambda: rigid.rnea_batch(m, Q, V, A),
+        "rigid.rnea_batch(..., out=TAU)": lambda: rigid.rnea_batch(m, Q, V, A, out=TAU),
+        "in rigid's layout, out=TAU": lambda: rigid.rnea_batch(mr, Q, V, A, out=TAU),
+    }
+
+    def timed_once(f):
         t0 = time.perf_counter()
-        rigid.rnea_batch(m, Q, V, A)
+        f()
         return time.perf_counter() - t0
 
-    batch()
-    tl, tb, speedups = [], [], []
+    for f in variants.values():
+        f()
+    tl, tb = [], {k: [] for k in variants}
+    speedups = {k: [] for k in variants}
     for r in range(args.rounds):
-        if r % 2 == 0:
-            a, b = loop(), batch()
-        else:
-            b, a = batch(), loop()
+        order = list(variants) if r % 2 == 0 else list(reversed(variants))
+        a = loop() if r % 2 == 0 else None
+        times = {k: timed_once(variants[k]) for k in order}
+        if a is None:
+            a = loop()
         tl.append(a)
-        tb.append(b)
-        speedups.append(a / b)
+        for k, t in times.items():
+            tb[k].append(t)
+            speedups[k].append(a / t)
     print(f"\nrnea on {n} states: Python loop of pinocchio.rnea {statistics.median(tl) * 1e3:.2f} "
-          f"ms, rigid.rnea_batch {statistics.median(tb) * 1e3:.2f} ms "
-          f"({statistics.median(tb) / n * 1e9:.0f} ns/state); speed-up "
-          f"**{statistics.median(speedups):.1f}x** (per-round {min(speedups):.1f}–"
-          f"{max(speedups):.1f}x)")
+          f"ms ({statistics.median(tl) / n * 1e9:.0f} ns/state)")
+    for k in variants:
+        t, s = tb[k], speedups[k]
+        print(f"{k}: {statistics.median(t) * 1e3:.2f} ms ({statistics.median(t) / n * 1e9:.0f} "
+              f"ns/state); speed-up **{statistics.median(s):.1f}x** (per-round "
+              f"{min(s):.1f}–{max(s):.1f}x)")
     print(f"load average {os.getloadavg()[0]:.1f} at the end")
 
 

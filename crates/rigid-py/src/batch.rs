@@ -10,7 +10,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use rayon::ThreadPool;
-use rigid::multibody::{self as mb, batch, Data};
+use rigid::multibody::batch::{self, Batch};
+use rigid::multibody::{self as mb, Data};
 
 /// A batch input in rigid's layout: the caller's array, read in place when it is a C-contiguous
 /// float64 array already in that layout (no copy: see [`Matrix`] on reading it with the GIL
@@ -78,24 +79,6 @@ fn converted<'py>(
 /// Rows of `nv` numbers at a time for the parallel permutations: enough to share out.
 const ROWS_PER_TASK: usize = 256;
 
-/// Velocity-space rows (`V`, `A`, `TAU`, results) permuted between the layouts, in place, on
-/// the threads of the current rayon pool.
-fn permute_rows(core: &ModelCore, x: &mut [f64]) {
-    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
-        return;
-    };
-    let nv = core.nv().max(1);
-    x.par_chunks_mut(nv * ROWS_PER_TASK).for_each_init(
-        || vec![0.0; nv],
-        |row, block| {
-            for r in block.chunks_exact_mut(nv) {
-                l.permute_v(r, row);
-                r.copy_from_slice(row);
-            }
-        },
-    );
-}
-
 /// Each state's `nv x nv` blocks of `out` in the model's velocity layout,
 /// `X_pin[r][c] = X[p(r)][p(c)]`, on the threads of the current rayon pool.
 fn permute_matrices(core: &ModelCore, out: &mut [f64]) {
@@ -156,13 +139,15 @@ fn first_non_finite(x: &[f64]) -> Option<usize> {
     })
 }
 
-/// The inputs of a batch call: `Q` and the velocity-space arrays, checked and in rigid's layout.
+/// The inputs of a batch call: `Q` and the velocity-space arrays, checked and in rigid's layout
+/// (the velocity-space arrays left in the model's when not `permute`: the caller permutes them).
 pub(crate) fn inputs<'py>(
     core: &ModelCore,
     pool: Option<&ThreadPool>,
     func: &str,
     q: &Bound<'py, PyAny>,
     vs: &[(&str, &Bound<'py, PyAny>)],
+    permute: bool,
 ) -> PyResult<(usize, Rows<'py>, Vec<Rows<'py>>)> {
     if core.mujoco_free().is_some() {
         return Err(value_error(
@@ -194,7 +179,11 @@ pub(crate) fn inputs<'py>(
                 format!("{name}[{}, {}] is not finite", i / cols, i % cols),
             ));
         }
-        out.push(v_rows(core, pool, m));
+        out.push(if permute {
+            v_rows(core, pool, m)
+        } else {
+            Rows::Caller(m)
+        });
     }
     Ok((n, q_rows(core, func, "Q", qm)?, out))
 }
@@ -217,6 +206,69 @@ fn state_error(
     value_error(func, e)
 }
 
+/// States per chunk when velocity rows are permuted between the layouts chunk by chunk: few
+/// enough that a chunk's rows stay in the core's cache from their permutation to the kernel.
+const CHUNK: usize = 256;
+
+/// `f` for every state into `out`, with `vs`, `xs` and `out` in the model's velocity layout.
+/// When it orders velocities otherwise than rigid, the states go in chunks of [`CHUNK`] spread
+/// over the pool: a chunk's `V` and `X` rows permuted into buffers of its task (no fresh pages,
+/// still in the cache for the kernel), computed, and its results permuted back in place.
+fn permuted_chunks(
+    core: &ModelCore,
+    f: Qvx,
+    qs: &[f64],
+    vs: &[f64],
+    xs: &[f64],
+    out: &mut [f64],
+) -> MbResult {
+    let model = &core.model;
+    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
+        return f.run(&mut Batch::new(model), model, qs, vs, xs, out);
+    };
+    let (nq, nv) = (model.nq(), core.nv().max(1));
+    let buffers = || {
+        (
+            Batch::new(model),
+            vec![0.0; nv * CHUNK],
+            vec![0.0; nv * CHUNK],
+        )
+    };
+    out.par_chunks_mut(nv * CHUNK)
+        .enumerate()
+        .map_init(buffers, |(batch, v, x), (c, o)| {
+            let (rows, first) = (o.len() / nv, c * CHUNK);
+            let (v, x) = (&mut v[..rows * nv], &mut x[..rows * nv]);
+            for (src, dst) in [(vs, &mut *v), (xs, &mut *x)] {
+                let src = &src[first * nv..(first + rows) * nv];
+                for (s, d) in src.chunks_exact(nv).zip(dst.chunks_exact_mut(nv)) {
+                    l.permute_v(s, d);
+                }
+            }
+            let q = &qs[first * nq..(first + rows) * nq];
+            f.run(batch, model, q, v, x, o)?;
+            let row = &mut v[..nv];
+            for r in o.chunks_exact_mut(nv) {
+                l.permute_v(r, row);
+                r.copy_from_slice(row);
+            }
+            Ok(())
+        })
+        .collect()
+}
+
+/// A velocity-space row in rigid's layout.
+fn rigid_v<'a>(core: &ModelCore, x: &'a [f64]) -> std::borrow::Cow<'a, [f64]> {
+    match core.layout.as_ref().filter(|_| core.convert_v) {
+        Some(l) => {
+            let mut out = vec![0.0; x.len()];
+            l.permute_v(x, &mut out);
+            out.into()
+        }
+        None => x.into(),
+    }
+}
+
 /// The two `(q, v, x) ↦ nv-vector` verbs.
 #[derive(Clone, Copy)]
 enum Qvx {
@@ -225,10 +277,18 @@ enum Qvx {
 }
 
 impl Qvx {
-    fn batch(self, m: &mb::Model, q: &[f64], v: &[f64], x: &[f64], out: &mut [f64]) -> MbResult {
+    fn run(
+        self,
+        b: &mut Batch,
+        m: &mb::Model,
+        q: &[f64],
+        v: &[f64],
+        x: &[f64],
+        out: &mut [f64],
+    ) -> MbResult {
         match self {
-            Self::Rnea => batch::rnea_batch(m, q, v, x, out),
-            Self::Aba => batch::aba_batch(m, q, v, x, out),
+            Self::Rnea => b.rnea(m, q, v, x, out),
+            Self::Aba => b.aba(m, q, v, x, out),
         }
     }
 
@@ -254,7 +314,7 @@ fn qvx_batch<'py>(
     let py = q.py();
     let pool = crate::scale::pool(func, threads)?;
     let core = &*model.inner;
-    let (n, qs, vx) = inputs(core, pool.as_deref(), func, q, &args)?;
+    let (n, qs, vx) = inputs(core, pool.as_deref(), func, q, &args, false)?;
     let nv = core.nv();
     let array = match out {
         Some(o) => out_array(func, o, n, nv)?,
@@ -269,14 +329,13 @@ fn qvx_batch<'py>(
     let out = guard.as_slice_mut().unwrap_or(&mut []);
     let (qs, vs, xs) = (qs.as_slice(), vx[0].as_slice(), vx[1].as_slice());
     crate::scale::detach(py, pool.as_deref(), || {
-        f.batch(&core.model, qs, vs, xs, out)?;
-        permute_rows(core, out);
-        Ok(())
+        permuted_chunks(core, f, qs, vs, xs, out)
     })
     .map_err(|e| {
         state_error(core, func, e, qs, |d, k, q| {
             let r = k * nv..(k + 1) * nv;
-            f.single(&core.model, d, q, &vs[r.clone()], &xs[r])
+            let (v, x) = (rigid_v(core, &vs[r.clone()]), rigid_v(core, &xs[r]));
+            f.single(&core.model, d, q, &v, &x)
         })
     })?;
     drop(guard);
@@ -361,7 +420,7 @@ pub fn crba_batch<'py>(
     const F: &str = "crba_batch";
     let pool = crate::scale::pool(F, threads)?;
     let core = &*model.inner;
-    let (n, qs, _) = inputs(core, pool.as_deref(), F, q, &[])?;
+    let (n, qs, _) = inputs(core, pool.as_deref(), F, q, &[], true)?;
     let qs = qs.as_slice();
     let nv = core.nv();
     let mut out = vec![0.0; n * nv * nv];
@@ -396,7 +455,7 @@ pub fn rnea_derivatives_batch<'py>(
     const F: &str = "rnea_derivatives_batch";
     let pool = crate::scale::pool(F, threads)?;
     let core = &*model.inner;
-    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)])?;
+    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)], true)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let nv = core.nv();
     let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);

@@ -145,8 +145,14 @@ fn read_samples(core: &ModelCore, samples: &Bound<'_, PyAny>, window: f64) -> Py
             })
         };
         let (q, v, a, tau) = (get("q")?, get("v")?, get("a")?, get("tau")?);
-        let (n, q, mut rest) =
-            inputs(core, None, func, &q, &[("v", &v), ("a", &a), ("tau", &tau)])?;
+        let (n, q, mut rest) = inputs(
+            core,
+            None,
+            func,
+            &q,
+            &[("v", &v), ("a", &a), ("tau", &tau)],
+            true,
+        )?;
         let t = vector(&get("t")?, func, "samples[\"t\"]", "the rows of q", n)?;
         let (tau, a, v) = (
             rest.pop().unwrap(),

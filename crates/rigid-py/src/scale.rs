@@ -98,7 +98,7 @@ pub fn regressor_batch<'py>(
     const F: &str = "regressor_batch";
     let pool = pool(F, threads)?;
     let core = &*model.inner;
-    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)])?;
+    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)], true)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let (nv, cols) = (core.nv(), 10 * core.model.njoints());
     let mut out = vec![0.0; n * nv * cols];
