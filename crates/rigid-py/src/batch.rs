@@ -2,6 +2,11 @@
 //! `crba_batch`, `rnea_derivatives_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's
 //! `multibody::batch`: several states side by side in SIMD lanes). Each state's result is that
 //! of the single call to round-off, and the same bits for any number of threads.
+//!
+//! Contiguous float64 inputs are read in place ([`Matrix`]); results are written straight into
+//! arrays numpy allocates (numpy asks Linux for huge pages for large arrays: the first touch of
+//! a fresh Rust vector's 4 KiB pages cost about 3 µs per page on this machine, more than CRBA
+//! itself), or into the caller's `out=`.
 
 use crate::convert::{matrix, value_error, Matrix};
 use crate::model::{Model, ModelCore};
@@ -423,10 +428,12 @@ pub fn crba_batch<'py>(
     let (n, qs, _) = inputs(core, pool.as_deref(), F, q, &[], true)?;
     let qs = qs.as_slice();
     let nv = core.nv();
-    let mut out = vec![0.0; n * nv * nv];
+    let array = PyArray3::<f64>::zeros(py, [n, nv, nv], false);
+    let mut guard = array.readwrite(); // a fresh array: nothing else borrows it
+    let out = guard.as_slice_mut().unwrap_or(&mut []);
     crate::scale::detach(py, pool.as_deref(), || {
-        batch::crba_batch(&core.model, qs, &mut out)?;
-        permute_matrices(core, &mut out);
+        batch::crba_batch(&core.model, qs, out)?;
+        permute_matrices(core, out);
         Ok(())
     })
     .map_err(|e| {
@@ -434,7 +441,8 @@ pub fn crba_batch<'py>(
             mb::crba(&core.model, d, q).map(|_| ())
         })
     })?;
-    numpy::PyArray1::from_vec(py, out).reshape([n, nv, nv])
+    drop(guard);
+    Ok(array)
 }
 
 /// `N` matrices, `(N, rows, cols)`.
@@ -458,11 +466,15 @@ pub fn rnea_derivatives_batch<'py>(
     let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)], true)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let nv = core.nv();
-    let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+    let arrays = [0, 1].map(|_| PyArray3::<f64>::zeros(py, [n, nv, nv], false));
+    let mut guards = arrays.each_ref().map(|a| a.readwrite()); // fresh arrays
+    let [dq, dv] = guards
+        .each_mut()
+        .map(|g| g.as_slice_mut().unwrap_or(&mut []));
     crate::scale::detach(py, pool.as_deref(), || {
-        batch::rnea_derivatives_batch(&core.model, qs, vs, as_, &mut dq, &mut dv)?;
-        permute_matrices(core, &mut dq);
-        permute_matrices(core, &mut dv);
+        batch::rnea_derivatives_batch(&core.model, qs, vs, as_, dq, dv)?;
+        permute_matrices(core, dq);
+        permute_matrices(core, dv);
         Ok(())
     })
     .map_err(|e| {
@@ -471,8 +483,7 @@ pub fn rnea_derivatives_batch<'py>(
             mb::rnea_derivatives(&core.model, d, q, &vs[r.clone()], &as_[r]).map(|_| ())
         })
     })?;
-    Ok((
-        numpy::PyArray1::from_vec(py, dq).reshape([n, nv, nv])?,
-        numpy::PyArray1::from_vec(py, dv).reshape([n, nv, nv])?,
-    ))
+    drop(guards);
+    let [dq, dv] = arrays;
+    Ok((dq, dv))
 }

@@ -101,23 +101,30 @@ pub fn regressor_batch<'py>(
     let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)], true)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let (nv, cols) = (core.nv(), 10 * core.model.njoints());
-    let mut out = vec![0.0; n * nv * cols];
+    // numpy's array, written in place (huge pages for a large one: see batch.rs)
+    let array = PyArray3::<f64>::zeros(py, [n, nv, cols], false);
+    let mut guard = array.readwrite(); // a fresh array: nothing else borrows it
+    let out = guard.as_slice_mut().unwrap_or(&mut []);
     detach(py, pool.as_deref(), || {
-        rigid::identification::regressor_batch(&core.model, qs, vs, as_, &mut out)
+        rigid::identification::regressor_batch(&core.model, qs, vs, as_, out)?;
+        if core.convert_v {
+            // rows in the model's velocity layout
+            out.par_chunks_mut((nv * cols).max(1)).for_each_init(
+                || vec![0.0; nv * cols],
+                |block, y| {
+                    block.copy_from_slice(y);
+                    for (r, row) in y.chunks_exact_mut(cols).enumerate() {
+                        let k = core.v_index(r);
+                        row.copy_from_slice(&block[k * cols..(k + 1) * cols]);
+                    }
+                },
+            );
+        }
+        Ok::<_, rigid::multibody::MultibodyError>(())
     })
     .map_err(|e| value_error(F, e))?;
-    if core.convert_v {
-        // rows in the model's velocity layout
-        let mut block = vec![0.0; nv * cols];
-        for y in out.chunks_exact_mut(nv * cols) {
-            block.copy_from_slice(y);
-            for (r, row) in y.chunks_exact_mut(cols).enumerate() {
-                let k = core.v_index(r);
-                row.copy_from_slice(&block[k * cols..(k + 1) * cols]);
-            }
-        }
-    }
-    PyArray1::from_vec(py, out).reshape([n, nv, cols])
+    drop(guard);
+    Ok(array)
 }
 
 /// `model.with_dynamic_parameters(pi)`: a new model (same layout, source, warnings) whose body
