@@ -384,8 +384,8 @@ def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
     bit), the same bits for any ``threads``. Contiguous float64 inputs are read in place (do
     not write to them from another thread during the call); read-only arrays are accepted; a
     dask array is refused (use ``rigid.dask``). ``out``: a writeable C-contiguous float64
-    (N, nv) array to write τ into (and return), so that repeated calls allocate nothing. Not in
-    Pinocchio's Python."""
+    (N, nv) array that overlaps no input, to write τ into (and return), so that repeated calls
+    allocate nothing (on an error its contents are unspecified). Not in Pinocchio's Python."""
 
 def aba_batch(model: Model, Q: ArrayLike, V: ArrayLike, TAU: ArrayLike, *,
               threads: int | None = None, out: Matrix | None = None) -> Matrix:

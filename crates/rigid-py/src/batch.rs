@@ -325,6 +325,15 @@ fn qvx_batch<'py>(
         Some(o) => out_array(func, o, n, nv)?,
         None => PyArray2::<f64>::zeros(py, [n, nv], false),
     };
+    // rust-numpy's borrows see views of one base array, not two arrays over the same buffer
+    let written = array.data() as usize..array.data() as usize + n * nv * 8;
+    let overlaps = |x: &[f64]| {
+        let r = x.as_ptr() as usize..x.as_ptr() as usize + std::mem::size_of_val(x);
+        r.start < written.end && written.start < r.end
+    };
+    if n * nv > 0 && (overlaps(qs.as_slice()) || vx.iter().any(|x| overlaps(x.as_slice()))) {
+        return Err(value_error(func, "out overlaps an input".to_string()));
+    }
     let mut guard = array.try_readwrite().map_err(|e| {
         value_error(
             func,
@@ -369,7 +378,8 @@ fn out_array<'py>(
 
 /// Inverse dynamics for every row: `TAU[k] = rnea(Q[k], V[k], A[k])`, an `(N, nv)` array, on
 /// `threads` threads (None: every core), written to `out` when given (a writeable C-contiguous
-/// float64 `(N, nv)` array, returned: repeated calls then allocate nothing).
+/// float64 `(N, nv)` array that overlaps no input, returned: repeated calls then allocate
+/// nothing; on an error its contents are unspecified).
 #[pyfunction]
 #[pyo3(signature = (model, q, v, a, *, threads = None, out = None))]
 pub fn rnea_batch<'py>(
