@@ -42,7 +42,8 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
         p.V[i] = V;
         p.A[i] = c;
     }
-    for (i, j) in joints.iter().enumerate().rev() {
+    for i in (0..joints.len()).rev() {
+        let j = &joints[i];
         let iv = j.idx_v;
         let (head, tail) = p.IA.split_at_mut(i);
         let IA = &mut tail[0];

@@ -29,7 +29,8 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
     }
     let nv = model.nv();
     // the entries of M outside a dof's subtree are zero: set by Pack::new, never written
-    for (i, j) in joints.iter().enumerate().rev() {
+    for i in (0..joints.len()).rev() {
+        let j = &joints[i];
         let end_v = model.plan().subtree_end_v[i];
         for k in j.dofs() {
             p.Fk[k] = inertia_twist(&p.Ic[i], &p.J[k]);

@@ -160,7 +160,8 @@ fn forward<const W: usize>(model: &Model, p: &mut Pack<W>, d: &mut DerivPack<W>)
 fn backward<const W: usize>(model: &Model, p: &mut Pack<W>, d: &mut DerivPack<W>) {
     let nv = model.nv();
     let joints = model.joints();
-    for (i, j) in joints.iter().enumerate().rev() {
+    for i in (0..joints.len()).rev() {
+        let j = &joints[i];
         let (Y, F, S, H) = (p.Ic[i], d.force[i], d.sym[i], d.momentum[i]);
         let (iv, own) = (j.idx_v, j.idx_v + j.nv);
         let end = model.plan().subtree_end_v[i];

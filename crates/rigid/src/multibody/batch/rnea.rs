@@ -35,7 +35,9 @@ pub(super) fn rnea<const W: usize>(model: &Model, p: &mut Pack<W>) {
         p.V[i] = V;
         p.A[i] = A;
     }
-    for (i, j) in model.joints().iter().enumerate().rev() {
+    let joints = model.joints();
+    for i in (0..joints.len()).rev() {
+        let j = &joints[i];
         let F = p.F[i];
         for k in j.dofs() {
             p.out[k] = s_dot(model, &p.S, k, &F) + p.x[k] * model.armature()[k];
