@@ -119,31 +119,6 @@ fn v_rows<'py>(core: &ModelCore, pool: Option<&ThreadPool>, x: Matrix<'py>) -> R
     Rows::Converted(out)
 }
 
-/// The first entry of `x` that is not finite: blocks summed as `Σ 0·x_i` (0 when every entry
-/// is finite, NaN otherwise, and no branch per entry), the first failing block searched.
-fn first_non_finite(x: &[f64]) -> Option<usize> {
-    const BLOCK: usize = 512;
-    x.chunks(BLOCK).enumerate().find_map(|(b, block)| {
-        let mut sums = [0.0; 8];
-        let mut eights = block.chunks_exact(8);
-        for e in &mut eights {
-            for (s, v) in sums.iter_mut().zip(e) {
-                *s += 0.0 * v;
-            }
-        }
-        for (s, v) in sums.iter_mut().zip(eights.remainder()) {
-            *s += 0.0 * v;
-        }
-        if sums.iter().sum::<f64>() == 0.0 {
-            return None;
-        }
-        block
-            .iter()
-            .position(|x| !x.is_finite())
-            .map(|i| b * BLOCK + i)
-    })
-}
-
 /// The inputs of a batch call: `Q` and the velocity-space arrays, checked and in rigid's layout
 /// (the velocity-space arrays left in the model's when not `permute`: the caller permutes them).
 pub(crate) fn inputs<'py>(
@@ -178,7 +153,7 @@ pub(crate) fn inputs<'py>(
             )));
         }
         let cols = core.nv().max(1);
-        if let Some(i) = first_non_finite(m.as_slice()) {
+        if let Some(i) = mb::first_non_finite(m.as_slice()) {
             return Err(value_error(
                 func,
                 format!("{name}[{}, {}] is not finite", i / cols, i % cols),

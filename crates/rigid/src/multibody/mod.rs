@@ -278,23 +278,47 @@ pub(crate) fn check_v(model: &Model, what: &'static str, v: &[f64]) -> Result<()
 }
 
 fn check_finite(what: &'static str, x: &[f64]) -> Result<(), MultibodyError> {
-    // fast path: `Σ 0·x_i` is 0 when every entry is finite, NaN otherwise (no branch per entry),
-    // summed in 8 independent partial sums: one chain of additions waits 3-4 cycles per entry
-    let mut sums = [0.0; 8];
-    let mut blocks = x.chunks_exact(8);
-    for b in &mut blocks {
-        for (s, v) in sums.iter_mut().zip(b) {
-            *s += 0.0 * v;
-        }
-    }
-    for (s, v) in sums.iter_mut().zip(blocks.remainder()) {
-        *s += 0.0 * v;
-    }
-    if sums.iter().sum::<f64>() == 0.0 {
-        return Ok(());
-    }
-    match x.iter().position(|x| !x.is_finite()) {
+    match first_non_finite(x) {
         Some(index) => Err(MultibodyError::NonFinite { what, index }),
         None => Ok(()),
     }
+}
+
+/// The index of the first entry of `x` that is NaN or infinite, if any, as every input check
+/// finds it.
+///
+/// Blocks of 512 entries are summed as `Σ 0·x_i`, which is 0 when every entry is finite and NaN
+/// otherwise (no branch per entry), in 8 independent partial sums (one chain of additions would
+/// wait 3-4 cycles per entry); only a block whose sum is not 0 is searched.
+///
+/// ```
+/// use rigid::multibody::first_non_finite;
+/// let mut x = vec![1.0; 2000];
+/// assert_eq!(first_non_finite(&x), None);
+/// x[1500] = f64::NEG_INFINITY;
+/// x[1700] = f64::NAN;
+/// assert_eq!(first_non_finite(&x), Some(1500));
+/// ```
+#[must_use]
+pub fn first_non_finite(x: &[f64]) -> Option<usize> {
+    const BLOCK: usize = 512;
+    x.chunks(BLOCK).enumerate().find_map(|(b, block)| {
+        let mut sums = [0.0; 8];
+        let mut eights = block.chunks_exact(8);
+        for e in &mut eights {
+            for (s, v) in sums.iter_mut().zip(e) {
+                *s += 0.0 * v;
+            }
+        }
+        for (s, v) in sums.iter_mut().zip(eights.remainder()) {
+            *s += 0.0 * v;
+        }
+        if sums.iter().sum::<f64>() == 0.0 {
+            return None;
+        }
+        block
+            .iter()
+            .position(|x| !x.is_finite())
+            .map(|i| b * BLOCK + i)
+    })
 }
