@@ -132,10 +132,12 @@ def main():
     tl, tb = [], {k: [] for k in variants}
     speedups = {k: [] for k in variants}
     for r in range(args.rounds):
+        # the loop first in even rounds, last in odd ones, the variants in turn around it
         order = list(variants) if r % 2 == 0 else list(reversed(variants))
-        a = loop() if r % 2 == 0 else None
+        if r % 2 == 0:
+            a = loop()
         times = {k: timed_once(variants[k]) for k in order}
-        if a is None:
+        if r % 2 == 1:
             a = loop()
         tl.append(a)
         for k, t in times.items():

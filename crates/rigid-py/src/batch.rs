@@ -81,8 +81,10 @@ fn converted<'py>(
     Ok(Rows::Converted(out))
 }
 
-/// Rows of `nv` numbers at a time for the parallel permutations: enough to share out.
-const ROWS_PER_TASK: usize = 256;
+/// States per chunk when velocity rows are permuted between the layouts: enough to share out
+/// across threads, few enough that a chunk's rows stay in the core's cache from their
+/// permutation to the kernel.
+const CHUNK: usize = 256;
 
 /// Each state's `nv x nv` blocks of `out` in the model's velocity layout,
 /// `X_pin[r][c] = X[p(r)][p(c)]`, on the threads of the current rayon pool.
@@ -108,8 +110,8 @@ fn v_rows<'py>(core: &ModelCore, pool: Option<&ThreadPool>, x: Matrix<'py>) -> R
     let (nv, src) = (core.nv().max(1), x.as_slice());
     let mut out = vec![0.0; src.len()];
     crate::scale::on(pool, || {
-        out.par_chunks_mut(nv * ROWS_PER_TASK)
-            .zip(src.par_chunks(nv * ROWS_PER_TASK))
+        out.par_chunks_mut(nv * CHUNK)
+            .zip(src.par_chunks(nv * CHUNK))
             .for_each(|(o, s)| {
                 for (o, s) in o.chunks_exact_mut(nv).zip(s.chunks_exact(nv)) {
                     l.permute_v(s, o);
@@ -186,10 +188,6 @@ fn state_error(
     value_error(func, e)
 }
 
-/// States per chunk when velocity rows are permuted between the layouts chunk by chunk: few
-/// enough that a chunk's rows stay in the core's cache from their permutation to the kernel.
-const CHUNK: usize = 256;
-
 /// `f` for every state into `out`, with `vs`, `xs` and `out` in the model's velocity layout.
 /// When it orders velocities otherwise than rigid, the states go in chunks of [`CHUNK`] spread
 /// over the pool: a chunk's `V` and `X` rows permuted into buffers of its task (no fresh pages,
@@ -235,18 +233,6 @@ fn permuted_chunks(
             Ok(())
         })
         .collect()
-}
-
-/// A velocity-space row in rigid's layout.
-fn rigid_v<'a>(core: &ModelCore, x: &'a [f64]) -> std::borrow::Cow<'a, [f64]> {
-    match core.layout.as_ref().filter(|_| core.convert_v) {
-        Some(l) => {
-            let mut out = vec![0.0; x.len()];
-            l.permute_v(x, &mut out);
-            out.into()
-        }
-        None => x.into(),
-    }
 }
 
 /// The two `(q, v, x) ↦ nv-vector` verbs.
@@ -301,9 +287,9 @@ fn qvx_batch<'py>(
         None => PyArray2::<f64>::zeros(py, [n, nv], false),
     };
     // rust-numpy's borrows see views of one base array, not two arrays over the same buffer
-    let written = array.data() as usize..array.data() as usize + n * nv * 8;
+    let written = array.data() as usize..array.data() as usize + n * nv * size_of::<f64>();
     let overlaps = |x: &[f64]| {
-        let r = x.as_ptr() as usize..x.as_ptr() as usize + std::mem::size_of_val(x);
+        let r = x.as_ptr() as usize..x.as_ptr() as usize + size_of_val(x);
         r.start < written.end && written.start < r.end
     };
     if n * nv > 0 && (overlaps(qs.as_slice()) || vx.iter().any(|x| overlaps(x.as_slice()))) {
@@ -323,7 +309,8 @@ fn qvx_batch<'py>(
     .map_err(|e| {
         state_error(core, func, e, qs, |d, k, q| {
             let r = k * nv..(k + 1) * nv;
-            let (v, x) = (rigid_v(core, &vs[r.clone()]), rigid_v(core, &xs[r]));
+            // in rigid's layout (the permutation is its own inverse)
+            let (v, x) = (core.v_to_layout(&vs[r.clone()]), core.v_to_layout(&xs[r]));
             f.single(&core.model, d, q, &v, &x)
         })
     })?;
