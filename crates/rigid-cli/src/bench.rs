@@ -39,6 +39,11 @@ pub struct BenchArgs {
     /// Thread counts for `--batch`, comma separated.
     #[arg(long, value_delimiter = ',', default_value = "1,2")]
     threads: Vec<usize>,
+    /// States side by side in the batch's SIMD lanes (2, 4 or 8; default: as many as the CPU's
+    /// vector unit holds, 8 with AVX-512, 4 with AVX2, else 2). A width wider than the CPU's
+    /// runs the same kernels on narrower instructions.
+    #[arg(long)]
+    lanes: Option<usize>,
 }
 
 /// Run `rigid bench`.
@@ -90,7 +95,11 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
 /// points per thread count, and the speed-up over the loop.
 fn run_batch(args: &BenchArgs, model: &Model, s: &States) -> Result<(), String> {
     let only: Vec<&str> = args.only.iter().map(String::as_str).collect();
-    let rates = batch_throughput(model, s, &only, &args.threads, args.repetitions)
+    let width = args.lanes;
+    if let Some(w) = width.filter(|w| ![2, 4, 8].contains(w)) {
+        return Err(format!("--lanes must be 2, 4 or 8, not {w}"));
+    }
+    let rates = batch_throughput(model, s, &only, &args.threads, width, args.repetitions)
         .map_err(|e| e.to_string())?;
     // `{"rnea": {"loop": states/s, "threads_1": …, "threads_2": …, "threads_2_vs_loop": speed-up,
     // "threads_2_vs_1": speed-up, …}, "aba": …, "crba": …, "crba_lower": …}`
@@ -112,7 +121,7 @@ fn run_batch(args: &BenchArgs, model: &Model, s: &States) -> Result<(), String> 
     }
     let t = serde_json::Value::Object(t);
     // states side by side in the vector registers (8 with AVX-512, 4 with AVX2, else 2)
-    let lanes = rigid::multibody::batch::Batch::new(model).lanes();
+    let lanes = width.unwrap_or_else(|| rigid::multibody::batch::Batch::new(model).lanes());
     if args.json {
         let out = serde_json::json!({
             "model": model.name(),

@@ -375,7 +375,9 @@ pub const BATCH_ALGORITHMS: [&str; 5] = ["rnea", "aba", "crba", "crba_lower", "r
 /// States per second of a loop of single calls and of the batch entry points `names` (keys of
 /// [`BATCH_ALGORITHMS`]; empty: all of them) on each of `threads`, median of `reps` passes
 /// through `states`; a speed-up is the median over passes of the ratio of the two
-/// configurations' times within the pass.
+/// configurations' times within the pass. The batch computes `lanes` states side by side
+/// ([`batch::Batch::with_lanes`]: 2, 4 or 8), or as many as the CPU's vector unit holds
+/// ([`batch::Batch::new`]) with `None`.
 ///
 /// # Errors
 /// [`TimingError::UnknownAlgorithm`] for a name not in [`BATCH_ALGORITHMS`], an algorithm
@@ -385,6 +387,7 @@ pub fn batch_throughput(
     states: &States,
     names: &[&str],
     threads: &[usize],
+    lanes: Option<usize>,
     reps: usize,
 ) -> Result<Vec<BatchThroughput>, TimingError> {
     if let Some(n) = names.iter().find(|n| !BATCH_ALGORITHMS.contains(n)) {
@@ -440,7 +443,12 @@ pub fn batch_throughput(
         let mut data = Data::new(model);
         let mut batches: Vec<batch::Batch> = pools
             .iter()
-            .map(|p| p.install(|| batch::Batch::new(model)))
+            .map(|p| {
+                p.install(|| match lanes {
+                    Some(w) => batch::Batch::with_lanes(model, w),
+                    None => batch::Batch::new(model),
+                })
+            })
             .collect();
         // the loop and every thread count take turns pass by pass, so that a slow spell of a
         // shared machine hits them alike; each turn is an untimed pass then a timed one, so that

@@ -103,6 +103,50 @@ fn bench_batch_json_reports_lanes_and_rates() {
     }
 }
 
+/// `rigid bench --batch --lanes W`: the batch computes `W` states side by side whatever the
+/// CPU's width, and says so; a width other than 2, 4 or 8 is refused with its value.
+#[test]
+fn bench_batch_lanes_forces_the_width() {
+    let args = |w: &'static str| {
+        [
+            "bench",
+            "puma560",
+            "--batch",
+            "--json",
+            "--threads",
+            "1",
+            "--repetitions",
+            "1",
+            "--states",
+            "5",
+            "--only",
+            "rnea",
+            "--lanes",
+            w,
+        ]
+    };
+    for w in ["2", "4", "8"] {
+        let out = rigid(&args(w));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["lanes"].to_string(), w);
+        assert!(
+            v["states_per_second"]["rnea"]["threads_1"]
+                .as_f64()
+                .unwrap()
+                > 0.0
+        );
+    }
+    let out = rigid(&args("3"));
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--lanes must be 2, 4 or 8, not 3"), "{err}");
+}
+
 /// `rigid bench --batch --only`: only the named batch entry points are timed, and a name that is
 /// not one of them is refused with its name.
 #[test]

@@ -139,7 +139,7 @@ impl Lanes {
             vs,
             xs,
             first,
-            avx: false,
+            native: false,
         };
         match algo.code() {
             RNEA => self.run_as::<RNEA>(model, io, out, out2),
@@ -163,6 +163,7 @@ impl Lanes {
         match self {
             #[cfg(target_arch = "x86_64")]
             Self::W8(p) if std::arch::is_x86_feature_detected!("avx512f") => {
+                io.native = true;
                 // SAFETY: the CPU has AVX-512F (checked above).
                 unsafe { avx512::<A>(p, model, &io, out, out2) }
             }
@@ -171,7 +172,7 @@ impl Lanes {
                 if std::arch::is_x86_feature_detected!("avx2")
                     && std::arch::is_x86_feature_detected!("fma") =>
             {
-                io.avx = true;
+                io.native = true;
                 // SAFETY: the CPU has AVX2 and FMA (checked above).
                 unsafe { avx2::<A>(p, model, &io, out, out2) }
             }
@@ -182,14 +183,15 @@ impl Lanes {
     }
 }
 
-/// The row-major inputs, the index of the first state of a task, and whether the CPU has AVX
-/// (for the transpositions in registers: out of 4 lanes, and the full CRBA matrices' mirror).
+/// The row-major inputs, the index of the first state of a task, and whether the pack runs in
+/// the CPU's own instructions for its width (AVX-512F for 8 lanes, AVX2 for 4): then the
+/// transpositions out of the lanes, and the full CRBA matrices' mirror, run in registers.
 struct Io<'a> {
     qs: &'a [f64],
     vs: &'a [f64],
     xs: &'a [f64],
     first: usize,
-    avx: bool,
+    native: bool,
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -264,13 +266,13 @@ fn packs<const W: usize, const A: u8>(
         }
         let o = &mut out[s * per..(s + m) * per];
         match algo {
-            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o, per, io.avx),
-            Algo::CrbaLower => transpose_out(&p.M, m, o, per, io.avx),
+            Algo::Rnea | Algo::Aba => transpose_out(&p.out, m, o, per, io.native),
+            Algo::CrbaLower => transpose_out(&p.M, m, o, per, io.native),
             Algo::RneaDerivatives => {
                 if let Some(d) = &p.deriv {
-                    transpose_out(&d.dq, m, o, per, io.avx);
+                    transpose_out(&d.dq, m, o, per, io.native);
                     let o2 = &mut out2[s * per..(s + m) * per];
-                    transpose_out(&d.dv, m, o2, per, io.avx);
+                    transpose_out(&d.dv, m, o2, per, io.native);
                 }
             }
             Algo::Crba => {
@@ -278,10 +280,16 @@ fn packs<const W: usize, const A: u8>(
                 // the diagonal on), then each row's entries left of the diagonal from the rows above
                 for c in 0..nv {
                     let at = packed_at(nv, c, c);
-                    transpose_out(&p.M[at..at + nv - c], m, &mut o[c * nv + c..], per, io.avx);
+                    transpose_out(
+                        &p.M[at..at + nv - c],
+                        m,
+                        &mut o[c * nv + c..],
+                        per,
+                        io.native,
+                    );
                 }
                 for o in o.chunks_exact_mut(per) {
-                    mirror_upper(o, nv, io.avx);
+                    mirror_upper(o, nv, io.native);
                 }
             }
         }
@@ -292,16 +300,18 @@ fn packs<const W: usize, const A: u8>(
 
 /// Lanes `0..m` of `src` (one lane vector per output index) into `m` rows of `dst`, `stride`
 /// apart (row `l`, lane `l`'s numbers, is `dst[l stride..][..src.len()]`): `W x W` blocks
-/// transposed in registers, then the remainder one by one. With 4 lanes and `avx` (the CPU has
-/// it), each block is four unpacks and four lane permutes ([`transpose4`]); the compiler makes
-/// scalar moves through the stack of the generic loop.
+/// transposed in registers, then the remainder one by one. With `native` (the pack runs in the
+/// CPU's instructions for its width: AVX2 for 4 lanes, AVX-512F for 8), each block is one (4
+/// lanes) or four (8 lanes) 4x4 transpositions of AVX ([`transpose4`]); the generic loop makes
+/// scalar moves through the stack. (An 8x8 transposition in AVX-512's shuffles, 24 instead of
+/// 32 per 64 numbers, measured no faster on TALOS's CRBA in three interleaved rounds.)
 #[inline(always)]
 fn transpose_out<const W: usize>(
     src: &[L<W>],
     m: usize,
     dst: &mut [f64],
     stride: usize,
-    avx: bool,
+    native: bool,
 ) {
     let per = src.len();
     let full = per / W * W;
@@ -311,20 +321,29 @@ fn transpose_out<const W: usize>(
         dst.len()
     );
     #[cfg(target_arch = "x86_64")]
-    if W == 4 && avx {
-        let (src4, out) = (src.as_ptr().cast::<f64>(), dst.as_mut_ptr());
-        for b in (0..full).step_by(4) {
-            // SAFETY: `src[b..b + 4]` are four rows of four `f64` (W = 4); row `l < m` of `dst`
-            // starts at `l stride` and holds `per ≥ b + 4` numbers, `(m − 1) stride + per ≤
-            // dst.len()` (asserted above); the CPU has AVX.
-            unsafe { transpose4(src4.add(4 * b), 4, out.add(b), stride, m) };
+    if native && (W == 4 || W == 8) {
+        let (lanes, out) = (src.as_ptr().cast::<f64>(), dst.as_mut_ptr());
+        for b in (0..full).step_by(W) {
+            // the W x W block as 4 x 4 quarters: lanes h..h + 4 of entries b + e..b + e + 4
+            for h in (0..m).step_by(4) {
+                for e in (0..W).step_by(4) {
+                    // SAFETY: `src[b + e..b + e + 4]` are four rows of `W ≥ h + 4` `f64`; row
+                    // `h + l < m` of `dst` starts at `(h + l) stride` and holds `per ≥ b + e + 4`
+                    // numbers, `(m − 1) stride + per ≤ dst.len()` (asserted above); with
+                    // `native`, the CPU has AVX (AVX2 for 4 lanes, AVX-512F for 8).
+                    unsafe {
+                        let (from, to) = (lanes.add(W * (b + e) + h), out.add(h * stride + b + e));
+                        transpose4(from, W, to, stride, (m - h).min(4));
+                    }
+                }
+            }
         }
     } else {
         transpose_blocks(src, m, dst, stride);
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
-        let _ = avx;
+        let _ = native;
         transpose_blocks(src, m, dst, stride);
     }
     for (t, x) in src.iter().enumerate().skip(full) {
@@ -391,7 +410,7 @@ unsafe fn transpose4(src: *const f64, src_stride: usize, dst: *mut f64, stride: 
 }
 
 /// The entries left of the diagonal of the row-major `n x n` symmetric matrix `a` from those
-/// right of it: `a_rc = a_cr` for `r > c`. With `avx` (the CPU has it), the 4x4 blocks wholly
+/// right of it: `a_rc = a_cr` for `r > c`. With `avx` (the CPU has AVX), the 4x4 blocks wholly
 /// below the diagonal are transposed in registers ([`transpose4`]), the rest one by one.
 #[inline(always)]
 fn mirror_upper(a: &mut [f64], n: usize, avx: bool) {
