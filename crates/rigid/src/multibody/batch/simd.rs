@@ -304,7 +304,8 @@ fn packs<const W: usize, const A: u8>(
 /// CPU's instructions for its width: AVX2 for 4 lanes, AVX-512F for 8), each block is one (4
 /// lanes) or four (8 lanes) 4x4 transpositions of AVX ([`transpose4`]); the generic loop makes
 /// scalar moves through the stack. (An 8x8 transposition in AVX-512's shuffles, 24 instead of
-/// 32 per 64 numbers, measured no faster on TALOS's CRBA in three interleaved rounds.)
+/// 32 per 64 numbers, was slower on a Zen 5: 0.87–0.98 of the quarters' states/s for CRBA
+/// on UR5, Panda, Solo-12 and TALOS, 7 interleaved rounds; BENCHMARKS.md.)
 #[inline(always)]
 fn transpose_out<const W: usize>(
     src: &[L<W>],
