@@ -42,7 +42,7 @@ pub struct BenchArgs {
     /// States side by side in the batch's SIMD lanes (2, 4 or 8; default: as many as the CPU's
     /// vector unit holds, 8 with AVX-512, 4 with AVX2, else 2). A width wider than the CPU's
     /// runs the same kernels on narrower instructions.
-    #[arg(long)]
+    #[arg(long, requires = "batch")]
     lanes: Option<usize>,
 }
 

@@ -9,6 +9,24 @@ fn rigid(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// `rigid bench puma560 --batch --json` on one thread, one pass over 5 states, then `extra`.
+fn quick_batch(extra: &[&str]) -> Output {
+    let mut args = vec![
+        "bench",
+        "puma560",
+        "--batch",
+        "--json",
+        "--threads",
+        "1",
+        "--repetitions",
+        "1",
+        "--states",
+        "5",
+    ];
+    args.extend_from_slice(extra);
+    rigid(&args)
+}
+
 #[test]
 fn bench_json_has_the_contract_keys() {
     let out = rigid(&[
@@ -107,26 +125,9 @@ fn bench_batch_json_reports_lanes_and_rates() {
 /// CPU's width, and says so; a width other than 2, 4 or 8 is refused with its value.
 #[test]
 fn bench_batch_lanes_forces_the_width() {
-    let args = |w: &'static str| {
-        [
-            "bench",
-            "puma560",
-            "--batch",
-            "--json",
-            "--threads",
-            "1",
-            "--repetitions",
-            "1",
-            "--states",
-            "5",
-            "--only",
-            "rnea",
-            "--lanes",
-            w,
-        ]
-    };
+    let args = |w| ["--only", "rnea", "--lanes", w];
     for w in ["2", "4", "8"] {
-        let out = rigid(&args(w));
+        let out = quick_batch(&args(w));
         assert!(
             out.status.success(),
             "{}",
@@ -141,7 +142,7 @@ fn bench_batch_lanes_forces_the_width() {
                 > 0.0
         );
     }
-    let out = rigid(&args("3"));
+    let out = quick_batch(&args("3"));
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--lanes must be 2, 4 or 8, not 3"), "{err}");
@@ -151,23 +152,7 @@ fn bench_batch_lanes_forces_the_width() {
 /// not one of them is refused with its name.
 #[test]
 fn bench_batch_only_times_the_named_entry_points() {
-    let args = |only: &'static str| {
-        [
-            "bench",
-            "puma560",
-            "--batch",
-            "--json",
-            "--threads",
-            "1",
-            "--repetitions",
-            "1",
-            "--states",
-            "5",
-            "--only",
-            only,
-        ]
-    };
-    let out = rigid(&args("rnea,crba_lower"));
+    let out = quick_batch(&["--only", "rnea,crba_lower"]);
     assert!(
         out.status.success(),
         "{}",
@@ -176,7 +161,7 @@ fn bench_batch_only_times_the_named_entry_points() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let keys: Vec<&String> = v["states_per_second"].as_object().unwrap().keys().collect();
     assert_eq!(keys, ["crba_lower", "rnea"]);
-    let out = rigid(&args("minverse"));
+    let out = quick_batch(&["--only", "minverse"]);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("minverse"), "{err}");

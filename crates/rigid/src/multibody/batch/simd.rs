@@ -299,11 +299,11 @@ fn packs<const W: usize, const A: u8>(
 }
 
 /// Lanes `0..m` of `src` (one lane vector per output index) into `m` rows of `dst`, `stride`
-/// apart (row `l`, lane `l`'s numbers, is `dst[l stride..][..src.len()]`): `W x W` blocks
-/// transposed in registers, then the remainder one by one. With `native` (the pack runs in the
-/// CPU's instructions for its width: AVX2 for 4 lanes, AVX-512F for 8), each block is one (4
-/// lanes) or four (8 lanes) 4x4 transpositions of AVX ([`transpose4`]); the generic loop makes
-/// scalar moves through the stack. (An 8x8 transposition in AVX-512's shuffles, 24 instead of
+/// apart (row `l`, lane `l`'s numbers, is `dst[l stride..][..src.len()]`): `W x W` blocks,
+/// then the remainder one by one. With `native` (the pack runs in the CPU's instructions for
+/// its width: AVX2 for 4 lanes, AVX-512F for 8), a block is transposed in registers as 4x4
+/// blocks of AVX ([`transpose4`]: one for 4 lanes, two or four for 8, as the pack is filled);
+/// otherwise by the generic loop, which the compiler makes scalar moves through the stack. (An 8x8 transposition in AVX-512's shuffles, 24 instead of
 /// 32 per 64 numbers, was slower on a Zen 5: 0.87–0.98 of the quarters' states/s for CRBA
 /// on UR5, Panda, Solo-12 and TALOS, 7 interleaved rounds; BENCHMARKS.md.)
 #[inline(always)]
@@ -330,8 +330,9 @@ fn transpose_out<const W: usize>(
                 for e in (0..W).step_by(4) {
                     // SAFETY: `src[b + e..b + e + 4]` are four rows of `W ≥ h + 4` `f64`; row
                     // `h + l < m` of `dst` starts at `(h + l) stride` and holds `per ≥ b + e + 4`
-                    // numbers, `(m − 1) stride + per ≤ dst.len()` (asserted above); with
-                    // `native`, the CPU has AVX (AVX2 for 4 lanes, AVX-512F for 8).
+                    // numbers, `(m − 1) stride + per ≤ dst.len()` (asserted above); `src` and
+                    // `dst` are borrowed apart, so they do not overlap; with `native`, the CPU
+                    // has AVX (AVX2 for 4 lanes, AVX-512F for 8).
                     unsafe {
                         let (from, to) = (lanes.add(W * (b + e) + h), out.add(h * stride + b + e));
                         transpose4(from, W, to, stride, (m - h).min(4));
@@ -445,6 +446,48 @@ fn mirror_upper(a: &mut [f64], n: usize, avx: bool) {
         let (above, row) = a.split_at_mut(r * n);
         for (c, y) in row.iter_mut().enumerate().take(r).skip(first) {
             *y = above[c * n + r];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{transpose_out, L};
+
+    /// `transpose_out` of `W` lanes, in registers (when the CPU has AVX) and in the generic loop:
+    /// lane `l` of entry `t` lands at `dst[l stride + t]` for every `l < m`, for pack fillings
+    /// `m = 0..=W` and lengths that leave every remainder, and nothing else of `dst` is written.
+    fn transposes<const W: usize>(native: bool) {
+        for per in 0..=21 {
+            let src: Vec<L<W>> = (0..per)
+                .map(|t| L(std::array::from_fn(|l| (100 * t + l) as f64)))
+                .collect();
+            for m in 0..=W {
+                let stride = per + 3;
+                let mut dst = vec![f64::NAN; W * stride];
+                transpose_out(&src, m, &mut dst, stride, native);
+                for (k, y) in dst.iter().enumerate() {
+                    let (l, t) = (k / stride, k % stride);
+                    if l < m && t < per {
+                        assert_eq!(*y, (100 * t + l) as f64, "W {W}, per {per}, m {m}, [{k}]");
+                    } else {
+                        assert!(y.is_nan(), "W {W}, per {per}, m {m}: [{k}] written");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn transpose_out_puts_each_lane_in_its_row() {
+        #[cfg(target_arch = "x86_64")]
+        let avx = std::arch::is_x86_feature_detected!("avx");
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx = false;
+        for native in [false, avx] {
+            transposes::<2>(false);
+            transposes::<4>(native);
+            transposes::<8>(native);
         }
     }
 }
