@@ -9,7 +9,8 @@ fn rigid(args: &[&str]) -> Output {
         .unwrap()
 }
 
-/// `rigid bench puma560 --batch --json` on one thread, one pass over 5 states, then `extra`.
+/// `rigid bench puma560 --batch --json` on one thread, one pass over 9 states (a partial last
+/// pack for any width), then `extra`.
 fn quick_batch(extra: &[&str]) -> Output {
     let mut args = vec![
         "bench",
@@ -21,7 +22,7 @@ fn quick_batch(extra: &[&str]) -> Output {
         "--repetitions",
         "1",
         "--states",
-        "5",
+        "9",
     ];
     args.extend_from_slice(extra);
     rigid(&args)
@@ -92,18 +93,7 @@ fn bench_unknown_model_fails_cleanly() {
 /// the speed-ups (positive, finite).
 #[test]
 fn bench_batch_json_reports_lanes_and_rates() {
-    let out = rigid(&[
-        "bench",
-        "puma560",
-        "--batch",
-        "--json",
-        "--threads",
-        "1",
-        "--repetitions",
-        "1",
-        "--states",
-        "9",
-    ]);
+    let out = quick_batch(&[]);
     assert!(
         out.status.success(),
         "{}",
