@@ -56,11 +56,29 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
 /// ([`multibody::batch`](crate::multibody::batch)): the same operations in each lane (the
 /// quadrant picked by comparisons instead of a `match`), so the results are [`sin_cos`]'s bit
 /// for bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the standard library, as there.
+///
+/// Eight lanes on a CPU with AVX-512F and four with AVX2 run in that unit's intrinsics
+/// ([`avx512::sin_cos_8`], [`avx2::sin_cos_4`]): the compiler split the portable loops below
+/// into 4-, 2- and 1-lane pieces for 8 lanes, and the batch RNEA spent a fifth of its time on
+/// TALOS here (BENCHMARKS.md).
 #[cfg(feature = "parallel")]
 #[inline(always)]
 #[must_use]
 #[allow(clippy::manual_range_contains)] // two comparisons per lane, which vectorise
 pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W]) {
+    #[cfg(target_arch = "x86_64")]
+    if q.iter().all(|x| x.abs() < 1e5) {
+        if W == 8 && std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU has AVX-512F (checked above); every |q| < 10⁵.
+            let (s, c) = unsafe { avx512::sin_cos_8(std::array::from_fn(|i| q[i])) };
+            return (std::array::from_fn(|i| s[i]), std::array::from_fn(|i| c[i]));
+        }
+        if W == 4 && std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked above); every |q| < 10⁵.
+            let (s, c) = unsafe { avx2::sin_cos_4(std::array::from_fn(|i| q[i])) };
+            return (std::array::from_fn(|i| s[i]), std::array::from_fn(|i| c[i]));
+        }
+    }
     const ROUND: f64 = 6_755_399_441_055_744.0;
     // each step a loop over the lanes, which the compiler makes one vector instruction
     #[inline(always)]
@@ -307,7 +325,7 @@ mod avx2 {
     /// The steps of [`super::sin_cos`] in four lanes, for `|q| < 10⁵` (checked by the caller).
     #[inline]
     #[target_feature(enable = "avx2")]
-    fn sin_cos_4(q: [f64; 4]) -> ([f64; 4], [f64; 4]) {
+    pub(super) fn sin_cos_4(q: [f64; 4]) -> ([f64; 4], [f64; 4]) {
         const ROUND: f64 = 6_755_399_441_055_744.0;
         let x = _mm256_set_pd(q[3], q[2], q[1], q[0]);
         let n = _mm256_sub_pd(
@@ -363,6 +381,84 @@ mod avx2 {
     }
 }
 
+#[cfg(all(target_arch = "x86_64", feature = "parallel"))]
+mod avx512 {
+    //! Eight angles in the lanes of a `zmm` register; the caller checks for AVX-512F at run time.
+    use super::{C1, C2, C3, C4, C5, C6, PIO2_1, PIO2_2, PIO2_2T, S1, S2, S3, S4, S5, S6};
+    use std::arch::x86_64::{
+        __m512d, _mm512_add_epi64, _mm512_add_pd, _mm512_and_si512, _mm512_castpd_si512,
+        _mm512_castsi512_pd, _mm512_cvtepi32_epi64, _mm512_cvtpd_epi32, _mm512_loadu_pd,
+        _mm512_mask_blend_pd, _mm512_mul_pd, _mm512_set1_epi64, _mm512_set1_pd, _mm512_slli_epi64,
+        _mm512_storeu_pd, _mm512_sub_pd, _mm512_test_epi64_mask, _mm512_xor_si512,
+    };
+
+    #[inline]
+    #[target_feature(enable = "avx512f")]
+    fn k(x: f64) -> __m512d {
+        _mm512_set1_pd(x)
+    }
+
+    /// The steps of [`super::sin_cos`] in eight lanes, for `|q| < 10⁵` (checked by the caller),
+    /// as [`super::avx2`]'s four: the same operations, the quadrant `n mod 4` from the integer
+    /// `n`, an odd one swapping sine and cosine, bit 1 of `n` (of `n + 1`) negating the sine
+    /// (the cosine).
+    #[inline]
+    #[target_feature(enable = "avx512f")]
+    pub(super) fn sin_cos_8(q: [f64; 8]) -> ([f64; 8], [f64; 8]) {
+        const ROUND: f64 = 6_755_399_441_055_744.0;
+        // SAFETY: `q` holds eight f64 (an unaligned load).
+        let x = unsafe { _mm512_loadu_pd(q.as_ptr()) };
+        let n = _mm512_sub_pd(
+            _mm512_add_pd(_mm512_mul_pd(x, k(std::f64::consts::FRAC_2_PI)), k(ROUND)),
+            k(ROUND),
+        );
+        let r = _mm512_sub_pd(
+            _mm512_sub_pd(
+                _mm512_sub_pd(x, _mm512_mul_pd(n, k(PIO2_1))),
+                _mm512_mul_pd(n, k(PIO2_2)),
+            ),
+            _mm512_mul_pd(n, k(PIO2_2T)),
+        );
+        let z = _mm512_mul_pd(r, r);
+        let mut ps = k(S6);
+        for ck in [S5, S4, S3, S2, S1] {
+            ps = _mm512_add_pd(k(ck), _mm512_mul_pd(z, ps));
+        }
+        let s = _mm512_add_pd(r, _mm512_mul_pd(_mm512_mul_pd(r, z), ps));
+        let hz = _mm512_mul_pd(k(0.5), z);
+        let w = _mm512_sub_pd(k(1.0), hz);
+        let mut pc = k(C6);
+        for ck in [C5, C4, C3, C2, C1] {
+            pc = _mm512_add_pd(k(ck), _mm512_mul_pd(z, pc));
+        }
+        let c = _mm512_add_pd(
+            w,
+            _mm512_add_pd(
+                _mm512_sub_pd(_mm512_sub_pd(k(1.0), w), hz),
+                _mm512_mul_pd(_mm512_mul_pd(z, z), pc),
+            ),
+        );
+        let n = _mm512_cvtepi32_epi64(_mm512_cvtpd_epi32(n));
+        let (one, two) = (_mm512_set1_epi64(1), _mm512_set1_epi64(2));
+        let odd = _mm512_test_epi64_mask(n, one);
+        let sign = |v: __m512d, bit: std::arch::x86_64::__m512i| {
+            _mm512_castsi512_pd(_mm512_xor_si512(
+                _mm512_castpd_si512(v),
+                _mm512_slli_epi64(_mm512_and_si512(bit, two), 62),
+            ))
+        };
+        let sin = sign(_mm512_mask_blend_pd(odd, s, c), n);
+        let cos = sign(_mm512_mask_blend_pd(odd, c, s), _mm512_add_epi64(n, one));
+        let (mut so, mut co) = ([0.0; 8], [0.0; 8]);
+        // SAFETY: `so` and `co` hold eight f64 each (unaligned stores).
+        unsafe {
+            _mm512_storeu_pd(so.as_mut_ptr(), sin);
+            _mm512_storeu_pd(co.as_mut_ptr(), cos);
+        }
+        (so, co)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::sin_cos;
@@ -385,12 +481,25 @@ mod tests {
         assert!(sin_cos(f64::NAN).0.is_nan() && sin_cos(f64::INFINITY).1.is_nan());
     }
 
-    /// The vector paths (four AVX2 lanes, two SSE2 lanes) give `sin_cos` bit for bit, in every
-    /// quadrant and lane, and fall back for large or non-finite angles.
+    /// `sin_cos_lanes` gives `sin_cos` bit for bit in 2, 4 and 8 lanes (on this CPU's AVX2 or
+    /// AVX-512F intrinsics where it has them, else the portable loops), in every quadrant and
+    /// lane, and falls back for large or non-finite angles.
     #[test]
     #[cfg(feature = "parallel")]
     fn sin_cos_lanes_equals_sin_cos_bit_for_bit() {
-        let qs = [
+        fn check<const W: usize>(qs: &[f64]) {
+            for chunk in qs.chunks(W) {
+                let mut q = [0.25; W];
+                q[..chunk.len()].copy_from_slice(chunk);
+                let (s, c) = super::sin_cos_lanes(q);
+                for i in 0..W {
+                    let (s1, c1) = sin_cos(q[i]);
+                    assert_eq!(s[i].to_bits(), s1.to_bits(), "W {W}: sin {}", q[i]);
+                    assert_eq!(c[i].to_bits(), c1.to_bits(), "W {W}: cos {}", q[i]);
+                }
+            }
+        }
+        let special = [
             0.0,
             -0.0,
             0.3,
@@ -409,15 +518,12 @@ mod tests {
             -3.0 * std::f64::consts::FRAC_PI_2,
             std::f64::consts::TAU,
         ];
-        for chunk in qs.chunks(4) {
-            let mut q = [0.25; 4];
-            q[..chunk.len()].copy_from_slice(chunk);
-            let (s, c) = super::sin_cos_lanes(q);
-            for i in 0..4 {
-                let (s1, c1) = sin_cos(q[i]);
-                assert_eq!(s[i].to_bits(), s1.to_bits(), "sin {}", q[i]);
-                assert_eq!(c[i].to_bits(), c1.to_bits(), "cos {}", q[i]);
-            }
+        // every quadrant in every lane: a sweep over ±20 rad, all in the vector path's range
+        let sweep: Vec<f64> = (-541..=541).map(|k| k as f64 * 0.037).collect();
+        for qs in [&special[..], &sweep] {
+            check::<2>(qs);
+            check::<4>(qs);
+            check::<8>(qs);
         }
     }
 
