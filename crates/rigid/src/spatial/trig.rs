@@ -67,16 +67,20 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
 #[allow(clippy::manual_range_contains)] // two comparisons per lane, which vectorise
 pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W]) {
     #[cfg(target_arch = "x86_64")]
-    if q.iter().all(|x| x.abs() < 1e5) {
+    {
+        let lanes = |(s, c): (&[f64], &[f64])| {
+            (std::array::from_fn(|i| s[i]), std::array::from_fn(|i| c[i]))
+        };
         if W == 8 && std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F (checked above); every |q| < 10⁵.
-            let (s, c) = unsafe { avx512::sin_cos_8(std::array::from_fn(|i| q[i])) };
-            return (std::array::from_fn(|i| s[i]), std::array::from_fn(|i| c[i]));
-        }
-        if W == 4 && std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked above); every |q| < 10⁵.
-            let (s, c) = unsafe { avx2::sin_cos_4(std::array::from_fn(|i| q[i])) };
-            return (std::array::from_fn(|i| s[i]), std::array::from_fn(|i| c[i]));
+            // SAFETY: the CPU has AVX-512F (checked above).
+            if let Some((s, c)) = unsafe { avx512::sin_cos_8(std::array::from_fn(|i| q[i])) } {
+                return lanes((&s, &c));
+            }
+        } else if W == 4 && std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked above).
+            if let Some((s, c)) = unsafe { avx2::sin_cos_4(std::array::from_fn(|i| q[i])) } {
+                return lanes((&s, &c));
+            }
         }
     }
     const ROUND: f64 = 6_755_399_441_055_744.0;
@@ -283,9 +287,10 @@ mod avx2 {
     use super::{C1, C2, C3, C4, C5, C6, PIO2_1, PIO2_2, PIO2_2T, S1, S2, S3, S4, S5, S6};
     use std::arch::x86_64::{
         __m256d, _mm256_add_epi64, _mm256_add_pd, _mm256_and_pd, _mm256_and_si256,
-        _mm256_andnot_pd, _mm256_castsi256_pd, _mm256_cmpeq_epi64, _mm256_cvtepi32_epi64,
-        _mm256_cvtpd_epi32, _mm256_mul_pd, _mm256_or_pd, _mm256_set1_epi64x, _mm256_set1_pd,
-        _mm256_set_pd, _mm256_slli_epi64, _mm256_storeu_pd, _mm256_sub_pd, _mm256_xor_pd,
+        _mm256_andnot_pd, _mm256_castsi256_pd, _mm256_cmp_pd, _mm256_cmpeq_epi64,
+        _mm256_cvtepi32_epi64, _mm256_cvtpd_epi32, _mm256_movemask_pd, _mm256_mul_pd, _mm256_or_pd,
+        _mm256_set1_epi64x, _mm256_set1_pd, _mm256_set_pd, _mm256_slli_epi64, _mm256_storeu_pd,
+        _mm256_sub_pd, _mm256_xor_pd, _CMP_LT_OQ,
     };
 
     /// [`super::sin_cos_at`], four at a time, then by pairs.
@@ -294,12 +299,10 @@ mod avx2 {
         let mut quads = at.chunks_exact(4);
         for k in quads.by_ref() {
             let x = [q[k[0]], q[k[1]], q[k[2]], q[k[3]]];
-            let (s, c) = if x.iter().all(|x| x.abs() < 1e5) {
-                sin_cos_4(x)
-            } else {
+            let (s, c) = sin_cos_4(x).unwrap_or_else(|| {
                 let sc = x.map(super::sin_cos);
                 (sc.map(|t| t.0), sc.map(|t| t.1))
-            };
+            });
             for t in 0..4 {
                 out[k[t]] = [s[t], c[t]];
             }
@@ -322,12 +325,17 @@ mod avx2 {
         out
     }
 
-    /// The steps of [`super::sin_cos`] in four lanes, for `|q| < 10⁵` (checked by the caller).
+    /// The steps of [`super::sin_cos`] in four lanes, or `None` unless every `|q| < 10⁵` (one
+    /// vector comparison; NaN is out).
     #[inline]
     #[target_feature(enable = "avx2")]
-    pub(super) fn sin_cos_4(q: [f64; 4]) -> ([f64; 4], [f64; 4]) {
+    pub(super) fn sin_cos_4(q: [f64; 4]) -> Option<([f64; 4], [f64; 4])> {
         const ROUND: f64 = 6_755_399_441_055_744.0;
         let x = _mm256_set_pd(q[3], q[2], q[1], q[0]);
+        let abs = _mm256_andnot_pd(k(-0.0), x);
+        if _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(abs, k(1e5))) != 0b1111 {
+            return None;
+        }
         let n = _mm256_sub_pd(
             _mm256_add_pd(_mm256_mul_pd(x, k(std::f64::consts::FRAC_2_PI)), k(ROUND)),
             k(ROUND),
@@ -377,7 +385,7 @@ mod avx2 {
                 62,
             )),
         );
-        (lanes(sin), lanes(cos))
+        Some((lanes(sin), lanes(cos)))
     }
 }
 
@@ -386,10 +394,11 @@ mod avx512 {
     //! Eight angles in the lanes of a `zmm` register; the caller checks for AVX-512F at run time.
     use super::{C1, C2, C3, C4, C5, C6, PIO2_1, PIO2_2, PIO2_2T, S1, S2, S3, S4, S5, S6};
     use std::arch::x86_64::{
-        __m512d, _mm512_add_epi64, _mm512_add_pd, _mm512_and_si512, _mm512_castpd_si512,
-        _mm512_castsi512_pd, _mm512_cvtepi32_epi64, _mm512_cvtpd_epi32, _mm512_loadu_pd,
-        _mm512_mask_blend_pd, _mm512_mul_pd, _mm512_set1_epi64, _mm512_set1_pd, _mm512_slli_epi64,
-        _mm512_storeu_pd, _mm512_sub_pd, _mm512_test_epi64_mask, _mm512_xor_si512,
+        __m512d, _mm512_abs_pd, _mm512_add_epi64, _mm512_add_pd, _mm512_and_si512,
+        _mm512_castpd_si512, _mm512_castsi512_pd, _mm512_cmp_pd_mask, _mm512_cvtepi32_epi64,
+        _mm512_cvtpd_epi32, _mm512_loadu_pd, _mm512_mask_blend_pd, _mm512_mul_pd,
+        _mm512_set1_epi64, _mm512_set1_pd, _mm512_slli_epi64, _mm512_storeu_pd, _mm512_sub_pd,
+        _mm512_test_epi64_mask, _mm512_xor_si512, _CMP_LT_OQ,
     };
 
     #[inline]
@@ -398,16 +407,19 @@ mod avx512 {
         _mm512_set1_pd(x)
     }
 
-    /// The steps of [`super::sin_cos`] in eight lanes, for `|q| < 10⁵` (checked by the caller),
-    /// as [`super::avx2`]'s four: the same operations, the quadrant `n mod 4` from the integer
-    /// `n`, an odd one swapping sine and cosine, bit 1 of `n` (of `n + 1`) negating the sine
-    /// (the cosine).
+    /// The steps of [`super::sin_cos`] in eight lanes, or `None` unless every `|q| < 10⁵` (one
+    /// vector comparison; NaN is out), as [`super::avx2`]'s four: the same operations, the
+    /// quadrant `n mod 4` from the integer `n`, an odd one swapping sine and cosine, bit 1 of `n`
+    /// (of `n + 1`) negating the sine (the cosine).
     #[inline]
     #[target_feature(enable = "avx512f")]
-    pub(super) fn sin_cos_8(q: [f64; 8]) -> ([f64; 8], [f64; 8]) {
+    pub(super) fn sin_cos_8(q: [f64; 8]) -> Option<([f64; 8], [f64; 8])> {
         const ROUND: f64 = 6_755_399_441_055_744.0;
         // SAFETY: `q` holds eight f64 (an unaligned load).
         let x = unsafe { _mm512_loadu_pd(q.as_ptr()) };
+        if _mm512_cmp_pd_mask::<_CMP_LT_OQ>(_mm512_abs_pd(x), k(1e5)) != 0xff {
+            return None;
+        }
         let n = _mm512_sub_pd(
             _mm512_add_pd(_mm512_mul_pd(x, k(std::f64::consts::FRAC_2_PI)), k(ROUND)),
             k(ROUND),
@@ -455,7 +467,7 @@ mod avx512 {
             _mm512_storeu_pd(so.as_mut_ptr(), sin);
             _mm512_storeu_pd(co.as_mut_ptr(), cos);
         }
-        (so, co)
+        Some((so, co))
     }
 }
 

@@ -255,8 +255,18 @@ fn packs<const W: usize, const A: u8>(
     let mut s = 0;
     while s < count {
         let m = (count - s).min(W);
-        for l in 0..W {
-            p.gather(l, io.first + s + l.min(m - 1), io.qs, io.vs, io.xs);
+        if io.native && (W == 4 || W == 8) && m == W {
+            let k = io.first + s;
+            transpose_in(io.qs, k, &mut p.q);
+            for (xs, lanes) in [(io.vs, &mut p.v), (io.xs, &mut p.x)] {
+                if !xs.is_empty() {
+                    transpose_in(xs, k, lanes);
+                }
+            }
+        } else {
+            for l in 0..W {
+                p.gather(l, io.first + s + l.min(m - 1), io.qs, io.vs, io.xs);
+            }
         }
         match algo {
             Algo::Rnea => rnea(model, p),
@@ -352,6 +362,39 @@ fn transpose_out<const W: usize>(
     for (t, x) in src.iter().enumerate().skip(full) {
         for l in 0..m {
             dst[l * stride + t] = x.0[l];
+        }
+    }
+}
+
+/// Rows `k..k + W` of the row-major `src` (`dst.len()` numbers each) into the lanes of `dst`:
+/// lane `l` of entry `t` is `src[(k + l) per + t]`, the inverse of [`transpose_out`] for a full
+/// pack, in 4x4 blocks in registers ([`transpose4`]), then the last `per mod 4` entries one by
+/// one. Only for a pack in the CPU's own instructions (`Io::native`) of 4 or 8 lanes (the
+/// generic path, and a task's last pack when it is not full, go lane by lane through
+/// [`Pack::gather`]).
+#[inline(always)]
+fn transpose_in<const W: usize>(src: &[f64], k: usize, dst: &mut [L<W>]) {
+    let per = dst.len();
+    let rows = &src[k * per..(k + W) * per];
+    let full = per / 4 * 4;
+    #[cfg(target_arch = "x86_64")]
+    {
+        assert!(W == 4 || W == 8, "transpose_in: {W} lanes");
+        let (from, to) = (rows.as_ptr(), dst.as_mut_ptr().cast::<f64>());
+        for e in (0..full).step_by(4) {
+            for h in (0..W).step_by(4) {
+                // SAFETY: rows h..h + 4 (< W) of `rows` hold entries e..e + 4 (≤ per), `per`
+                // apart; entries e..e + 4 of `dst` hold lanes h..h + 4, W apart; `rows` and
+                // `dst` are borrowed apart; the caller's `native` says the CPU has AVX.
+                unsafe { transpose4(from.add(h * per + e), per, to.add(e * W + h), W, 4) };
+            }
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let full = 0;
+    for (t, y) in dst.iter_mut().enumerate().skip(full) {
+        for (l, x) in y.0.iter_mut().enumerate() {
+            *x = rows[l * per + t];
         }
     }
 }
@@ -476,6 +519,36 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// `transpose_in` of `W` lanes (4 and 8, in registers): lane `l` of entry `t` is row
+    /// `k + l`'s entry `t`, for lengths that leave every remainder and a first row `k` past 0.
+    #[cfg(target_arch = "x86_64")]
+    fn transposes_in<const W: usize>() {
+        for per in 1..=21 {
+            let k = 3;
+            let src: Vec<f64> = (0..(k + W) * per).map(|i| i as f64).collect();
+            let mut dst = vec![L([f64::NAN; W]); per];
+            super::transpose_in(&src, k, &mut dst);
+            for (t, y) in dst.iter().enumerate() {
+                for (l, x) in y.0.iter().enumerate() {
+                    assert_eq!(
+                        *x,
+                        ((k + l) * per + t) as f64,
+                        "W {W}, per {per}, lane {l}, {t}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn transpose_in_puts_each_row_in_its_lane() {
+        if std::arch::is_x86_feature_detected!("avx") {
+            transposes_in::<4>();
+            transposes_in::<8>();
         }
     }
 
