@@ -37,23 +37,30 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
         }
         for k in j.dofs() {
             let at = packed_at(nv, k, k);
-            let column = p.M[at..at + end_v - k].iter_mut().zip(&p.Fk[k..end_v]);
+            // the diagonal first, with the armature, then the rows below it
+            let (diagonal, column) = p.M[at..at + end_v - k]
+                .split_first_mut()
+                .expect("a column holds its diagonal");
+            let Fs = &p.Fk[k..end_v];
+            let below = column.iter_mut().zip(&Fs[1..]);
+            let armature = model.armature()[k];
             match (j.parent, model.plan().dof_axis[k]) {
                 (None, Some((c, s))) => {
-                    for (m, F) in column {
+                    *diagonal = Fs[0].get(c) * s + armature;
+                    for (m, F) in below {
                         one_iteration_at_a_time();
                         *m = F.get(c) * s;
                     }
                 }
                 _ => {
                     let Jk = p.J[k];
-                    for (m, F) in column {
+                    *diagonal = Jk.dot(&Fs[0]) + armature;
+                    for (m, F) in below {
                         one_iteration_at_a_time();
                         *m = Jk.dot(F);
                     }
                 }
             }
-            p.M[at] += model.armature()[k];
         }
         if let Some(par) = j.parent {
             // a parent comes before its child
