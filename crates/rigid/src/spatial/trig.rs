@@ -57,30 +57,21 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
 /// quadrant picked by comparisons instead of a `match`), so the results are [`sin_cos`]'s bit
 /// for bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the standard library, as there.
 ///
-/// Eight lanes on a CPU with AVX-512F and four with AVX2 run in that unit's intrinsics
-/// ([`avx512::sin_cos_8`], [`avx2::sin_cos_4`]): the compiler split the portable loops below
-/// into 4-, 2- and 1-lane pieces for 8 lanes, and the batch RNEA spent a fifth of its time on
-/// TALOS here (BENCHMARKS.md).
+/// Eight lanes on a CPU with AVX-512F run in its intrinsics ([`avx512::sin_cos_8`]): the
+/// compiler split the portable loops below into 4-, 2- and 1-lane pieces for 8 lanes, where the
+/// batch RNEA spent a fifth of its time on TALOS (BENCHMARKS.md). Four lanes keep the portable
+/// loops, which the compiler makes AVX2 as they are: `avx2::sin_cos_4` in their place made
+/// the 4-lane RNEA 9–13 % slower on a Zen 5.
 #[cfg(feature = "parallel")]
 #[inline(always)]
 #[must_use]
 #[allow(clippy::manual_range_contains)] // two comparisons per lane, which vectorise
 pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W]) {
     #[cfg(target_arch = "x86_64")]
-    {
-        let lanes = |(s, c): (&[f64], &[f64])| {
-            (std::array::from_fn(|i| s[i]), std::array::from_fn(|i| c[i]))
-        };
-        if W == 8 && std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F (checked above).
-            if let Some((s, c)) = unsafe { avx512::sin_cos_8(std::array::from_fn(|i| q[i])) } {
-                return lanes((&s, &c));
-            }
-        } else if W == 4 && std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked above).
-            if let Some((s, c)) = unsafe { avx2::sin_cos_4(std::array::from_fn(|i| q[i])) } {
-                return lanes((&s, &c));
-            }
+    if W == 8 && std::arch::is_x86_feature_detected!("avx512f") {
+        // SAFETY: the CPU has AVX-512F (checked above).
+        if let Some((s, c)) = unsafe { avx512::sin_cos_8(std::array::from_fn(|i| q[i])) } {
+            return (std::array::from_fn(|i| s[i]), std::array::from_fn(|i| c[i]));
         }
     }
     const ROUND: f64 = 6_755_399_441_055_744.0;
@@ -329,7 +320,7 @@ mod avx2 {
     /// vector comparison; NaN is out).
     #[inline]
     #[target_feature(enable = "avx2")]
-    pub(super) fn sin_cos_4(q: [f64; 4]) -> Option<([f64; 4], [f64; 4])> {
+    fn sin_cos_4(q: [f64; 4]) -> Option<([f64; 4], [f64; 4])> {
         const ROUND: f64 = 6_755_399_441_055_744.0;
         let x = _mm256_set_pd(q[3], q[2], q[1], q[0]);
         let abs = _mm256_andnot_pd(k(-0.0), x);
