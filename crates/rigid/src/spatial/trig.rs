@@ -54,14 +54,15 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
 
 /// [`sin_cos`] of `W` angles side by side, one per lane, for the batch kernels
 /// ([`multibody::batch`](crate::multibody::batch)): the same operations in each lane (the
-/// quadrant picked by comparisons instead of a `match`), so the results are [`sin_cos`]'s bit
-/// for bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the standard library, as there.
+/// quadrant picked by comparisons, or by its integer bits in AVX-512, instead of a `match`), so
+/// the results are [`sin_cos`]'s bit for bit; lanes with `|q| ≥ 10⁵` or NaN are redone by the
+/// standard library, as there.
 ///
 /// Eight lanes on a CPU with AVX-512F run in its intrinsics ([`avx512::sin_cos_8`]): the
 /// compiler split the portable loops below into 4-, 2- and 1-lane pieces for 8 lanes, where the
 /// batch RNEA spent a fifth of its time on TALOS (BENCHMARKS.md). Four lanes keep the portable
-/// loops, which the compiler makes AVX2 as they are: `avx2::sin_cos_4` in their place made
-/// the 4-lane RNEA 9–13 % slower on a Zen 5.
+/// loops, which the compiler makes AVX2 as they are: `avx2::sin_cos_4` in their place left the
+/// 4-lane RNEA 0.87–0.90 of its states per second on a Zen 5.
 #[cfg(feature = "parallel")]
 #[inline(always)]
 #[must_use]
@@ -385,7 +386,7 @@ mod avx512 {
     //! Eight angles in the lanes of a `zmm` register; the caller checks for AVX-512F at run time.
     use super::{C1, C2, C3, C4, C5, C6, PIO2_1, PIO2_2, PIO2_2T, S1, S2, S3, S4, S5, S6};
     use std::arch::x86_64::{
-        __m512d, _mm512_abs_pd, _mm512_add_epi64, _mm512_add_pd, _mm512_and_si512,
+        __m512d, __m512i, _mm512_abs_pd, _mm512_add_epi64, _mm512_add_pd, _mm512_and_si512,
         _mm512_castpd_si512, _mm512_castsi512_pd, _mm512_cmp_pd_mask, _mm512_cvtepi32_epi64,
         _mm512_cvtpd_epi32, _mm512_loadu_pd, _mm512_mask_blend_pd, _mm512_mul_pd,
         _mm512_set1_epi64, _mm512_set1_pd, _mm512_slli_epi64, _mm512_storeu_pd, _mm512_sub_pd,
@@ -444,10 +445,11 @@ mod avx512 {
         let n = _mm512_cvtepi32_epi64(_mm512_cvtpd_epi32(n));
         let (one, two) = (_mm512_set1_epi64(1), _mm512_set1_epi64(2));
         let odd = _mm512_test_epi64_mask(n, one);
-        let sign = |v: __m512d, bit: std::arch::x86_64::__m512i| {
+        // v with its sign flipped where bit 1 of n is set
+        let sign = |v: __m512d, n: __m512i| {
             _mm512_castsi512_pd(_mm512_xor_si512(
                 _mm512_castpd_si512(v),
-                _mm512_slli_epi64(_mm512_and_si512(bit, two), 62),
+                _mm512_slli_epi64(_mm512_and_si512(n, two), 62),
             ))
         };
         let sin = sign(_mm512_mask_blend_pd(odd, s, c), n);
@@ -484,8 +486,8 @@ mod tests {
         assert!(sin_cos(f64::NAN).0.is_nan() && sin_cos(f64::INFINITY).1.is_nan());
     }
 
-    /// `sin_cos_lanes` gives `sin_cos` bit for bit in 2, 4 and 8 lanes (on this CPU's AVX2 or
-    /// AVX-512F intrinsics where it has them, else the portable loops), in every quadrant and
+    /// `sin_cos_lanes` gives `sin_cos` bit for bit in 2, 4 and 8 lanes (8 in AVX-512F
+    /// intrinsics where the CPU has them, the rest in the portable loops), in every quadrant and
     /// lane, and falls back for large or non-finite angles.
     #[test]
     #[cfg(feature = "parallel")]
@@ -527,6 +529,40 @@ mod tests {
             check::<2>(qs);
             check::<4>(qs);
             check::<8>(qs);
+        }
+    }
+
+    /// `avx512::sin_cos_8` itself, where the CPU has AVX-512F: `Some` (and `sin_cos` bit for bit)
+    /// when every lane is inside `|q| < 10⁵`, up to ±99 999.9; `None` when any one lane holds
+    /// NaN, ±∞ or ±10⁵, whichever lane it is.
+    #[test]
+    #[cfg(all(target_arch = "x86_64", feature = "parallel"))]
+    fn sin_cos_8_is_exact_inside_its_range_and_refuses_the_rest() {
+        if !std::arch::is_x86_feature_detected!("avx512f") {
+            return;
+        }
+        let q = [-99_999.9, -3.0, -0.0, 0.0, 1.0, 2.0, 4.0, 99_999.9];
+        // SAFETY: the CPU has AVX-512F (checked above).
+        let (s, c) = unsafe { super::avx512::sin_cos_8(q) }.expect("all inside the range");
+        for i in 0..8 {
+            let (s1, c1) = sin_cos(q[i]);
+            assert_eq!(
+                (s[i].to_bits(), c[i].to_bits()),
+                (s1.to_bits(), c1.to_bits()),
+                "{}",
+                q[i]
+            );
+        }
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e5, -1e5] {
+            for lane in 0..8 {
+                let mut q = [0.5; 8];
+                q[lane] = bad;
+                // SAFETY: as above.
+                assert!(
+                    unsafe { super::avx512::sin_cos_8(q) }.is_none(),
+                    "{bad} in lane {lane}"
+                );
+            }
         }
     }
 

@@ -38,11 +38,11 @@ pub(super) fn crba<const W: usize>(model: &Model, p: &mut Pack<W>) {
         for k in j.dofs() {
             let at = packed_at(nv, k, k);
             // the diagonal first, with the armature, then the rows below it
-            let (diagonal, column) = p.M[at..at + end_v - k]
+            let (diagonal, rest) = p.M[at..at + end_v - k]
                 .split_first_mut()
                 .expect("a column holds its diagonal");
             let Fs = &p.Fk[k..end_v];
-            let below = column.iter_mut().zip(&Fs[1..]);
+            let below = rest.iter_mut().zip(&Fs[1..]);
             let armature = model.armature()[k];
             match (j.parent, model.plan().dof_axis[k]) {
                 (None, Some((c, s))) => {

@@ -185,7 +185,8 @@ impl Lanes {
 
 /// The row-major inputs, the index of the first state of a task, and whether the pack runs in
 /// the CPU's own instructions for its width (AVX-512F for 8 lanes, AVX2 for 4): then the
-/// transpositions out of the lanes, and the full CRBA matrices' mirror, run in registers.
+/// transpositions into the lanes (full packs) and out of them, and the full CRBA matrices'
+/// mirror, run in registers.
 struct Io<'a> {
     qs: &'a [f64],
     vs: &'a [f64],
@@ -257,10 +258,12 @@ fn packs<const W: usize, const A: u8>(
         let m = (count - s).min(W);
         if io.native && (W == 4 || W == 8) && m == W {
             let k = io.first + s;
-            transpose_in(io.qs, k, &mut p.q);
+            // SAFETY: with `native`, the CPU has AVX (AVX2 for 4 lanes, AVX-512F for 8).
+            unsafe { transpose_in(io.qs, k, &mut p.q) };
             for (xs, lanes) in [(io.vs, &mut p.v), (io.xs, &mut p.x)] {
                 if !xs.is_empty() {
-                    transpose_in(xs, k, lanes);
+                    // SAFETY: as above.
+                    unsafe { transpose_in(xs, k, lanes) };
                 }
             }
         } else {
@@ -371,9 +374,12 @@ fn transpose_out<const W: usize>(
 /// pack, in 4x4 blocks in registers ([`transpose4`]), then the last `per mod 4` entries one by
 /// one. Only for a pack in the CPU's own instructions (`Io::native`) of 4 or 8 lanes (the
 /// generic path, and a task's last pack when it is not full, go lane by lane through
-/// [`Pack::gather`]).
+/// [`Pack::gather`]). Panics if `src` holds fewer than `(k + W) per` numbers.
+///
+/// # Safety
+/// On x86-64 the CPU has AVX (the blocks are [`transpose4`]'s).
 #[inline(always)]
-fn transpose_in<const W: usize>(src: &[f64], k: usize, dst: &mut [L<W>]) {
+unsafe fn transpose_in<const W: usize>(src: &[f64], k: usize, dst: &mut [L<W>]) {
     let per = dst.len();
     let rows = &src[k * per..(k + W) * per];
     let full = per / 4 * 4;
@@ -385,7 +391,7 @@ fn transpose_in<const W: usize>(src: &[f64], k: usize, dst: &mut [L<W>]) {
             for h in (0..W).step_by(4) {
                 // SAFETY: rows h..h + 4 (< W) of `rows` hold entries e..e + 4 (≤ per), `per`
                 // apart; entries e..e + 4 of `dst` hold lanes h..h + 4, W apart; `rows` and
-                // `dst` are borrowed apart; the caller's `native` says the CPU has AVX.
+                // `dst` are borrowed apart; the CPU has AVX (the caller's promise).
                 unsafe { transpose4(from.add(h * per + e), per, to.add(e * W + h), W, 4) };
             }
         }
@@ -523,14 +529,16 @@ mod tests {
     }
 
     /// `transpose_in` of `W` lanes (4 and 8, in registers): lane `l` of entry `t` is row
-    /// `k + l`'s entry `t`, for lengths that leave every remainder and a first row `k` past 0.
+    /// `k + l`'s entry `t`, for lengths that leave every remainder and a first row `k` past 0
+    /// (with rows after the pack, so that a wrong offset reads a wrong number).
     #[cfg(target_arch = "x86_64")]
     fn transposes_in<const W: usize>() {
         for per in 1..=21 {
             let k = 3;
-            let src: Vec<f64> = (0..(k + W) * per).map(|i| i as f64).collect();
+            let src: Vec<f64> = (0..(k + W + 2) * per).map(|i| i as f64).collect();
             let mut dst = vec![L([f64::NAN; W]); per];
-            super::transpose_in(&src, k, &mut dst);
+            // SAFETY: the caller checked that the CPU has AVX.
+            unsafe { super::transpose_in(&src, k, &mut dst) };
             for (t, y) in dst.iter().enumerate() {
                 for (l, x) in y.0.iter().enumerate() {
                     assert_eq!(
