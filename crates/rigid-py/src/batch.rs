@@ -121,8 +121,31 @@ fn v_rows<'py>(core: &ModelCore, pool: Option<&ThreadPool>, x: Matrix<'py>) -> R
     Rows::Converted(out)
 }
 
-/// The inputs of a batch call: `Q` and the velocity-space arrays, checked and in rigid's layout
-/// (the velocity-space arrays left in the model's when not `permute`: the caller permutes them).
+/// The first non-finite entry of the velocity-space arrays `vs` (`(N, nv)`, in the caller's
+/// layout), as an error naming its row and column. The batch kernels refuse such states
+/// themselves, so a caller whose kernel reads its inputs unchanged looks here only when the
+/// kernel fails, which spares a pass over all of them on the way in.
+pub(crate) fn check_finite(
+    core: &ModelCore,
+    func: &str,
+    vs: &[(&str, &Bound<'_, PyAny>)],
+) -> PyResult<()> {
+    let cols = core.nv().max(1);
+    for (name, x) in vs {
+        let m = matrix(x, func, name, "nv", core.nv())?;
+        if let Some(i) = mb::first_non_finite(m.as_slice()) {
+            return Err(value_error(
+                func,
+                format!("{name}[{}, {}] is not finite", i / cols, i % cols),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The inputs of a batch call: `Q` and the velocity-space arrays, their shapes checked (their
+/// entries by [`check_finite`] or the kernel) and in rigid's layout (the velocity-space arrays
+/// left in the model's when not `permute`: the caller permutes them).
 pub(crate) fn inputs<'py>(
     core: &ModelCore,
     pool: Option<&ThreadPool>,
@@ -153,13 +176,6 @@ pub(crate) fn inputs<'py>(
                 "{func}: {name} has {} rows, Q has {n} (one state per row)",
                 m.rows
             )));
-        }
-        let cols = core.nv().max(1);
-        if let Some(i) = mb::first_non_finite(m.as_slice()) {
-            return Err(value_error(
-                func,
-                format!("{name}[{}, {}] is not finite", i / cols, i % cols),
-            ));
         }
         out.push(if permute {
             v_rows(core, pool, m)
@@ -307,6 +323,9 @@ fn qvx_batch<'py>(
         permuted_chunks(core, f, qs, vs, xs, out)
     })
     .map_err(|e| {
+        if let Err(e) = check_finite(core, func, &args) {
+            return e;
+        }
         state_error(core, func, e, qs, |d, k, q| {
             let r = k * nv..(k + 1) * nv;
             // in rigid's layout (the permutation is its own inverse)
@@ -435,7 +454,9 @@ pub fn rnea_derivatives_batch<'py>(
     const F: &str = "rnea_derivatives_batch";
     let pool = crate::scale::pool(F, threads)?;
     let core = &*model.inner;
-    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)], true)?;
+    let args = [("V", v), ("A", a)];
+    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &args, true)?;
+    check_finite(core, F, &args)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let nv = core.nv();
     let arrays = [0, 1].map(|_| PyArray3::<f64>::zeros(py, [n, nv, nv], false));

@@ -7,7 +7,7 @@
 //! body's joint frame (Pinocchio's `toDynamicParameters` order), bodies in the model's joint
 //! order (the same in both layouts); rows of the regressor are in the model's velocity layout.
 
-use crate::batch::inputs;
+use crate::batch::{check_finite, inputs};
 use crate::convert::{array1, array2, io_error, rows_array, value_error, vector};
 use crate::model::{Data, Model, ModelCore};
 use numpy::PyArray2;
@@ -145,14 +145,9 @@ fn read_samples(core: &ModelCore, samples: &Bound<'_, PyAny>, window: f64) -> Py
             })
         };
         let (q, v, a, tau) = (get("q")?, get("v")?, get("a")?, get("tau")?);
-        let (n, q, mut rest) = inputs(
-            core,
-            None,
-            func,
-            &q,
-            &[("v", &v), ("a", &a), ("tau", &tau)],
-            true,
-        )?;
+        let args = [("v", &v), ("a", &a), ("tau", &tau)];
+        let (n, q, mut rest) = inputs(core, None, func, &q, &args, true)?;
+        check_finite(core, func, &args)?;
         let t = vector(&get("t")?, func, "samples[\"t\"]", "the rows of q", n)?;
         let (tau, a, v) = (
             rest.pop().unwrap(),

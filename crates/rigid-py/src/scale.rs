@@ -4,7 +4,7 @@
 //! (`simulate_batch`), and the refusal of a dask array by the plain batch verbs. The algorithms
 //! are the `rigid` crate's; this file parses and prints.
 
-use crate::batch::inputs;
+use crate::batch::{check_finite, inputs};
 use crate::convert::{matrix, value_error, vector, Vector};
 use crate::model::{Model, ModelCore};
 use crate::simulation::{run, Record};
@@ -98,7 +98,9 @@ pub fn regressor_batch<'py>(
     const F: &str = "regressor_batch";
     let pool = pool(F, threads)?;
     let core = &*model.inner;
-    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &[("V", v), ("A", a)], true)?;
+    let args = [("V", v), ("A", a)];
+    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &args, true)?;
+    check_finite(core, F, &args)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let (nv, cols) = (core.nv(), 10 * core.model.njoints());
     // numpy's array, written in place (huge pages for a large one: see batch.rs)

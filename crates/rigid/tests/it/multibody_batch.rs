@@ -324,6 +324,39 @@ fn batch_results_do_not_depend_on_the_thread_count() {
     assert_eq!(run(1), run(2));
 }
 
+/// On one thread (two tasks) a task's 100 states span two of the chunks of 64 that it checks
+/// and then computes: every state still equals its single call, and a NaN in a later chunk is
+/// refused with the single call's error.
+#[test]
+fn batch_chunks_join_and_check_each_state() {
+    let model = common::every_joint_tree(3, 14);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let (nq, nv, n) = (model.nq(), model.nv(), 200);
+    pool.install(|| {
+        for width in [2, 4, 8] {
+            let e = worst(&model, width, n, 21);
+            assert_close(&format!("{width} lanes, {n} states"), e);
+        }
+        let (qs, mut vs, as_) = states(&model, n, 22);
+        vs[170 * nv + 3] = f64::NAN;
+        let single = rnea(
+            &model,
+            &mut Data::new(&model),
+            &qs[170 * nq..][..nq],
+            &vs[170 * nv..][..nv],
+            &as_[170 * nv..][..nv],
+        )
+        .unwrap_err()
+        .to_string();
+        let mut tau = vec![0.0; n * nv];
+        let batched = batch::rnea_batch(&model, &qs, &vs, &as_, &mut tau).unwrap_err();
+        assert_eq!(batched.to_string(), single);
+    });
+}
+
 #[test]
 fn batch_rejects_ragged_inputs() {
     let model = puma560(Puma560Options::default());

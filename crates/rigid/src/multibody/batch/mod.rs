@@ -18,8 +18,10 @@
 //! Inputs are row-major: state `k`'s configuration is `qs[k nq..(k + 1) nq]`, its velocity
 //! `vs[k nv..(k + 1) nv]`, and so on. The states are cut into a few contiguous blocks per
 //! thread, and each state's result goes to its own slice of the output, in the input order,
-//! for any number of threads. Every state is checked as the single calls check it (lengths,
-//! finite entries, unit quaternions) before anything is computed. Run inside a
+//! for any number of threads. Every state is checked as the single calls check it (lengths
+//! first, for all; then finite entries and unit quaternions, 64 states at a time, just before
+//! they are computed, while their rows are in the cache): on an error, nothing is computed from
+//! the bad state, and the rows of other states may have been written or not. Run inside a
 //! `rayon::ThreadPool::install` to choose the number of threads. The free functions make their
 //! workspaces per call; a [`Batch`] keeps them across calls (nothing allocated per call).
 //!
@@ -41,6 +43,7 @@ mod derivatives;
 mod lanes;
 mod pack;
 mod rnea;
+mod rows;
 mod simd;
 
 use super::{check_q, check_v, Data, Model, MultibodyError};
@@ -51,6 +54,12 @@ use simd::{Algo, Lanes};
 /// Tasks per rayon thread: a few, so that a slow thread can be helped, each with its own
 /// workspaces.
 const TASKS_PER_THREAD: usize = 2;
+
+/// States a task checks and then computes at a time (rounded to whole packs): few enough that
+/// their rows are still in the core's cache when the kernel reads them (64 TALOS states hold
+/// 77 KiB of `q`, `v`, `a`). Checking a whole task's states first read them twice from memory
+/// at 10⁵ states (BENCHMARKS.md, "States beyond the caches").
+pub(super) const CHUNK: usize = 64;
 
 /// Number of states in row-major inputs, checking every length.
 fn count(
@@ -191,8 +200,8 @@ impl Batch {
     }
 
     /// `algo` for every state, in packs of [`Batch::lanes`] states, the packs cut into one
-    /// contiguous block per task, run in parallel; each block's states are checked as a single
-    /// call checks them before any is computed. `vs` and `xs` (named for the errors) are empty
+    /// contiguous block per task, run in parallel; each block in chunks of [`CHUNK`] states,
+    /// checked as a single call checks them and then computed. `vs` and `xs` (named for the errors) are empty
     /// for CRBA; `out2` is the derivatives' `∂τ/∂v` (its length checked by the caller), empty
     /// for the others.
     #[allow(clippy::too_many_arguments)]
@@ -232,15 +241,22 @@ impl Batch {
         let per_task = per_task(n, self.lanes.len()).div_ceil(w) * w;
         let (nq, nv) = (model.nq, model.nv);
         let task = |c: usize, block: &mut [f64], block2: &mut [f64], lanes: &mut Lanes| {
-            let first = c * per_task;
-            for k in first..first + block.len() / per {
-                check_q(model, &qs[k * nq..][..nq])?;
-                if !inputs.is_empty() {
-                    check_v(model, v_name, &vs[k * nv..][..nv])?;
-                    check_v(model, x_name, &xs[k * nv..][..nv])?;
+            let chunk = (CHUNK / w).max(1) * w * per;
+            let mut first = c * per_task;
+            let mut block2 = block2.chunks_mut(chunk);
+            for sub in block.chunks_mut(chunk) {
+                for k in first..first + sub.len() / per {
+                    check_q(model, &qs[k * nq..][..nq])?;
+                    if !inputs.is_empty() {
+                        check_v(model, v_name, &vs[k * nv..][..nv])?;
+                        check_v(model, x_name, &xs[k * nv..][..nv])?;
+                    }
                 }
+                let sub2 = block2.next().unwrap_or_default();
+                lanes.run(algo, model, qs, vs, xs, first, sub, sub2)?;
+                first += sub.len() / per;
             }
-            lanes.run(algo, model, qs, vs, xs, first, block, block2)
+            Ok(())
         };
         let tasks = out
             .par_chunks_mut(per_task * per)

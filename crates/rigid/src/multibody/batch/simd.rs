@@ -11,9 +11,9 @@
 use super::aba::aba;
 use super::crba::{crba, packed_at};
 use super::derivatives::rnea_derivatives;
-use super::lanes::L;
 use super::pack::Pack;
 use super::rnea::rnea;
+use super::rows::{mirror_upper, prefetch_rows, transpose_in, transpose_out};
 use crate::multibody::{Model, MultibodyError};
 
 /// Which batch entry point a pack computes.
@@ -119,7 +119,7 @@ impl Lanes {
     /// `τ`, and with `vs` empty for CRBA), written to `out` (`count` blocks of
     /// [`Algo::per_state`]; the derivatives' `∂τ/∂v` to `out2`, empty for the others), a pack
     /// of states at a time, in the widest instructions the CPU has for this width. The inputs
-    /// were checked. Never inlined (one call per task):
+    /// were checked. Never inlined (one call per chunk of states, [`super::CHUNK`]):
     /// bench/flops.py counts the operations executed inside it.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
@@ -183,16 +183,16 @@ impl Lanes {
     }
 }
 
-/// The row-major inputs, the index of the first state of a task, and whether the pack runs in
+/// The row-major inputs, the index of the first state of a chunk, and whether the pack runs in
 /// the CPU's own instructions for its width (AVX-512F for 8 lanes, AVX2 for 4): then the
 /// transpositions into the lanes (full packs) and out of them, and the full CRBA matrices'
 /// mirror, run in registers.
-struct Io<'a> {
-    qs: &'a [f64],
-    vs: &'a [f64],
-    xs: &'a [f64],
-    first: usize,
-    native: bool,
+pub(super) struct Io<'a> {
+    pub(super) qs: &'a [f64],
+    pub(super) vs: &'a [f64],
+    pub(super) xs: &'a [f64],
+    pub(super) first: usize,
+    pub(super) native: bool,
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -256,6 +256,7 @@ fn packs<const W: usize, const A: u8>(
     let mut s = 0;
     while s < count {
         let m = (count - s).min(W);
+        prefetch_rows(io, model, io.first + s + super::CHUNK, W);
         if io.native && (W == 4 || W == 8) && m == W {
             let k = io.first + s;
             // SAFETY: with `native`, the CPU has AVX (AVX2 for 4 lanes, AVX-512F for 8).
@@ -309,267 +310,4 @@ fn packs<const W: usize, const A: u8>(
         s += W;
     }
     Ok(())
-}
-
-/// Lanes `0..m` of `src` (one lane vector per output index) into `m` rows of `dst`, `stride`
-/// apart (row `l`, lane `l`'s numbers, is `dst[l stride..][..src.len()]`): `W x W` blocks,
-/// then the remainder one by one. With `native` (the pack runs in the CPU's instructions for
-/// its width: AVX2 for 4 lanes, AVX-512F for 8), a block is transposed in registers as 4x4
-/// blocks of AVX ([`transpose4`]: one for 4 lanes, two or four for 8, as the pack is filled);
-/// otherwise by the generic loop, which the compiler makes scalar moves through the stack.
-/// (An 8x8 transposition in AVX-512's shuffles, 24 instead of 32 per 64 numbers, was slower on
-/// a Zen 5: 0.87–0.98 of the quarters' states/s for CRBA on UR5, Panda, Solo-12 and TALOS, 7
-/// interleaved rounds; BENCHMARKS.md.)
-#[inline(always)]
-fn transpose_out<const W: usize>(
-    src: &[L<W>],
-    m: usize,
-    dst: &mut [f64],
-    stride: usize,
-    native: bool,
-) {
-    let per = src.len();
-    let full = per / W * W;
-    assert!(
-        m <= W && per <= stride && (m == 0 || dst.len() >= (m - 1) * stride + per),
-        "transpose_out: {m} rows of {per}, {stride} apart, into {}",
-        dst.len()
-    );
-    #[cfg(target_arch = "x86_64")]
-    if native && (W == 4 || W == 8) {
-        let (lanes, out) = (src.as_ptr().cast::<f64>(), dst.as_mut_ptr());
-        for b in (0..full).step_by(W) {
-            // the W x W block as 4 x 4 quarters: lanes h..h + 4 of entries b + e..b + e + 4
-            for h in (0..m).step_by(4) {
-                for e in (0..W).step_by(4) {
-                    // SAFETY: `src[b + e..b + e + 4]` are four rows of `W ≥ h + 4` `f64`; row
-                    // `h + l < m` of `dst` starts at `(h + l) stride` and holds `per ≥ b + e + 4`
-                    // numbers, `(m − 1) stride + per ≤ dst.len()` (asserted above); `src` and
-                    // `dst` are borrowed apart, so they do not overlap; with `native`, the CPU
-                    // has AVX (AVX2 for 4 lanes, AVX-512F for 8).
-                    unsafe {
-                        let (from, to) = (lanes.add(W * (b + e) + h), out.add(h * stride + b + e));
-                        transpose4(from, W, to, stride, (m - h).min(4));
-                    }
-                }
-            }
-        }
-    } else {
-        transpose_blocks(src, m, dst, stride);
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        let _ = native;
-        transpose_blocks(src, m, dst, stride);
-    }
-    for (t, x) in src.iter().enumerate().skip(full) {
-        for l in 0..m {
-            dst[l * stride + t] = x.0[l];
-        }
-    }
-}
-
-/// Rows `k..k + W` of the row-major `src` (`dst.len()` numbers each) into the lanes of `dst`:
-/// lane `l` of entry `t` is `src[(k + l) per + t]`, the inverse of [`transpose_out`] for a full
-/// pack, in 4x4 blocks in registers ([`transpose4`]), then the last `per mod 4` entries one by
-/// one. Only for a pack in the CPU's own instructions (`Io::native`) of 4 or 8 lanes (the
-/// generic path, and a task's last pack when it is not full, go lane by lane through
-/// [`Pack::gather`]). Panics if `src` holds fewer than `(k + W) per` numbers.
-///
-/// # Safety
-/// On x86-64 the CPU has AVX (the blocks are [`transpose4`]'s).
-#[inline(always)]
-unsafe fn transpose_in<const W: usize>(src: &[f64], k: usize, dst: &mut [L<W>]) {
-    let per = dst.len();
-    let rows = &src[k * per..(k + W) * per];
-    let full = per / 4 * 4;
-    #[cfg(target_arch = "x86_64")]
-    {
-        assert!(W == 4 || W == 8, "transpose_in: {W} lanes");
-        let (from, to) = (rows.as_ptr(), dst.as_mut_ptr().cast::<f64>());
-        for e in (0..full).step_by(4) {
-            for h in (0..W).step_by(4) {
-                // SAFETY: rows h..h + 4 (< W) of `rows` hold entries e..e + 4 (≤ per), `per`
-                // apart; entries e..e + 4 of `dst` hold lanes h..h + 4, W apart; `rows` and
-                // `dst` are borrowed apart; the CPU has AVX (the caller's promise).
-                unsafe { transpose4(from.add(h * per + e), per, to.add(e * W + h), W, 4) };
-            }
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let full = 0;
-    for (t, y) in dst.iter_mut().enumerate().skip(full) {
-        for (l, x) in y.0.iter_mut().enumerate() {
-            *x = rows[l * per + t];
-        }
-    }
-}
-
-/// The `W x W` blocks of [`transpose_out`], lane by lane.
-#[inline(always)]
-fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], stride: usize) {
-    let per = src.len();
-    for b in (0..per / W * W).step_by(W) {
-        let mut block = [[0.0; W]; W];
-        for (t, x) in src[b..b + W].iter().enumerate() {
-            for (l, row) in block.iter_mut().enumerate() {
-                row[t] = x.0[l];
-            }
-        }
-        for (l, row) in block[..m].iter().enumerate() {
-            dst[l * stride + b..][..W].copy_from_slice(row);
-        }
-    }
-}
-
-/// The 4x4 block at `src` (four rows of four, `src_stride` apart) transposed into the first `m`
-/// rows at `dst`, `stride` apart: `unpacklo/hi` pair the rows' even and odd entries within each
-/// 128-bit half, `permute2f128` joins the halves.
-///
-/// # Safety
-/// `src + k src_stride` points to four readable `f64` for `k < 4`, `dst + l stride` to four
-/// writable `f64` for `l < m ≤ 4`, the two blocks do not overlap, and the CPU has AVX.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx")]
-#[inline]
-unsafe fn transpose4(src: *const f64, src_stride: usize, dst: *mut f64, stride: usize, m: usize) {
-    use std::arch::x86_64::{
-        _mm256_loadu_pd, _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
-        _mm256_unpacklo_pd,
-    };
-    // SAFETY: the caller's promise.
-    unsafe {
-        let [a, b, c, d] = [0, 1, 2, 3].map(|k| _mm256_loadu_pd(src.add(k * src_stride)));
-        let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
-        let (t2, t3) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
-        let rows = [
-            _mm256_permute2f128_pd(t0, t2, 0x20),
-            _mm256_permute2f128_pd(t1, t3, 0x20),
-            _mm256_permute2f128_pd(t0, t2, 0x31),
-            _mm256_permute2f128_pd(t1, t3, 0x31),
-        ];
-        // every pack but a task's last is full: four stores with no count to test
-        if m == 4 {
-            for (l, r) in rows.into_iter().enumerate() {
-                _mm256_storeu_pd(dst.add(l * stride), r);
-            }
-        } else {
-            for (l, r) in rows.into_iter().take(m).enumerate() {
-                _mm256_storeu_pd(dst.add(l * stride), r);
-            }
-        }
-    }
-}
-
-/// The entries left of the diagonal of the row-major `n x n` symmetric matrix `a` from those
-/// right of it: `a_rc = a_cr` for `r > c`. With `avx` (the CPU has AVX), the 4x4 blocks wholly
-/// below the diagonal are transposed in registers ([`transpose4`]), the rest one by one.
-#[inline(always)]
-fn mirror_upper(a: &mut [f64], n: usize, avx: bool) {
-    assert!(
-        a.len() >= n * n,
-        "mirror_upper: {} numbers for {n} x {n}",
-        a.len()
-    );
-    // rows r < blocked start their one-by-one entries at their diagonal block
-    #[cfg(target_arch = "x86_64")]
-    let blocked = if avx { n / 4 * 4 } else { 0 };
-    #[cfg(not(target_arch = "x86_64"))]
-    let blocked = {
-        let _ = avx;
-        0
-    };
-    #[cfg(target_arch = "x86_64")]
-    if blocked > 0 {
-        let at = a.as_mut_ptr();
-        for c in (0..blocked).step_by(4) {
-            for r in (c + 4..blocked).step_by(4) {
-                // SAFETY: rows c..c + 4 and r..r + 4 of the n x n matrix (asserted above) hold
-                // columns r..r + 4 and c..c + 4 (r ≥ c + 4, both < n): the block above the
-                // diagonal read, its mirror below written, apart; the CPU has AVX.
-                unsafe { transpose4(at.add(c * n + r), n, at.add(r * n + c), n, 4) };
-            }
-        }
-    }
-    for r in 1..n {
-        let first = if r < blocked { r / 4 * 4 } else { 0 };
-        let (above, row) = a.split_at_mut(r * n);
-        for (c, y) in row.iter_mut().enumerate().take(r).skip(first) {
-            *y = above[c * n + r];
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{transpose_out, L};
-
-    /// `transpose_out` of `W` lanes, in registers (when the CPU has AVX) and in the generic loop:
-    /// lane `l` of entry `t` lands at `dst[l stride + t]` for every `l < m`, for pack fillings
-    /// `m = 0..=W` and lengths that leave every remainder, and nothing else of `dst` is written.
-    fn transposes<const W: usize>(native: bool) {
-        for per in 0..=21 {
-            let src: Vec<L<W>> = (0..per)
-                .map(|t| L(std::array::from_fn(|l| (100 * t + l) as f64)))
-                .collect();
-            for m in 0..=W {
-                let stride = per + 3;
-                let mut dst = vec![f64::NAN; W * stride];
-                transpose_out(&src, m, &mut dst, stride, native);
-                for (k, y) in dst.iter().enumerate() {
-                    let (l, t) = (k / stride, k % stride);
-                    if l < m && t < per {
-                        assert_eq!(*y, (100 * t + l) as f64, "W {W}, per {per}, m {m}, [{k}]");
-                    } else {
-                        assert!(y.is_nan(), "W {W}, per {per}, m {m}: [{k}] written");
-                    }
-                }
-            }
-        }
-    }
-
-    /// `transpose_in` of `W` lanes (4 and 8, in registers): lane `l` of entry `t` is row
-    /// `k + l`'s entry `t`, for lengths that leave every remainder and a first row `k` past 0
-    /// (with rows after the pack, so that a wrong offset reads a wrong number).
-    #[cfg(target_arch = "x86_64")]
-    fn transposes_in<const W: usize>() {
-        for per in 1..=21 {
-            let k = 3;
-            let src: Vec<f64> = (0..(k + W + 2) * per).map(|i| i as f64).collect();
-            let mut dst = vec![L([f64::NAN; W]); per];
-            // SAFETY: the caller checked that the CPU has AVX.
-            unsafe { super::transpose_in(&src, k, &mut dst) };
-            for (t, y) in dst.iter().enumerate() {
-                for (l, x) in y.0.iter().enumerate() {
-                    assert_eq!(
-                        *x,
-                        ((k + l) * per + t) as f64,
-                        "W {W}, per {per}, lane {l}, {t}"
-                    );
-                }
-            }
-        }
-    }
-
-    #[test]
-    #[cfg(target_arch = "x86_64")]
-    fn transpose_in_puts_each_row_in_its_lane() {
-        if std::arch::is_x86_feature_detected!("avx") {
-            transposes_in::<4>();
-            transposes_in::<8>();
-        }
-    }
-
-    #[test]
-    fn transpose_out_puts_each_lane_in_its_row() {
-        #[cfg(target_arch = "x86_64")]
-        let avx = std::arch::is_x86_feature_detected!("avx");
-        #[cfg(not(target_arch = "x86_64"))]
-        let avx = false;
-        transposes::<2>(false);
-        for native in if avx { vec![false, true] } else { vec![false] } {
-            transposes::<4>(native);
-            transposes::<8>(native);
-        }
-    }
 }
