@@ -6,7 +6,8 @@
 //! Contiguous float64 inputs are read in place ([`Matrix`]); results are written straight into
 //! arrays numpy allocates (numpy asks Linux for huge pages for large arrays: the first touch of
 //! a fresh Rust vector's 4 KiB pages cost about 3 µs per page on this machine, more than CRBA
-//! itself), or into the caller's `out=`.
+//! itself), or into the caller's `out=`. In Pinocchio's layout the velocity-space numbers are
+//! reordered by the library, in the lanes and in place ([`Batch::with_velocity_order`]).
 
 use crate::convert::{matrix, value_error, Matrix};
 use crate::model::{Model, ModelCore};
@@ -15,7 +16,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use rayon::ThreadPool;
-use rigid::multibody::batch::{self, Batch};
+use rigid::multibody::batch::Batch;
 use rigid::multibody::{self as mb, Data};
 
 /// A batch input in rigid's layout: the caller's array, read in place when it is a C-contiguous
@@ -81,26 +82,8 @@ fn converted<'py>(
     Ok(Rows::Converted(out))
 }
 
-/// States per chunk when velocity rows are permuted between the layouts: enough to share out
-/// across threads, few enough that a chunk's rows stay in the core's cache from their
-/// permutation to the kernel.
+/// States per parallel chunk when [`v_rows`] permutes velocity rows between the layouts.
 const CHUNK: usize = 256;
-
-/// Each state's `nv x nv` blocks of `out` in the model's velocity layout,
-/// `X_pin[r][c] = X[p(r)][p(c)]`, on the threads of the current rayon pool.
-fn permute_matrices(core: &ModelCore, out: &mut [f64]) {
-    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
-        return;
-    };
-    let nn = core.nv() * core.nv();
-    out.par_chunks_mut(nn.max(1)).for_each_init(
-        || vec![0.0; nn],
-        |m, block| {
-            m.copy_from_slice(block);
-            l.permute_matrix(m, block);
-        },
-    );
-}
 
 /// `x` in rigid's velocity layout: the caller's rows, or their permutation (on `pool`).
 fn v_rows<'py>(core: &ModelCore, pool: Option<&ThreadPool>, x: Matrix<'py>) -> Rows<'py> {
@@ -204,51 +187,16 @@ fn state_error(
     value_error(func, e)
 }
 
-/// `f` for every state into `out`, with `vs`, `xs` and `out` in the model's velocity layout.
-/// When it orders velocities otherwise than rigid, the states go in chunks of [`CHUNK`] spread
-/// over the pool: a chunk's `V` and `X` rows permuted into buffers of its task (no fresh pages,
-/// still in the cache for the kernel), computed, and its results permuted back in place.
-fn permuted_chunks(
-    core: &ModelCore,
-    f: Qvx,
-    qs: &[f64],
-    vs: &[f64],
-    xs: &[f64],
-    out: &mut [f64],
-) -> MbResult {
-    let model = &core.model;
-    let Some(l) = core.layout.as_ref().filter(|_| core.convert_v) else {
-        return f.run(&mut Batch::new(model), model, qs, vs, xs, out);
-    };
-    let (nq, nv) = (model.nq(), core.nv().max(1));
-    let buffers = || {
-        (
-            Batch::new(model),
-            vec![0.0; nv * CHUNK],
-            vec![0.0; nv * CHUNK],
-        )
-    };
-    out.par_chunks_mut(nv * CHUNK)
-        .enumerate()
-        .map_init(buffers, |(batch, v, x), (c, o)| {
-            let (rows, first) = (o.len() / nv, c * CHUNK);
-            let (v, x) = (&mut v[..rows * nv], &mut x[..rows * nv]);
-            for (src, dst) in [(vs, &mut *v), (xs, &mut *x)] {
-                let src = &src[first * nv..(first + rows) * nv];
-                for (s, d) in src.chunks_exact(nv).zip(dst.chunks_exact_mut(nv)) {
-                    l.permute_v(s, d);
-                }
-            }
-            let q = &qs[first * nq..(first + rows) * nq];
-            f.run(batch, model, q, v, x, o)?;
-            let row = &mut v[..nv];
-            for r in o.chunks_exact_mut(nv) {
-                l.permute_v(r, row);
-                r.copy_from_slice(row);
-            }
-            Ok(())
-        })
-        .collect()
+/// Workspaces for the model (on the current pool's threads) taking and giving velocities in
+/// the model's layout: the library reorders them in the lanes and in place
+/// ([`Batch::with_velocity_order`]), so no array is copied or permuted here.
+fn layout_batch(core: &ModelCore) -> Result<Batch, mb::MultibodyError> {
+    let b = Batch::new(&core.model);
+    if core.layout.is_none() || !core.convert_v {
+        return Ok(b);
+    }
+    let order: Vec<usize> = (0..core.nv()).map(|k| core.v_index(k)).collect();
+    b.with_velocity_order(&core.model, &order)
 }
 
 /// The two `(q, v, x) ↦ nv-vector` verbs.
@@ -320,7 +268,7 @@ fn qvx_batch<'py>(
     let out = guard.as_slice_mut().unwrap_or(&mut []);
     let (qs, vs, xs) = (qs.as_slice(), vx[0].as_slice(), vx[1].as_slice());
     crate::scale::detach(py, pool.as_deref(), || {
-        permuted_chunks(core, f, qs, vs, xs, out)
+        f.run(&mut layout_batch(core)?, &core.model, qs, vs, xs, out)
     })
     .map_err(|e| {
         if let Err(e) = check_finite(core, func, &args) {
@@ -423,9 +371,7 @@ pub fn crba_batch<'py>(
     let mut guard = array.readwrite(); // a fresh array: nothing else borrows it
     let out = guard.as_slice_mut().unwrap_or(&mut []);
     crate::scale::detach(py, pool.as_deref(), || {
-        batch::crba_batch(&core.model, qs, out)?;
-        permute_matrices(core, out);
-        Ok(())
+        layout_batch(core)?.crba(&core.model, qs, out)
     })
     .map_err(|e| {
         state_error(core, F, e, qs, |d, _, q| {
@@ -455,8 +401,7 @@ pub fn rnea_derivatives_batch<'py>(
     let pool = crate::scale::pool(F, threads)?;
     let core = &*model.inner;
     let args = [("V", v), ("A", a)];
-    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &args, true)?;
-    check_finite(core, F, &args)?;
+    let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &args, false)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let nv = core.nv();
     let arrays = [0, 1].map(|_| PyArray3::<f64>::zeros(py, [n, nv, nv], false));
@@ -465,15 +410,16 @@ pub fn rnea_derivatives_batch<'py>(
         .each_mut()
         .map(|g| g.as_slice_mut().unwrap_or(&mut []));
     crate::scale::detach(py, pool.as_deref(), || {
-        batch::rnea_derivatives_batch(&core.model, qs, vs, as_, dq, dv)?;
-        permute_matrices(core, dq);
-        permute_matrices(core, dv);
-        Ok(())
+        layout_batch(core)?.rnea_derivatives(&core.model, qs, vs, as_, dq, dv)
     })
     .map_err(|e| {
+        if let Err(e) = check_finite(core, F, &args) {
+            return e;
+        }
         state_error(core, F, e, qs, |d, k, q| {
             let r = k * nv..(k + 1) * nv;
-            mb::rnea_derivatives(&core.model, d, q, &vs[r.clone()], &as_[r]).map(|_| ())
+            let (v, a) = (core.v_to_layout(&vs[r.clone()]), core.v_to_layout(&as_[r]));
+            mb::rnea_derivatives(&core.model, d, q, &v, &a).map(|_| ())
         })
     })?;
     drop(guards);

@@ -357,6 +357,120 @@ fn batch_chunks_join_and_check_each_state() {
     });
 }
 
+/// Rows of `nv = order.len()` numbers in the caller's order: entry `k` is `x[order[k]]`.
+fn in_order(x: &[f64], order: &[usize]) -> Vec<f64> {
+    x.chunks(order.len())
+        .flat_map(|r| order.iter().map(|&o| r[o]))
+        .collect()
+}
+
+/// Row-major `nv x nv` matrices in the caller's order: entry `(r, c)` is `(order[r], order[c])`.
+fn square_in_order(m: &[f64], order: &[usize]) -> Vec<f64> {
+    let nv = order.len();
+    let mut out = Vec::with_capacity(m.len());
+    for m in m.chunks(nv * nv) {
+        for &r in order {
+            out.extend(order.iter().map(|&c| m[r * nv + c]));
+        }
+    }
+    out
+}
+
+/// A batch with a velocity order takes and gives every velocity-space number in that order:
+/// its results are those of rigid's order with inputs and outputs permuted, bit for bit, for
+/// every entry point (the order reverses the dofs and swaps two), across chunks and packs; an
+/// order that is not a permutation of `0..nv` is refused.
+#[test]
+fn a_velocity_order_permutes_inputs_and_results() {
+    let model = common::every_joint_tree(3, 14);
+    let (nv, n) = (model.nv(), 150);
+    let mut order: Vec<usize> = (0..nv).rev().collect();
+    order.swap(0, 3);
+    let (qs, vs, as_) = states(&model, n, 8);
+    let permute = |x: &[f64]| in_order(x, &order);
+    let square = |m: &[f64]| square_in_order(m, &order);
+    let (vs_c, as_c) = (permute(&vs), permute(&as_));
+    for width in [2, 4, 8] {
+        let mut plain = batch::Batch::with_lanes(&model, width);
+        let mut ordered = batch::Batch::with_lanes(&model, width)
+            .with_velocity_order(&model, &order)
+            .unwrap();
+        let (mut x, mut y) = (vec![0.0; n * nv], vec![0.0; n * nv]);
+        plain.rnea(&model, &qs, &vs, &as_, &mut x).unwrap();
+        ordered.rnea(&model, &qs, &vs_c, &as_c, &mut y).unwrap();
+        assert_eq!(y, permute(&x), "rnea, {width} lanes");
+        let tau = x.clone();
+        let tau_c = permute(&tau);
+        plain.aba(&model, &qs, &vs, &tau, &mut x).unwrap();
+        ordered.aba(&model, &qs, &vs_c, &tau_c, &mut y).unwrap();
+        assert_eq!(y, permute(&x), "aba, {width} lanes");
+        let (mut m, mut mc) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+        plain.crba(&model, &qs, &mut m).unwrap();
+        ordered.crba(&model, &qs, &mut mc).unwrap();
+        assert_eq!(mc, square(&m), "crba, {width} lanes");
+        let per = nv * (nv + 1) / 2;
+        let mut packed = vec![0.0; n * per];
+        ordered.crba_lower(&model, &qs, &mut packed).unwrap();
+        let mut want = vec![0.0; per];
+        for (p, m) in packed.chunks(per).zip(mc.chunks(nv * nv)) {
+            // M is symmetric: its row-major rows are its columns
+            batch::pack_lower(m, nv, &mut want).unwrap();
+            assert_eq!(p, &want[..], "crba_lower, {width} lanes");
+        }
+    }
+    // the RNEA and ABA derivatives, on a tree whose joints they take
+    let model = accepted_joint_forest(4, 7, JointType::Planar);
+    let (nv, n) = (model.nv(), 70);
+    let order: Vec<usize> = (0..nv).map(|k| (k + 5) % nv).collect();
+    let (qs, vs, as_) = states(&model, n, 9);
+    let permute = |x: &[f64]| in_order(x, &order);
+    let square = |m: &[f64]| square_in_order(m, &order);
+    let mut plain = batch::Batch::new(&model);
+    let mut ordered = batch::Batch::new(&model)
+        .with_velocity_order(&model, &order)
+        .unwrap();
+    let outs = || [(); 3].map(|_| vec![0.0; n * nv * nv]);
+    let ([mut a, mut b, _], [mut ac, mut bc, _]) = (outs(), outs());
+    plain
+        .rnea_derivatives(&model, &qs, &vs, &as_, &mut a, &mut b)
+        .unwrap();
+    ordered
+        .rnea_derivatives(&model, &qs, &permute(&vs), &permute(&as_), &mut ac, &mut bc)
+        .unwrap();
+    assert_eq!((ac, bc), (square(&a), square(&b)), "rnea_derivatives");
+    let ([mut a, mut b, mut c], [mut ac, mut bc, mut cc]) = (outs(), outs());
+    plain
+        .aba_derivatives(&model, &qs, &vs, &as_, &mut a, &mut b, &mut c)
+        .unwrap();
+    let (vc, tc) = (permute(&vs), permute(&as_));
+    ordered
+        .aba_derivatives(&model, &qs, &vc, &tc, &mut ac, &mut bc, &mut cc)
+        .unwrap();
+    assert_eq!(
+        (ac, bc, cc),
+        (square(&a), square(&b), square(&c)),
+        "aba_derivatives"
+    );
+    // not permutations
+    for bad in [vec![0; nv - 1], vec![0; nv], (1..=nv).collect::<Vec<_>>()] {
+        let e = batch::Batch::new(&model).with_velocity_order(&model, &bad);
+        assert!(
+            matches!(
+                e,
+                Err(MultibodyError::Dimension(_) | MultibodyError::OutOfRange { .. })
+            ),
+            "{bad:?}"
+        );
+    }
+    let e = batch::Batch::new(&model)
+        .with_velocity_order(&model, &vec![0; nv])
+        .unwrap_err();
+    assert!(
+        matches!(e, MultibodyError::OutOfRange { index: 1, .. }),
+        "{e}"
+    );
+}
+
 #[test]
 fn batch_rejects_ragged_inputs() {
     let model = puma560(Puma560Options::default());

@@ -100,6 +100,9 @@ fn count(
 pub struct Batch {
     datas: Vec<Data>,
     lanes: Vec<Lanes>,
+    /// The caller's velocity order (empty: rigid's) and a buffer per task to reorder through.
+    order: Vec<usize>,
+    scratch: Vec<Vec<f64>>,
 }
 
 impl Batch {
@@ -125,7 +128,58 @@ impl Batch {
                 .into_par_iter()
                 .map(|_| Lanes::new(model, width))
                 .collect(),
+            order: Vec::new(),
+            scratch: vec![Vec::new(); tasks],
         }
+    }
+
+    /// This batch for states whose velocity-space numbers are in another order than rigid's:
+    /// entry `k` of the caller's `v`, `a`, `τ` and `q̈` is rigid's entry `order[k]`, and entry
+    /// `(r, c)` of its `M` and derivatives is rigid's `(order[r], order[c])`, as in Pinocchio's
+    /// layout ([`PinocchioLayout::v_index`](crate::interop::pinocchio::PinocchioLayout::v_index),
+    /// a free-flyer's linear velocity before its angular one). The configurations stay in
+    /// rigid's layout. Inputs are reordered in the lanes and results in place, a chunk of states
+    /// at a time while they are in the cache: no pass over the whole arrays, no allocation per
+    /// call.
+    ///
+    /// ```
+    /// use rigid::multibody::{batch::Batch, Model, Puma560Options, puma560};
+    /// let model = puma560(Puma560Options::default());
+    /// let (nq, nv, n) = (model.nq(), model.nv(), 3);
+    /// let order = [5, 4, 3, 2, 1, 0]; // the caller lists the joints from the wrist down
+    /// let mut reversed = Batch::new(&model).with_velocity_order(&model, &order)?;
+    /// let (qs, vs, a) = (vec![0.3; n * nq], vec![0.1; n * nv], vec![0.0; n * nv]);
+    /// let (mut tau, mut tau_r) = (vec![0.0; n * nv], vec![0.0; n * nv]);
+    /// Batch::new(&model).rnea(&model, &qs, &vs, &a, &mut tau)?;
+    /// reversed.rnea(&model, &qs, &vs, &a, &mut tau_r)?; // vs is the same in either order
+    /// assert!(tau_r.chunks(nv).zip(tau.chunks(nv)).all(|(r, t)| (0..nv).all(|k| r[k] == t[order[k]])));
+    /// # Ok::<(), rigid::multibody::MultibodyError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// `order` is not `nv` long ([`MultibodyError::Dimension`]), or an entry is not below `nv`
+    /// or repeats an earlier one ([`MultibodyError::OutOfRange`], naming its position).
+    pub fn with_velocity_order(
+        mut self,
+        model: &Model,
+        order: &[usize],
+    ) -> Result<Self, MultibodyError> {
+        let nv = model.nv;
+        DimensionError::check("order", nv, order.len())?;
+        let mut seen = vec![false; nv];
+        for (k, &o) in order.iter().enumerate() {
+            if o >= nv || std::mem::replace(&mut seen[o], true) {
+                return Err(MultibodyError::OutOfRange {
+                    what: "velocity order (a permutation of 0..nv) entry",
+                    index: k,
+                });
+            }
+        }
+        self.order = order.to_vec();
+        for s in &mut self.scratch {
+            *s = vec![0.0; nv * nv.max(3)];
+        }
+        Ok(self)
     }
 
     /// The number of states computed side by side (the lanes of the vector registers).
@@ -239,8 +293,12 @@ impl Batch {
         }
         let w = self.lanes();
         let per_task = per_task(n, self.lanes.len()).div_ceil(w) * w;
-        let (nq, nv) = (model.nq, model.nv);
-        let task = |c: usize, block: &mut [f64], block2: &mut [f64], lanes: &mut Lanes| {
+        if !self.order.is_empty() {
+            DimensionError::check("order", model.nv, self.order.len())?;
+        }
+        let (nq, nv, order) = (model.nq, model.nv, &self.order[..]);
+        let task = |c: usize, block: &mut [f64], block2: &mut [f64], work: Work| {
+            let (lanes, scratch) = work;
             let chunk = (CHUNK / w).max(1) * w * per;
             let mut first = c * per_task;
             let mut block2 = block2.chunks_mut(chunk);
@@ -253,23 +311,28 @@ impl Batch {
                     }
                 }
                 let sub2 = block2.next().unwrap_or_default();
-                lanes.run(algo, model, qs, vs, xs, first, sub, sub2)?;
+                lanes.run(algo, model, qs, vs, xs, (first, order), sub, &mut *sub2)?;
+                if !order.is_empty() {
+                    for y in sub.chunks_exact_mut(per).chain(sub2.chunks_exact_mut(per)) {
+                        rows::order_out(algo, y, order, scratch);
+                    }
+                }
                 first += sub.len() / per;
             }
             Ok(())
         };
         let tasks = out
             .par_chunks_mut(per_task * per)
-            .zip(self.lanes.par_iter_mut())
+            .zip(self.lanes.par_iter_mut().zip(self.scratch.par_iter_mut()))
             .enumerate();
         if algo == Algo::RneaDerivatives {
             tasks
                 .zip(out2.par_chunks_mut(per_task * per))
-                .map(|((c, (block, lanes)), block2)| task(c, block, block2, lanes))
+                .map(|((c, (block, work)), block2)| task(c, block, block2, work))
                 .collect()
         } else {
             tasks
-                .map(|(c, (block, lanes))| task(c, block, &mut [], lanes))
+                .map(|(c, (block, work))| task(c, block, &mut [], work))
                 .collect()
         }
     }
@@ -345,31 +408,52 @@ impl Batch {
         if n * nn == 0 {
             return Ok(());
         }
+        if !self.order.is_empty() {
+            DimensionError::check("order", model.nv, self.order.len())?;
+        }
         let per_task = per_task(n, self.datas.len());
+        let (nv, order) = (model.nv, &self.order[..]);
         let blocks = dqdd_dq
             .par_chunks_mut(per_task * nn)
             .zip(dqdd_dv.par_chunks_mut(per_task * nn))
             .zip(dqdd_dtau.par_chunks_mut(per_task * nn));
         blocks
-            .zip(self.datas.par_iter_mut())
+            .zip(self.datas.par_iter_mut().zip(self.scratch.par_iter_mut()))
             .enumerate()
-            .map(|(c, (((bq, bv), bt), data))| {
+            .map(|(c, (((bq, bv), bt), (data, scratch)))| {
                 let outs = bq
                     .chunks_mut(nn)
                     .zip(bv.chunks_mut(nn))
                     .zip(bt.chunks_mut(nn));
                 for (j, ((oq, ov), ot)) in outs.enumerate() {
                     let (q, v, t) = state(model, c * per_task + j, qs, vs, taus);
-                    let d = super::aba_derivatives(model, data, q, v, t)?;
+                    let d = if order.is_empty() {
+                        super::aba_derivatives(model, data, q, v, t)?
+                    } else {
+                        // v and τ into rigid's order (the first 2 nv numbers of the buffer)
+                        let (vr, tr) = scratch[..2 * nv].split_at_mut(nv);
+                        for ((&o, x), y) in order.iter().zip(v).zip(t) {
+                            (vr[o], tr[o]) = (*x, *y);
+                        }
+                        super::aba_derivatives(model, data, q, vr, tr)?
+                    };
                     row_major(d.dqdd_dq, oq);
                     row_major(d.dqdd_dv, ov);
                     ot.copy_from_slice(d.dqdd_dtau.as_slice()); // symmetric
+                    if !order.is_empty() {
+                        for y in [oq, ov, ot] {
+                            rows::order_out(Algo::Crba, y, order, scratch);
+                        }
+                    }
                 }
                 Ok(())
             })
             .collect()
     }
 }
+
+/// A task's lane workspace and its buffer to reorder results through.
+type Work<'a> = (&'a mut Lanes, &'a mut Vec<f64>);
 
 /// States per task when `n ≥ 1` states are cut into at most `tasks` contiguous blocks.
 fn per_task(n: usize, tasks: usize) -> usize {

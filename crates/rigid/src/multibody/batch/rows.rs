@@ -1,10 +1,13 @@
 //! The states between the caller's rows and the lanes: row-major inputs transposed into the
 //! lanes of a pack and its results transposed back out, `W x W` at a time, in 4x4 blocks of AVX
 //! registers when the pack runs in the CPU's own instructions (`Io::native`), else lane by lane;
-//! the full CRBA matrices' mirrored upper triangle; and the prefetch of the next pack's rows.
+//! the full CRBA matrices' mirrored upper triangle; the prefetch of the rows ahead; and the
+//! caller's velocity order ([`Batch::with_velocity_order`](super::Batch::with_velocity_order)):
+//! inputs reordered in the lanes, results in place.
 
+use super::crba::packed_at;
 use super::lanes::L;
-use super::simd::Io;
+use super::simd::{Algo, Io};
 use crate::multibody::Model;
 
 /// Asks the CPU to bring rows `k..k + m` of the inputs (those that exist) into its caches, so
@@ -30,6 +33,47 @@ pub(super) fn prefetch_rows(io: &Io, model: &Model, k: usize, m: usize) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = (io, model, k, m);
+}
+
+/// A velocity-space input in the caller's order into rigid's, in the lanes: rigid's entry
+/// `order[k]` is the caller's `k` (`tmp`: `x.len()` lane vectors).
+#[inline(never)]
+pub(super) fn order_in<const W: usize>(x: &mut [L<W>], order: &[usize], tmp: &mut [L<W>]) {
+    tmp.copy_from_slice(x);
+    for (&o, t) in order.iter().zip(tmp.iter()) {
+        x[o] = *t;
+    }
+}
+
+/// One state's result of `algo` (`y`, rigid's order) in the caller's order, in place: a vector
+/// `y_k ← y_order[k]` (RNEA, ABA), a matrix `Y_rc ← Y_order[r],order[c]` (row-major `nv x nv`:
+/// CRBA, the derivatives; or the packed lower triangle), through `tmp` (`y.len()` numbers).
+pub(super) fn order_out(algo: Algo, y: &mut [f64], order: &[usize], tmp: &mut [f64]) {
+    let n = order.len();
+    let tmp = &mut tmp[..y.len()];
+    tmp.copy_from_slice(y);
+    match algo {
+        Algo::Rnea | Algo::Aba => {
+            for (y, &o) in y.iter_mut().zip(order) {
+                *y = tmp[o];
+            }
+        }
+        Algo::CrbaLower => {
+            for c in 0..n {
+                for r in c..n {
+                    let (a, b) = (order[r].max(order[c]), order[r].min(order[c]));
+                    y[packed_at(n, r, c)] = tmp[packed_at(n, a, b)];
+                }
+            }
+        }
+        Algo::Crba | Algo::RneaDerivatives => {
+            for (row, &o) in y.chunks_exact_mut(n).zip(order) {
+                for (y, &p) in row.iter_mut().zip(order) {
+                    *y = tmp[o * n + p];
+                }
+            }
+        }
+    }
 }
 
 /// Lanes `0..m` of `src` (one lane vector per output index) into `m` rows of `dst`, `stride`
