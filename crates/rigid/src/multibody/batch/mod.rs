@@ -138,9 +138,9 @@ impl Batch {
     /// `(r, c)` of its `M` and derivatives is rigid's `(order[r], order[c])`, as in Pinocchio's
     /// layout ([`PinocchioLayout::v_index`](crate::interop::pinocchio::PinocchioLayout::v_index),
     /// a free-flyer's linear velocity before its angular one). The configurations stay in
-    /// rigid's layout. Inputs are reordered in the lanes and results in place, a chunk of states
-    /// at a time while they are in the cache: no pass over the whole arrays, no allocation per
-    /// call.
+    /// rigid's layout. A chunk of 64 states at a time, while they are in the cache, the inputs
+    /// are reordered into a buffer and the results in place: no pass over whole arrays, no
+    /// allocation per call, and the kernels are those of rigid's order.
     ///
     /// ```
     /// use rigid::multibody::{batch::Batch, Model, Puma560Options, puma560};
@@ -176,8 +176,10 @@ impl Batch {
             }
         }
         self.order = order.to_vec();
+        // a chunk's v and x rows (CHUNK states, at least a pack) and one result
+        let len = 2 * CHUNK.max(8) * nv + nv * nv;
         for s in &mut self.scratch {
-            *s = vec![0.0; nv * nv.max(3)];
+            *s = vec![0.0; len];
         }
         Ok(self)
     }
@@ -310,14 +312,32 @@ impl Batch {
                         check_v(model, x_name, &xs[k * nv..][..nv])?;
                     }
                 }
-                let sub2 = block2.next().unwrap_or_default();
-                lanes.run(algo, model, qs, vs, xs, (first, order), sub, &mut *sub2)?;
-                if !order.is_empty() {
+                let (sub2, states) = (block2.next().unwrap_or_default(), sub.len() / per);
+                if order.is_empty() {
+                    lanes.run(algo, model, qs, vs, xs, first, sub, sub2)?;
+                } else {
+                    // the chunk's v and x rows into rigid's order in the task's buffer, then
+                    // its results into the caller's in place (the kernels see rigid's order)
+                    let (v, rest) = scratch.split_at_mut(CHUNK.max(8) * nv);
+                    let (x, tmp) = rest.split_at_mut(CHUNK.max(8) * nv);
+                    let (v, x) = (&mut v[..states * nv], &mut x[..states * nv]);
+                    let rows = first * nv..(first + states) * nv;
+                    if !inputs.is_empty() {
+                        rows::rows_in_order(&vs[rows.clone()], order, v);
+                        rows::rows_in_order(&xs[rows], order, x);
+                    }
+                    let (v, x) = if inputs.is_empty() {
+                        (&[][..], &[][..])
+                    } else {
+                        (&*v, &*x)
+                    };
+                    let q = &qs[first * nq..(first + states) * nq];
+                    lanes.run(algo, model, q, v, x, 0, sub, &mut *sub2)?;
                     for y in sub.chunks_exact_mut(per).chain(sub2.chunks_exact_mut(per)) {
-                        rows::order_out(algo, y, order, scratch);
+                        rows::order_out(algo, y, order, tmp);
                     }
                 }
-                first += sub.len() / per;
+                first += states;
             }
             Ok(())
         };

@@ -19,8 +19,6 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) v: Vec<L<W>>,
     pub(crate) x: Vec<L<W>>,
     pub(crate) out: Vec<L<W>>,
-    /// `nv` lane vectors to reorder a velocity-space input through.
-    pub(crate) tmp: Vec<L<W>>,
     /// `S_k` per degree of freedom, in the child frame (the constant ones set once).
     pub(crate) S: Vec<T6<W>>,
     /// Per joint: `liMi`, the body's twist `V_i`, acceleration `A_i` (RNEA: with gravity; ABA:
@@ -57,7 +55,6 @@ impl<const W: usize> Pack<W> {
             v: vec![z; nv],
             x: vec![z; nv],
             out: vec![z; nv],
-            tmp: vec![z; nv],
             S: (0..nv).map(|k| T6::splat(&model.plan().dof_S[k])).collect(),
             X: vec![X::identity(); n],
             V: vec![T6::zero(); n],

@@ -3,7 +3,7 @@
 //! registers when the pack runs in the CPU's own instructions (`Io::native`), else lane by lane;
 //! the full CRBA matrices' mirrored upper triangle; the prefetch of the rows ahead; and the
 //! caller's velocity order ([`Batch::with_velocity_order`](super::Batch::with_velocity_order)):
-//! inputs reordered in the lanes, results in place.
+//! a chunk's input rows reordered into a buffer, its results in place.
 
 use super::crba::packed_at;
 use super::lanes::L;
@@ -35,13 +35,14 @@ pub(super) fn prefetch_rows(io: &Io, model: &Model, k: usize, m: usize) {
     let _ = (io, model, k, m);
 }
 
-/// A velocity-space input in the caller's order into rigid's, in the lanes: rigid's entry
-/// `order[k]` is the caller's `k` (`tmp`: `x.len()` lane vectors).
-#[inline(never)]
-pub(super) fn order_in<const W: usize>(x: &mut [L<W>], order: &[usize], tmp: &mut [L<W>]) {
-    tmp.copy_from_slice(x);
-    for (&o, t) in order.iter().zip(tmp.iter()) {
-        x[o] = *t;
+/// Rows of `nv = order.len()` velocity-space numbers from the caller's order into rigid's:
+/// rigid's entry `order[k]` of a row is the caller's `k`.
+pub(super) fn rows_in_order(src: &[f64], order: &[usize], dst: &mut [f64]) {
+    let nv = order.len();
+    for (s, d) in src.chunks_exact(nv).zip(dst.chunks_exact_mut(nv)) {
+        for (&o, x) in order.iter().zip(s) {
+            d[o] = *x;
+        }
     }
 }
 

@@ -13,7 +13,7 @@ use super::crba::{crba, packed_at};
 use super::derivatives::rnea_derivatives;
 use super::pack::Pack;
 use super::rnea::rnea;
-use super::rows::{mirror_upper, order_in, prefetch_rows, transpose_in, transpose_out};
+use super::rows::{mirror_upper, prefetch_rows, transpose_in, transpose_out};
 use crate::multibody::{Model, MultibodyError};
 
 /// Which batch entry point a pack computes.
@@ -130,7 +130,7 @@ impl Lanes {
         qs: &[f64],
         vs: &[f64],
         xs: &[f64],
-        (first, order): (usize, &[usize]),
+        first: usize,
         out: &mut [f64],
         out2: &mut [f64],
     ) -> Result<(), MultibodyError> {
@@ -139,7 +139,6 @@ impl Lanes {
             vs,
             xs,
             first,
-            order,
             native: false,
         };
         match algo.code() {
@@ -193,9 +192,6 @@ pub(super) struct Io<'a> {
     pub(super) vs: &'a [f64],
     pub(super) xs: &'a [f64],
     pub(super) first: usize,
-    /// The caller's velocity order (empty: rigid's), see
-    /// [`Batch::with_velocity_order`](super::Batch::with_velocity_order).
-    pub(super) order: &'a [usize],
     pub(super) native: bool,
 }
 
@@ -275,10 +271,6 @@ fn packs<const W: usize, const A: u8>(
             for l in 0..W {
                 p.gather(l, io.first + s + l.min(m - 1), io.qs, io.vs, io.xs);
             }
-        }
-        if !io.order.is_empty() && !io.vs.is_empty() {
-            order_in(&mut p.v, io.order, &mut p.tmp);
-            order_in(&mut p.x, io.order, &mut p.tmp);
         }
         match algo {
             Algo::Rnea => rnea(model, p),
