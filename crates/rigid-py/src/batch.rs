@@ -7,7 +7,8 @@
 //! arrays numpy allocates (numpy asks Linux for huge pages for large arrays: the first touch of
 //! a fresh Rust vector's 4 KiB pages cost about 3 µs per page on this machine, more than CRBA
 //! itself), or into the caller's `out=`. In Pinocchio's layout the velocity-space numbers are
-//! reordered by the library, in the lanes and in place ([`Batch::with_velocity_order`]).
+//! reordered by the library, a chunk of states at a time: the inputs into a buffer of each task,
+//! the results in place ([`Batch::with_velocity_order`]).
 
 use crate::convert::{matrix, value_error, Matrix};
 use crate::model::{Model, ModelCore};
@@ -188,7 +189,7 @@ fn state_error(
 }
 
 /// Workspaces for the model (on the current pool's threads) taking and giving velocities in
-/// the model's layout: the library reorders them in the lanes and in place
+/// the model's layout: the library reorders them a chunk at a time
 /// ([`Batch::with_velocity_order`]), so no array is copied or permuted here.
 fn layout_batch(core: &ModelCore) -> Result<Batch, mb::MultibodyError> {
     let b = Batch::new(&core.model);

@@ -378,12 +378,21 @@ fn square_in_order(m: &[f64], order: &[usize]) -> Vec<f64> {
 
 /// A batch with a velocity order takes and gives every velocity-space number in that order:
 /// its results are those of rigid's order with inputs and outputs permuted, bit for bit, for
-/// every entry point (the order reverses the dofs and swaps two), across chunks and packs; an
-/// order that is not a permutation of `0..nv` is refused.
+/// every entry point (the order reverses the dofs and swaps two), across chunks (one thread:
+/// a task's 100+ states span two chunks of 64) and packs; a NaN is named by the caller's
+/// index; an order that is not a permutation of `0..nv` is refused.
 #[test]
 fn a_velocity_order_permutes_inputs_and_results() {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(velocity_order_cases);
+}
+
+fn velocity_order_cases() {
     let model = common::every_joint_tree(3, 14);
-    let (nv, n) = (model.nv(), 150);
+    let (nv, n) = (model.nv(), 230);
     let mut order: Vec<usize> = (0..nv).rev().collect();
     order.swap(0, 3);
     let (qs, vs, as_) = states(&model, n, 8);
@@ -420,7 +429,7 @@ fn a_velocity_order_permutes_inputs_and_results() {
     }
     // the RNEA and ABA derivatives, on a tree whose joints they take
     let model = accepted_joint_forest(4, 7, JointType::Planar);
-    let (nv, n) = (model.nv(), 70);
+    let (nv, n) = (model.nv(), 210);
     let order: Vec<usize> = (0..nv).map(|k| (k + 5) % nv).collect();
     let (qs, vs, as_) = states(&model, n, 9);
     let permute = |x: &[f64]| in_order(x, &order);
@@ -447,10 +456,21 @@ fn a_velocity_order_permutes_inputs_and_results() {
         .aba_derivatives(&model, &qs, &vc, &tc, &mut ac, &mut bc, &mut cc)
         .unwrap();
     assert_eq!(
-        (ac, bc, cc),
-        (square(&a), square(&b), square(&c)),
+        (&ac, &bc, &cc),
+        (&square(&a), &square(&b), &square(&c)),
         "aba_derivatives"
     );
+    // a NaN at the caller's index 2 of state 150's v is named by that index
+    let mut bad = vc.clone();
+    bad[150 * nv + 2] = f64::NAN;
+    let nan = MultibodyError::NonFinite {
+        what: "v",
+        index: 2,
+    };
+    let e = ordered.rnea(&model, &qs, &bad, &tc, &mut vec![0.0; n * nv]);
+    assert_eq!(e.unwrap_err(), nan);
+    let e = ordered.aba_derivatives(&model, &qs, &bad, &tc, &mut ac, &mut bc, &mut cc);
+    assert_eq!(e.unwrap_err(), nan);
     // not permutations
     for bad in [vec![0; nv - 1], vec![0; nv], (1..=nv).collect::<Vec<_>>()] {
         let e = batch::Batch::new(&model).with_velocity_order(&model, &bad);

@@ -138,9 +138,10 @@ impl Batch {
     /// `(r, c)` of its `M` and derivatives is rigid's `(order[r], order[c])`, as in Pinocchio's
     /// layout ([`PinocchioLayout::v_index`](crate::interop::pinocchio::PinocchioLayout::v_index),
     /// a free-flyer's linear velocity before its angular one). The configurations stay in
-    /// rigid's layout. A chunk of 64 states at a time, while they are in the cache, the inputs
-    /// are reordered into a buffer and the results in place: no pass over whole arrays, no
-    /// allocation per call, and the kernels are those of rigid's order.
+    /// rigid's layout. A chunk of 64 states at a time, the inputs are reordered into a buffer
+    /// and the results in place while they are in the cache: no pass over whole arrays, no
+    /// allocation per call, and the kernels are those of rigid's order. (The rows are read in
+    /// order as they are reordered, not prefetched a chunk ahead as without an order.)
     ///
     /// ```
     /// use rigid::multibody::{batch::Batch, Model, Puma560Options, puma560};
@@ -321,10 +322,10 @@ impl Batch {
                     let (v, rest) = scratch.split_at_mut(CHUNK.max(8) * nv);
                     let (x, tmp) = rest.split_at_mut(CHUNK.max(8) * nv);
                     let (v, x) = (&mut v[..states * nv], &mut x[..states * nv]);
-                    let rows = first * nv..(first + states) * nv;
+                    let span = first * nv..(first + states) * nv;
                     if !inputs.is_empty() {
-                        rows::rows_in_order(&vs[rows.clone()], order, v);
-                        rows::rows_in_order(&xs[rows], order, x);
+                        rows::rows_in_order(&vs[span.clone()], order, v);
+                        rows::rows_in_order(&xs[span], order, x);
                     }
                     let (v, x) = if inputs.is_empty() {
                         (&[][..], &[][..])
@@ -450,7 +451,10 @@ impl Batch {
                     let d = if order.is_empty() {
                         super::aba_derivatives(model, data, q, v, t)?
                     } else {
-                        // v and τ into rigid's order (the first 2 nv numbers of the buffer)
+                        // checked in the caller's order (errors name its indices), then v and
+                        // τ into rigid's (the first 2 nv numbers of the buffer)
+                        check_v(model, "v", v)?;
+                        check_v(model, "tau", t)?;
                         let (vr, tr) = scratch[..2 * nv].split_at_mut(nv);
                         for ((&o, x), y) in order.iter().zip(v).zip(t) {
                             (vr[o], tr[o]) = (*x, *y);
@@ -510,7 +514,8 @@ fn row_major(m: &nalgebra::DMatrix<f64>, out: &mut [f64]) {
 /// `N × nv`).
 ///
 /// # Errors
-/// Lengths that are not `N nq` / `N nv`, or the first failing state's error.
+/// Lengths that are not `N nq` / `N nv`, or a failing state's error (the first
+/// in its task's block; with several threads, not necessarily the first of all).
 pub fn rnea_batch(
     model: &Model,
     qs: &[f64],
@@ -525,7 +530,8 @@ pub fn rnea_batch(
 /// `N × nv`).
 ///
 /// # Errors
-/// Lengths that are not `N nq` / `N nv`, or the first failing state's error.
+/// Lengths that are not `N nq` / `N nv`, or a failing state's error (the first
+/// in its task's block; with several threads, not necessarily the first of all).
 pub fn aba_batch(
     model: &Model,
     qs: &[f64],
@@ -540,7 +546,8 @@ pub fn aba_batch(
 /// column-major, which for a symmetric matrix is also row-major).
 ///
 /// # Errors
-/// A length that is not `N nq` / `N nv²`, or the first failing state's error.
+/// A length that is not `N nq` / `N nv²`, or a failing state's error (the first
+/// in its task's block; with several threads, not necessarily the first of all).
 pub fn crba_batch(model: &Model, qs: &[f64], mass: &mut [f64]) -> Result<(), MultibodyError> {
     Batch::new(model).crba(model, qs, mass)
 }
@@ -566,7 +573,8 @@ pub fn crba_batch(model: &Model, qs: &[f64], mass: &mut [f64]) -> Result<(), Mul
 /// ```
 ///
 /// # Errors
-/// A length that is not `N nq` / `N nv(nv+1)/2`, or the first failing state's error.
+/// A length that is not `N nq` / `N nv(nv+1)/2`, or a failing state's error (the first
+/// in its task's block; with several threads, not necessarily the first of all).
 pub fn crba_lower_batch(
     model: &Model,
     qs: &[f64],
@@ -583,7 +591,8 @@ pub fn crba_lower_batch(
 ///
 /// # Errors
 /// Lengths that are not `N nq` / `N nv` / `N nv²`, a joint whose motion subspace depends on `q`
-/// ([`MultibodyError::Unsupported`], as the single call), or the first failing state's error.
+/// ([`MultibodyError::Unsupported`], as the single call), or a failing state's error (the first
+/// in its task's block; with several threads, not necessarily the first of all).
 ///
 /// ```
 /// use rigid::multibody::{batch, puma560, Puma560Options};
@@ -611,7 +620,8 @@ pub fn rnea_derivatives_batch(
 /// each `N` matrices of `nv x nv`, row-major, one after the other.
 ///
 /// # Errors
-/// Lengths that are not `N nq` / `N nv` / `N nv²`, or the first failing state's error.
+/// Lengths that are not `N nq` / `N nv` / `N nv²`, or a failing state's error (the first
+/// in its task's block; with several threads, not necessarily the first of all).
 pub fn aba_derivatives_batch(
     model: &Model,
     qs: &[f64],

@@ -12,7 +12,8 @@ use crate::multibody::Model;
 
 /// Asks the CPU to bring rows `k..k + m` of the inputs (those that exist) into its caches, so
 /// that they are there when they are checked and transposed in: a pack asks for the rows
-/// [`CHUNK`](super::CHUNK) states ahead, in the chunk after its own.
+/// [`CHUNK`](super::CHUNK) states ahead, in the chunk after its own (none with a velocity
+/// order, whose kernels read a chunk's reordered copy).
 #[inline(always)]
 pub(super) fn prefetch_rows(io: &Io, model: &Model, k: usize, m: usize) {
     #[cfg(target_arch = "x86_64")]
