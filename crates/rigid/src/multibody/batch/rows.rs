@@ -1,7 +1,7 @@
 //! The states between the caller's rows and the lanes: row-major inputs transposed into the
 //! lanes of a pack and its results transposed back out, `W x W` at a time, in 4x4 blocks of AVX
 //! registers when the pack runs in the CPU's own instructions (`Io::native`), else lane by lane;
-//! the full CRBA matrices' mirrored upper triangle; the prefetch of the rows ahead; and the
+//! the full CRBA matrices from their packed triangles; the prefetch of the rows ahead; and the
 //! caller's velocity order ([`Batch::with_velocity_order`](super::Batch::with_velocity_order)):
 //! a chunk's input rows reordered into a buffer, its results in place.
 
@@ -200,13 +200,33 @@ fn transpose_blocks<const W: usize>(src: &[L<W>], m: usize, dst: &mut [f64], str
 #[target_feature(enable = "avx")]
 #[inline]
 unsafe fn transpose4(src: *const f64, src_stride: usize, dst: *mut f64, stride: usize, m: usize) {
+    // SAFETY: the caller's promise.
+    unsafe {
+        transpose4_from(
+            [0, 1, 2, 3].map(|k| src.add(k * src_stride)),
+            dst,
+            stride,
+            m,
+        )
+    }
+}
+
+/// [`transpose4`] from four rows anywhere: row `k` of the block is the four `f64` at `src[k]`.
+///
+/// # Safety
+/// Each `src[k]` points to four readable `f64`, `dst + l stride` to four writable `f64` for
+/// `l < m ≤ 4`, the rows read and written do not overlap, and the CPU has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+unsafe fn transpose4_from(src: [*const f64; 4], dst: *mut f64, stride: usize, m: usize) {
     use std::arch::x86_64::{
         _mm256_loadu_pd, _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
         _mm256_unpacklo_pd,
     };
     // SAFETY: the caller's promise.
     unsafe {
-        let [a, b, c, d] = [0, 1, 2, 3].map(|k| _mm256_loadu_pd(src.add(k * src_stride)));
+        let [a, b, c, d] = src.map(|row| _mm256_loadu_pd(row));
         let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
         let (t2, t3) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
         let rows = [
@@ -228,48 +248,67 @@ unsafe fn transpose4(src: *const f64, src_stride: usize, dst: *mut f64, stride: 
     }
 }
 
-/// The entries left of the diagonal of the row-major `n x n` symmetric matrix `a` from those
-/// right of it: `a_rc = a_cr` for `r > c`. With `avx` (the CPU has AVX), the 4x4 blocks wholly
-/// below the diagonal are transposed in registers ([`transpose4`]), the rest one by one.
+/// Lanes `0..m` of `packed` (one lane vector per entry of an `nv x nv` symmetric matrix's lower
+/// triangle, packed by columns: [`packed_at`]) into `m` full row-major matrices, one after the
+/// other in `dst` (`nv²` numbers each): entry `(r, c)` of matrix `l` is lane `l` of
+/// `packed[packed_at(nv, max(r, c), min(r, c))]`. With `native` (as in [`transpose_out`]) and
+/// `nv ≥ 4`, each row's columns go four at a time, 4x4 blocks of lanes and columns transposed
+/// in registers from four entries of the triangle ([`transpose4_from`]; a row's last four
+/// columns overlap the block before when `nv` is not a multiple of 4, writing its numbers
+/// again); otherwise one by one. One pass, no mirroring after.
 #[inline(always)]
-pub(super) fn mirror_upper(a: &mut [f64], n: usize, avx: bool) {
+pub(super) fn symmetric_out<const W: usize>(
+    packed: &[L<W>],
+    nv: usize,
+    m: usize,
+    dst: &mut [f64],
+    native: bool,
+) {
+    let per = nv * nv;
     assert!(
-        a.len() >= n * n,
-        "mirror_upper: {} numbers for {n} x {n}",
-        a.len()
+        m <= W && packed.len() == nv * (nv + 1) / 2 && dst.len() >= m * per,
+        "symmetric_out: {m} matrices of {nv} x {nv} from {} entries into {}",
+        packed.len(),
+        dst.len()
     );
-    // rows r < blocked start their one-by-one entries at their diagonal block
+    let at = |r: usize, c: usize| packed_at(nv, r.max(c), r.min(c));
     #[cfg(target_arch = "x86_64")]
-    let blocked = if avx { n / 4 * 4 } else { 0 };
-    #[cfg(not(target_arch = "x86_64"))]
-    let blocked = {
-        let _ = avx;
-        0
-    };
-    #[cfg(target_arch = "x86_64")]
-    if blocked > 0 {
-        let at = a.as_mut_ptr();
-        for c in (0..blocked).step_by(4) {
-            for r in (c + 4..blocked).step_by(4) {
-                // SAFETY: rows c..c + 4 and r..r + 4 of the n x n matrix (asserted above) hold
-                // columns r..r + 4 and c..c + 4 (r ≥ c + 4, both < n): the block above the
-                // diagonal read, its mirror below written, apart; the CPU has AVX.
-                unsafe { transpose4(at.add(c * n + r), n, at.add(r * n + c), n, 4) };
+    if native && (W == 4 || W == 8) && nv >= 4 {
+        let (lanes, out) = (packed.as_ptr().cast::<f64>(), dst.as_mut_ptr());
+        for r in 0..nv {
+            for c in (0..nv).step_by(4).map(|c| c.min(nv - 4)) {
+                let entries = [0, 1, 2, 3].map(|k| at(r, c + k));
+                for h in (0..m).step_by(4) {
+                    // SAFETY: each entry `< packed.len()` (as `packed_at` of an `(r, c)` with
+                    // `r ≥ c`, both `< nv`) is `W ≥ h + 4` lanes; matrix `h + l < m` holds
+                    // `(r, c..c + 4)` at `(h + l) per + r nv + c`, `c + 4 ≤ nv`, in
+                    // `dst.len() ≥ m per` (asserted above); `packed` and `dst` are borrowed
+                    // apart; with `native`, the CPU has AVX (AVX2 for 4 lanes, AVX-512F for 8).
+                    unsafe {
+                        let from = entries.map(|e| lanes.add(W * e + h));
+                        transpose4_from(from, out.add(h * per + r * nv + c), per, (m - h).min(4));
+                    }
+                }
             }
         }
+        return;
     }
-    for r in 1..n {
-        let first = if r < blocked { r / 4 * 4 } else { 0 };
-        let (above, row) = a.split_at_mut(r * n);
-        for (c, y) in row.iter_mut().enumerate().take(r).skip(first) {
-            *y = above[c * n + r];
+    let _ = native;
+    if nv == 0 {
+        return;
+    }
+    for (l, matrix) in dst.chunks_exact_mut(per).take(m).enumerate() {
+        for (r, row) in matrix.chunks_exact_mut(nv).enumerate() {
+            for (c, y) in row.iter_mut().enumerate() {
+                *y = packed[at(r, c)].0[l];
+            }
         }
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{transpose_out, L};
+    use super::{packed_at, symmetric_out, transpose_out, L};
 
     /// `transpose_out` of `W` lanes, in registers (when the CPU has AVX) and in the generic loop:
     /// lane `l` of entry `t` lands at `dst[l stride + t]` for every `l < m`, for pack fillings
@@ -337,6 +376,47 @@ mod tests {
         for native in if avx { vec![false, true] } else { vec![false] } {
             transposes::<4>(native);
             transposes::<8>(native);
+        }
+    }
+
+    /// `symmetric_out` of `W` lanes: matrix `l`'s entry `(r, c)` is lane `l` of the packed
+    /// triangle's `(max, min)`, for sizes below, at and past the blocks of four (and every
+    /// remainder), every pack filling, and nothing written past the `m` matrices.
+    fn symmetric<const W: usize>(native: bool) {
+        for nv in 0..=9 {
+            let packed: Vec<L<W>> = (0..nv * (nv + 1) / 2)
+                .map(|e| L(std::array::from_fn(|l| (100 * e + l) as f64)))
+                .collect();
+            for m in 0..=W {
+                let mut dst = vec![f64::NAN; W * nv * nv + 2];
+                symmetric_out(&packed, nv, m, &mut dst, native);
+                for (k, y) in dst.iter().enumerate() {
+                    let (l, r, c) = (
+                        k / (nv * nv).max(1),
+                        k / nv.max(1) % nv.max(1),
+                        k % nv.max(1),
+                    );
+                    if l < m && nv > 0 {
+                        let e = packed_at(nv, r.max(c), r.min(c));
+                        assert_eq!(*y, (100 * e + l) as f64, "W {W}, nv {nv}, m {m}, [{k}]");
+                    } else {
+                        assert!(y.is_nan(), "W {W}, nv {nv}, m {m}: [{k}] written");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn symmetric_out_mirrors_each_lane_into_its_matrix() {
+        #[cfg(target_arch = "x86_64")]
+        let avx = std::arch::is_x86_feature_detected!("avx");
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx = false;
+        symmetric::<2>(false);
+        for native in if avx { vec![false, true] } else { vec![false] } {
+            symmetric::<4>(native);
+            symmetric::<8>(native);
         }
     }
 }

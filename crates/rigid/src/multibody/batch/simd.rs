@@ -9,11 +9,11 @@
 //! (`-C target-cpu`), and a binary built for any x86-64 must still use AVX2 where it runs.
 
 use super::aba::aba;
-use super::crba::{crba, packed_at};
+use super::crba::crba;
 use super::derivatives::rnea_derivatives;
 use super::pack::Pack;
 use super::rnea::rnea;
-use super::rows::{mirror_upper, prefetch_rows, transpose_in, transpose_out};
+use super::rows::{prefetch_rows, symmetric_out, transpose_in, transpose_out};
 use crate::multibody::{Model, MultibodyError};
 
 /// Which batch entry point a pack computes.
@@ -185,8 +185,8 @@ impl Lanes {
 
 /// The row-major inputs, the index of the first state of a chunk, and whether the pack runs in
 /// the CPU's own instructions for its width (AVX-512F for 8 lanes, AVX2 for 4): then the
-/// transpositions into the lanes (full packs) and out of them, and the full CRBA matrices'
-/// mirror, run in registers.
+/// transpositions into the lanes (full packs) and out of them, the full CRBA matrices' among
+/// them, run in registers.
 pub(super) struct Io<'a> {
     pub(super) qs: &'a [f64],
     pub(super) vs: &'a [f64],
@@ -289,23 +289,7 @@ fn packs<const W: usize, const A: u8>(
                     transpose_out(&d.dv, m, o2, per, io.native);
                 }
             }
-            Algo::Crba => {
-                // M is symmetric: row c from column c of the packed triangle (its entries from
-                // the diagonal on), then each row's entries left of the diagonal from the rows above
-                for c in 0..nv {
-                    let at = packed_at(nv, c, c);
-                    transpose_out(
-                        &p.M[at..at + nv - c],
-                        m,
-                        &mut o[c * nv + c..],
-                        per,
-                        io.native,
-                    );
-                }
-                for o in o.chunks_exact_mut(per) {
-                    mirror_upper(o, nv, io.native);
-                }
-            }
+            Algo::Crba => symmetric_out(&p.M, nv, m, o, io.native),
         }
         s += W;
     }
