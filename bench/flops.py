@@ -273,19 +273,21 @@ def main_batch(args, models):
         with open(args.json, "w") as f:
             json.dump({"%s/%s" % (m["name"], algo): {"single": s, "batch": a} for m, algo, s, a in rows}, f, indent=1)
     if not args.no_time:
-        print()
-        print("Rates: `rigid bench --batch --threads 1` (1000 states, 21 passes, median), %s, load %s; "
-              "peak of one core at %.2f GHz: AVX2 FMA %.1f flops/ns, SSE2 %.1f" % (
-                  pinned, " ".join("%.2f" % x for x in os.getloadavg()), args.ghz,
-                  args.ghz * PEAK_PER_CYCLE["AVX2 FMA"], args.ghz * PEAK_PER_CYCLE["SSE2"]))
-        print()
-        print("| model | algorithm | single ns | single flops/ns | %% of peak (AVX2 FMA / SSE2) | batch ns per state "
-              "| batch flops/ns | %% of peak (AVX2 FMA / SSE2) |")
-        print("|---|---|---:|---:|---:|---:|---:|---:|")
-        timed = {}
-        for m, algo, s, a in rows:
+        timed, lanes = {}, set()
+        for m, _, _, _ in rows:
             if m["name"] not in timed:
-                timed[m["name"]] = time_batch(m)[0]
+                timed[m["name"]], w = time_batch(m)
+                lanes.add(w)
+        print()
+        print("Rates: `rigid bench --batch --threads 1` (1000 states, 21 passes, median, %s lanes), %s, "
+              "load %s; peak of one core at %.2f GHz: %s" % (
+                  "/".join(map(str, sorted(lanes))), pinned, " ".join("%.2f" % x for x in os.getloadavg()), args.ghz,
+                  ", ".join("%s %.1f flops/ns" % (k, args.ghz * c) for k, c in PEAK_PER_CYCLE.items())))
+        print()
+        print("| model | algorithm | single ns | single flops/ns | %% of peak (%s) | batch ns per state "
+              "| batch flops/ns | %% of peak (%s) |" % (PEAKS, PEAKS))
+        print("|---|---|---:|---:|---:|---:|---:|---:|")
+        for m, algo, s, a in rows:
             loop, batch = timed[m["name"]][algo]
             cells = []
             for flops, rate in ((s["mul"] + s["add"], loop), (a["mul"] + a["add"], batch)):
@@ -357,17 +359,32 @@ def cpu_ghz():
     return 0.0
 
 
+def cpu_flags():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("flags"):
+                    return set(line.split(":")[1].split())
+    except OSError:
+        pass
+    return set()
+
+
 # double-precision operations per cycle and core: two 256-bit FMA pipes (AVX2: 2 x 4 lanes x 2) for
-# the hardware's peak; what a generic x86-64 build can issue (SSE2, no FMA): two 128-bit
-# multiplies and two 128-bit additions per cycle
+# the hardware's peak; on a CPU with AVX-512F, two 512-bit FMA pipes (2 x 8 x 2: a Zen 5, whose
+# FP pipes are 512 bits wide, or an Intel core with two FMA units); what a generic x86-64 build
+# can issue (SSE2, no FMA): two 128-bit multiplies and two 128-bit additions per cycle
 PEAK_PER_CYCLE = {"AVX2 FMA": 16, "SSE2": 8}
+if "avx512f" in cpu_flags():
+    PEAK_PER_CYCLE = {"AVX-512 FMA": 32, **PEAK_PER_CYCLE}
+PEAKS = " / ".join(PEAK_PER_CYCLE)
 
 
 def rate_table(result, times_file, ghz):
     """Markdown: flops, ns per call (median over compare.py's rounds), flops per ns, % of peak."""
     with open(times_file) as f:
         times = json.load(f)
-    rows = ["| model | algorithm | rigid mul + add | rigid ns | flops/ns | %% of peak (AVX2 FMA / SSE2 at %.2f GHz) "
+    rows = ["| model | algorithm | rigid mul + add | rigid ns | flops/ns | %% of peak (" + PEAKS + " at %.2f GHz) "
             "| Pinocchio mul + add | Pinocchio ns | flops/ns |" % ghz,
             "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
     for model, algos in result.items():
