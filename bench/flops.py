@@ -359,23 +359,38 @@ def cpu_ghz():
     return 0.0
 
 
-def cpu_flags():
+def cpu_info():
+    """The first processor's fields of /proc/cpuinfo (empty where there is none)."""
+    info = {}
     try:
         with open("/proc/cpuinfo") as f:
             for line in f:
-                if line.startswith("flags"):
-                    return set(line.split(":")[1].split())
+                if not line.strip():
+                    break
+                key, _, value = line.partition(":")
+                info[key.strip()] = value.strip()
     except OSError:
         pass
-    return set()
+    return info
+
+
+def zen5_or_later(info):
+    """An AMD core of family 26 (0x1A, Zen 5) or later with AVX-512F: its FP pipes are 512 bits
+    wide (two FMA pipes: 32 double-precision operations per cycle). Zen 4 (family 25) runs
+    AVX-512 on 256-bit pipes, and Intel cores have one or two 512-bit FMA units by model, so no
+    AVX-512 peak is assumed for them."""
+    try:
+        family = int(info.get("cpu family", "0"))
+    except ValueError:
+        return False
+    return info.get("vendor_id") == "AuthenticAMD" and family >= 26 and "avx512f" in info.get("flags", "").split()
 
 
 # double-precision operations per cycle and core: two 256-bit FMA pipes (AVX2: 2 x 4 lanes x 2) for
-# the hardware's peak; on a CPU with AVX-512F, two 512-bit FMA pipes (2 x 8 x 2: a Zen 5, whose
-# FP pipes are 512 bits wide, or an Intel core with two FMA units); what a generic x86-64 build
+# the hardware's peak; on a Zen 5, two 512-bit FMA pipes (2 x 8 x 2); what a generic x86-64 build
 # can issue (SSE2, no FMA): two 128-bit multiplies and two 128-bit additions per cycle
 PEAK_PER_CYCLE = {"AVX2 FMA": 16, "SSE2": 8}
-if "avx512f" in cpu_flags():
+if zen5_or_later(cpu_info()):
     PEAK_PER_CYCLE = {"AVX-512 FMA": 32, **PEAK_PER_CYCLE}
 PEAKS = " / ".join(PEAK_PER_CYCLE)
 
@@ -384,8 +399,8 @@ def rate_table(result, times_file, ghz):
     """Markdown: flops, ns per call (median over compare.py's rounds), flops per ns, % of peak."""
     with open(times_file) as f:
         times = json.load(f)
-    rows = ["| model | algorithm | rigid mul + add | rigid ns | flops/ns | %% of peak (" + PEAKS + " at %.2f GHz) "
-            "| Pinocchio mul + add | Pinocchio ns | flops/ns |" % ghz,
+    rows = [("| model | algorithm | rigid mul + add | rigid ns | flops/ns | %% of peak (" + PEAKS + " at %.2f GHz) "
+             "| Pinocchio mul + add | Pinocchio ns | flops/ns |") % ghz,
             "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
     for model, algos in result.items():
         for algo, a in algos.items():
@@ -413,7 +428,9 @@ def main():
     ap.add_argument("--no-build", action="store_true", help="use target/release/rigid as it is")
     ap.add_argument("--times", help="a `bench/compare.py --json` file: add ns per call, flops per ns and the "
                     "fraction of the core's peak double-precision rate")
-    ap.add_argument("--ghz", type=float, default=cpu_ghz(), help="clock for the peak rate (default: /proc/cpuinfo)")
+    ap.add_argument("--ghz", type=float, default=cpu_ghz(),
+                    help="clock for the peak rate (default: /proc/cpuinfo's, which under a VM may be the nominal "
+                         "clock, not the one the core runs at: BENCHMARKS.md measures it)")
     ap.add_argument("--pinocchio", action="store_true",
                     help="also count Pinocchio's compiled library (bench/pinocchio's timing program, lib build)")
     ap.add_argument("--batch", action="store_true",

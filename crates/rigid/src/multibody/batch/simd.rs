@@ -185,8 +185,8 @@ impl Lanes {
 
 /// The row-major inputs, the index of the first state of a chunk, and whether the pack runs in
 /// the CPU's own instructions for its width (AVX-512F for 8 lanes, AVX2 for 4): then the
-/// transpositions into the lanes (full packs) and out of them, the full CRBA matrices' among
-/// them, run in registers.
+/// transpositions into the lanes (full packs) and out of them (the full CRBA matrices too,
+/// when `nv ≥ 4`) run in registers.
 pub(super) struct Io<'a> {
     pub(super) qs: &'a [f64],
     pub(super) vs: &'a [f64],
