@@ -106,7 +106,7 @@ pub struct Batch {
     datas: Vec<Data>,
     lanes: Vec<Lanes>,
     /// The caller's velocity order (empty: rigid's) and a buffer per task to reorder through.
-    order: Vec<usize>,
+    order: rows::Order,
     scratch: Vec<Vec<f64>>,
 }
 
@@ -133,7 +133,7 @@ impl Batch {
                 .into_par_iter()
                 .map(|_| Lanes::new(model, width))
                 .collect(),
-            order: Vec::new(),
+            order: rows::Order::default(),
             scratch: vec![Vec::new(); tasks],
         }
     }
@@ -181,7 +181,7 @@ impl Batch {
                 });
             }
         }
-        self.order = order.to_vec();
+        self.order = rows::Order::new(order);
         // a chunk's v and x rows (CHUNK states, at least a pack) and one result
         let len = 2 * CHUNK.max(8) * nv + nv * nv;
         for s in &mut self.scratch {
@@ -302,9 +302,9 @@ impl Batch {
         let w = self.lanes();
         let per_task = per_task(n, self.lanes.len()).div_ceil(w) * w;
         if !self.order.is_empty() {
-            DimensionError::check("order", model.nv, self.order.len())?;
+            DimensionError::check("order", model.nv, self.order.map.len())?;
         }
-        let (nq, nv, order) = (model.nq, model.nv, &self.order[..]);
+        let (nq, nv, order) = (model.nq, model.nv, &self.order);
         let task = |c: usize, block: &mut [f64], block2: &mut [f64], work: Work| {
             let (lanes, scratch) = work;
             let chunk = (CHUNK / w).max(1) * w * per;
@@ -435,10 +435,10 @@ impl Batch {
             return Ok(());
         }
         if !self.order.is_empty() {
-            DimensionError::check("order", model.nv, self.order.len())?;
+            DimensionError::check("order", model.nv, self.order.map.len())?;
         }
         let per_task = per_task(n, self.datas.len());
-        let (nv, order) = (model.nv, &self.order[..]);
+        let (nv, order) = (model.nv, &self.order);
         let blocks = dqdd_dq
             .par_chunks_mut(per_task * nn)
             .zip(dqdd_dv.par_chunks_mut(per_task * nn))
@@ -461,7 +461,7 @@ impl Batch {
                         check_v(model, "v", v)?;
                         check_v(model, "tau", t)?;
                         let (vr, tr) = scratch[..2 * nv].split_at_mut(nv);
-                        for ((&o, x), y) in order.iter().zip(v).zip(t) {
+                        for ((&o, x), y) in order.map.iter().zip(v).zip(t) {
                             (vr[o], tr[o]) = (*x, *y);
                         }
                         super::aba_derivatives(model, data, q, vr, tr)?

@@ -36,42 +36,89 @@ pub(super) fn prefetch_rows(io: &Io, model: &Model, k: usize, m: usize) {
     let _ = (io, model, k, m);
 }
 
-/// Rows of `nv = order.len()` velocity-space numbers from the caller's order into rigid's:
-/// rigid's entry `order[k]` of a row is the caller's `k`.
-pub(super) fn rows_in_order(src: &[f64], order: &[usize], dst: &mut [f64]) {
-    let nv = order.len();
+/// A caller's velocity order ([`Batch::with_velocity_order`](super::Batch::with_velocity_order)):
+/// its entry `k` is rigid's `map[k]`, and `moved` lists the `k` with `map[k] ≠ k`. A
+/// permutation maps `moved` onto itself, so only those entries are reordered, one by one; the
+/// others are copied as whole rows or left in place (Pinocchio's layout of a free-flyer moves 6
+/// of `nv`).
+#[derive(Clone, Debug, Default)]
+pub(super) struct Order {
+    pub(super) map: Vec<usize>,
+    moved: Vec<usize>,
+}
+
+impl Order {
+    /// The order `map`, a permutation of `0..map.len()` (the caller checked it).
+    pub(super) fn new(map: &[usize]) -> Self {
+        Self {
+            map: map.to_vec(),
+            moved: (0..map.len()).filter(|&k| map[k] != k).collect(),
+        }
+    }
+
+    /// Rigid's own order: nothing to reorder.
+    pub(super) fn is_empty(&self) -> bool {
+        self.map.is_empty()
+    }
+}
+
+/// Rows of `nv = order.map.len()` velocity-space numbers from the caller's order into rigid's
+/// (`dst`, as long as `src`): rigid's entry `map[k]` of a row is the caller's `k`. The rows are
+/// copied whole, then the moved entries put in place.
+pub(super) fn rows_in_order(src: &[f64], order: &Order, dst: &mut [f64]) {
+    let nv = order.map.len();
+    dst.copy_from_slice(src);
     for (s, d) in src.chunks_exact(nv).zip(dst.chunks_exact_mut(nv)) {
-        for (&o, x) in order.iter().zip(s) {
-            d[o] = *x;
+        for &k in &order.moved {
+            d[order.map[k]] = s[k];
         }
     }
 }
 
 /// One state's result of `algo` (`y`, rigid's order) in the caller's order, in place: a vector
-/// `y_k ← y_order[k]` (RNEA, ABA), a matrix `Y_rc ← Y_order[r],order[c]` (row-major `nv x nv`:
+/// `y_k ← y_map[k]` (RNEA, ABA), a matrix `Y_rc ← Y_map[r],map[c]` (row-major `nv x nv`:
 /// CRBA, the derivatives; or the packed lower triangle), through `tmp` (`y.len()` numbers).
-pub(super) fn order_out(algo: Algo, y: &mut [f64], order: &[usize], tmp: &mut [f64]) {
-    let n = order.len();
+/// Vectors and row-major matrices read and write only the moved entries: a moved row whole
+/// (copied from its source row, then its moved columns), an unmoved row's moved columns.
+pub(super) fn order_out(algo: Algo, y: &mut [f64], order: &Order, tmp: &mut [f64]) {
+    let (map, moved, n) = (&order.map, &order.moved, order.map.len());
     let tmp = &mut tmp[..y.len()];
-    tmp.copy_from_slice(y);
     match algo {
         Algo::Rnea | Algo::Aba => {
-            for (y, &o) in y.iter_mut().zip(order) {
-                *y = tmp[o];
+            for &k in moved {
+                tmp[k] = y[k];
+            }
+            for &k in moved {
+                y[k] = tmp[map[k]];
             }
         }
         Algo::CrbaLower => {
+            tmp.copy_from_slice(y);
             for c in 0..n {
                 for r in c..n {
-                    let (a, b) = (order[r].max(order[c]), order[r].min(order[c]));
+                    let (a, b) = (map[r].max(map[c]), map[r].min(map[c]));
                     y[packed_at(n, r, c)] = tmp[packed_at(n, a, b)];
                 }
             }
         }
         Algo::Crba | Algo::RneaDerivatives => {
-            for (row, &o) in y.chunks_exact_mut(n).zip(order) {
-                for (y, &p) in row.iter_mut().zip(order) {
-                    *y = tmp[o * n + p];
+            // the sources: the moved rows whole, the moved columns of the others
+            for (r, (row, saved)) in y.chunks_exact(n).zip(tmp.chunks_exact_mut(n)).enumerate() {
+                if map[r] == r {
+                    for &k in moved {
+                        saved[k] = row[k];
+                    }
+                } else {
+                    saved.copy_from_slice(row);
+                }
+            }
+            for (r, row) in y.chunks_exact_mut(n).enumerate() {
+                let from = &tmp[map[r] * n..][..n];
+                if map[r] != r {
+                    row.copy_from_slice(from);
+                }
+                for &k in moved {
+                    row[k] = from[map[k]];
                 }
             }
         }
@@ -255,7 +302,8 @@ unsafe fn transpose4_from(src: [*const f64; 4], dst: *mut f64, stride: usize, m:
 /// `nv ≥ 4`, each row's columns go four at a time, 4x4 blocks of lanes and columns transposed
 /// in registers from four entries of the triangle ([`transpose4_from`]; a row's last four
 /// columns overlap the block before when `nv` is not a multiple of 4, writing its numbers
-/// again); otherwise one by one. One pass, no mirroring after.
+/// again); otherwise one by one. One pass, no mirroring after. As for [`transpose_out`],
+/// `native` is the caller's word that the CPU has AVX.
 #[inline(always)]
 pub(super) fn symmetric_out<const W: usize>(
     packed: &[L<W>],
@@ -413,8 +461,8 @@ mod tests {
         let avx = std::arch::is_x86_feature_detected!("avx");
         #[cfg(not(target_arch = "x86_64"))]
         let avx = false;
-        symmetric::<2>(false);
         for native in if avx { vec![false, true] } else { vec![false] } {
+            symmetric::<2>(native);
             symmetric::<4>(native);
             symmetric::<8>(native);
         }
