@@ -393,16 +393,20 @@ fn a_velocity_order_permutes_inputs_and_results() {
 fn velocity_order_cases() {
     let model = common::every_joint_tree(3, 14);
     let (nv, n) = (model.nv(), 230);
-    let mut order: Vec<usize> = (0..nv).rev().collect();
-    order.swap(0, 3);
+    let mut reversed: Vec<usize> = (0..nv).rev().collect();
+    reversed.swap(0, 3);
     let (qs, vs, as_) = states(&model, n, 8);
-    let permute = |x: &[f64]| in_order(x, &order);
-    let square = |m: &[f64]| square_in_order(m, &order);
-    let (vs_c, as_c) = (permute(&vs), permute(&as_));
-    for width in [2, 4, 8] {
+    // every entry moved, and (as Pinocchio's layout) a few moved among entries left in place
+    for (order, width) in [reversed, blocks_swapped(nv)]
+        .iter()
+        .flat_map(|o| [2, 4, 8].map(|w| (o, w)))
+    {
+        let permute = |x: &[f64]| in_order(x, order);
+        let square = |m: &[f64]| square_in_order(m, order);
+        let (vs_c, as_c) = (permute(&vs), permute(&as_));
         let mut plain = batch::Batch::with_lanes(&model, width);
         let mut ordered = batch::Batch::with_lanes(&model, width)
-            .with_velocity_order(&model, &order)
+            .with_velocity_order(&model, order)
             .unwrap();
         let (mut x, mut y) = (vec![0.0; n * nv], vec![0.0; n * nv]);
         plain.rnea(&model, &qs, &vs, &as_, &mut x).unwrap();
@@ -430,9 +434,33 @@ fn velocity_order_cases() {
     // the RNEA and ABA derivatives, on a tree whose joints they take
     let model = accepted_joint_forest(4, 7, JointType::Planar);
     let (nv, n) = (model.nv(), 210);
-    let order: Vec<usize> = (0..nv).map(|k| (k + 5) % nv).collect();
     let (qs, vs, as_) = states(&model, n, 9);
-    let permute = |x: &[f64]| in_order(x, &order);
+    let rotated: Vec<usize> = (0..nv).map(|k| (k + 5) % nv).collect();
+    for order in [blocks_swapped(nv), rotated] {
+        velocity_order_derivatives(&model, &order, &qs, &vs, &as_);
+    }
+}
+
+/// `0..nv` with its first two blocks of three swapped and its last two entries swapped (as
+/// Pinocchio's layout of a free-flyer moves 6 entries and leaves the rest in place).
+fn blocks_swapped(nv: usize) -> Vec<usize> {
+    assert!(nv >= 9, "{nv} velocities");
+    let mut order: Vec<usize> = (0..nv)
+        .map(|k| match k {
+            0..3 => k + 3,
+            3..6 => k - 3,
+            _ => k,
+        })
+        .collect();
+    order.swap(nv - 1, nv - 2);
+    order
+}
+
+/// The RNEA and ABA derivatives through `order` against the plain ones, and a NaN named by the
+/// caller's index.
+fn velocity_order_derivatives(model: &Model, order: &[usize], qs: &[f64], vs: &[f64], as_: &[f64]) {
+    let (nv, n) = (model.nv(), vs.len() / model.nv());
+    let permute = |x: &[f64]| in_order(x, order);
     let square = |m: &[f64]| square_in_order(m, &order);
     let mut plain = batch::Batch::new(&model);
     let mut ordered = batch::Batch::new(&model)
