@@ -461,27 +461,27 @@ fn blocks_swapped(nv: usize) -> Vec<usize> {
 fn velocity_order_derivatives(model: &Model, order: &[usize], qs: &[f64], vs: &[f64], as_: &[f64]) {
     let (nv, n) = (model.nv(), vs.len() / model.nv());
     let permute = |x: &[f64]| in_order(x, order);
-    let square = |m: &[f64]| square_in_order(m, &order);
-    let mut plain = batch::Batch::new(&model);
-    let mut ordered = batch::Batch::new(&model)
-        .with_velocity_order(&model, &order)
+    let square = |m: &[f64]| square_in_order(m, order);
+    let mut plain = batch::Batch::new(model);
+    let mut ordered = batch::Batch::new(model)
+        .with_velocity_order(model, order)
         .unwrap();
     let outs = || [(); 3].map(|_| vec![0.0; n * nv * nv]);
     let ([mut a, mut b, _], [mut ac, mut bc, _]) = (outs(), outs());
     plain
-        .rnea_derivatives(&model, &qs, &vs, &as_, &mut a, &mut b)
+        .rnea_derivatives(model, qs, vs, as_, &mut a, &mut b)
         .unwrap();
     ordered
-        .rnea_derivatives(&model, &qs, &permute(&vs), &permute(&as_), &mut ac, &mut bc)
+        .rnea_derivatives(model, qs, &permute(vs), &permute(as_), &mut ac, &mut bc)
         .unwrap();
     assert_eq!((ac, bc), (square(&a), square(&b)), "rnea_derivatives");
     let ([mut a, mut b, mut c], [mut ac, mut bc, mut cc]) = (outs(), outs());
     plain
-        .aba_derivatives(&model, &qs, &vs, &as_, &mut a, &mut b, &mut c)
+        .aba_derivatives(model, qs, vs, as_, &mut a, &mut b, &mut c)
         .unwrap();
-    let (vc, tc) = (permute(&vs), permute(&as_));
+    let (vc, tc) = (permute(vs), permute(as_));
     ordered
-        .aba_derivatives(&model, &qs, &vc, &tc, &mut ac, &mut bc, &mut cc)
+        .aba_derivatives(model, qs, &vc, &tc, &mut ac, &mut bc, &mut cc)
         .unwrap();
     assert_eq!(
         (&ac, &bc, &cc),
@@ -495,13 +495,13 @@ fn velocity_order_derivatives(model: &Model, order: &[usize], qs: &[f64], vs: &[
         what: "v",
         index: 2,
     };
-    let e = ordered.rnea(&model, &qs, &bad, &tc, &mut vec![0.0; n * nv]);
+    let e = ordered.rnea(model, qs, &bad, &tc, &mut vec![0.0; n * nv]);
     assert_eq!(e.unwrap_err(), nan);
-    let e = ordered.aba_derivatives(&model, &qs, &bad, &tc, &mut ac, &mut bc, &mut cc);
+    let e = ordered.aba_derivatives(model, qs, &bad, &tc, &mut ac, &mut bc, &mut cc);
     assert_eq!(e.unwrap_err(), nan);
     // not permutations
     for bad in [vec![0; nv - 1], vec![0; nv], (1..=nv).collect::<Vec<_>>()] {
-        let e = batch::Batch::new(&model).with_velocity_order(&model, &bad);
+        let e = batch::Batch::new(model).with_velocity_order(model, &bad);
         assert!(
             matches!(
                 e,
@@ -510,8 +510,8 @@ fn velocity_order_derivatives(model: &Model, order: &[usize], qs: &[f64], vs: &[
             "{bad:?}"
         );
     }
-    let e = batch::Batch::new(&model)
-        .with_velocity_order(&model, &vec![0; nv])
+    let e = batch::Batch::new(model)
+        .with_velocity_order(model, &vec![0; nv])
         .unwrap_err();
     assert!(
         matches!(e, MultibodyError::OutOfRange { index: 1, .. }),
