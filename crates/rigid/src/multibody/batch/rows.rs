@@ -414,14 +414,23 @@ mod tests {
         }
     }
 
-    #[test]
-    fn transpose_out_puts_each_lane_in_its_row() {
+    /// The paths a test can take on this CPU: the generic one, and the registers' with AVX.
+    fn natives() -> Vec<bool> {
         #[cfg(target_arch = "x86_64")]
         let avx = std::arch::is_x86_feature_detected!("avx");
         #[cfg(not(target_arch = "x86_64"))]
         let avx = false;
+        if avx {
+            vec![false, true]
+        } else {
+            vec![false]
+        }
+    }
+
+    #[test]
+    fn transpose_out_puts_each_lane_in_its_row() {
         transposes::<2>(false);
-        for native in if avx { vec![false, true] } else { vec![false] } {
+        for native in natives() {
             transposes::<4>(native);
             transposes::<8>(native);
         }
@@ -457,11 +466,7 @@ mod tests {
 
     #[test]
     fn symmetric_out_mirrors_each_lane_into_its_matrix() {
-        #[cfg(target_arch = "x86_64")]
-        let avx = std::arch::is_x86_feature_detected!("avx");
-        #[cfg(not(target_arch = "x86_64"))]
-        let avx = false;
-        for native in if avx { vec![false, true] } else { vec![false] } {
+        for native in natives() {
             symmetric::<2>(native);
             symmetric::<4>(native);
             symmetric::<8>(native);
