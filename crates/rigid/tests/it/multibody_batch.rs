@@ -378,7 +378,8 @@ fn square_in_order(m: &[f64], order: &[usize]) -> Vec<f64> {
 
 /// A batch with a velocity order takes and gives every velocity-space number in that order:
 /// its results are those of rigid's order with inputs and outputs permuted, bit for bit, for
-/// every entry point (the order reverses the dofs and swaps two), across chunks (one thread:
+/// every entry point (for an order that moves every dof, one that moves a few among dofs left
+/// in place, and the identity), at every width, across chunks (one thread:
 /// a task's 100+ states span two chunks of 64) and packs; a NaN is named by the caller's
 /// index; an order that is not a permutation of `0..nv` is refused.
 #[test]
@@ -397,7 +398,7 @@ fn velocity_order_cases() {
     reversed.swap(0, 3);
     let (qs, vs, as_) = states(&model, n, 8);
     // every entry moved, and (as Pinocchio's layout) a few moved among entries left in place
-    for (order, width) in [reversed, blocks_swapped(nv)]
+    for (order, width) in [reversed, blocks_swapped(nv), (0..nv).collect()]
         .iter()
         .flat_map(|o| [2, 4, 8].map(|w| (o, w)))
     {
@@ -436,8 +437,10 @@ fn velocity_order_cases() {
     let (nv, n) = (model.nv(), 210);
     let (qs, vs, as_) = states(&model, n, 9);
     let rotated: Vec<usize> = (0..nv).map(|k| (k + 5) % nv).collect();
-    for order in [blocks_swapped(nv), rotated] {
-        velocity_order_derivatives(&model, &order, &qs, &vs, &as_);
+    for order in [blocks_swapped(nv), rotated, (0..nv).collect()] {
+        for width in [2, 4, 8] {
+            velocity_order_derivatives(&model, &order, width, &qs, &vs, &as_);
+        }
     }
 }
 
@@ -456,14 +459,21 @@ fn blocks_swapped(nv: usize) -> Vec<usize> {
     order
 }
 
-/// The RNEA and ABA derivatives through `order` against the plain ones, and a NaN named by the
-/// caller's index.
-fn velocity_order_derivatives(model: &Model, order: &[usize], qs: &[f64], vs: &[f64], as_: &[f64]) {
+/// The RNEA and ABA derivatives through `order` against the plain ones, in `width` lanes, and a
+/// NaN named by the caller's index.
+fn velocity_order_derivatives(
+    model: &Model,
+    order: &[usize],
+    width: usize,
+    qs: &[f64],
+    vs: &[f64],
+    as_: &[f64],
+) {
     let (nv, n) = (model.nv(), vs.len() / model.nv());
     let permute = |x: &[f64]| in_order(x, order);
     let square = |m: &[f64]| square_in_order(m, order);
-    let mut plain = batch::Batch::new(model);
-    let mut ordered = batch::Batch::new(model)
+    let mut plain = batch::Batch::with_lanes(model, width);
+    let mut ordered = batch::Batch::with_lanes(model, width)
         .with_velocity_order(model, order)
         .unwrap();
     let outs = || [(); 3].map(|_| vec![0.0; n * nv * nv]);

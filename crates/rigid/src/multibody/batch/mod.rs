@@ -145,8 +145,10 @@ impl Batch {
     /// a free-flyer's linear velocity before its angular one). The configurations stay in
     /// rigid's layout. A chunk of 64 states at a time, the inputs are reordered into a buffer
     /// and the results in place while they are in the cache: no pass over whole arrays, no
-    /// allocation per call, and the kernels are those of rigid's order. (The rows are read in
-    /// order as they are reordered, not prefetched a chunk ahead as without an order.)
+    /// allocation per call, and the kernels are those of rigid's order. Only the entries the
+    /// order moves are reordered (6 per free-flyer in Pinocchio's layout), and the identity is
+    /// no order at all. (The rows are read in order as they are reordered, not prefetched a
+    /// chunk ahead as without an order.)
     ///
     /// ```
     /// use rigid::multibody::{batch::Batch, Model, Puma560Options, puma560};
@@ -182,10 +184,12 @@ impl Batch {
             }
         }
         self.order = rows::Order::new(order);
-        // a chunk's v and x rows (CHUNK states, at least a pack) and one result
-        let len = 2 * CHUNK.max(8) * nv + nv * nv;
-        for s in &mut self.scratch {
-            *s = vec![0.0; len];
+        if !self.order.is_empty() {
+            // a chunk's v and x rows (CHUNK states, at least a pack) and one result
+            let len = 2 * CHUNK.max(8) * nv + nv * nv;
+            for s in &mut self.scratch {
+                *s = vec![0.0; len];
+            }
         }
         Ok(self)
     }

@@ -38,9 +38,10 @@ pub(super) fn prefetch_rows(io: &Io, model: &Model, k: usize, m: usize) {
 
 /// A caller's velocity order ([`Batch::with_velocity_order`](super::Batch::with_velocity_order)):
 /// its entry `k` is rigid's `map[k]`, and `moved` lists the `k` with `map[k] ≠ k`. A
-/// permutation maps `moved` onto itself, so only those entries are reordered, one by one; the
-/// others are copied as whole rows or left in place (Pinocchio's layout of a free-flyer moves 6
-/// of `nv`).
+/// permutation maps `moved` onto itself, so only those entries of vectors and row-major
+/// matrices are reordered, one by one; the others are copied as whole rows or left in place
+/// (Pinocchio's layout moves 6 of `nv` per free-flyer). CRBA's packed triangle still gathers
+/// every entry. The identity is no order at all (`map` empty): the batch takes its plain path.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Order {
     pub(super) map: Vec<usize>,
@@ -48,11 +49,16 @@ pub(super) struct Order {
 }
 
 impl Order {
-    /// The order `map`, a permutation of `0..map.len()` (the caller checked it).
+    /// The order `map`, a permutation of `0..map.len()` (the caller checked it); none if it
+    /// moves nothing.
     pub(super) fn new(map: &[usize]) -> Self {
+        let moved: Vec<usize> = (0..map.len()).filter(|&k| map[k] != k).collect();
+        if moved.is_empty() {
+            return Self::default();
+        }
         Self {
             map: map.to_vec(),
-            moved: (0..map.len()).filter(|&k| map[k] != k).collect(),
+            moved,
         }
     }
 
