@@ -305,9 +305,7 @@ impl Batch {
         }
         let w = self.lanes();
         let per_task = per_task(n, self.lanes.len()).div_ceil(w) * w;
-        if !self.order.is_empty() {
-            DimensionError::check("order", model.nv, self.order.map.len())?;
-        }
+        self.order.fits(model.nv)?;
         let (nq, nv, order) = (model.nq, model.nv, &self.order);
         let task = |c: usize, block: &mut [f64], block2: &mut [f64], work: Work| {
             let (lanes, scratch) = work;
@@ -330,15 +328,13 @@ impl Batch {
                     // its results into the caller's in place (the kernels see rigid's order)
                     let (v, rest) = scratch.split_at_mut(CHUNK.max(8) * nv);
                     let (x, tmp) = rest.split_at_mut(CHUNK.max(8) * nv);
-                    let (v, x) = (&mut v[..states * nv], &mut x[..states * nv]);
-                    let span = first * nv..(first + states) * nv;
-                    if !inputs.is_empty() {
-                        rows::rows_in_order(&vs[span.clone()], order, v);
-                        rows::rows_in_order(&xs[span], order, x);
-                    }
                     let (v, x) = if inputs.is_empty() {
                         (&[][..], &[][..])
                     } else {
+                        let (v, x) = (&mut v[..states * nv], &mut x[..states * nv]);
+                        let span = first * nv..(first + states) * nv;
+                        rows::rows_in_order(&vs[span.clone()], order, v);
+                        rows::rows_in_order(&xs[span], order, x);
                         (&*v, &*x)
                     };
                     let q = &qs[first * nq..(first + states) * nq];
@@ -438,9 +434,7 @@ impl Batch {
         if n * nn == 0 {
             return Ok(());
         }
-        if !self.order.is_empty() {
-            DimensionError::check("order", model.nv, self.order.map.len())?;
-        }
+        self.order.fits(model.nv)?;
         let per_task = per_task(n, self.datas.len());
         let (nv, order) = (model.nv, &self.order);
         let blocks = dqdd_dq
@@ -465,9 +459,8 @@ impl Batch {
                         check_v(model, "v", v)?;
                         check_v(model, "tau", t)?;
                         let (vr, tr) = scratch[..2 * nv].split_at_mut(nv);
-                        for ((&o, x), y) in order.map.iter().zip(v).zip(t) {
-                            (vr[o], tr[o]) = (*x, *y);
-                        }
+                        rows::rows_in_order(v, order, vr);
+                        rows::rows_in_order(t, order, tr);
                         super::aba_derivatives(model, data, q, vr, tr)?
                     };
                     row_major(d.dqdd_dq, oq);

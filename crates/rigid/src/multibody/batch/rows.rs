@@ -8,6 +8,7 @@
 use super::crba::packed_at;
 use super::lanes::L;
 use super::simd::{Algo, Io};
+use crate::error::DimensionError;
 use crate::multibody::Model;
 
 /// Asks the CPU to bring rows `k..k + m` of the inputs (those that exist) into its caches, so
@@ -65,6 +66,14 @@ impl Order {
     /// Rigid's own order: nothing to reorder.
     pub(super) fn is_empty(&self) -> bool {
         self.map.is_empty()
+    }
+
+    /// Whether this order is one of `nv` velocities (rigid's own fits any model).
+    pub(super) fn fits(&self, nv: usize) -> Result<(), DimensionError> {
+        if self.is_empty() {
+            return Ok(());
+        }
+        DimensionError::check("order", nv, self.map.len())
     }
 }
 
