@@ -7,6 +7,7 @@
 //! | --- | --- |
 //! | `dof_S`, `dof_joint`, `dof_axis` | the motion-subspace columns of constant-`S` joints, and when a column is `±e_c` (then `I S` is a column of `I` and `Sᵀ F` one component of `F`) |
 //! | `placement` ([`PlacementKind`]) | `R_λ R_T` as a column pick (signed permutation) or two columns turned (a turn about a coordinate axis) instead of a 3x3 product |
+//! | `turn` | a revolute joint about a coordinate axis with an unrotated `X_T`: `liMi`'s rotation turns two components (the batch kernels' `Turn`) |
 //! | `placement_translation` | `R_λ t` as a scaled column when `t` lies on a coordinate axis |
 //! | `subtree_end_v` | where each joint's subtree's dofs end (`idx_v..subtree_end_v[i]`), read by every backward pass over a subtree's columns |
 //! | `chain_angles` | the angles whose sines and cosines CRBA's first pass computes ahead of the chain, several at a time |
@@ -62,6 +63,9 @@ pub(crate) struct Plan {
     pub(crate) varies: Vec<bool>,
     /// Per joint: the kind of `X_T`'s rotation.
     pub(crate) placement: Vec<PlacementKind>,
+    /// Per joint: `Some((k, s))` when it is revolute about `s e_k` (`s = ±1`) and `X_T`'s
+    /// rotation is [`PlacementKind::Identity`]: then `liMi = (Rot_k(s q), t)`.
+    pub(crate) turn: Vec<Option<(usize, f64)>>,
     /// Per joint: `X_T`'s translation, kept as `s e_k` when it lies on a coordinate axis.
     pub(crate) placement_translation: Vec<ModelVec3>,
     /// Per joint: the end of its subtree's dofs, `idx_v + nv` of the subtree's last joint (the
@@ -87,6 +91,7 @@ impl Plan {
                 .iter()
                 .map(|j| placement_kind(&j.placement))
                 .collect(),
+            turn: Vec::new(),
             placement_translation: joints
                 .iter()
                 .map(|j| ModelVec3::new(&j.placement.translation))
@@ -112,6 +117,12 @@ impl Plan {
                 plan.dof_axis.push(unit_axis(Sk).filter(|_| constant));
                 plan.dof_joint.push(i);
             }
+            let revolute = matches!(j.kind.shape(), Shape::Revolute(_));
+            let unrotated = plan.placement[i] == PlacementKind::Identity;
+            plan.turn.push(
+                plan.dof_axis[j.idx_v]
+                    .filter(|&(c, _)| revolute && unrotated && c < 3 && j.nv == 1),
+            );
             if !constant {
                 plan.variable_subspace.push(i);
             }

@@ -1,8 +1,9 @@
 //! ABA on a pack of `W` states: [`aba`](crate::multibody::aba)'s three passes (Featherstone
 //! 2008, Table 7.1), every quantity a lane vector, the articulated inertias in 3x3 blocks.
 
-use super::lanes::{L, M3, T6, V3, X};
-use super::pack::{momentum, placement, s_dot, Pack, I6};
+use super::lanes::{L, M3, T6, V3};
+use super::pack::{momentum, s_dot, Pack, I6};
+use super::pose::{fresh_pose, kept_pose, Pose};
 use crate::mass::SpatialInertia;
 use crate::multibody::{Model, MultibodyError};
 
@@ -24,11 +25,10 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
     let joints = model.joints();
     p.update_subspaces(model);
     for (i, j) in joints.iter().enumerate() {
-        let X = placement(model, i, &p.q);
-        let mut V = match j.parent {
+        let mut V = fresh_pose!(model, p, i, |X| match j.parent {
             Some(par) => X.inv_act(&p.V[par.0]),
             None => T6::zero(),
-        };
+        });
         let vJ = p.joint_twist(model, i, &p.v);
         V += vJ;
         let mut c = V.cross(&vJ);
@@ -38,7 +38,6 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
         let G = &model.inertias()[i];
         p.IA[i] = I6::from_inertia(G);
         p.F[i] = V.cross_star(&momentum(G, &V));
-        p.X[i].set(&X);
         p.V[i] = V;
         p.A[i] = c;
     }
@@ -97,9 +96,10 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
         if let Some(par) = j.parent {
             // I^A now holds I^a; p^a += I^a c; both moved to the parent
             pa += IA.mul(&p.A[i]);
-            let X = p.X[i];
-            head[par.0].add_congruence(IA, &X);
-            let f = X.act_wrench(&pa);
+            let f = kept_pose!(model, p, i, |X| {
+                head[par.0].add_congruence(IA, X);
+                X.act_wrench(&pa)
+            });
             p.F[par.0] += f;
         }
     }
@@ -109,10 +109,9 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
     };
     for (i, j) in joints.iter().enumerate() {
         let iv = j.idx_v;
-        let X = &p.X[i];
         let mut a = match j.parent {
-            Some(par) => X.inv_act(&p.A[par.0]),
-            None => X.inv_act(&a_world),
+            Some(par) => kept_pose!(model, p, i, |X| X.inv_act(&p.A[par.0])),
+            None => kept_pose!(model, p, i, |X| X.inv_act(&a_world)),
         } + p.A[i];
         let n = j.nv;
         if n == 1 {
@@ -242,18 +241,13 @@ impl<const W: usize> I6<W> {
     }
 
     /// `I += X* J X⁻¹` for `X = [Ad_{(R, p)}]`: `J`, an inertia of the child frame, moved to the
-    /// parent frame and added. Turned first, `(A, B, C) ← (R A Rᵀ, R B Rᵀ, R C Rᵀ)` (`A` and `C`
-    /// symmetric: their upper triangles copied), then moved by `p`: `C' = C`, `B' = B + [p] C`,
+    /// parent frame and added. Turned first, `(A, B, C) ← (R A Rᵀ, R B Rᵀ, R C Rᵀ)`
+    /// ([`Pose::turn_inertia`]), then moved by `p`: `C' = C`, `B' = B + [p] C`,
     /// `A' = A − B [p] + [p] B'ᵀ`.
     #[inline(always)]
-    fn add_congruence(&mut self, j: &Self, x: &X<W>) {
-        let r = &x.r;
-        let (a, b, c) = (
-            r.mul(&j.a).mul_tr_sym(r),
-            r.mul(&j.b).mul_tr(r),
-            r.mul(&j.c).mul_tr_sym(r),
-        );
-        let p = &x.p;
+    fn add_congruence(&mut self, j: &Self, x: &impl Pose<W>) {
+        let I6 { a, b, c } = x.turn_inertia(j);
+        let p = x.translation();
         let mut bn = b;
         for k in 0..3 {
             let pc = p.cross(&c.col(k));

@@ -5,7 +5,8 @@
 //! {r}-frame columns, written down a contiguous column of the packed lower triangle.
 
 use super::lanes::{one_iteration_at_a_time, L, M3, T6, V3, X};
-use super::pack::{placement, rotate_about, Pack, I3};
+use super::pack::{Pack, I3};
+use super::pose::{placement, rotate_about};
 use crate::mass::{PrincipalForm, SpatialInertia};
 use crate::multibody::joint::Shape;
 use crate::multibody::plan::PlacementKind;

@@ -7,7 +7,8 @@
 
 use super::crba::{inertia_twist, root_frame_body};
 use super::lanes::{L, T6, V3};
-use super::pack::{placement, Pack, I3};
+use super::pack::{Pack, I3};
+use super::pose::placement;
 use crate::multibody::{JointType, Model};
 
 /// The derivatives' workspace of one pack, made on its first use (a [`Pack`] that never

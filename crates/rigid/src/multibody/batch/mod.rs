@@ -43,6 +43,7 @@ mod crba;
 mod derivatives;
 mod lanes;
 mod pack;
+mod pose;
 mod rnea;
 mod rows;
 mod simd;

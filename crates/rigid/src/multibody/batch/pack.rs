@@ -1,13 +1,13 @@
 //! A pack of `W` states: the workspace of the lane kernels ([`Pack`]), the states moved in and out
 //! of it (row-major arrays transposed to one lane per state), and what every kernel needs of a
-//! joint, per lane: its pose in the parent `X_T X_J(q)` (Featherstone's `jcalc`), its motion
-//! subspace `S(q)` and the joint twist `S q̇` with its bias terms.
+//! joint, per lane, besides its pose (`pose.rs`): its motion subspace `S(q)` and the joint twist
+//! `S q̇` with its bias terms.
 
 use super::derivatives::DerivPack;
 use super::lanes::{L, M3, T6, V3, X};
 use crate::mass::SpatialInertia;
-use crate::multibody::{JointType, Model};
-use crate::spatial::{trig, Mat3, Vec3};
+use crate::multibody::Model;
+use crate::spatial::Mat3;
 
 /// The workspace of one pack of `W` states, made once per model (see
 /// [`Batch`](super::Batch)): the inputs and output transposed to lanes, and each algorithm's
@@ -35,6 +35,9 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) J: Vec<T6<W>>,
     pub(crate) Fk: Vec<T6<W>>,
     pub(crate) M: Vec<L<W>>,
+    /// Per joint with a [`Turn`] (`Plan::turn`): `(sin θ, cos θ)` of its pose, for the backward
+    /// passes.
+    pub(crate) sc: Vec<[L<W>; 2]>,
     /// ABA: per joint the articulated inertia `I^A_i` and `D⁻¹` (`nv x nv`, row-major); per
     /// dof `U_k = I^A S_k` and `u_k = τ_k − S_kᵀ p^A`.
     pub(crate) IA: Vec<I6<W>>,
@@ -60,6 +63,7 @@ impl<const W: usize> Pack<W> {
             V: vec![T6::zero(); n],
             A: vec![T6::zero(); n],
             F: vec![T6::zero(); n],
+            sc: vec![[z; 2]; n],
             rX: vec![X::identity(); n],
             Ic: vec![I3::zero(); n],
             J: vec![T6::zero(); nv],
@@ -162,7 +166,7 @@ pub(crate) fn s_dot<const W: usize>(model: &Model, S: &[T6<W>], k: usize, F: &T6
 
 /// Lane `l` of `src` into `dst`.
 #[inline(always)]
-fn read_lane<const W: usize>(src: &[L<W>], l: usize, dst: &mut [f64]) {
+pub(super) fn read_lane<const W: usize>(src: &[L<W>], l: usize, dst: &mut [f64]) {
     for (d, x) in dst.iter_mut().zip(src) {
         *d = x.0[l];
     }
@@ -175,112 +179,6 @@ fn set_lane<const W: usize>(t: &mut T6<W>, l: usize, x: &crate::spatial::Twist) 
         t.w.0[c].0[l] = x.w[c];
         t.v.0[c].0[l] = x.v[c];
     }
-}
-
-/// `liMi = X_T X_J(q_i)` of joint `i` per lane (Featherstone's `jcalc`). Revolute, prismatic and
-/// free-flyer joints in lanes; the other joints one lane at a time through
-/// [`JointType::placed_transform`].
-#[inline(always)]
-pub(crate) fn placement<const W: usize>(model: &Model, i: usize, q: &[L<W>]) -> X<W> {
-    let j = &model.joints()[i];
-    let T = &j.placement;
-    let iq = j.idx_q;
-    match j.kind {
-        JointType::Revolute { axis } => {
-            let (s, c) = trig::sin_cos_lanes(q[iq].0);
-            X {
-                r: rotate_about(&M3::splat(&T.rotation), &axis, L(s), L(c)),
-                p: V3::splat(&T.translation),
-            }
-        }
-        JointType::Prismatic { axis } => X {
-            r: M3::splat(&T.rotation),
-            // R_T (a q) + t_T, in the single call's order (not (R_T a) q)
-            p: V3::c_mat(&T.rotation, &V3::c_scale(&axis, q[iq])) + V3::splat(&T.translation),
-        },
-        JointType::FreeFlyer => {
-            let r = quat_to_rot(q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]);
-            let p = V3([q[iq], q[iq + 1], q[iq + 2]]);
-            if T.rotation == Mat3::identity() {
-                X {
-                    r,
-                    p: p + V3::splat(&T.translation),
-                }
-            } else {
-                X {
-                    r: M3::c_mul(&T.rotation, &r),
-                    p: V3::c_mat(&T.rotation, &p) + V3::splat(&T.translation),
-                }
-            }
-        }
-        _ => {
-            let mut out = X::identity();
-            let mut ql = [0.0; 7];
-            for l in 0..W {
-                read_lane(&q[j.coordinates()], l, &mut ql[..j.nq]);
-                let m = j.kind.placed_transform(T, &ql[..j.nq]);
-                for r in 0..3 {
-                    for c in 0..3 {
-                        out.r.0[r][c].0[l] = m.rotation[(r, c)];
-                    }
-                    out.p.0[r].0[l] = m.translation[r];
-                }
-            }
-            out
-        }
-    }
-}
-
-/// `R exp([a] q)` per lane given `s = sin q`, `c = cos q`: for `a = ±e_k` two columns of `R`
-/// turn, otherwise `R` times Rodrigues' formula
-/// ([`rotate_about_sc`](crate::spatial::rotate_about_sc)).
-#[inline(always)]
-pub(crate) fn rotate_about<const W: usize>(r: &M3<W>, a: &Vec3, s: L<W>, c: L<W>) -> M3<W> {
-    // columns j and k turn: u' = u c + w s, w' = w c - u s
-    #[inline(always)]
-    fn turn<const W: usize>(r: &M3<W>, j: usize, k: usize, s: L<W>, c: L<W>) -> M3<W> {
-        let mut out = *r;
-        for t in 0..3 {
-            let (u, w) = (r.0[t][j], r.0[t][k]);
-            out.0[t][j] = u * c + w * s;
-            out.0[t][k] = w * c - u * s;
-        }
-        out
-    }
-    if a.x == 0.0 && a.y == 0.0 {
-        turn(r, 0, 1, s * a.z, c)
-    } else if a.y == 0.0 && a.z == 0.0 {
-        turn(r, 1, 2, s * a.x, c)
-    } else if a.x == 0.0 && a.z == 0.0 {
-        turn(r, 2, 0, s * a.y, c)
-    } else {
-        let t = L::splat(1.0) - c;
-        let (x, y, z) = (a.x, a.y, a.z);
-        // in the order of the single call's `rodrigues`
-        let rod = M3([
-            [c + t * x * x, t * x * y - s * z, t * x * z + s * y],
-            [t * x * y + s * z, c + t * y * y, t * y * z - s * x],
-            [t * x * z - s * y, t * y * z + s * x, c + t * z * z],
-        ]);
-        r.mul(&rod)
-    }
-}
-
-/// The rotation of the unit quaternion `(x, y, z, w)` per lane
-/// ([`quat_to_rot`](crate::spatial::quat_to_rot)).
-#[inline(always)]
-fn quat_to_rot<const W: usize>(x: L<W>, y: L<W>, z: L<W>, w: L<W>) -> M3<W> {
-    let n2 = x * x + y * y + z * z + w * w;
-    let s = n2.map(|n| 2.0 / n);
-    let (xx, yy, zz) = (x * x * s, y * y * s, z * z * s);
-    let (xy, xz, yz) = (x * y * s, x * z * s, y * z * s);
-    let (wx, wy, wz) = (w * x * s, w * y * s, w * z * s);
-    let one = L::splat(1.0);
-    M3([
-        [one - yy - zz, xy - wz, xz + wy],
-        [xy + wz, one - xx - zz, yz - wx],
-        [xz - wy, yz + wx, one - xx - yy],
-    ])
 }
 
 /// `G T` of a body's constant spatial inertia `G = (m, h, I_O)` (mass, first moment `h = m c`,

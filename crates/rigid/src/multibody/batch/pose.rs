@@ -1,0 +1,422 @@
+//! A joint's pose in its parent per lane, `liMi = X_T X_J(q)` (Featherstone's `jcalc`): the
+//! general [`X`] ([`placement`]) and, for a revolute joint about a coordinate axis with an
+//! unrotated `X_T`, the cheaper [`Turn`]; RNEA and ABA take either as a [`Pose`], chosen per
+//! joint by [`fresh_pose`] and [`kept_pose`].
+
+use super::lanes::{L, M3, T6, V3, X};
+use super::pack::{read_lane, Pack, I6};
+use crate::multibody::{JointType, Model};
+use crate::spatial::{trig, Mat3, Vec3};
+
+/// `liMi = X_T X_J(q_i)` of joint `i` per lane (Featherstone's `jcalc`). Revolute, prismatic and
+/// free-flyer joints in lanes; the other joints one lane at a time through
+/// [`JointType::placed_transform`].
+#[inline(always)]
+pub(crate) fn placement<const W: usize>(model: &Model, i: usize, q: &[L<W>]) -> X<W> {
+    let j = &model.joints()[i];
+    let T = &j.placement;
+    let iq = j.idx_q;
+    match j.kind {
+        JointType::Revolute { axis } => {
+            let (s, c) = trig::sin_cos_lanes(q[iq].0);
+            X {
+                r: rotate_about(&M3::splat(&T.rotation), &axis, L(s), L(c)),
+                p: V3::splat(&T.translation),
+            }
+        }
+        JointType::Prismatic { axis } => X {
+            r: M3::splat(&T.rotation),
+            // R_T (a q) + t_T, in the single call's order (not (R_T a) q)
+            p: V3::c_mat(&T.rotation, &V3::c_scale(&axis, q[iq])) + V3::splat(&T.translation),
+        },
+        JointType::FreeFlyer => {
+            let r = quat_to_rot(q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]);
+            let p = V3([q[iq], q[iq + 1], q[iq + 2]]);
+            if T.rotation == Mat3::identity() {
+                X {
+                    r,
+                    p: p + V3::splat(&T.translation),
+                }
+            } else {
+                X {
+                    r: M3::c_mul(&T.rotation, &r),
+                    p: V3::c_mat(&T.rotation, &p) + V3::splat(&T.translation),
+                }
+            }
+        }
+        _ => {
+            let mut out = X::identity();
+            let mut ql = [0.0; 7];
+            for l in 0..W {
+                read_lane(&q[j.coordinates()], l, &mut ql[..j.nq]);
+                let m = j.kind.placed_transform(T, &ql[..j.nq]);
+                for r in 0..3 {
+                    for c in 0..3 {
+                        out.r.0[r][c].0[l] = m.rotation[(r, c)];
+                    }
+                    out.p.0[r].0[l] = m.translation[r];
+                }
+            }
+            out
+        }
+    }
+}
+
+/// What RNEA and ABA do with a joint's pose in its parent `liMi = (R, p)`: [`X`] in general,
+/// [`Turn`] when `R` turns about a coordinate axis.
+pub(crate) trait Pose<const W: usize> {
+    /// `[Ad_{X⁻¹}] T`, a twist of the parent frame in the child frame.
+    fn inv_act(&self, t: &T6<W>) -> T6<W>;
+    /// `[Ad_X]⁻ᵀ F`, a wrench of the child frame in the parent frame.
+    fn act_wrench(&self, f: &T6<W>) -> T6<W>;
+    /// The blocks of a 6x6 inertia turned, `(R A Rᵀ, R B Rᵀ, R C Rᵀ)`, `A` and `C` symmetric.
+    fn turn_inertia(&self, i: &I6<W>) -> I6<W>;
+    /// `p`.
+    fn translation(&self) -> &V3<W>;
+}
+
+impl<const W: usize> Pose<W> for X<W> {
+    #[inline(always)]
+    fn inv_act(&self, t: &T6<W>) -> T6<W> {
+        X::inv_act(self, t)
+    }
+    #[inline(always)]
+    fn act_wrench(&self, f: &T6<W>) -> T6<W> {
+        X::act_wrench(self, f)
+    }
+    #[inline(always)]
+    fn turn_inertia(&self, i: &I6<W>) -> I6<W> {
+        let r = &self.r;
+        I6 {
+            a: r.mul(&i.a).mul_tr_sym(r),
+            b: r.mul(&i.b).mul_tr(r),
+            c: r.mul(&i.c).mul_tr_sym(r),
+        }
+    }
+    #[inline(always)]
+    fn translation(&self) -> &V3<W> {
+        &self.p
+    }
+}
+
+/// `$body` with `$X` bound to joint `$i`'s pose at the pack `$p`'s `q`, made for the forward
+/// pass: a [`Turn`] for the joints of `Plan::turn` (its sine and cosine kept in `$p.sc`), else
+/// [`placement`]'s [`X`] (kept in `$p.X`).
+macro_rules! fresh_pose {
+    ($model:expr, $p:expr, $i:expr, |$X:ident| $body:expr) => {
+        match $model.plan().turn[$i] {
+            Some((0, sign)) => {
+                let $X = &$p.turn::<0>($model, $i, sign);
+                $body
+            }
+            Some((1, sign)) => {
+                let $X = &$p.turn::<1>($model, $i, sign);
+                $body
+            }
+            Some((_, sign)) => {
+                let $X = &$p.turn::<2>($model, $i, sign);
+                $body
+            }
+            None => {
+                let x = $crate::multibody::batch::pose::placement($model, $i, &$p.q);
+                $p.X[$i].set(&x);
+                let $X = &x;
+                $body
+            }
+        }
+    };
+}
+
+/// `$body` with `$X` bound to joint `$i`'s pose as [`fresh_pose`] kept it in the pack `$p`.
+macro_rules! kept_pose {
+    ($model:expr, $p:expr, $i:expr, |$X:ident| $body:expr) => {
+        match $model.plan().turn[$i] {
+            Some((0, _)) => {
+                let $X =
+                    &$crate::multibody::batch::pose::Turn::<_, 0>::kept($model, $i, &$p.sc[$i]);
+                $body
+            }
+            Some((1, _)) => {
+                let $X =
+                    &$crate::multibody::batch::pose::Turn::<_, 1>::kept($model, $i, &$p.sc[$i]);
+                $body
+            }
+            Some(_) => {
+                let $X =
+                    &$crate::multibody::batch::pose::Turn::<_, 2>::kept($model, $i, &$p.sc[$i]);
+                $body
+            }
+            None => {
+                let $X = &$p.X[$i];
+                $body
+            }
+        }
+    };
+}
+pub(crate) use {fresh_pose, kept_pose};
+
+/// `liMi = (Rot_K(θ), p)` per lane, of a revolute joint about `±e_K` whose `X_T` has no rotation
+/// (`Plan::turn`): `sin θ` (the axis's sign folded in), `cos θ` and `p = t_T`. `R x` and `Rᵀ x`
+/// turn the components `j, l = K + 1, K + 2 (mod 3)` with 4 products where [`X`]'s matrix takes
+/// 9, and `R` is not composed. The numbers are [`placement`]'s (its product of `R_T = 1` and the
+/// turn, and its matrix products with `R`, only add zeros).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Turn<const W: usize, const K: usize> {
+    s: L<W>,
+    c: L<W>,
+    p: V3<W>,
+}
+
+impl<const W: usize> Pack<W> {
+    /// Joint `i`'s pose as a [`Turn`] about `sign e_K` at the pack's `q`, its `(sin θ, cos θ)`
+    /// kept for [`Turn::kept`].
+    #[inline(always)]
+    pub(crate) fn turn<const K: usize>(
+        &mut self,
+        model: &Model,
+        i: usize,
+        sign: f64,
+    ) -> Turn<W, K> {
+        let (s, c) = trig::sin_cos_lanes(self.q[model.joints()[i].idx_q].0);
+        self.sc[i] = [L(s) * sign, L(c)];
+        Turn::kept(model, i, &self.sc[i])
+    }
+}
+
+impl<const W: usize, const K: usize> Turn<W, K> {
+    /// Joint `i`'s pose from the `(sin θ, cos θ)` [`Pack::turn`] kept.
+    #[inline(always)]
+    pub(crate) fn kept(model: &Model, i: usize, sc: &[L<W>; 2]) -> Self {
+        Self {
+            s: sc[0],
+            c: sc[1],
+            p: V3::splat(&model.joints()[i].placement.translation),
+        }
+    }
+
+    /// `R x`: `(c x_j − s x_l, s x_j + c x_l)` in components `j, l`.
+    #[inline(always)]
+    fn mul_v(&self, x: &V3<W>) -> V3<W> {
+        let (j, l) = ((K + 1) % 3, (K + 2) % 3);
+        let mut y = *x;
+        y.0[j] = self.c * x.0[j] - self.s * x.0[l];
+        y.0[l] = self.s * x.0[j] + self.c * x.0[l];
+        y
+    }
+
+    /// `Rᵀ x`: `(c x_j + s x_l, c x_l − s x_j)` in components `j, l`.
+    #[inline(always)]
+    fn tr_mul_v(&self, x: &V3<W>) -> V3<W> {
+        let (j, l) = ((K + 1) % 3, (K + 2) % 3);
+        let mut y = *x;
+        y.0[j] = self.c * x.0[j] + self.s * x.0[l];
+        y.0[l] = self.c * x.0[l] - self.s * x.0[j];
+        y
+    }
+}
+
+impl<const W: usize, const K: usize> Turn<W, K> {
+    /// `R M Rᵀ`: rows `j, l` of `M` turned, then its columns `j, l`.
+    #[inline(always)]
+    fn conjugate(&self, m: &M3<W>) -> M3<W> {
+        let (j, l, c, s) = ((K + 1) % 3, (K + 2) % 3, self.c, self.s);
+        let mut y = *m;
+        for t in 0..3 {
+            y.0[j][t] = c * m.0[j][t] - s * m.0[l][t];
+            y.0[l][t] = s * m.0[j][t] + c * m.0[l][t];
+        }
+        let rm = y;
+        for t in 0..3 {
+            y.0[t][j] = c * rm.0[t][j] - s * rm.0[t][l];
+            y.0[t][l] = s * rm.0[t][j] + c * rm.0[t][l];
+        }
+        y
+    }
+
+    /// [`Turn::conjugate`] of a symmetric `M`, its lower triangle copied to the upper (as
+    /// [`M3::mul_tr_sym`]).
+    #[inline(always)]
+    fn conjugate_sym(&self, m: &M3<W>) -> M3<W> {
+        let mut y = self.conjugate(m);
+        for r in 1..3 {
+            for c in 0..r {
+                y.0[c][r] = y.0[r][c];
+            }
+        }
+        y
+    }
+}
+
+impl<const W: usize, const K: usize> Pose<W> for Turn<W, K> {
+    /// `(Rᵀ ω, Rᵀ (v − p × ω))`, as [`X::inv_act`].
+    #[inline(always)]
+    fn inv_act(&self, t: &T6<W>) -> T6<W> {
+        T6 {
+            w: self.tr_mul_v(&t.w),
+            v: self.tr_mul_v(&(t.v - self.p.cross(&t.w))),
+        }
+    }
+
+    /// `(R m + p × R f, R f)`, as [`X::act_wrench`].
+    #[inline(always)]
+    fn act_wrench(&self, f: &T6<W>) -> T6<W> {
+        let rf = self.mul_v(&f.v);
+        T6 {
+            w: self.mul_v(&f.w) + self.p.cross(&rf),
+            v: rf,
+        }
+    }
+
+    #[inline(always)]
+    fn turn_inertia(&self, i: &I6<W>) -> I6<W> {
+        I6 {
+            a: self.conjugate_sym(&i.a),
+            b: self.conjugate(&i.b),
+            c: self.conjugate_sym(&i.c),
+        }
+    }
+
+    #[inline(always)]
+    fn translation(&self) -> &V3<W> {
+        &self.p
+    }
+}
+
+/// `R exp([a] q)` per lane given `s = sin q`, `c = cos q`: for `a = ±e_k` two columns of `R`
+/// turn, otherwise `R` times Rodrigues' formula
+/// ([`rotate_about_sc`](crate::spatial::rotate_about_sc)).
+#[inline(always)]
+pub(crate) fn rotate_about<const W: usize>(r: &M3<W>, a: &Vec3, s: L<W>, c: L<W>) -> M3<W> {
+    // columns j and k turn: u' = u c + w s, w' = w c - u s
+    #[inline(always)]
+    fn turn<const W: usize>(r: &M3<W>, j: usize, k: usize, s: L<W>, c: L<W>) -> M3<W> {
+        let mut out = *r;
+        for t in 0..3 {
+            let (u, w) = (r.0[t][j], r.0[t][k]);
+            out.0[t][j] = u * c + w * s;
+            out.0[t][k] = w * c - u * s;
+        }
+        out
+    }
+    if a.x == 0.0 && a.y == 0.0 {
+        turn(r, 0, 1, s * a.z, c)
+    } else if a.y == 0.0 && a.z == 0.0 {
+        turn(r, 1, 2, s * a.x, c)
+    } else if a.x == 0.0 && a.z == 0.0 {
+        turn(r, 2, 0, s * a.y, c)
+    } else {
+        let t = L::splat(1.0) - c;
+        let (x, y, z) = (a.x, a.y, a.z);
+        // in the order of the single call's `rodrigues`
+        let rod = M3([
+            [c + t * x * x, t * x * y - s * z, t * x * z + s * y],
+            [t * x * y + s * z, c + t * y * y, t * y * z - s * x],
+            [t * x * z - s * y, t * y * z + s * x, c + t * z * z],
+        ]);
+        r.mul(&rod)
+    }
+}
+
+/// The rotation of the unit quaternion `(x, y, z, w)` per lane
+/// ([`quat_to_rot`](crate::spatial::quat_to_rot)).
+#[inline(always)]
+fn quat_to_rot<const W: usize>(x: L<W>, y: L<W>, z: L<W>, w: L<W>) -> M3<W> {
+    let n2 = x * x + y * y + z * z + w * w;
+    let s = n2.map(|n| 2.0 / n);
+    let (xx, yy, zz) = (x * x * s, y * y * s, z * z * s);
+    let (xy, xz, yz) = (x * y * s, x * z * s, y * z * s);
+    let (wx, wy, wz) = (w * x * s, w * y * s, w * z * s);
+    let one = L::splat(1.0);
+    M3([
+        [one - yy - zz, xy - wz, xz + wy],
+        [xy + wz, one - xx - zz, yz - wx],
+        [xz - wy, yz + wx, one - xx - yy],
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lanes(seed: &mut u64) -> L<2> {
+        L(std::array::from_fn(|_| {
+            *seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (*seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }))
+    }
+
+    fn v3(seed: &mut u64) -> V3<2> {
+        V3([lanes(seed), lanes(seed), lanes(seed)])
+    }
+
+    fn m3(seed: &mut u64) -> M3<2> {
+        M3([[(); 3]; 3].map(|r| r.map(|()| lanes(seed))))
+    }
+
+    fn same(a: &[L<2>], b: &[L<2>]) -> bool {
+        a == b
+    }
+
+    fn t6(t: &T6<2>) -> [L<2>; 6] {
+        [t.w.0[0], t.w.0[1], t.w.0[2], t.v.0[0], t.v.0[1], t.v.0[2]]
+    }
+
+    fn m9(m: &M3<2>) -> Vec<L<2>> {
+        m.0.iter().flatten().copied().collect()
+    }
+
+    /// A [`Turn`] about `±e_K` gives [`placement`]'s pose's numbers (the rotation about that
+    /// axis composed with `R_T = 1`), bit for bit: twists, wrenches and inertias moved.
+    fn turn_is_the_pose<const K: usize>(sign: f64) {
+        let mut seed = 7 + K as u64;
+        for _ in 0..20 {
+            let q = lanes(&mut seed).0.map(|x| 3.0 * x);
+            let (s, c) = trig::sin_cos_lanes(q);
+            let sc = [L(s) * sign, L(c)];
+            let p = v3(&mut seed);
+            let turn = Turn::<2, K> {
+                s: sc[0],
+                c: sc[1],
+                p,
+            };
+            let axis = Vec3::ith(K, sign);
+            let x = X {
+                r: rotate_about(&M3::splat(&Mat3::identity()), &axis, L(s), L(c)),
+                p,
+            };
+            let t = T6 {
+                w: v3(&mut seed),
+                v: v3(&mut seed),
+            };
+            assert!(
+                same(&t6(&turn.inv_act(&t)), &t6(&X::inv_act(&x, &t))),
+                "inv_act, K {K}"
+            );
+            assert!(
+                same(&t6(&turn.act_wrench(&t)), &t6(&X::act_wrench(&x, &t))),
+                "act_wrench"
+            );
+            let sym = |m: M3<2>| m.mul_tr(&M3::splat(&Mat3::identity())).mul_tr_sym(&m);
+            let i = I6 {
+                a: sym(m3(&mut seed)),
+                b: m3(&mut seed),
+                c: sym(m3(&mut seed)),
+            };
+            let (a, b) = (turn.turn_inertia(&i), Pose::turn_inertia(&x, &i));
+            for (y, z) in [(a.a, b.a), (a.b, b.b), (a.c, b.c)] {
+                assert!(same(&m9(&y), &m9(&z)), "turn_inertia, K {K}, sign {sign}");
+            }
+        }
+    }
+
+    #[test]
+    fn turns_are_the_general_poses_bit_for_bit() {
+        for sign in [1.0, -1.0] {
+            turn_is_the_pose::<0>(sign);
+            turn_is_the_pose::<1>(sign);
+            turn_is_the_pose::<2>(sign);
+        }
+    }
+}
