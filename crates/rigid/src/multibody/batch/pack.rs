@@ -21,7 +21,8 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) out: Vec<L<W>>,
     /// `S_k` per degree of freedom, in the child frame (the constant ones set once).
     pub(crate) S: Vec<T6<W>>,
-    /// Per joint: `liMi`, the body's twist `V_i`, acceleration `A_i` (RNEA: with gravity; ABA:
+    /// Per joint: `liMi` (RNEA, ABA: of the joints without a
+    /// [`Turn`](super::pose::Turn)), the body's twist `V_i`, acceleration `A_i` (RNEA: with gravity; ABA:
     /// the bias `c_i` then the acceleration), wrench `F_i` (ABA: `p^A_i`).
     pub(crate) X: Vec<X<W>>,
     pub(crate) V: Vec<T6<W>>,
@@ -35,8 +36,8 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) J: Vec<T6<W>>,
     pub(crate) Fk: Vec<T6<W>>,
     pub(crate) M: Vec<L<W>>,
-    /// Per joint with a [`Turn`] (`Plan::turn`): `(sin θ, cos θ)` of its pose, for the backward
-    /// passes.
+    /// Per joint with a [`Turn`](super::pose::Turn) (`Plan::turn`): `(s sin θ, cos θ)` of its
+    /// pose about `s e_K`, for the backward passes.
     pub(crate) sc: Vec<[L<W>; 2]>,
     /// ABA: per joint the articulated inertia `I^A_i` and `D⁻¹` (`nv x nv`, row-major); per
     /// dof `U_k = I^A S_k` and `u_k = τ_k − S_kᵀ p^A`.

@@ -113,6 +113,7 @@ macro_rules! fresh_pose {
                 let $X = &$p.turn::<1>($model, $i, sign);
                 $body
             }
+            // `Plan::turn`'s axes are 0, 1, 2
             Some((_, sign)) => {
                 let $X = &$p.turn::<2>($model, $i, sign);
                 $body
@@ -141,6 +142,7 @@ macro_rules! kept_pose {
                     &$crate::multibody::batch::pose::Turn::<_, 1>::kept($model, $i, &$p.sc[$i]);
                 $body
             }
+            // `Plan::turn`'s axes are 0, 1, 2
             Some(_) => {
                 let $X =
                     &$crate::multibody::batch::pose::Turn::<_, 2>::kept($model, $i, &$p.sc[$i]);
@@ -153,7 +155,7 @@ macro_rules! kept_pose {
         }
     };
 }
-pub(crate) use {fresh_pose, kept_pose};
+pub(super) use {fresh_pose, kept_pose};
 
 /// `liMi = (Rot_K(θ), p)` per lane, of a revolute joint about `±e_K` whose `X_T` has no rotation
 /// (`Plan::turn`): `sin θ` (the axis's sign folded in), `cos θ` and `p = t_T`. `R x` and `Rᵀ x`
@@ -368,7 +370,8 @@ mod tests {
     }
 
     /// A [`Turn`] about `±e_K` gives [`placement`]'s pose's numbers (the rotation about that
-    /// axis composed with `R_T = 1`), bit for bit: twists, wrenches and inertias moved.
+    /// axis composed with `R_T = 1`) bit for bit, up to the sign of zeros (`==`): twists,
+    /// wrenches and inertias moved.
     fn turn_is_the_pose<const K: usize>(sign: f64) {
         let mut seed = 7 + K as u64;
         for _ in 0..20 {
@@ -412,11 +415,88 @@ mod tests {
     }
 
     #[test]
-    fn turns_are_the_general_poses_bit_for_bit() {
+    fn turns_give_the_general_poses_numbers() {
         for sign in [1.0, -1.0] {
             turn_is_the_pose::<0>(sign);
             turn_is_the_pose::<1>(sign);
             turn_is_the_pose::<2>(sign);
+        }
+    }
+
+    /// On a built model, `Plan::turn` marks exactly the revolute joints about `±e_K` with an
+    /// unrotated `X_T`, for each axis and sign, and what `fresh_pose!` and `kept_pose!` give
+    /// them (`Pack::turn`'s sign, the kept sine and cosine) moves twists, wrenches and inertias
+    /// as `placement` does, up to the sign of zeros; the other joints get `placement` itself.
+    #[test]
+    fn the_plan_and_the_macros_give_turns_the_placements_numbers() {
+        use crate::mass::{RotationalInertia, SpatialInertia};
+        use crate::multibody::ModelBuilder;
+        use crate::spatial::Transform;
+        let g = SpatialInertia::from_com(
+            1.2,
+            Vec3::new(0.1, -0.2, 0.05),
+            RotationalInertia::new(0.3, 0.2, 0.4, 0.01, 0.02, -0.03),
+        );
+        let mut b = ModelBuilder::new("turns");
+        let mut parent = None;
+        let mut want = Vec::new();
+        for (n, k) in [0, 1, 2, 0, 1, 2].into_iter().enumerate() {
+            let sign = if n < 3 { 1.0 } else { -1.0 };
+            let at = Vec3::new(0.1 * n as f64, -0.2, 0.3);
+            // every other joint's X_T also turns a little: no Turn
+            let rotated = n % 2 == 1 && k == 2;
+            let t = if rotated {
+                Transform::new(crate::spatial::so3::exp(&Vec3::new(0.0, 0.0, 0.3)), at)
+            } else {
+                Transform::from_translation(at)
+            };
+            let axis = Vec3::ith(k, sign);
+            parent = Some(
+                b.add_joint(parent, &format!("j{n}"), JointType::Revolute { axis }, t, g)
+                    .unwrap(),
+            );
+            want.push((!rotated).then_some((k, sign)));
+        }
+        let model = b.build().unwrap();
+        assert_eq!(model.plan().turn, want);
+        let mut p = Pack::<2>::new(&model);
+        let mut seed = 11;
+        for q in &mut p.q {
+            *q = lanes(&mut seed) * 3.0;
+        }
+        let t = T6 {
+            w: v3(&mut seed),
+            v: v3(&mut seed),
+        };
+        let sym = |m: M3<2>| m.mul_tr(&M3::splat(&Mat3::identity())).mul_tr_sym(&m);
+        let i6 = I6 {
+            a: sym(m3(&mut seed)),
+            b: m3(&mut seed),
+            c: sym(m3(&mut seed)),
+        };
+        let moved = |x: &dyn Fn(&T6<2>) -> (T6<2>, T6<2>), y: I6<2>| {
+            let (a, b) = x(&t);
+            let mut all = t6(&a).to_vec();
+            all.extend(t6(&b));
+            all.extend(m9(&y.a).into_iter().chain(m9(&y.b)).chain(m9(&y.c)));
+            all
+        };
+        for i in 0..model.njoints() {
+            let general = placement(&model, i, &p.q);
+            let want = moved(
+                &|t| (general.inv_act(t), general.act_wrench(t)),
+                Pose::turn_inertia(&general, &i6),
+            );
+            let fresh = fresh_pose!(&model, p, i, |X| moved(
+                &|t| (X.inv_act(t), X.act_wrench(t)),
+                X.turn_inertia(&i6)
+            ));
+            let kept = kept_pose!(&model, p, i, |X| moved(
+                &|t| (X.inv_act(t), X.act_wrench(t)),
+                X.turn_inertia(&i6)
+            ));
+            assert!(same(&fresh, &want), "joint {i}: fresh pose");
+            assert!(same(&kept, &want), "joint {i}: kept pose");
         }
     }
 }

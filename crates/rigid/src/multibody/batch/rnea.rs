@@ -11,7 +11,7 @@ use crate::multibody::Model;
 /// forward, i = 1..n (`V_0 = 0`, `A_0 = -g`): `V_i = [Ad_{liMi⁻¹}] V_λ + S_i q̇_i`,
 /// `A_i = [Ad_{liMi⁻¹}] A_λ + S_i q̈_i + V_i × S_i q̇_i + c_J`, `F_i = G_i A_i + V_i ×* G_i V_i`;
 /// backward, i = n..1: `τ_i = S_iᵀ F_i + armature q̈_i`, `F_λ += [Ad_{liMi}]⁻ᵀ F_i`.
-/// A joint that turns about a coordinate axis (`Plan::turn`) has its pose as a [`Turn`].
+/// A joint that turns about a coordinate axis (`Plan::turn`) has its pose as a [`Turn`](super::pose::Turn).
 #[inline(always)]
 pub(super) fn rnea<const W: usize>(model: &Model, p: &mut Pack<W>) {
     let a_world = T6 {
