@@ -119,10 +119,9 @@ impl Plan {
             }
             let revolute = matches!(j.kind.shape(), Shape::Revolute(_));
             let unrotated = plan.placement[i] == PlacementKind::Identity;
-            plan.turn.push(
-                plan.dof_axis[j.idx_v]
-                    .filter(|&(c, _)| revolute && unrotated && c < 3 && j.nv == 1),
-            );
+            // a revolute joint's one column is (axis, 0): an axis `s e_k` is `dof_axis`'s (k, s)
+            plan.turn
+                .push(plan.dof_axis[j.idx_v].filter(|_| revolute && unrotated));
             if !constant {
                 plan.variable_subspace.push(i);
             }

@@ -109,10 +109,11 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
     };
     for (i, j) in joints.iter().enumerate() {
         let iv = j.idx_v;
-        let mut a = match j.parent {
-            Some(par) => kept_pose!(model, p, i, |X| X.inv_act(&p.A[par.0])),
-            None => kept_pose!(model, p, i, |X| X.inv_act(&a_world)),
-        } + p.A[i];
+        let a_parent = match j.parent {
+            Some(par) => &p.A[par.0],
+            None => &a_world,
+        };
+        let mut a = kept_pose!(model, p, i, |X| X.inv_act(a_parent)) + p.A[i];
         let n = j.nv;
         if n == 1 {
             p.out[iv] = p.Dinv[i][0] * (p.u[iv] - p.U[iv].dot(&a));

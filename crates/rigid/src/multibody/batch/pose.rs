@@ -215,9 +215,7 @@ impl<const W: usize, const K: usize> Turn<W, K> {
         y.0[l] = self.c * x.0[l] - self.s * x.0[j];
         y
     }
-}
 
-impl<const W: usize, const K: usize> Turn<W, K> {
     /// `R M Rᵀ`: rows `j, l` of `M` turned, then its columns `j, l`.
     #[inline(always)]
     fn conjugate(&self, m: &M3<W>) -> M3<W> {
@@ -339,49 +337,53 @@ fn quat_to_rot<const W: usize>(x: L<W>, y: L<W>, z: L<W>, w: L<W>) -> M3<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::multibody::Rng;
 
-    fn lanes(seed: &mut u64) -> L<2> {
-        L(std::array::from_fn(|_| {
-            *seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (*seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }))
+    fn lanes(rng: &mut Rng) -> L<2> {
+        L([rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)])
     }
 
-    fn v3(seed: &mut u64) -> V3<2> {
-        V3([lanes(seed), lanes(seed), lanes(seed)])
+    fn v3(rng: &mut Rng) -> V3<2> {
+        V3([lanes(rng), lanes(rng), lanes(rng)])
     }
 
-    fn m3(seed: &mut u64) -> M3<2> {
-        M3([[(); 3]; 3].map(|r| r.map(|()| lanes(seed))))
+    /// A random twist and a random 6x6 inertia's blocks (`A`, `C` symmetric).
+    fn moved_things(rng: &mut Rng) -> (T6<2>, I6<2>) {
+        let mut m3 = || M3([[(); 3]; 3].map(|r| r.map(|()| lanes(rng))));
+        let (a, b, c) = (m3(), m3(), m3());
+        let t = T6 {
+            w: v3(rng),
+            v: v3(rng),
+        };
+        let i = I6 {
+            a: a.mul_tr_sym(&a),
+            b,
+            c: c.mul_tr_sym(&c),
+        };
+        (t, i)
     }
 
-    fn same(a: &[L<2>], b: &[L<2>]) -> bool {
-        a == b
-    }
-
-    fn t6(t: &T6<2>) -> [L<2>; 6] {
-        [t.w.0[0], t.w.0[1], t.w.0[2], t.v.0[0], t.v.0[1], t.v.0[2]]
-    }
-
-    fn m9(m: &M3<2>) -> Vec<L<2>> {
-        m.0.iter().flatten().copied().collect()
+    /// What `x` makes of `t` (as a twist and as a wrench) and of the inertia `i`, entry by entry.
+    fn numbers(x: &impl Pose<2>, t: &T6<2>, i: &I6<2>) -> Vec<L<2>> {
+        let (a, b, y) = (x.inv_act(t), x.act_wrench(t), x.turn_inertia(i));
+        [a.w, a.v, b.w, b.v]
+            .iter()
+            .flat_map(|v| v.0)
+            .chain([y.a, y.b, y.c].iter().flat_map(|m| m.0.concat()))
+            .collect()
     }
 
     /// A [`Turn`] about `±e_K` gives [`placement`]'s pose's numbers (the rotation about that
     /// axis composed with `R_T = 1`) bit for bit, up to the sign of zeros (`==`): twists,
     /// wrenches and inertias moved.
     fn turn_is_the_pose<const K: usize>(sign: f64) {
-        let mut seed = 7 + K as u64;
+        let mut rng = Rng::new(7 + K as u64);
         for _ in 0..20 {
-            let q = lanes(&mut seed).0.map(|x| 3.0 * x);
-            let (s, c) = trig::sin_cos_lanes(q);
-            let sc = [L(s) * sign, L(c)];
-            let p = v3(&mut seed);
+            let (s, c) = trig::sin_cos_lanes(lanes(&mut rng).0.map(|x| 3.0 * x));
+            let p = v3(&mut rng);
             let turn = Turn::<2, K> {
-                s: sc[0],
-                c: sc[1],
+                s: L(s) * sign,
+                c: L(c),
                 p,
             };
             let axis = Vec3::ith(K, sign);
@@ -389,28 +391,12 @@ mod tests {
                 r: rotate_about(&M3::splat(&Mat3::identity()), &axis, L(s), L(c)),
                 p,
             };
-            let t = T6 {
-                w: v3(&mut seed),
-                v: v3(&mut seed),
-            };
-            assert!(
-                same(&t6(&turn.inv_act(&t)), &t6(&X::inv_act(&x, &t))),
-                "inv_act, K {K}"
+            let (t, i) = moved_things(&mut rng);
+            assert_eq!(
+                numbers(&turn, &t, &i),
+                numbers(&x, &t, &i),
+                "K {K}, sign {sign}"
             );
-            assert!(
-                same(&t6(&turn.act_wrench(&t)), &t6(&X::act_wrench(&x, &t))),
-                "act_wrench"
-            );
-            let sym = |m: M3<2>| m.mul_tr(&M3::splat(&Mat3::identity())).mul_tr_sym(&m);
-            let i = I6 {
-                a: sym(m3(&mut seed)),
-                b: m3(&mut seed),
-                c: sym(m3(&mut seed)),
-            };
-            let (a, b) = (turn.turn_inertia(&i), Pose::turn_inertia(&x, &i));
-            for (y, z) in [(a.a, b.a), (a.b, b.b), (a.c, b.c)] {
-                assert!(same(&m9(&y), &m9(&z)), "turn_inertia, K {K}, sign {sign}");
-            }
         }
     }
 
@@ -460,43 +446,17 @@ mod tests {
         let model = b.build().unwrap();
         assert_eq!(model.plan().turn, want);
         let mut p = Pack::<2>::new(&model);
-        let mut seed = 11;
+        let mut rng = Rng::new(11);
         for q in &mut p.q {
-            *q = lanes(&mut seed) * 3.0;
+            *q = lanes(&mut rng) * 3.0;
         }
-        let t = T6 {
-            w: v3(&mut seed),
-            v: v3(&mut seed),
-        };
-        let sym = |m: M3<2>| m.mul_tr(&M3::splat(&Mat3::identity())).mul_tr_sym(&m);
-        let i6 = I6 {
-            a: sym(m3(&mut seed)),
-            b: m3(&mut seed),
-            c: sym(m3(&mut seed)),
-        };
-        let moved = |x: &dyn Fn(&T6<2>) -> (T6<2>, T6<2>), y: I6<2>| {
-            let (a, b) = x(&t);
-            let mut all = t6(&a).to_vec();
-            all.extend(t6(&b));
-            all.extend(m9(&y.a).into_iter().chain(m9(&y.b)).chain(m9(&y.c)));
-            all
-        };
+        let (t, i6) = moved_things(&mut rng);
         for i in 0..model.njoints() {
-            let general = placement(&model, i, &p.q);
-            let want = moved(
-                &|t| (general.inv_act(t), general.act_wrench(t)),
-                Pose::turn_inertia(&general, &i6),
-            );
-            let fresh = fresh_pose!(&model, p, i, |X| moved(
-                &|t| (X.inv_act(t), X.act_wrench(t)),
-                X.turn_inertia(&i6)
-            ));
-            let kept = kept_pose!(&model, p, i, |X| moved(
-                &|t| (X.inv_act(t), X.act_wrench(t)),
-                X.turn_inertia(&i6)
-            ));
-            assert!(same(&fresh, &want), "joint {i}: fresh pose");
-            assert!(same(&kept, &want), "joint {i}: kept pose");
+            let want = numbers(&placement(&model, i, &p.q), &t, &i6);
+            let fresh = fresh_pose!(&model, p, i, |X| numbers(X, &t, &i6));
+            let kept = kept_pose!(&model, p, i, |X| numbers(X, &t, &i6));
+            assert_eq!(fresh, want, "joint {i}: fresh pose");
+            assert_eq!(kept, want, "joint {i}: kept pose");
         }
     }
 }
