@@ -15,7 +15,8 @@ Needs `pip install ./crates/rigid-py` and scripts/requirements-test.txt (pin, ex
    `for k in range(N): pinocchio.rnea(model, data, Q[k], V[k], A[k])`, interleaved the same way,
    with a fresh output per call, with `out=` (one output array written by every call), and in
    rigid's layout with `out=` (no permutation of the free-flyer's velocity rows);
-   speed-up = median over rounds of loop time / batch time.
+   speed-up = median over rounds of loop time / batch time. (What the fresh output's first
+   touch costs, and when: bench/first_touch.py.)
 """
 import argparse
 import os
