@@ -5,7 +5,7 @@
 //! {r} as the lane CRBA poses them ([`root_frame_body`]). Only `∂τ/∂q` and `∂τ/∂v` are written
 //! (not `τ`, not `M`), row-major per lane, into [`DerivPack::dq`] and [`DerivPack::dv`].
 
-use super::crba::{inertia_twist, root_frame_body};
+use super::crba::{inertia_twist, root_frame_body, turn_angles};
 use super::lanes::{L, T6, V3};
 use super::pack::{Pack, I3};
 use super::pose::placement;
@@ -93,6 +93,7 @@ pub(super) fn rnea_derivatives<const W: usize>(model: &Model, p: &mut Pack<W>) {
         .take()
         .unwrap_or_else(|| Box::new(DerivPack::new(model)));
     p.update_subspaces(model);
+    turn_angles(model, p);
     forward(model, p, &mut d);
     backward(model, p, &mut d);
     p.deriv = Some(d);

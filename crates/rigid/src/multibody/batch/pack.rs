@@ -36,8 +36,10 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) J: Vec<T6<W>>,
     pub(crate) Fk: Vec<T6<W>>,
     pub(crate) M: Vec<L<W>>,
-    /// Per joint with a [`Turn`](super::pose::Turn) (`Plan::turn`): `(s sin θ, cos θ)` of its
-    /// pose about `s e_K`, for the backward passes.
+    /// Per joint with a [`Turn`](super::pose::Turn) (`Plan::turn`, RNEA and ABA): `(s sin θ,
+    /// cos θ)` of its pose about `s e_K`, for the backward passes; CRBA and the RNEA derivatives:
+    /// `(sin θ, cos θ)` per revolute joint below a root's child
+    /// ([`turn_angles`](super::crba::turn_angles)).
     pub(crate) sc: Vec<[L<W>; 2]>,
     /// ABA: per joint the articulated inertia `I^A_i` and `D⁻¹` (`nv x nv`, row-major); per
     /// dof `U_k = I^A S_k` and `u_k = τ_k − S_kᵀ p^A`.
