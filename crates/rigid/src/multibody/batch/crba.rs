@@ -4,7 +4,7 @@
 //! backward pass is additions, and each entry of `M` is one product `M_lk = J_kᵀ F_l` of
 //! {r}-frame columns, written down a contiguous column of the packed lower triangle.
 
-use super::lanes::{one_iteration_at_a_time, L, M3, T6, V3, X};
+use super::lanes::{one_iteration_at_a_time, L, M3, S3, T6, V3, X};
 use super::pack::{Pack, I3};
 use super::pose::{placement, rotate_about};
 use crate::mass::{PrincipalForm, SpatialInertia};
@@ -79,17 +79,18 @@ pub(super) fn packed_at(nv: usize, r: usize, c: usize) -> usize {
     c * (2 * nv - c + 1) / 2 + (r - c)
 }
 
-/// `(sin θ, cos θ)` into `p.sc` for the revolute joints below a root's child, the angles that
-/// [`root_frame_body`] turns `R_λ` by, all before the forward pass: they do not depend on each
-/// other, so the CPU overlaps their polynomials, where one joint at a time inside the pass each
-/// was a chain of latency from parent to child (CRBA's full matrices 1.07–1.11x the states/s on
-/// UR5, Panda, Solo-12 and TALOS).
+/// `(sin θ, cos θ)` into `p.sc` for the revolute joints below a root's child whose `X_T` is not
+/// a [`General`](PlacementKind::General) rotation, the angles that [`root_frame_body`] turns
+/// `R_λ` by, all before the forward pass: they do not depend on each other, so the CPU overlaps
+/// their polynomials, where one joint at a time inside the pass each was a chain of latency
+/// from parent to child (CRBA's full matrices 1.07–1.12x the states/s on UR5, Panda, Solo-12
+/// and TALOS).
 #[inline(always)]
 pub(super) fn turn_angles<const W: usize>(model: &Model, p: &mut Pack<W>) {
-    let joints = model.joints();
+    let (joints, plan) = (model.joints(), model.plan());
     for (i, j) in joints.iter().enumerate() {
         if let (Shape::Revolute(_), Some(par)) = (j.kind.shape(), j.parent) {
-            if joints[par.0].parent.is_some() {
+            if joints[par.0].parent.is_some() && plan.placement[i] != PlacementKind::General {
                 let (s, c) = trig::sin_cos_lanes(p.q[j.idx_q].0);
                 p.sc[i] = [L(s), L(c)];
             }
@@ -238,17 +239,16 @@ fn principal_moved<const W: usize>(f: &PrincipalForm, x: &X<W>) -> I3<W> {
     let (a, b) = (rotated(&f.u2, &x.r), rotated(&f.u3, &x.r));
     let h = c.scale(L::splat(f.mass));
     let d = h.dot(&c) + f.lambda1;
-    let mut i = M3([[L::zero(); 3]; 3]);
+    let mut i = S3([L::zero(); 6]);
     for r in 0..3 {
         for s in r..3 {
             // in the single call's order: `h_r c_s` for r ≤ s, ((d + a a) + b b) − h c on the diagonal
             let (aa, bb, hc) = (a.0[r] * a.0[s], b.0[r] * b.0[s], h.0[r] * c.0[s]);
-            i.0[r][s] = if r == s {
+            *i.at_mut(r, s) = if r == s {
                 d + aa + bb - hc
             } else {
                 aa + bb - hc
             };
-            i.0[s][r] = i.0[r][s];
         }
     }
     I3 {
@@ -270,14 +270,13 @@ fn moved<const W: usize>(G: &SpatialInertia, x: &X<W>) -> I3<W> {
     let ri = r.mul_cm(G.inertia_origin_matrix());
     let g = h + p.scale(L::splat(0.5 * m));
     let d = g.dot(p) * 2.0;
-    let mut i = M3([[L::zero(); 3]; 3]);
+    let mut i = S3([L::zero(); 6]);
     for a in 0..3 {
         for b in a..3 {
             let rir = ri.0[a][0] * r.0[b][0] + ri.0[a][1] * r.0[b][1] + ri.0[a][2] * r.0[b][2];
-            i.0[a][b] = rir - p.0[a] * g.0[b] - g.0[a] * p.0[b];
-            i.0[b][a] = i.0[a][b];
+            *i.at_mut(a, b) = rir - p.0[a] * g.0[b] - g.0[a] * p.0[b];
         }
-        i.0[a][a] += d;
+        *i.at_mut(a, a) += d;
     }
     I3 {
         m: L::splat(m),

@@ -6,7 +6,7 @@
 //! (not `τ`, not `M`), row-major per lane, into [`DerivPack::dq`] and [`DerivPack::dv`].
 
 use super::crba::{inertia_twist, root_frame_body, turn_angles};
-use super::lanes::{L, T6, V3};
+use super::lanes::{L, S3, T6, V3};
 use super::pack::{Pack, I3};
 use super::pose::placement;
 use crate::multibody::{JointType, Model};
@@ -27,7 +27,7 @@ pub(crate) struct DerivPack<const W: usize> {
     acc_a: Vec<T6<W>>,
     force: Vec<T6<W>>,
     momentum: Vec<T6<W>>,
-    sym: Vec<[L<W>; 6]>,
+    sym: Vec<S3<W>>,
     gravity: Vec<V3<W>>,
     dv_dq: Vec<T6<W>>,
     da_dq: Vec<T6<W>>,
@@ -53,7 +53,7 @@ impl<const W: usize> DerivPack<W> {
             acc_a: zj.clone(),
             force: zj.clone(),
             momentum: zj,
-            sym: vec![[z; 6]; n],
+            sym: vec![S3([z; 6]); n],
             gravity: vec![V3::zero(); n],
             dv_dq: zk.clone(),
             da_dq: zk.clone(),
@@ -170,7 +170,7 @@ fn backward<const W: usize>(model: &Model, p: &mut Pack<W>, d: &mut DerivPack<W>
         for k in iv..own {
             let Jk = p.J[k];
             d.yj[k] = inertia_twist(&Y, &Jk);
-            d.bj[k] = sym_mul(&S, &Jk.w) + H.w.cross(&Jk.w) + H.v.cross(&Jk.v).scale(L::splat(2.0));
+            d.bj[k] = S.mul_v(&Jk.w) + H.w.cross(&Jk.w) + H.v.cross(&Jk.v).scale(L::splat(2.0));
             d.df_dq[k] = inertia_twist(&Y, &d.da_dq[k]) + b_times(&S, &H, &d.dv_dq[k].w);
             d.df_dv[k] = inertia_twist(&Y, &d.da_dv[k]) + b_times(&S, &H, &Jk.w);
         }
@@ -204,9 +204,7 @@ fn backward<const W: usize>(model: &Model, p: &mut Pack<W>, d: &mut DerivPack<W>
             p.Ic[par.0] += &Y;
             d.force[par.0] += F;
             d.momentum[par.0] += H;
-            for (x, y) in d.sym[par.0].iter_mut().zip(S) {
-                *x += y;
-            }
+            d.sym[par.0] += &S;
         }
     }
 }
@@ -250,39 +248,28 @@ fn free_flyer_root<const W: usize>(
 /// with `V = (ω, v)`: `K + Kᵀ − c vᵀ − v cᵀ + 2 (c·v) 1` with `K = [ω] I`, stored
 /// `xx yy zz xy xz yz` (the single call's `variation_sym`, in its order).
 #[inline(always)]
-fn variation_sym<const W: usize>(G: &I3<W>, V: &T6<W>) -> [L<W>; 6] {
+fn variation_sym<const W: usize>(G: &I3<W>, V: &T6<W>) -> S3<W> {
     let (c, w, v) = (&G.h.0, &V.w, &V.v.0);
     let k0 = w.cross(&G.i.col(0)).0;
     let k1 = w.cross(&G.i.col(1)).0;
     let k2 = w.cross(&G.i.col(2)).0;
     let cv2 = G.h.dot(&V.v) * 2.0;
-    [
+    S3([
         (k0[0] - c[0] * v[0]) * 2.0 + cv2,
         (k1[1] - c[1] * v[1]) * 2.0 + cv2,
         (k2[2] - c[2] * v[2]) * 2.0 + cv2,
         k1[0] + k0[1] - c[0] * v[1] - v[0] * c[1],
         k2[0] + k0[2] - c[0] * v[2] - v[0] * c[2],
         k2[1] + k1[2] - c[1] * v[2] - v[1] * c[2],
-    ]
-}
-
-/// `S x` for a symmetric 3x3 stored `xx yy zz xy xz yz`.
-#[inline(always)]
-fn sym_mul<const W: usize>(s: &[L<W>; 6], x: &V3<W>) -> V3<W> {
-    let x = &x.0;
-    V3([
-        s[0] * x[0] + s[3] * x[1] + s[4] * x[2],
-        s[3] * x[0] + s[1] * x[1] + s[5] * x[2],
-        s[4] * x[0] + s[5] * x[1] + s[2] * x[2],
     ])
 }
 
 /// `Bc x = ((S − [L]) x_ω, −2 p × x_ω)` for the composite `S` and momentum `h = (L, p)` (`x_v`
 /// does not enter).
 #[inline(always)]
-fn b_times<const W: usize>(s: &[L<W>; 6], h: &T6<W>, xw: &V3<W>) -> T6<W> {
+fn b_times<const W: usize>(s: &S3<W>, h: &T6<W>, xw: &V3<W>) -> T6<W> {
     T6 {
-        w: sym_mul(s, xw) - h.w.cross(xw),
+        w: s.mul_v(xw) - h.w.cross(xw),
         v: h.v.cross(xw).scale(L::splat(-2.0)),
     }
 }

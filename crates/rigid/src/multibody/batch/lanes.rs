@@ -218,6 +218,59 @@ impl<const W: usize> Neg for V3<W> {
     }
 }
 
+/// A symmetric 3x3 matrix per lane, its six entries stored `xx yy zz xy xz yz`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct S3<const W: usize>(pub(crate) [L<W>; 6]);
+
+impl<const W: usize> S3<W> {
+    /// Where entry `(r, c)` is kept.
+    const AT: [[usize; 3]; 3] = [[0, 3, 4], [3, 1, 5], [4, 5, 2]];
+
+    /// The upper triangle of the constant `m` in every lane (`m` symmetric).
+    #[inline(always)]
+    pub(crate) fn splat(m: &Mat3) -> Self {
+        Self([(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)].map(|rc| L::splat(m[rc])))
+    }
+
+    /// Entry `(r, c)`.
+    #[inline(always)]
+    pub(crate) fn at(&self, r: usize, c: usize) -> L<W> {
+        self.0[Self::AT[r][c]]
+    }
+
+    /// Entry `(r, c)`, `r ≤ c`, to set.
+    #[inline(always)]
+    pub(crate) fn at_mut(&mut self, r: usize, c: usize) -> &mut L<W> {
+        &mut self.0[Self::AT[r][c]]
+    }
+
+    /// Column `c`.
+    #[inline(always)]
+    pub(crate) fn col(&self, c: usize) -> V3<W> {
+        V3([self.at(0, c), self.at(1, c), self.at(2, c)])
+    }
+
+    /// `S x`, row by row as [`M3::mul_v`].
+    #[inline(always)]
+    pub(crate) fn mul_v(&self, x: &V3<W>) -> V3<W> {
+        let (s, x) = (&self.0, &x.0);
+        V3([
+            s[0] * x[0] + s[3] * x[1] + s[4] * x[2],
+            s[3] * x[0] + s[1] * x[1] + s[5] * x[2],
+            s[4] * x[0] + s[5] * x[1] + s[2] * x[2],
+        ])
+    }
+}
+
+impl<const W: usize> AddAssign<&S3<W>> for S3<W> {
+    #[inline(always)]
+    fn add_assign(&mut self, y: &Self) {
+        for (a, b) in self.0.iter_mut().zip(&y.0) {
+            *a += *b;
+        }
+    }
+}
+
 /// A 3x3 matrix per lane, `m[r][c]` (row `r`, column `c`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct M3<const W: usize>(pub(crate) [[L<W>; 3]; 3]);

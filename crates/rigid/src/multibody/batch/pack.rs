@@ -4,7 +4,7 @@
 //! `S q̇` with its bias terms.
 
 use super::derivatives::DerivPack;
-use super::lanes::{L, M3, T6, V3, X};
+use super::lanes::{L, M3, S3, T6, V3, X};
 use crate::mass::SpatialInertia;
 use crate::multibody::Model;
 use crate::spatial::Mat3;
@@ -197,12 +197,12 @@ pub(crate) fn momentum<const W: usize>(G: &SpatialInertia, t: &T6<W>) -> T6<W> {
 }
 
 /// A spatial inertia per lane `(m, h, I_O)`: mass, first moment, rotational inertia about the
-/// frame origin (CRBA's composite inertias in the world frame).
+/// frame origin (CRBA's composite inertias in the world frame), 10 lane vectors.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct I3<const W: usize> {
     pub(crate) m: L<W>,
     pub(crate) h: V3<W>,
-    pub(crate) i: M3<W>,
+    pub(crate) i: S3<W>,
 }
 
 impl<const W: usize> I3<W> {
@@ -211,7 +211,7 @@ impl<const W: usize> I3<W> {
         Self {
             m: L::splat(g.mass()),
             h: V3::splat(&g.first_moment()),
-            i: M3::splat(g.inertia_origin_matrix()),
+            i: S3::splat(g.inertia_origin_matrix()),
         }
     }
 
@@ -219,24 +219,20 @@ impl<const W: usize> I3<W> {
         Self {
             m: L::zero(),
             h: V3::zero(),
-            i: M3::splat(&Mat3::zeros()),
+            i: S3([L::zero(); 6]),
         }
     }
 }
 
 impl<const W: usize> std::ops::AddAssign<&I3<W>> for I3<W> {
     /// The inertia of two bodies rigidly joined, both in the same frame (entry by entry, as
-    /// [`SpatialInertia`]'s `+=`), `y` borrowed (a copy of its 13 lane vectors would be a call to
+    /// [`SpatialInertia`]'s `+=`), `y` borrowed (a copy of its 10 lane vectors would be a call to
     /// `memcpy`).
     #[inline(always)]
     fn add_assign(&mut self, y: &Self) {
         self.m += y.m;
         self.h += y.h;
-        for r in 0..3 {
-            for s in 0..3 {
-                self.i.0[r][s] += y.i.0[r][s];
-            }
-        }
+        self.i += &y.i;
     }
 }
 
