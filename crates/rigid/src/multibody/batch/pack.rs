@@ -5,6 +5,7 @@
 
 use super::derivatives::DerivPack;
 use super::lanes::{L, M3, S3, T6, V3, X};
+use super::rows::Mirror;
 use crate::mass::SpatialInertia;
 use crate::multibody::Model;
 use crate::spatial::Mat3;
@@ -30,12 +31,13 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) F: Vec<T6<W>>,
     /// CRBA: per joint the pose in its tree's root frame and the composite inertia there; per
     /// dof the column `J_k` and the force `F_k = Ic J_k` in that frame; `M`'s lower triangle,
-    /// packed by columns.
+    /// packed by columns, and where the full matrices' entries are in it.
     pub(crate) rX: Vec<X<W>>,
     pub(crate) Ic: Vec<I3<W>>,
     pub(crate) J: Vec<T6<W>>,
     pub(crate) Fk: Vec<T6<W>>,
     pub(crate) M: Vec<L<W>>,
+    pub(crate) mirror: Mirror,
     /// Per joint with a [`Turn`](super::pose::Turn) (`Plan::turn`, RNEA and ABA): `(s sin θ,
     /// cos θ)` of its pose about `s e_K`, for the backward passes; CRBA and the RNEA derivatives:
     /// `(sin θ, cos θ)` per revolute joint below a root's child
@@ -72,6 +74,7 @@ impl<const W: usize> Pack<W> {
             J: vec![T6::zero(); nv],
             Fk: vec![T6::zero(); nv],
             M: vec![z; nv * (nv + 1) / 2],
+            mirror: Mirror::new(nv),
             IA: vec![I6::zero(); n],
             Dinv: vec![[z; 36]; n],
             U: vec![T6::zero(); nv],

@@ -289,7 +289,7 @@ fn packs<const W: usize, const A: u8>(
                     transpose_out(&d.dv, m, o2, per, io.native);
                 }
             }
-            Algo::Crba => symmetric_out(&p.M, nv, m, o, io.native),
+            Algo::Crba => symmetric_out(&p.M, &p.mirror, m, o, io.native),
         }
         s += W;
     }
