@@ -312,8 +312,9 @@ unsafe fn transpose4_from(src: [*const f64; 4], dst: *mut f64, stride: usize, m:
 
 /// Where each entry of a symmetric `nv x nv` matrix is in its lower triangle packed by columns:
 /// entry `(r, c)` of the row-major matrix is `packed_at(nv, max(r, c), min(r, c))`, made once
-/// per model for [`symmetric_out`] (which reads four at a time where computing them took
-/// 3–8 % of CRBA's batch time: 1.03–1.08x the states/s on UR5, Panda, Solo-12 and TALOS).
+/// per model for [`symmetric_out`], which reads them four at a time (computed there, they were
+/// 4.6 % of a TALOS profile; with the table 0.99–1.08x the states/s on UR5, Panda, Solo-12 and
+/// TALOS).
 #[derive(Clone, Debug)]
 pub(crate) struct Mirror {
     nv: usize,
