@@ -16,7 +16,7 @@ use crate::spatial::{trig, ModelVec3};
 /// `M(q)` for the pack's states into `p.M` (the lower triangle, packed by columns: column `k`'s
 /// rows `k..nv` from [`packed_at`]`(nv, k, k)`):
 ///
-/// forward ([`root_frame_body`]): `rMi`, the columns `J_k = [Ad_{rMi}] S_k` and the body's
+/// forward ([`turn_angles`], then [`root_frame_body`]): `rMi`, the columns `J_k = [Ad_{rMi}] S_k` and the body's
 /// inertia `rG_i` in its tree's root frame;
 /// backward, `i = n..1`: `F_k = Ic_i J_k` for the dofs `k` of joint `i`, then
 /// `M_lk = J_kᵀ F_l` for `l` from `k` to the end of `i`'s subtree (a root's `J_k = s e_c` reads
@@ -109,6 +109,8 @@ pub(super) fn turn_angles<const W: usize>(model: &Model, p: &mut Pack<W>) {
 ///   about a coordinate axis turns two columns twice; a prismatic joint without rotation keeps
 ///   `R_λ`; anything else is the product `rM_λ liMi`;
 /// - `rG_i` by the body's [`PrincipalForm`] when it has one, else by the adjoint congruence.
+///
+/// The deeper revolute joints' `(sin θ, cos θ)` are read from `p.sc`: call [`turn_angles`] first.
 #[inline(always)]
 pub(super) fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i: usize) {
     let plan = model.plan();
@@ -127,6 +129,7 @@ pub(super) fn root_frame_body<const W: usize>(model: &Model, p: &mut Pack<W>, i:
         Some(par) => {
             let rMp = &p.rX[par.0];
             let (R, t) = (&rMp.r, &plan.placement_translation[i]);
+            // read only in the arms that turn `R_λ` (as `turn_angles` wrote them)
             let angle = || (p.sc[i][0], p.sc[i][1]);
             match (shape, plan.placement[i]) {
                 (Shape::Revolute(axis), PlacementKind::Identity) => {

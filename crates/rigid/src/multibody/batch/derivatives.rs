@@ -71,8 +71,9 @@ impl<const W: usize> DerivPack<W> {
 /// `∂τ/∂q` and `∂τ/∂v` at `(q, v, a)` for the pack's states (`q`, `v`, `x = a` in) into
 /// `p.deriv`'s `dq` and `dv` (made on the first call), as the single call computes them:
 ///
-/// forward, `i = 1..n` ([`root_frame_body`]: `rMi`, `J_k = [Ad_{rMi}] S_k`, `G_i` in {r}; at a
-/// root `V_λ = 0`, `A⁰_λ = A_λ = a_g = (0, −R_rootᵀ g)` with `R_root` from `X_T X_J(q)`):
+/// forward, `i = 1..n` ([`turn_angles`], then [`root_frame_body`]: `rMi`,
+/// `J_k = [Ad_{rMi}] S_k`, `G_i` in {r}; at a root `V_λ = 0`,
+/// `A⁰_λ = A_λ = a_g = (0, −R_rootᵀ g)` with `R_root` from `X_T X_J(q)`):
 /// `V_i = V_λ + Σ_k J_k v_k`, `A⁰_i = A⁰_λ + V_i × Σ_k J_k v_k`, `A_i = A⁰_i + A^a_λ + Σ_k J_k a_k`,
 /// `f_i = G_i A_i + V_i ×* G_i V_i`, `h_i = G_i V_i`, the symmetric part of `B_i`'s angular block
 /// `[ω]I − I[ω] − [c][v] − [v][c]`, and per dof `∂V/∂q_k = V_λ × J_k`,

@@ -38,9 +38,11 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) Fk: Vec<T6<W>>,
     pub(crate) M: Vec<L<W>>,
     pub(crate) mirror: Mirror,
-    /// Per joint with a [`Turn`](super::pose::Turn) (`Plan::turn`, RNEA and ABA): `(s sin θ,
-    /// cos θ)` of its pose about `s e_K`, for the backward passes; CRBA and the RNEA derivatives:
-    /// `(sin θ, cos θ)` per revolute joint below a root's child
+    /// Sines and cosines of joint angles, as each kernel keeps them (a kernel writes the entries
+    /// it reads before it reads them, so the two uses do not meet): RNEA and ABA, per joint with
+    /// a [`Turn`](super::pose::Turn) (`Plan::turn`), `(s sin θ, cos θ)` of its pose about
+    /// `s e_K`, for the backward passes; CRBA and the RNEA derivatives, `(sin θ, cos θ)` per
+    /// revolute joint below a root's child whose `X_T` is not a general rotation
     /// ([`turn_angles`](super::crba::turn_angles)).
     pub(crate) sc: Vec<[L<W>; 2]>,
     /// ABA: per joint the articulated inertia `I^A_i` and `D⁻¹` (`nv x nv`, row-major); per

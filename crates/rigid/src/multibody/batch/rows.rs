@@ -311,10 +311,11 @@ unsafe fn transpose4_from(src: [*const f64; 4], dst: *mut f64, stride: usize, m:
 }
 
 /// Where each entry of a symmetric `nv x nv` matrix is in its lower triangle packed by columns:
-/// entry `(r, c)` of the row-major matrix is `packed_at(nv, max(r, c), min(r, c))`, made once
-/// per model for [`symmetric_out`], which reads them four at a time (computed there, they were
-/// 4.6 % of a TALOS profile; with the table 0.99–1.08x the states/s on UR5, Panda, Solo-12 and
-/// TALOS).
+/// entry `(r, c)` of the row-major matrix is `packed_at(nv, max(r, c), min(r, c))`, made with
+/// each [`Pack`](super::pack::Pack) for [`symmetric_out`], which reads them four at a time
+/// (computed there, they were 4.6 % of a TALOS profile; with the table 0.99–1.07x the states/s
+/// on UR5, Panda, Solo-12 and TALOS, 3 interleaved rounds). Its fields are private and
+/// [`Mirror::new`] is its only maker, so every entry is below `nv (nv + 1) / 2`.
 #[derive(Clone, Debug)]
 pub(crate) struct Mirror {
     nv: usize,
@@ -327,7 +328,7 @@ impl Mirror {
         let index = |k: usize| {
             let (r, c) = (k / nv, k % nv);
             u32::try_from(packed_at(nv, r.max(c), r.min(c)))
-                .expect("a packed triangle of fewer than 2³² entries (its lanes would take 256 GB)")
+                .expect("a packed triangle of fewer than 2³² entries (the pack's `M` holds them)")
         };
         Self {
             nv,
@@ -369,8 +370,9 @@ pub(super) fn symmetric_out<const W: usize>(
                 let e = &row[c..c + 4];
                 let entries = [e[0], e[1], e[2], e[3]].map(|e| e as usize);
                 for h in (0..m).step_by(4) {
-                    // SAFETY: each entry `< packed.len()` (`Mirror::new(nv)`'s `packed_at` of an
-                    // `(r, c)` with `r ≥ c`, both `< nv`; `packed.len()` asserted above) is
+                    // SAFETY: each entry `< packed.len()` (`Mirror::new(nv)`, the only maker of a
+                    // `Mirror`, stores `packed_at` of an `(r, c)` with `r ≥ c`, both `< nv`;
+                    // `packed.len()` asserted above) is
                     // `W ≥ h + 4` lanes; matrix `h + l < m` holds
                     // `(r, c..c + 4)` at `(h + l) per + r nv + c`, `c + 4 ≤ nv`, in
                     // `dst.len() ≥ m per` (asserted above); `packed` and `dst` are borrowed
