@@ -16,8 +16,8 @@ use crate::spatial::{trig, ModelVec3};
 /// `M(q)` for the pack's states into `p.M` (the lower triangle, packed by columns: column `k`'s
 /// rows `k..nv` from [`packed_at`]`(nv, k, k)`):
 ///
-/// forward ([`turn_angles`], then [`root_frame_body`]): `rMi`, the columns `J_k = [Ad_{rMi}] S_k` and the body's
-/// inertia `rG_i` in its tree's root frame;
+/// forward ([`turn_angles`], then [`root_frame_body`]): `rMi`, the columns
+/// `J_k = [Ad_{rMi}] S_k` and the body's inertia `rG_i` in its tree's root frame;
 /// backward, `i = n..1`: `F_k = Ic_i J_k` for the dofs `k` of joint `i`, then
 /// `M_lk = J_kᵀ F_l` for `l` from `k` to the end of `i`'s subtree (a root's `J_k = s e_c` reads
 /// `M_lk = s F_l[c]`), plus the armature on the diagonal, and `Ic_λ(i) += Ic_i`.

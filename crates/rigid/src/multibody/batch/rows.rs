@@ -372,9 +372,8 @@ pub(super) fn symmetric_out<const W: usize>(
                 for h in (0..m).step_by(4) {
                     // SAFETY: each entry `< packed.len()` (`Mirror::new(nv)`, the only maker of a
                     // `Mirror`, stores `packed_at` of an `(r, c)` with `r ≥ c`, both `< nv`;
-                    // `packed.len()` asserted above) is
-                    // `W ≥ h + 4` lanes; matrix `h + l < m` holds
-                    // `(r, c..c + 4)` at `(h + l) per + r nv + c`, `c + 4 ≤ nv`, in
+                    // `packed.len()` asserted above) is `W ≥ h + 4` lanes; matrix `h + l < m`
+                    // holds `(r, c..c + 4)` at `(h + l) per + r nv + c`, `c + 4 ≤ nv`, in
                     // `dst.len() ≥ m per` (asserted above); `packed` and `dst` are borrowed
                     // apart; with `native`, the CPU has AVX (AVX2 for 4 lanes, AVX-512F for 8).
                     unsafe {
