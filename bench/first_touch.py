@@ -15,8 +15,11 @@ the host too. Each round times, on the same inputs:
 
   - `out=`: the call writing one array kept by the process (no first touch), right after the
     call before and after a pause of `--pause` seconds of sleep (the control: a pause alone);
-  - `fresh, right after`: a fresh output, just after the previous fresh output was freed;
-  - `fresh, after a pause`: a fresh output after `--pause` seconds of sleep;
+  - `fresh, right after`: with rigid's output cache off (`rigid.set_output_cache(0)`), a
+    fresh output just after the previous fresh output was freed;
+  - `fresh, after a pause`: the same after `--pause` seconds of sleep;
+  - `fresh, cache: ...`: the same two with the cache on (the default): the fresh output is
+    the array the call before returned and the script dropped, so nothing is touched first;
   - numpy alone: the first touch (`a[:] = 1`) of a new array of the same size, right after and
     after the pause, and the same write to an array already touched, right after and after the
     pause.
@@ -83,17 +86,24 @@ def main():
 
     batch(TAU)
     times = {k: [] for k in ["out=", "out=, after a pause", "fresh, right after",
-                             "fresh, after a pause", "numpy: write to a touched array",
+                             "fresh, after a pause", "fresh, cache: right after",
+                             "fresh, cache: after a pause", "numpy: write to a touched array",
                              "numpy: the same, after a pause", "numpy: first touch, right after",
                              "numpy: first touch, after a pause"]}
     for _ in range(args.rounds):
         times["out="].append(batch(TAU))
         time.sleep(args.pause)
         times["out=, after a pause"].append(batch(TAU))
+        limit = rigid.set_output_cache(0)  # every fresh output a new array
         batch()
         times["fresh, right after"].append(batch())
         time.sleep(args.pause)
         times["fresh, after a pause"].append(batch())
+        rigid.set_output_cache(limit)  # a fresh output from the array the last call dropped
+        batch()
+        times["fresh, cache: right after"].append(batch())
+        time.sleep(args.pause)
+        times["fresh, cache: after a pause"].append(batch())
         times["numpy: write to a touched array"].append(touch(TAU))
         time.sleep(args.pause)
         times["numpy: the same, after a pause"].append(touch(TAU))

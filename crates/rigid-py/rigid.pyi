@@ -404,6 +404,17 @@ def rnea_derivatives_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLik
     block equals the single call's (bit for bit on revolute, prismatic and free-flyer joints). The third derivative, ``dtau_da = M``, is
     ``crba_batch(model, Q)``."""
 
+def set_output_cache(max_bytes: int) -> int:
+    """The most bytes of output arrays the batch verbs (``rnea_batch``, ``aba_batch``,
+    ``crba_batch``, ``rnea_derivatives_batch``, ``regressor_batch``) keep for their next fresh
+    outputs; returns the previous limit (default 512 MiB; 0: keep none, and let the kept ones
+    go). A fresh output is made from a kept array of the same size that no Python object
+    refers to any more (a result, or any view of it, keeps its array in use), so a loop that
+    drops each result before the next call touches no new memory, as with ``out=``: on a
+    virtual machine that gives freed memory back to its host, the first touch of a new array
+    can cost more than the batch (BENCHMARKS.md). A result is a view of the kept array
+    (``base`` is not None). Not in Pinocchio's Python."""
+
 def regressor_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
                     threads: int | None = None) -> npt.NDArray[np.float64]:
     """``regressor`` for every row: (N, nv, 10·nb), so that ``Y @ π`` is τ for a parameter

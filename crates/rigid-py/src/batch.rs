@@ -6,7 +6,8 @@
 //! Contiguous float64 inputs are read in place ([`Matrix`]); results are written straight into
 //! arrays numpy allocates (numpy asks Linux for huge pages for large arrays: the first touch of
 //! a fresh Rust vector's 4 KiB pages cost about 3 µs per page on this machine, more than CRBA
-//! itself), or into the caller's `out=`. In Pinocchio's layout the velocity-space numbers are
+//! itself), kept for the next call when nothing refers to them any more
+//! ([`crate::outputs`]), or into the caller's `out=`. In Pinocchio's layout the velocity-space numbers are
 //! reordered by the library, a chunk of states at a time: the inputs into a buffer of each task,
 //! the results in place ([`Batch::with_velocity_order`]).
 
@@ -249,7 +250,7 @@ fn qvx_batch<'py>(
     let nv = core.nv();
     let array = match out {
         Some(o) => out_array(func, o, n, nv)?,
-        None => PyArray2::<f64>::zeros(py, [n, nv], false),
+        None => crate::outputs::fresh(py, [n, nv])?,
     };
     // rust-numpy's borrows see views of one base array, not two arrays over the same buffer
     let written = array.data() as usize..array.data() as usize + n * nv * size_of::<f64>();
@@ -368,7 +369,7 @@ pub fn crba_batch<'py>(
     let (n, qs, _) = inputs(core, pool.as_deref(), F, q, &[], true)?;
     let qs = qs.as_slice();
     let nv = core.nv();
-    let array = PyArray3::<f64>::zeros(py, [n, nv, nv], false);
+    let array = crate::outputs::fresh(py, [n, nv, nv])?;
     let mut guard = array.readwrite(); // a fresh array: nothing else borrows it
     let out = guard.as_slice_mut().unwrap_or(&mut []);
     crate::scale::detach(py, pool.as_deref(), || {
@@ -405,7 +406,7 @@ pub fn rnea_derivatives_batch<'py>(
     let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &args, false)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let nv = core.nv();
-    let arrays = [0, 1].map(|_| PyArray3::<f64>::zeros(py, [n, nv, nv], false));
+    let arrays = [crate::outputs::fresh(py, [n, nv, nv])?, crate::outputs::fresh(py, [n, nv, nv])?];
     let mut guards = arrays.each_ref().map(|a| a.readwrite()); // fresh arrays
     let [dq, dv] = guards
         .each_mut()

@@ -10,6 +10,7 @@
 //! | `configuration.rs` | `neutral`, `random_configuration`, `seed`, `integrate`, `difference` |
 //! | `derivatives.rs` | `rnea_derivatives`, `aba_derivatives`, `gravity_derivatives` |
 //! | `constraints.rs` | `ConstraintModel`, `ConstraintData`, `constraint_dynamics`, `impulse_dynamics`, `contact_inverse_dynamics` (and Pinocchio's names) |
+//! | `outputs.rs` | the batch verbs' fresh outputs, from a cache of the arrays they returned, `set_output_cache` |
 //! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch`, `rnea_derivatives_batch` (all cores, GIL released) |
 //! | `simulation.rs` | `simulate` (robot simulation, built-in or Python control laws), `replay_html` |
 //! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, private field accessors |
@@ -29,6 +30,7 @@ mod identification;
 mod inverse_kinematics;
 mod lie;
 mod model;
+mod outputs;
 mod pinocchio;
 mod scale;
 mod simulation;
@@ -97,6 +99,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::replay_html, m)?)?;
     m.add_function(wrap_pyfunction!(batch::rnea_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(outputs::set_output_cache, m)?)?;
     m.add_function(wrap_pyfunction!(batch::aba_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::crba_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::rnea_derivatives_batch, m)?)?;

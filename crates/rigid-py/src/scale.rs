@@ -103,8 +103,8 @@ pub fn regressor_batch<'py>(
     check_finite(core, F, &args)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let (nv, cols) = (core.nv(), 10 * core.model.njoints());
-    // numpy's array, written in place (huge pages for a large one: see batch.rs)
-    let array = PyArray3::<f64>::zeros(py, [n, nv, cols], false);
+    // written in place (see outputs.rs)
+    let array = crate::outputs::fresh(py, [n, nv, cols])?;
     let mut guard = array.readwrite(); // a fresh array: nothing else borrows it
     let out = guard.as_slice_mut().unwrap_or(&mut []);
     detach(py, pool.as_deref(), || {

@@ -195,3 +195,54 @@ def test_rnea_derivatives_batch_refuses_bad_states():
         rigid.rnea_derivatives_batch(m, bad, Q, Q)
     with pytest.raises(ValueError, match=r"A has 2 rows, Q has 3"):
         rigid.rnea_derivatives_batch(m, Q, Q, np.zeros((2, 6)))
+
+
+def test_fresh_outputs_reuse_only_arrays_nothing_refers_to():
+    p = pair("talos")
+    m, d = p.rr, p.rr.create_data()
+    Q, V, A = states(m, 23, 5)
+
+    def address(x):
+        return x.__array_interface__["data"][0]
+
+    previous = rigid.set_output_cache(1 << 30)
+    try:
+        tau = rigid.rnea_batch(m, Q, V, A)
+        first = address(tau)
+        tau[:] = np.nan  # a result the next call must overwrite entirely
+        del tau
+        tau = rigid.rnea_batch(m, Q, V, A)
+        assert address(tau) == first  # the dropped array, made again
+        held = rigid.rnea_batch(m, Q, V, A)
+        assert address(held) != first  # not the one still held
+        row = tau[3]  # a view keeps the whole array in use
+        del tau
+        again = rigid.rnea_batch(m, Q, V, A)
+        assert address(again) not in (first, address(held))
+        assert np.array_equal(row, again[3]) and np.array_equal(held, again)
+        for k in range(len(Q)):
+            assert_close(again[k], rigid.rnea(m, d, Q[k], V[k], A[k]), "rnea_batch", tol=1e-13)
+        del row, again, held
+
+        # the matrix-valued verbs overwrite every entry of a kept array too
+        for _ in range(2):
+            M = rigid.crba_batch(m, Q)
+            dq, dv = rigid.rnea_derivatives_batch(m, Q, V, A)
+            assert address(dq) != address(dv)
+            for k in range(len(Q)):
+                assert_close(M[k], rigid.crba(m, d, Q[k]), "crba_batch", tol=1e-13)
+                sq, sv, _ = rigid.rnea_derivatives(m, d, Q[k], V[k], A[k])
+                assert_close(dq[k], sq, "dtau_dq", tol=1e-12)
+                assert_close(dv[k], sv, "dtau_dv", tol=1e-12)
+            for x in (M, dq, dv):
+                x[:] = np.nan
+            del M, dq, dv
+
+        # no cache: every fresh output is a new array that owns its memory
+        assert rigid.set_output_cache(0) == 1 << 30
+        tau = rigid.rnea_batch(m, Q, V, A)
+        assert tau.flags.owndata
+        with pytest.raises(ValueError, match="max_bytes must be 0 or more"):
+            rigid.set_output_cache(-1)
+    finally:
+        rigid.set_output_cache(previous)
