@@ -406,7 +406,10 @@ pub fn rnea_derivatives_batch<'py>(
     let (n, qs, va) = inputs(core, pool.as_deref(), F, q, &args, false)?;
     let (qs, vs, as_) = (qs.as_slice(), va[0].as_slice(), va[1].as_slice());
     let nv = core.nv();
-    let arrays = [crate::outputs::fresh(py, [n, nv, nv])?, crate::outputs::fresh(py, [n, nv, nv])?];
+    let arrays = [
+        crate::outputs::fresh(py, [n, nv, nv])?,
+        crate::outputs::fresh(py, [n, nv, nv])?,
+    ];
     let mut guards = arrays.each_ref().map(|a| a.readwrite()); // fresh arrays
     let [dq, dv] = guards
         .each_mut()

@@ -45,7 +45,10 @@ fn cache() -> std::sync::MutexGuard<'static, Cache> {
 impl Cache {
     /// The bytes of the arrays kept.
     fn bytes(&self, py: Python<'_>) -> usize {
-        self.arrays.iter().map(|a| a.bind(py).len() * size_of::<f64>()).sum()
+        self.arrays
+            .iter()
+            .map(|a| a.bind(py).len() * size_of::<f64>())
+            .sum()
     }
 
     /// Lets the oldest arrays go until at most `limit - room` bytes are kept.
@@ -73,7 +76,11 @@ pub(crate) fn fresh<'py, D: Dimension>(
     let len = shape.size();
     let bytes = len * size_of::<f64>();
     let mut c = cache();
-    let flat = match c.arrays.iter().position(|a| idle(a) && a.bind(py).len() == len) {
+    let flat = match c
+        .arrays
+        .iter()
+        .position(|a| idle(a) && a.bind(py).len() == len)
+    {
         Some(i) => {
             let a = c.arrays.remove(i).expect("an index of the cache");
             c.arrays.push_back(a.clone_ref(py));
