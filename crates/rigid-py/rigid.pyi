@@ -412,8 +412,9 @@ def set_output_cache(max_bytes: int) -> int:
     refers to any more (a result, or any view of it, keeps its array in use), so a loop that
     drops each result before the next call touches no new memory, as with ``out=``: on a
     virtual machine that gives freed memory back to its host, the first touch of a new array
-    can cost more than the batch (BENCHMARKS.md). A result is a view of the kept array
-    (``base`` is not None). Not in Pinocchio's Python."""
+    can cost more than the batch (BENCHMARKS.md). A kept result is a view of the cache's array
+    (its ``base``); an empty result, one over the limit, or any with the cache off owns its
+    memory. Not in Pinocchio's Python."""
 
 def regressor_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
                     threads: int | None = None) -> npt.NDArray[np.float64]:

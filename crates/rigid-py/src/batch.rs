@@ -6,8 +6,8 @@
 //! Contiguous float64 inputs are read in place ([`Matrix`]); results are written straight into
 //! arrays numpy allocates (numpy asks Linux for huge pages for large arrays: the first touch of
 //! a fresh Rust vector's 4 KiB pages cost about 3 µs per page on this machine, more than CRBA
-//! itself), kept for the next call when nothing refers to them any more
-//! ([`crate::outputs`]), or into the caller's `out=`. In Pinocchio's layout the velocity-space numbers are
+//! itself), kept for the next call when nothing refers to them any more ([`crate::outputs`]),
+//! or into the caller's `out=`. In Pinocchio's layout the velocity-space numbers are
 //! reordered by the library, a chunk of states at a time: the inputs into a buffer of each task,
 //! the results in place ([`Batch::with_velocity_order`]).
 

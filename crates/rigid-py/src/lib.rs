@@ -99,10 +99,10 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::replay_html, m)?)?;
     m.add_function(wrap_pyfunction!(batch::rnea_batch, m)?)?;
-    m.add_function(wrap_pyfunction!(outputs::set_output_cache, m)?)?;
     m.add_function(wrap_pyfunction!(batch::aba_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::crba_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::rnea_derivatives_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(outputs::set_output_cache, m)?)?;
     m.add_function(wrap_pyfunction!(identification::regressor, m)?)?;
     m.add_function(wrap_pyfunction!(identification::dynamic_parameters, m)?)?;
     m.add_function(wrap_pyfunction!(identification::excite, m)?)?;

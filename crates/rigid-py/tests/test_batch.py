@@ -197,9 +197,11 @@ def test_rnea_derivatives_batch_refuses_bad_states():
         rigid.rnea_derivatives_batch(m, Q, Q, np.zeros((2, 6)))
 
 
-def test_fresh_outputs_reuse_only_arrays_nothing_refers_to():
+@pytest.mark.parametrize("layout", ["rigid", "pinocchio"])
+def test_fresh_outputs_reuse_only_arrays_nothing_refers_to(layout):
     p = pair("talos")
-    m, d = p.rr, p.rr.create_data()
+    m = p.rp if layout == "pinocchio" else p.rr
+    d = m.create_data()
     Q, V, A = states(m, 23, 5)
 
     def address(x):
@@ -222,21 +224,29 @@ def test_fresh_outputs_reuse_only_arrays_nothing_refers_to():
         assert np.array_equal(row, again[3]) and np.array_equal(held, again)
         for k in range(len(Q)):
             assert_close(again[k], rigid.rnea(m, d, Q[k], V[k], A[k]), "rnea_batch", tol=1e-13)
+        # an array made read-only through a result's base is not made again
+        again.base.flags.writeable = False
         del row, again, held
+        assert rigid.rnea_batch(m, Q, V, A).flags.writeable
 
-        # the matrix-valued verbs overwrite every entry of a kept array too
+        # every verb overwrites every entry of a kept array
         for _ in range(2):
+            ddq = rigid.aba_batch(m, Q, V, A)
             M = rigid.crba_batch(m, Q)
             dq, dv = rigid.rnea_derivatives_batch(m, Q, V, A)
+            Y = rigid.regressor_batch(m, Q, V, A)
             assert address(dq) != address(dv)
             for k in range(len(Q)):
+                assert_close(ddq[k], rigid.aba(m, d, Q[k], V[k], A[k]), "aba_batch", tol=1e-11)
                 assert_close(M[k], rigid.crba(m, d, Q[k]), "crba_batch", tol=1e-13)
                 sq, sv, _ = rigid.rnea_derivatives(m, d, Q[k], V[k], A[k])
                 assert_close(dq[k], sq, "dtau_dq", tol=1e-12)
                 assert_close(dv[k], sv, "dtau_dv", tol=1e-12)
-            for x in (M, dq, dv):
+                assert_close(Y[k], rigid.regressor(m, d, Q[k], V[k], A[k]), "regressor_batch",
+                             tol=1e-13)
+            for x in (ddq, M, dq, dv, Y):
                 x[:] = np.nan
-            del M, dq, dv
+            del ddq, M, dq, dv, Y
 
         # no cache: every fresh output is a new array that owns its memory
         assert rigid.set_output_cache(0) == 1 << 30

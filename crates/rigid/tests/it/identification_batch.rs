@@ -29,14 +29,14 @@ fn regressor_batch_is_the_single_regressor_bit_for_bit_on_any_thread_count() {
         let (nq, nv, cols) = (model.nq(), model.nv(), 10 * model.njoints());
         let n = 23;
         let (q, v, a) = stacked(model, n, 5);
-        let mut y = vec![0.0; n * nv * cols];
+        let mut y = vec![f64::NAN; n * nv * cols]; // every entry written
         regressor_batch(model, &q, &v, &a, &mut y).unwrap();
         for threads in [1, 3] {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let mut y2 = vec![0.0; y.len()];
+            let mut y2 = vec![f64::NAN; y.len()];
             pool.install(|| regressor_batch(model, &q, &v, &a, &mut y2))
                 .unwrap();
             assert!(y.iter().zip(&y2).all(|(x, z)| x.to_bits() == z.to_bits()));

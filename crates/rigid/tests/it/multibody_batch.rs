@@ -409,7 +409,8 @@ fn velocity_order_cases() {
         let mut ordered = batch::Batch::with_lanes(&model, width)
             .with_velocity_order(&model, order)
             .unwrap();
-        let (mut x, mut y) = (vec![0.0; n * nv], vec![0.0; n * nv]);
+        // NaN first: every entry must be written
+        let (mut x, mut y) = (vec![f64::NAN; n * nv], vec![f64::NAN; n * nv]);
         plain.rnea(&model, &qs, &vs, &as_, &mut x).unwrap();
         ordered.rnea(&model, &qs, &vs_c, &as_c, &mut y).unwrap();
         assert_eq!(y, permute(&x), "rnea, {width} lanes");
@@ -418,12 +419,12 @@ fn velocity_order_cases() {
         plain.aba(&model, &qs, &vs, &tau, &mut x).unwrap();
         ordered.aba(&model, &qs, &vs_c, &tau_c, &mut y).unwrap();
         assert_eq!(y, permute(&x), "aba, {width} lanes");
-        let (mut m, mut mc) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+        let (mut m, mut mc) = (vec![f64::NAN; n * nv * nv], vec![f64::NAN; n * nv * nv]);
         plain.crba(&model, &qs, &mut m).unwrap();
         ordered.crba(&model, &qs, &mut mc).unwrap();
         assert_eq!(mc, square(&m), "crba, {width} lanes");
         let per = nv * (nv + 1) / 2;
-        let mut packed = vec![0.0; n * per];
+        let mut packed = vec![f64::NAN; n * per];
         ordered.crba_lower(&model, &qs, &mut packed).unwrap();
         let mut want = vec![0.0; per];
         for (p, m) in packed.chunks(per).zip(mc.chunks(nv * nv)) {
@@ -476,7 +477,7 @@ fn velocity_order_derivatives(
     let mut ordered = batch::Batch::with_lanes(model, width)
         .with_velocity_order(model, order)
         .unwrap();
-    let outs = || [(); 3].map(|_| vec![0.0; n * nv * nv]);
+    let outs = || [(); 3].map(|_| vec![f64::NAN; n * nv * nv]); // every entry written
     let ([mut a, mut b, _], [mut ac, mut bc, _]) = (outs(), outs());
     plain
         .rnea_derivatives(model, qs, vs, as_, &mut a, &mut b)
