@@ -256,3 +256,30 @@ def test_fresh_outputs_reuse_only_arrays_nothing_refers_to(layout):
             rigid.set_output_cache(-1)
     finally:
         rigid.set_output_cache(previous)
+
+
+def test_fresh_outputs_from_several_python_threads():
+    # numpy releases the GIL while it allocates: the cache must not hold its lock across that
+    p = pair("solo12")
+    m = p.rr
+    inputs = [states(m, 200, seed) for seed in range(4)]
+    want = [rigid.rnea_batch(m, *x) for x in inputs]
+    results, errors = [[] for _ in inputs], []
+
+    def work(t):
+        try:
+            for _ in range(25):
+                results[t].append(rigid.rnea_batch(m, *inputs[t], threads=1)[7].copy())
+                rigid.crba_batch(m, inputs[t][0], threads=1)
+        except Exception as e:  # noqa: BLE001 (reported below)
+            errors.append(e)
+
+    workers = [threading.Thread(target=work, args=(t,)) for t in range(len(inputs))]
+    for w in workers:
+        w.start()
+    for w in workers:
+        w.join(timeout=120)
+    assert not any(w.is_alive() for w in workers), "a batch verb did not return"
+    assert not errors, errors
+    for t, rows in enumerate(results):
+        assert len(rows) == 25 and all(np.array_equal(r, want[t][7]) for r in rows)
