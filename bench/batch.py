@@ -55,6 +55,7 @@ def main():
     ap.add_argument("--reps", type=int, default=7, help="passes over the states per round (both sides)")
     ap.add_argument("--variants", default=os.environ.get("VARIANTS", "header lib"))
     ap.add_argument("--cpu", default="auto")
+    ap.add_argument("--digits", type=int, default=2, help="decimals of the ratios printed")
     args = ap.parse_args()
     variants = args.variants.split()
     env = dict(os.environ, VARIANTS=" ".join(variants))
@@ -96,7 +97,9 @@ def main():
           + " | ".join("%s batch / loop" % a for a, _ in ALGOS) + " |")
     print("|---|---:|" + "---:|" * (2 * len(ALGOS)))
     for m in models:
-        cells = ["%.2f (%.2f–%.2f)" % (med(x), min(x), max(x)) for x in (vs_pin[(m["name"], a)] for a, _ in ALGOS)]
+        f = "%%.%df" % args.digits
+        cells = [(f + " (" + f + "–" + f + ")") % (med(x), min(x), max(x))
+                 for x in (vs_pin[(m["name"], a)] for a, _ in ALGOS)]
         cells += ["%.2f" % med(vs_loop[(m["name"], a)]) for a, _ in ALGOS]
         print("| %s | %d | %s |" % (m["name"], m["nv"], " | ".join(cells)))
 
