@@ -13,7 +13,9 @@ Each round runs, back to back on one pinned core (the order alternating between 
     M's upper triangle).
 It prints, per model and algorithm, the median over rounds of:
   - batch / Pinocchio: rigid's batch time per state over Pinocchio's time per call (the issue's
-    bar: at most 0.25);
+    bar: at most 0.25). Pinocchio's `crba` computes M's upper triangle only, as the issue's CRBA
+    kernel computes the lower one: `crba_lower` is the like-for-like column, and `crba` (the
+    full symmetric matrices, nv² numbers per state against nv (nv + 1) / 2) does more;
   - batch / loop: rigid's batch states per second over its own loop of single calls (bar: 2).
 The batch writes every state's result to a row-major output (nv numbers, or nv² for CRBA, or
 nv (nv + 1) / 2 for the lower triangle); Pinocchio's call leaves it in its Data.
