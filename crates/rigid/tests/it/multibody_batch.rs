@@ -41,10 +41,22 @@ fn rel(x: &[f64], y: &[f64]) -> f64 {
 /// `∂τ/∂q`, `∂τ/∂v` (those of a model the single call refuses, with a joint whose motion
 /// subspace varies, must be refused with its error).
 fn worst(model: &Model, width: usize, n: usize, seed: u64) -> [f64; 6] {
+    worst_after(model, model, width, n, seed)
+}
+
+/// [`worst`] with a batch made for `first` and run on it once before `model`, a model of the
+/// same shape (`nq`, `nv`, joints).
+fn worst_after(first: &Model, model: &Model, width: usize, n: usize, seed: u64) -> [f64; 6] {
     let (nq, nv) = (model.nq(), model.nv());
     let (qs, vs, as_) = states(model, n, seed);
-    let mut b = batch::Batch::with_lanes(model, width);
+    let mut b = batch::Batch::with_lanes(first, width);
     assert_eq!(b.lanes(), width);
+    if !std::ptr::eq(first, model) {
+        let mut mass = vec![0.0; n * nv * nv];
+        let mut tau = vec![0.0; n * nv];
+        b.crba(first, &qs, &mut mass).unwrap();
+        b.rnea(first, &qs, &vs, &as_, &mut tau).unwrap();
+    }
     let per = nv * (nv + 1) / 2;
     let (mut tau, mut ddq) = (vec![f64::NAN; n * nv], vec![f64::NAN; n * nv]);
     let (mut mass, mut lower) = (vec![f64::NAN; n * nv * nv], vec![f64::NAN; n * per]);
@@ -229,6 +241,61 @@ fn batch_results_equal_single_calls_for_every_width_and_joint_type() {
         }
     }
     eprintln!("largest relative differences: {}", sci(&largest));
+}
+
+/// Four revolute joints, as a chain or all on the root, about `axes` (as many as joints).
+fn four_joints(chain: bool, axes: [Vec3; 4], seed: u64) -> Model {
+    let mut rng = Rng::new(seed);
+    let mut b = ModelBuilder::new(if chain { "chain" } else { "star" });
+    let mut parent = None;
+    for (k, axis) in axes.into_iter().enumerate() {
+        let id = b
+            .add_joint(
+                parent,
+                &format!("j{k}"),
+                JointType::Revolute { axis },
+                common::transform(&mut rng),
+                common::inertia(&mut rng),
+            )
+            .unwrap();
+        if chain || k == 0 {
+            parent = Some(id);
+        }
+    }
+    b.build().unwrap()
+}
+
+/// A batch made for one model and then given another of the same shape (`nq`, `nv`, joints)
+/// but another tree and other joint axes computes that model's results, as single calls do:
+/// its workspaces keep nothing of the first model (the constant motion subspaces, and the mass
+/// matrix's entries outside the subtrees, which the kernel never writes).
+#[test]
+fn a_batch_given_another_model_of_the_same_shape_computes_that_model() {
+    let chain = four_joints(true, [Vec3::z(), Vec3::y(), Vec3::y(), Vec3::x()], 1);
+    let unit = |x: f64, y: f64, z: f64| Vec3::new(x, y, z).normalize();
+    let star = four_joints(
+        false,
+        [
+            unit(1.0, 2.0, 3.0),
+            Vec3::x(),
+            unit(-1.0, 0.5, 0.2),
+            Vec3::z(),
+        ],
+        2,
+    );
+    assert_eq!(
+        (chain.nq(), chain.nv(), chain.njoints()),
+        (star.nq(), star.nv(), star.njoints())
+    );
+    for width in [2, 4, 8] {
+        for (first, then) in [(&chain, &star), (&star, &chain)] {
+            let e = worst_after(first, then, width, 2 * width + 1, 3);
+            assert_close(
+                &format!("{} after {} ({width} lanes)", then.name(), first.name()),
+                e,
+            );
+        }
+    }
 }
 
 /// Every robot of example-robot-data that rigid loads, fixed and with a free-flyer, in the

@@ -6,7 +6,7 @@
 //! (not `τ`, not `M`), row-major per lane, into [`DerivPack::dq`] and [`DerivPack::dv`].
 
 use super::crba::{inertia_twist, root_frame_body, turn_angles};
-use super::lanes::{L, S3, T6, V3};
+use super::lanes::{Aligned, L, S3, T6, V3};
 use super::pack::{Pack, I3};
 use super::pose::placement;
 use crate::multibody::{JointType, Model};
@@ -21,31 +21,35 @@ use crate::multibody::{JointType, Model};
 /// between branches are never written and stay zero).
 #[derive(Clone, Debug)]
 pub(crate) struct DerivPack<const W: usize> {
-    vel: Vec<T6<W>>,
-    acc0: Vec<T6<W>>,
-    acc: Vec<T6<W>>,
-    acc_a: Vec<T6<W>>,
-    force: Vec<T6<W>>,
-    momentum: Vec<T6<W>>,
-    sym: Vec<S3<W>>,
-    gravity: Vec<V3<W>>,
-    dv_dq: Vec<T6<W>>,
-    da_dq: Vec<T6<W>>,
-    da_dv: Vec<T6<W>>,
-    yj: Vec<T6<W>>,
-    bj: Vec<V3<W>>,
-    df_dq: Vec<T6<W>>,
-    df_dv: Vec<T6<W>>,
+    vel: Aligned<T6<W>>,
+    acc0: Aligned<T6<W>>,
+    acc: Aligned<T6<W>>,
+    acc_a: Aligned<T6<W>>,
+    force: Aligned<T6<W>>,
+    momentum: Aligned<T6<W>>,
+    sym: Aligned<S3<W>>,
+    gravity: Aligned<V3<W>>,
+    dv_dq: Aligned<T6<W>>,
+    da_dq: Aligned<T6<W>>,
+    da_dv: Aligned<T6<W>>,
+    yj: Aligned<T6<W>>,
+    bj: Aligned<V3<W>>,
+    df_dq: Aligned<T6<W>>,
+    df_dv: Aligned<T6<W>>,
     /// `∂τ/∂q` and `∂τ/∂v`, entry `(r, c)` at `r nv + c`.
-    pub(crate) dq: Vec<L<W>>,
-    pub(crate) dv: Vec<L<W>>,
+    pub(crate) dq: Aligned<L<W>>,
+    pub(crate) dv: Aligned<L<W>>,
 }
 
 impl<const W: usize> DerivPack<W> {
     /// The workspace for `model`'s shape.
     pub(crate) fn new(model: &Model) -> Self {
         let (n, nv) = (model.njoints(), model.nv());
-        let (z, zj, zk) = (L::zero(), vec![T6::zero(); n], vec![T6::zero(); nv]);
+        let (z, zj, zk) = (
+            L::zero(),
+            Aligned::new(T6::zero(), n),
+            Aligned::new(T6::zero(), nv),
+        );
         Self {
             vel: zj.clone(),
             acc0: zj.clone(),
@@ -53,17 +57,17 @@ impl<const W: usize> DerivPack<W> {
             acc_a: zj.clone(),
             force: zj.clone(),
             momentum: zj,
-            sym: vec![S3([z; 6]); n],
-            gravity: vec![V3::zero(); n],
+            sym: Aligned::new(S3([z; 6]), n),
+            gravity: Aligned::new(V3::zero(), n),
             dv_dq: zk.clone(),
             da_dq: zk.clone(),
             da_dv: zk.clone(),
             yj: zk.clone(),
-            bj: vec![V3::zero(); nv],
+            bj: Aligned::new(V3::zero(), nv),
             df_dq: zk.clone(),
             df_dv: zk,
-            dq: vec![z; nv * nv],
-            dv: vec![z; nv * nv],
+            dq: Aligned::new(z, nv * nv),
+            dv: Aligned::new(z, nv * nv),
         }
     }
 }

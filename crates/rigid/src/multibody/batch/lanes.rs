@@ -112,6 +112,99 @@ pub(crate) fn one_iteration_at_a_time() {
     }
 }
 
+/// `n` lane values (of [`L`] or types made of them) in one buffer that starts on a 64-byte
+/// cache line: a workspace of the kernels. In a `Vec` a buffer starts where the allocator puts
+/// it, 16-byte aligned, and with 8 lanes every lane vector (64 bytes) then straddles two cache
+/// lines, so each load and store of a number touches two: which buffers did depended on the
+/// order and sizes of the allocations before them, and the kernels' speed moved by 10 % with
+/// changes that touched no kernel (BENCHMARKS.md, "Lane buffers on cache lines"). Dereferences
+/// to a slice.
+pub(crate) struct Aligned<T: Copy> {
+    /// The storage, `n size_of::<T>()` bytes rounded up to whole lines.
+    lines: Vec<Line>,
+    n: usize,
+    _values: std::marker::PhantomData<T>,
+}
+
+/// A cache line of storage for [`Aligned`].
+#[derive(Clone, Copy)]
+#[repr(C, align(64))]
+struct Line([f64; 8]);
+
+impl<T: Copy> Aligned<T> {
+    /// `n` copies of `x`.
+    pub(crate) fn new(x: T, n: usize) -> Self {
+        const {
+            assert!(
+                std::mem::align_of::<T>() <= 64,
+                "a lane type aligned to at most a line"
+            );
+        }
+        let bytes = n * std::mem::size_of::<T>();
+        let mut lines = vec![Line([0.0; 8]); bytes.div_ceil(64)];
+        let at = lines.as_mut_ptr().cast::<T>();
+        for k in 0..n {
+            // SAFETY: `lines` holds `bytes = n size_of::<T>()` bytes or more, from a 64-byte
+            // boundary, and `T` is aligned to at most 64 bytes (asserted above), so element `k`
+            // is in bounds and aligned; a raw write, before any reference to a `T` exists.
+            unsafe { at.add(k).write(x) };
+        }
+        Self {
+            lines,
+            n,
+            _values: std::marker::PhantomData,
+        }
+    }
+}
+
+impl<T: Copy> std::ops::Deref for Aligned<T> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        // SAFETY: the first `n` elements were written by `new` (and since only through this
+        // slice or the mutable one, as values of `T`), in bounds and aligned as shown there.
+        unsafe { std::slice::from_raw_parts(self.lines.as_ptr().cast::<T>(), self.n) }
+    }
+}
+
+impl<T: Copy> std::ops::DerefMut for Aligned<T> {
+    fn deref_mut(&mut self) -> &mut [T] {
+        // SAFETY: as for `deref`, with `&mut self` borrowing the storage uniquely.
+        unsafe { std::slice::from_raw_parts_mut(self.lines.as_mut_ptr().cast::<T>(), self.n) }
+    }
+}
+
+impl<'a, T: Copy> IntoIterator for &'a Aligned<T> {
+    type Item = &'a T;
+    type IntoIter = std::slice::Iter<'a, T>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
+impl<'a, T: Copy> IntoIterator for &'a mut Aligned<T> {
+    type Item = &'a mut T;
+    type IntoIter = std::slice::IterMut<'a, T>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter_mut()
+    }
+}
+
+impl<T: Copy> Clone for Aligned<T> {
+    fn clone(&self) -> Self {
+        Self {
+            lines: self.lines.clone(),
+            n: self.n,
+            _values: std::marker::PhantomData,
+        }
+    }
+}
+
+impl<T: Copy + std::fmt::Debug> std::fmt::Debug for Aligned<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
 /// A 3-vector per lane.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct V3<const W: usize>(pub(crate) [L<W>; 3]);
@@ -571,6 +664,46 @@ impl<const W: usize> X<W> {
         Self {
             r: self.r.mul(&b.r),
             p: self.r.mul_v(&b.p) + self.p,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Aligned, L, T6};
+
+    /// Every buffer starts on a cache line, for any length and lane type, holds `n` copies of
+    /// its value, writes through, and clones into a buffer of its own, also on a line.
+    #[test]
+    fn aligned_buffers_start_on_a_cache_line() {
+        fn check<T: Copy + PartialEq + std::fmt::Debug>(x: T, y: T) {
+            for n in 0..20 {
+                let mut b = Aligned::new(x, n);
+                assert_eq!(b.as_ptr() as usize % 64, 0, "n {n}");
+                assert_eq!(b.len(), n);
+                assert!(b.iter().all(|v| *v == x));
+                if n > 0 {
+                    b[n - 1] = y;
+                }
+                let c = b.clone();
+                assert_eq!(c.as_ptr() as usize % 64, 0, "clone, n {n}");
+                assert!(n == 0 || c.as_ptr() != b.as_ptr());
+                assert_eq!(&c[..], &b[..]);
+                assert!(n == 0 || c[n - 1] == y);
+            }
+        }
+        check(L([1.0; 2]), L([2.0; 2]));
+        check(L([1.0; 4]), L([2.0; 4]));
+        check(L([1.0; 8]), L([2.0; 8]));
+        check([L([3.0; 8]); 2], [L([4.0; 8]); 2]);
+        let mut t = T6::<4>::zero();
+        *t.get_mut(5) = L([7.0; 4]);
+        for n in 0..20 {
+            let v = Aligned::new(t, n);
+            assert_eq!(v.as_ptr() as usize % 64, 0, "T6, n {n}");
+            assert!(v
+                .iter()
+                .all(|e| e.get(5) == L([7.0; 4]) && e.get(0) == L([0.0; 4])));
         }
     }
 }

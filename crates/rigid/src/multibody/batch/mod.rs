@@ -301,6 +301,9 @@ impl Batch {
                 nv: d.tau.len(),
             });
         }
+        for lanes in &mut self.lanes {
+            lanes.follow(model);
+        }
         if n == 0 || per == 0 {
             return Ok(());
         }

@@ -4,11 +4,11 @@
 //! `S q̇` with its bias terms.
 
 use super::derivatives::DerivPack;
-use super::lanes::{L, M3, S3, T6, V3, X};
+use super::lanes::{Aligned, L, M3, S3, T6, V3, X};
 use super::rows::Mirror;
 use crate::mass::SpatialInertia;
 use crate::multibody::Model;
-use crate::spatial::Mat3;
+use crate::spatial::{Mat3, Twist};
 
 /// The workspace of one pack of `W` states, made once per model (see
 /// [`Batch`](super::Batch)): the inputs and output transposed to lanes, and each algorithm's
@@ -16,27 +16,27 @@ use crate::spatial::Mat3;
 #[derive(Clone, Debug)]
 pub(crate) struct Pack<const W: usize> {
     /// `q` (nq lanes), `v` and the third input (`a` or `τ`), and the `nv` outputs.
-    pub(crate) q: Vec<L<W>>,
-    pub(crate) v: Vec<L<W>>,
-    pub(crate) x: Vec<L<W>>,
-    pub(crate) out: Vec<L<W>>,
+    pub(crate) q: Aligned<L<W>>,
+    pub(crate) v: Aligned<L<W>>,
+    pub(crate) x: Aligned<L<W>>,
+    pub(crate) out: Aligned<L<W>>,
     /// `S_k` per degree of freedom, in the child frame (the constant ones set once).
-    pub(crate) S: Vec<T6<W>>,
+    pub(crate) S: Aligned<T6<W>>,
     /// Per joint: `liMi` (RNEA, ABA: of the joints without a
     /// [`Turn`](super::pose::Turn)), the body's twist `V_i`, acceleration `A_i` (RNEA: with gravity; ABA:
     /// the bias `c_i` then the acceleration), wrench `F_i` (ABA: `p^A_i`).
-    pub(crate) X: Vec<X<W>>,
-    pub(crate) V: Vec<T6<W>>,
-    pub(crate) A: Vec<T6<W>>,
-    pub(crate) F: Vec<T6<W>>,
+    pub(crate) X: Aligned<X<W>>,
+    pub(crate) V: Aligned<T6<W>>,
+    pub(crate) A: Aligned<T6<W>>,
+    pub(crate) F: Aligned<T6<W>>,
     /// CRBA: per joint the pose in its tree's root frame and the composite inertia there; per
     /// dof the column `J_k` and the force `F_k = Ic J_k` in that frame; `M`'s lower triangle,
     /// packed by columns, and where the full matrices' entries are in it.
-    pub(crate) rX: Vec<X<W>>,
-    pub(crate) Ic: Vec<I3<W>>,
-    pub(crate) J: Vec<T6<W>>,
-    pub(crate) Fk: Vec<T6<W>>,
-    pub(crate) M: Vec<L<W>>,
+    pub(crate) rX: Aligned<X<W>>,
+    pub(crate) Ic: Aligned<I3<W>>,
+    pub(crate) J: Aligned<T6<W>>,
+    pub(crate) Fk: Aligned<T6<W>>,
+    pub(crate) M: Aligned<L<W>>,
     pub(crate) mirror: Mirror,
     /// Sines and cosines of joint angles, as each kernel keeps them (a kernel writes the entries
     /// it reads before it reads them, so the two uses do not meet): RNEA and ABA, per joint with
@@ -44,15 +44,18 @@ pub(crate) struct Pack<const W: usize> {
     /// `s e_K`, for the backward passes; CRBA and the RNEA derivatives, `(sin θ, cos θ)` per
     /// revolute joint below a root's child whose `X_T` is not a general rotation
     /// ([`turn_angles`](super::crba::turn_angles)).
-    pub(crate) sc: Vec<[L<W>; 2]>,
+    pub(crate) sc: Aligned<[L<W>; 2]>,
     /// ABA: per joint the articulated inertia `I^A_i` and `D⁻¹` (`nv x nv`, row-major); per
     /// dof `U_k = I^A S_k` and `u_k = τ_k − S_kᵀ p^A`.
-    pub(crate) IA: Vec<I6<W>>,
-    pub(crate) Dinv: Vec<[L<W>; 36]>,
-    pub(crate) U: Vec<T6<W>>,
-    pub(crate) u: Vec<L<W>>,
+    pub(crate) IA: Aligned<I6<W>>,
+    pub(crate) Dinv: Aligned<[L<W>; 36]>,
+    pub(crate) U: Aligned<T6<W>>,
+    pub(crate) u: Aligned<L<W>>,
     /// The RNEA derivatives' workspace, made on their first call.
     pub(crate) deriv: Option<Box<DerivPack<W>>>,
+    /// The constant motion subspaces `S` was set from (`Plan::dof_S` of the model it was made
+    /// for), to tell when another model of the same shape comes ([`Pack::follow`]).
+    dof_S: Vec<Twist>,
 }
 
 impl<const W: usize> Pack<W> {
@@ -61,27 +64,44 @@ impl<const W: usize> Pack<W> {
         let (n, nq, nv) = (model.njoints(), model.nq(), model.nv());
         let z = L::zero();
         Self {
-            q: vec![z; nq],
-            v: vec![z; nv],
-            x: vec![z; nv],
-            out: vec![z; nv],
-            S: (0..nv).map(|k| T6::splat(&model.plan().dof_S[k])).collect(),
-            X: vec![X::identity(); n],
-            V: vec![T6::zero(); n],
-            A: vec![T6::zero(); n],
-            F: vec![T6::zero(); n],
-            sc: vec![[z; 2]; n],
-            rX: vec![X::identity(); n],
-            Ic: vec![I3::zero(); n],
-            J: vec![T6::zero(); nv],
-            Fk: vec![T6::zero(); nv],
-            M: vec![z; nv * (nv + 1) / 2],
-            mirror: Mirror::new(nv),
-            IA: vec![I6::zero(); n],
-            Dinv: vec![[z; 36]; n],
-            U: vec![T6::zero(); nv],
-            u: vec![z; nv],
+            q: Aligned::new(z, nq),
+            v: Aligned::new(z, nv),
+            x: Aligned::new(z, nv),
+            out: Aligned::new(z, nv),
+            S: {
+                let mut S = Aligned::new(T6::zero(), nv);
+                for (Sk, c) in S.iter_mut().zip(&model.plan().dof_S) {
+                    *Sk = T6::splat(c);
+                }
+                S
+            },
+            X: Aligned::new(X::identity(), n),
+            V: Aligned::new(T6::zero(), n),
+            A: Aligned::new(T6::zero(), n),
+            F: Aligned::new(T6::zero(), n),
+            sc: Aligned::new([z; 2], n),
+            rX: Aligned::new(X::identity(), n),
+            Ic: Aligned::new(I3::zero(), n),
+            J: Aligned::new(T6::zero(), nv),
+            Fk: Aligned::new(T6::zero(), nv),
+            M: Aligned::new(z, nv * (nv + 1) / 2),
+            mirror: Mirror::of(model),
+            dof_S: model.plan().dof_S.clone(),
+            IA: Aligned::new(I6::zero(), n),
+            Dinv: Aligned::new([z; 36], n),
+            U: Aligned::new(T6::zero(), nv),
+            u: Aligned::new(z, nv),
             deriv: None,
+        }
+    }
+
+    /// Made anew for `model` when it has this workspace's shape ([`Pack::fits`]) but not the
+    /// model's tree or constant motion subspaces: those were set when the workspace was made
+    /// (`S`, and the zeros of `M` outside the subtrees, which CRBA never writes), and a batch
+    /// may be handed another model of the same shape (any two 6-joint arms).
+    pub(crate) fn follow(&mut self, model: &Model) {
+        if self.dof_S != model.plan().dof_S || !self.mirror.is_of(model) {
+            *self = Self::new(model);
         }
     }
 

@@ -314,26 +314,69 @@ unsafe fn transpose4_from(src: [*const f64; 4], dst: *mut f64, stride: usize, m:
 /// entry `(r, c)` of the row-major matrix is `packed_at(nv, max(r, c), min(r, c))`, made with
 /// each [`Pack`](super::pack::Pack) for [`symmetric_out`], which reads them four at a time
 /// (computed there, they were 4.6 % of a TALOS profile; with the table 0.99–1.07x the states/s
-/// on UR5, Panda, Solo-12 and TALOS, 3 interleaved rounds). Its fields are private and
-/// [`Mirror::new`] is its only maker, so every entry is below `nv (nv + 1) / 2`.
-#[derive(Clone, Debug)]
+/// on UR5, Panda, Solo-12 and TALOS, 3 interleaved rounds). The entries that the tree makes zero
+/// (row `r` of column `c` at or past the end of `c`'s subtree, which CRBA never writes) are all
+/// read from the first of them, one line of the cache that stays near, instead of each from its
+/// own place in the triangle: on TALOS (nv 38) 784 of the 1444 reads of a full matrix, and the
+/// triangle (47 KB in 8 lanes) does not fit in L1. Its fields are private and [`Mirror::new`]
+/// is its only maker, so every entry is below `nv (nv + 1) / 2`.
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Mirror {
     nv: usize,
+    /// Per column `c`, the end of its rows that the tree lets be non-zero (`c < ends[c] ≤ nv`).
+    ends: Vec<usize>,
     at: Vec<u32>,
 }
 
 impl Mirror {
-    /// The table for `nv x nv` matrices.
-    pub(crate) fn new(nv: usize) -> Self {
+    /// The table for `nv x nv` matrices whose column `c` is zero from row `ends[c]` on
+    /// (`nv = ends.len()`; an end is clamped to `c + 1..=nv`).
+    pub(crate) fn new(ends: &[usize]) -> Self {
+        let nv = ends.len();
+        let ends: Vec<usize> = ends
+            .iter()
+            .enumerate()
+            .map(|(c, &e)| e.clamp(c + 1, nv))
+            .collect();
+        let zero = (0..nv).find_map(|c| (ends[c] < nv).then(|| packed_at(nv, ends[c], c)));
         let index = |k: usize| {
             let (r, c) = (k / nv, k % nv);
-            u32::try_from(packed_at(nv, r.max(c), r.min(c)))
+            let (hi, lo) = (r.max(c), r.min(c));
+            let e = match zero {
+                Some(z) if hi >= ends[lo] => z,
+                _ => packed_at(nv, hi, lo),
+            };
+            u32::try_from(e)
                 .expect("a packed triangle of fewer than 2³² entries (the pack's `M` holds them)")
         };
         Self {
             nv,
             at: (0..nv * nv).map(index).collect(),
+            ends,
         }
+    }
+
+    /// The table of `model`'s mass matrices: column `k` ends where the subtree of `k`'s joint
+    /// does.
+    pub(crate) fn of(model: &Model) -> Self {
+        let ends: Vec<usize> = (0..model.nv()).map(|k| Self::end(model, k)).collect();
+        Self::new(&ends)
+    }
+
+    /// Whether this is the table of `model`'s mass matrices ([`Mirror::of`]).
+    pub(crate) fn is_of(&self, model: &Model) -> bool {
+        self.ends.len() == model.nv()
+            && self
+                .ends
+                .iter()
+                .enumerate()
+                .all(|(k, &e)| e == Self::end(model, k))
+    }
+
+    /// Where column `k` of `model`'s mass matrix ends: at the end of the subtree of `k`'s joint.
+    fn end(model: &Model, k: usize) -> usize {
+        let plan = model.plan();
+        plan.subtree_end_v[plan.dof_joint[k]]
     }
 }
 
@@ -488,7 +531,7 @@ mod tests {
                 .collect();
             for m in 0..=W {
                 let mut dst = vec![f64::NAN; W * nv * nv + 2];
-                symmetric_out(&packed, &Mirror::new(nv), m, &mut dst, native);
+                symmetric_out(&packed, &Mirror::new(&vec![nv; nv]), m, &mut dst, native);
                 for (k, y) in dst.iter().enumerate() {
                     let (l, r, c) = (
                         k / (nv * nv).max(1),
@@ -503,6 +546,61 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// `symmetric_out` with a tree's zeros (column `c` non-zero down to row `ends[c]`): the
+    /// zeros come out zero, read from one entry, and every other entry from its own place.
+    fn symmetric_with_zeros<const W: usize>(native: bool) {
+        for nv in 1..=13 {
+            let ends: Vec<usize> = (0..nv).map(|c| (c + 1 + (c * 7) % 4).min(nv)).collect();
+            let nonzero = |r: usize, c: usize| r.max(c) < ends[r.min(c)];
+            let packed: Vec<L<W>> = (0..nv * (nv + 1) / 2)
+                .map(|e| {
+                    // column `c` and row `r` of entry `e`
+                    let c = (0..nv).rfind(|&c| packed_at(nv, c, c) <= e).unwrap();
+                    let r = c + e - packed_at(nv, c, c);
+                    let x = |l: usize| {
+                        if nonzero(r, c) {
+                            (100 * e + l + 1) as f64
+                        } else {
+                            0.0
+                        }
+                    };
+                    L(std::array::from_fn(x))
+                })
+                .collect();
+            let mirror = Mirror::new(&ends);
+            for m in 0..=W {
+                let mut dst = vec![f64::NAN; W * nv * nv];
+                symmetric_out(&packed, &mirror, m, &mut dst, native);
+                for (k, y) in dst.iter().enumerate() {
+                    let (l, r, c) = (k / (nv * nv), k / nv % nv, k % nv);
+                    if l >= m {
+                        assert!(y.is_nan(), "W {W}, nv {nv}, m {m}: [{k}] written");
+                    } else if nonzero(r, c) {
+                        let e = packed_at(nv, r.max(c), r.min(c));
+                        assert_eq!(*y, (100 * e + l + 1) as f64, "W {W}, nv {nv}, m {m}, [{k}]");
+                    } else {
+                        assert_eq!(*y, 0.0, "W {W}, nv {nv}, m {m}, [{k}] ({r}, {c})");
+                    }
+                }
+            }
+            // the zeros are all read from one entry
+            let at: std::collections::BTreeSet<u32> = (0..nv * nv)
+                .filter(|&k| !nonzero(k / nv, k % nv))
+                .map(|k| mirror.at[k])
+                .collect();
+            assert!(at.len() <= 1, "nv {nv}: zeros read from {at:?}");
+        }
+    }
+
+    #[test]
+    fn symmetric_out_reads_a_trees_zeros_from_one_entry() {
+        symmetric_with_zeros::<2>(false);
+        for native in natives() {
+            symmetric_with_zeros::<4>(native);
+            symmetric_with_zeros::<8>(native);
         }
     }
 
