@@ -12,7 +12,7 @@ use crate::spatial::{Mat3, Twist};
 
 /// The workspace of one pack of `W` states, made once per model (see
 /// [`Batch`](super::Batch)): the inputs and output transposed to lanes, and each algorithm's
-/// per-joint quantities.
+/// per-joint quantities, each buffer starting on a cache line ([`Aligned`]).
 #[derive(Clone, Debug)]
 pub(crate) struct Pack<const W: usize> {
     /// `q` (nq lanes), `v` and the third input (`a` or `τ`), and the `nv` outputs.
