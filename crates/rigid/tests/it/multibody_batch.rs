@@ -243,17 +243,17 @@ fn batch_results_equal_single_calls_for_every_width_and_joint_type() {
     eprintln!("largest relative differences: {}", sci(&largest));
 }
 
-/// Four revolute joints, as a chain or all on the root, about `axes` (as many as joints).
-fn four_joints(chain: bool, axes: [Vec3; 4], seed: u64) -> Model {
+/// Joints of these types, as a chain or all on the first joint.
+fn joints_of(chain: bool, kinds: &[JointType], seed: u64) -> Model {
     let mut rng = Rng::new(seed);
-    let mut b = ModelBuilder::new(if chain { "chain" } else { "star" });
+    let mut b = ModelBuilder::new(&format!("{}_{seed}", if chain { "chain" } else { "star" }));
     let mut parent = None;
-    for (k, axis) in axes.into_iter().enumerate() {
+    for (k, &kind) in kinds.iter().enumerate() {
         let id = b
             .add_joint(
                 parent,
                 &format!("j{k}"),
-                JointType::Revolute { axis },
+                kind,
                 common::transform(&mut rng),
                 common::inertia(&mut rng),
             )
@@ -265,35 +265,102 @@ fn four_joints(chain: bool, axes: [Vec3; 4], seed: u64) -> Model {
     b.build().unwrap()
 }
 
+/// ABA's derivatives of a batch made for `first` and run on it, then given `model`, against
+/// single calls on `model`: the largest relative difference.
+fn aba_derivatives_after(first: &Model, model: &Model, n: usize) -> f64 {
+    let (nq, nv) = (model.nq(), model.nv());
+    let (qs, vs, taus) = states(model, n, 9);
+    let mut b = batch::Batch::new(first);
+    let [mut dq, mut dv, mut dt] = [0, 1, 2].map(|_| vec![f64::NAN; n * nv * nv]);
+    let mut worst = 0.0f64;
+    for m in [first, model] {
+        b.aba_derivatives(m, &qs, &vs, &taus, &mut dq, &mut dv, &mut dt)
+            .unwrap();
+    }
+    let mut data = Data::new(model);
+    for k in 0..n {
+        let (q, v, t) = (
+            &qs[k * nq..][..nq],
+            &vs[k * nv..][..nv],
+            &taus[k * nv..][..nv],
+        );
+        let d = aba_derivatives(model, &mut data, q, v, t).unwrap();
+        // row-major blocks against the column-major matrices
+        for (out, m) in [(&dq, &d.dqdd_dq), (&dv, &d.dqdd_dv), (&dt, &d.dqdd_dtau)] {
+            let single: Vec<f64> = m.transpose().iter().copied().collect();
+            worst = worst.max(rel(&out[k * nv * nv..][..nv * nv], &single));
+        }
+    }
+    worst
+}
+
 /// A batch made for one model and then given another of the same shape (`nq`, `nv`, joints)
-/// but another tree and other joint axes computes that model's results, as single calls do:
-/// its workspaces keep nothing of the first model (the constant motion subspaces, and the mass
-/// matrix's entries outside the subtrees, which the kernel never writes).
+/// computes that model's results, as single calls do: its workspaces keep nothing of the first
+/// model (the constant motion subspaces, the tree of the derivatives, the mass matrix's entries
+/// outside the subtrees, which the kernel never writes). Pairs that differ in the tree and the
+/// axes, in the axes only, in the tree only, and in which joint's subspace varies.
 #[test]
 fn a_batch_given_another_model_of_the_same_shape_computes_that_model() {
-    let chain = four_joints(true, [Vec3::z(), Vec3::y(), Vec3::y(), Vec3::x()], 1);
-    let unit = |x: f64, y: f64, z: f64| Vec3::new(x, y, z).normalize();
-    let star = four_joints(
-        false,
-        [
-            unit(1.0, 2.0, 3.0),
-            Vec3::x(),
-            unit(-1.0, 0.5, 0.2),
-            Vec3::z(),
-        ],
-        2,
-    );
-    assert_eq!(
-        (chain.nq(), chain.nv(), chain.njoints()),
-        (star.nq(), star.nv(), star.njoints())
-    );
-    for width in [2, 4, 8] {
-        for (first, then) in [(&chain, &star), (&star, &chain)] {
-            let e = worst_after(first, then, width, 2 * width + 1, 3);
-            assert_close(
-                &format!("{} after {} ({width} lanes)", then.name(), first.name()),
-                e,
-            );
+    let r = |x: f64, y: f64, z: f64| JointType::Revolute {
+        axis: Vec3::new(x, y, z).normalize(),
+    };
+    let (z, y, x) = (r(0.0, 0.0, 1.0), r(0.0, 1.0, 0.0), r(1.0, 0.0, 0.0));
+    let (a1, a2) = (Vec3::new(1.0, 2.0, 3.0).normalize(), Vec3::x());
+    let universal = |axis1, axis2| JointType::Universal { axis1, axis2 };
+    let pairs = [
+        // another tree and other axes
+        (
+            joints_of(true, &[z, y, y, x], 1),
+            joints_of(false, &[r(1.0, 2.0, 3.0), x, r(-1.0, 0.5, 0.2), z], 2),
+        ),
+        // the same chain about other axes
+        (
+            joints_of(true, &[z, y, y, x], 3),
+            joints_of(true, &[r(1.0, 2.0, 3.0), x, r(-1.0, 0.5, 0.2), z], 3),
+        ),
+        // the same axes on another tree
+        (
+            joints_of(true, &[z, y, y, x], 4),
+            joints_of(false, &[z, y, y, x], 4),
+        ),
+        // a universal joint at the root, then below it: the same constant columns
+        (
+            joints_of(true, &[universal(a1, a2), r(0.0, 0.6, 0.8)], 5),
+            joints_of(
+                true,
+                &[
+                    JointType::Revolute { axis: a1 },
+                    universal(a2, Vec3::new(0.0, 0.6, 0.8)),
+                ],
+                5,
+            ),
+        ),
+    ];
+    for (one, other) in &pairs {
+        assert_eq!(
+            (one.nq(), one.nv(), one.njoints()),
+            (other.nq(), other.nv(), other.njoints())
+        );
+        for width in [2, 4, 8] {
+            for (first, then) in [(one, other), (other, one)] {
+                let e = worst_after(first, then, width, 2 * width + 1, 3);
+                assert_close(
+                    &format!("{} after {} ({width} lanes)", then.name(), first.name()),
+                    e,
+                );
+            }
+        }
+        let universal = |m: &Model| m.joints().iter().any(|j| j.kind.nv() == 2);
+        if !universal(one) {
+            for (first, then) in [(one, other), (other, one)] {
+                let e = aba_derivatives_after(first, then, 5);
+                assert!(
+                    e <= DERIVATIVES_TOLERANCE,
+                    "{} after {}: ABA derivatives {e:e}",
+                    then.name(),
+                    first.name()
+                );
+            }
         }
     }
 }

@@ -126,10 +126,11 @@ pub(crate) struct Aligned<T: Copy> {
     _values: std::marker::PhantomData<T>,
 }
 
-/// A cache line of storage for [`Aligned`].
+/// A cache line of storage for [`Aligned`], copied as bytes that may be uninitialized (a lane
+/// type's padding, if one had any), never read as numbers.
 #[derive(Clone, Copy)]
 #[repr(C, align(64))]
-struct Line([f64; 8]);
+struct Line([std::mem::MaybeUninit<u64>; 8]);
 
 impl<T: Copy> Aligned<T> {
     /// `n` copies of `x`.
@@ -140,8 +141,10 @@ impl<T: Copy> Aligned<T> {
                 "a lane type aligned to at most a line"
             );
         }
-        let bytes = n * std::mem::size_of::<T>();
-        let mut lines = vec![Line([0.0; 8]); bytes.div_ceil(64)];
+        let bytes = n
+            .checked_mul(std::mem::size_of::<T>())
+            .expect("a lane buffer of fewer than usize::MAX bytes");
+        let mut lines = vec![Line([std::mem::MaybeUninit::uninit(); 8]); bytes.div_ceil(64)];
         let at = lines.as_mut_ptr().cast::<T>();
         for k in 0..n {
             // SAFETY: `lines` holds `bytes = n size_of::<T>()` bytes or more, from a 64-byte

@@ -48,7 +48,7 @@ mod rnea;
 mod rows;
 mod simd;
 
-use super::{check_q, check_v, Data, Model, MultibodyError};
+use super::{check_q, check_v, Data, JointId, JointType, Model, MultibodyError};
 use crate::error::DimensionError;
 pub use calls::{
     aba_batch, aba_derivatives_batch, crba_batch, crba_lower_batch, rnea_batch,
@@ -56,6 +56,11 @@ pub use calls::{
 };
 use rayon::prelude::*;
 use simd::{Algo, Lanes};
+
+/// Each joint's parent and type (with its axes): what [`Batch::follow`] compares.
+fn joints(model: &Model) -> Vec<(Option<JointId>, JointType)> {
+    model.joints().iter().map(|j| (j.parent, j.kind)).collect()
+}
 
 /// Tasks per rayon thread: a few, so that a slow thread can be helped, each with its own
 /// workspaces.
@@ -106,6 +111,8 @@ fn count(
 pub struct Batch {
     datas: Vec<Data>,
     lanes: Vec<Lanes>,
+    /// The joints (parent, type) of the model the workspaces were made for ([`Batch::follow`]).
+    joints: Vec<(Option<JointId>, JointType)>,
     /// The caller's velocity order (empty: rigid's) and a buffer per task to reorder through.
     order: rows::Order,
     scratch: Vec<Vec<f64>>,
@@ -134,9 +141,36 @@ impl Batch {
                 .into_par_iter()
                 .map(|_| Lanes::new(model, width))
                 .collect(),
+            joints: joints(model),
             order: rows::Order::default(),
             scratch: vec![Vec::new(); tasks],
         }
+    }
+
+    /// The workspaces made anew for `model` when it has their shape (`nq`, `nv`, joints) but
+    /// not the joints (parents, types, axes) of the model they were made for: they keep what
+    /// they took from it when made (the constant motion subspaces, the tree of the derivatives,
+    /// the entries of `M` outside the subtrees, which CRBA never writes), and a batch may be
+    /// handed any model of its shape (any two 6-joint arms). Another shape is left to the
+    /// checks that refuse it.
+    fn follow(&mut self, model: &Model) {
+        let same = self.joints.len() == model.njoints()
+            && self
+                .joints
+                .iter()
+                .zip(model.joints())
+                .all(|(j, m)| *j == (m.parent, m.kind));
+        if same || !self.lanes.iter().all(|l| l.fits(model)) {
+            return;
+        }
+        let width = self.lanes();
+        for data in &mut self.datas {
+            *data = Data::new(model);
+        }
+        for lanes in &mut self.lanes {
+            *lanes = Lanes::new(model, width);
+        }
+        self.joints = joints(model);
     }
 
     /// This batch for states whose velocity-space numbers are in another order than rigid's:
@@ -301,9 +335,7 @@ impl Batch {
                 nv: d.tau.len(),
             });
         }
-        for lanes in &mut self.lanes {
-            lanes.follow(model);
-        }
+        self.follow(model);
         if n == 0 || per == 0 {
             return Ok(());
         }
@@ -439,6 +471,7 @@ impl Batch {
             return Ok(());
         }
         self.order.fits(model.nv)?;
+        self.follow(model);
         let per_task = per_task(n, self.datas.len());
         let (nv, order) = (model.nv, &self.order);
         let blocks = dqdd_dq

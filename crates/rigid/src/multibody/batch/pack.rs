@@ -8,7 +8,7 @@ use super::lanes::{Aligned, L, M3, S3, T6, V3, X};
 use super::rows::Mirror;
 use crate::mass::SpatialInertia;
 use crate::multibody::Model;
-use crate::spatial::{Mat3, Twist};
+use crate::spatial::Mat3;
 
 /// The workspace of one pack of `W` states, made once per model (see
 /// [`Batch`](super::Batch)): the inputs and output transposed to lanes, and each algorithm's
@@ -53,9 +53,6 @@ pub(crate) struct Pack<const W: usize> {
     pub(crate) u: Aligned<L<W>>,
     /// The RNEA derivatives' workspace, made on their first call.
     pub(crate) deriv: Option<Box<DerivPack<W>>>,
-    /// The constant motion subspaces `S` was set from (`Plan::dof_S` of the model it was made
-    /// for), to tell when another model of the same shape comes ([`Pack::follow`]).
-    dof_S: Vec<Twist>,
 }
 
 impl<const W: usize> Pack<W> {
@@ -86,22 +83,11 @@ impl<const W: usize> Pack<W> {
             Fk: Aligned::new(T6::zero(), nv),
             M: Aligned::new(z, nv * (nv + 1) / 2),
             mirror: Mirror::of(model),
-            dof_S: model.plan().dof_S.clone(),
             IA: Aligned::new(I6::zero(), n),
             Dinv: Aligned::new([z; 36], n),
             U: Aligned::new(T6::zero(), nv),
             u: Aligned::new(z, nv),
             deriv: None,
-        }
-    }
-
-    /// Made anew for `model` when it has this workspace's shape ([`Pack::fits`]) but not the
-    /// model's tree or constant motion subspaces: those were set when the workspace was made
-    /// (`S`, and the zeros of `M` outside the subtrees, which CRBA never writes), and a batch
-    /// may be handed another model of the same shape (any two 6-joint arms).
-    pub(crate) fn follow(&mut self, model: &Model) {
-        if self.dof_S != model.plan().dof_S || !self.mirror.is_of(model) {
-            *self = Self::new(model);
         }
     }
 

@@ -320,11 +320,9 @@ unsafe fn transpose4_from(src: [*const f64; 4], dst: *mut f64, stride: usize, m:
 /// own place in the triangle: on TALOS (nv 38) 784 of the 1444 reads of a full matrix, and the
 /// triangle (47 KB in 8 lanes) does not fit in L1. Its fields are private and [`Mirror::new`]
 /// is its only maker, so every entry is below `nv (nv + 1) / 2`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub(crate) struct Mirror {
     nv: usize,
-    /// Per column `c`, the end of its rows that the tree lets be non-zero (`c < ends[c] ≤ nv`).
-    ends: Vec<usize>,
     at: Vec<u32>,
 }
 
@@ -352,31 +350,17 @@ impl Mirror {
         Self {
             nv,
             at: (0..nv * nv).map(index).collect(),
-            ends,
         }
     }
 
     /// The table of `model`'s mass matrices: column `k` ends where the subtree of `k`'s joint
     /// does.
     pub(crate) fn of(model: &Model) -> Self {
-        let ends: Vec<usize> = (0..model.nv()).map(|k| Self::end(model, k)).collect();
-        Self::new(&ends)
-    }
-
-    /// Whether this is the table of `model`'s mass matrices ([`Mirror::of`]).
-    pub(crate) fn is_of(&self, model: &Model) -> bool {
-        self.ends.len() == model.nv()
-            && self
-                .ends
-                .iter()
-                .enumerate()
-                .all(|(k, &e)| e == Self::end(model, k))
-    }
-
-    /// Where column `k` of `model`'s mass matrix ends: at the end of the subtree of `k`'s joint.
-    fn end(model: &Model, k: usize) -> usize {
         let plan = model.plan();
-        plan.subtree_end_v[plan.dof_joint[k]]
+        let ends: Vec<usize> = (0..model.nv())
+            .map(|k| plan.subtree_end_v[plan.dof_joint[k]])
+            .collect();
+        Self::new(&ends)
     }
 }
 
@@ -413,7 +397,7 @@ pub(super) fn symmetric_out<const W: usize>(
                 let e = &row[c..c + 4];
                 let entries = [e[0], e[1], e[2], e[3]].map(|e| e as usize);
                 for h in (0..m).step_by(4) {
-                    // SAFETY: each entry `< packed.len()` (`Mirror::new(nv)`, the only maker of a
+                    // SAFETY: each entry `< packed.len()` (`Mirror::new`, the only maker of a
                     // `Mirror`, stores `packed_at` of an `(r, c)` with `r ≥ c`, both `< nv`;
                     // `packed.len()` asserted above) is `W ≥ h + 4` lanes; matrix `h + l < m`
                     // holds `(r, c..c + 4)` at `(h + l) per + r nv + c`, `c + 4 ≤ nv`, in

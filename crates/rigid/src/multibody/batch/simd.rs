@@ -115,16 +115,6 @@ impl Lanes {
         }
     }
 
-    /// [`Pack::follow`]: made anew for `model` if it has the shape but not the tree or the
-    /// constant subspaces of the model the workspace was made for.
-    pub(crate) fn follow(&mut self, model: &Model) {
-        match self {
-            Self::W2(p) => p.follow(model),
-            Self::W4(p) => p.follow(model),
-            Self::W8(p) => p.follow(model),
-        }
-    }
-
     /// `algo` for the `count` states from `first` on of the row-major inputs (`xs` is `a` or
     /// `τ`, and with `vs` empty for CRBA), written to `out` (`count` blocks of
     /// [`Algo::per_state`]; the derivatives' `∂τ/∂v` to `out2`, empty for the others), a pack
