@@ -106,6 +106,8 @@ pub struct Data {
     /// `[sin q_k, cos q_k]` for the entries `k` of `q` listed in `Model::chain_angles`, written
     /// by the first pass of CRBA, `M⁻¹` and the RNEA derivatives (the other entries are unused).
     pub(crate) sin_cos: Vec<[f64; 2]>,
+    /// The joints of the model this was made for (`Plan::joints_key`), checked by every call.
+    pub(crate) joints_key: u64,
     pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,
     /// Composite inertias in the world frame (the Coriolis matrix).
@@ -178,6 +180,7 @@ impl Data {
             root_placements: vec![Transform::identity(); n],
             dof_J: vec![Twist::zero(); nv],
             sin_cos: vec![[0.0; 2]; model.nq()],
+            joints_key: model.plan().joints_key,
             u: DVector::zeros(nv),
             spatial_velocities: vec![Twist::zero(); n],
             world_inertias: vec![SpatialInertia::zero(); n],

@@ -206,8 +206,9 @@ pub enum MultibodyError {
     /// The mass matrix is not positive definite (Cholesky failed).
     #[error("mass matrix is not positive definite")]
     NotPositiveDefinite,
-    /// A [`Data`] made for another model (different numbers of joints, configuration
-    /// coordinates or degrees of freedom).
+    /// A [`Data`] made for another model: different numbers of joints, configuration
+    /// coordinates or degrees of freedom, or other joints (parents, types, axes), whose
+    /// constant motion subspaces and tree it holds.
     #[error("data was made for another model ({njoints} joints, nq = {nq}, nv = {nv})")]
     DataMismatch {
         /// Joints the data was made for.
@@ -261,6 +262,7 @@ pub(crate) fn check_data(model: &Model, data: &Data) -> Result<(), MultibodyErro
         || data.tau.len() != model.nv
         || data.sin_cos.len() != model.nq
         || data.frame_placements.len() != model.frames.len()
+        || data.joints_key != model.plan().joints_key
     {
         return Err(MultibodyError::DataMismatch {
             njoints: data.placements.len(),

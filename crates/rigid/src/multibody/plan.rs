@@ -75,12 +75,24 @@ pub(crate) struct Plan {
     pub(crate) chain_angles: Vec<usize>,
     /// Per body: its inertia's principal form, `None` when it has none.
     pub(crate) principal: Vec<Option<PrincipalForm>>,
+    /// A digest of the joints (each one's parent and type, axes included), which a
+    /// [`Data`](super::Data) keeps to refuse a model of its shape with other joints: it holds
+    /// their constant motion subspaces and the derivatives' tree from when it was made.
+    pub(crate) joints_key: u64,
 }
 
 impl Plan {
     /// The plan of a model with these joints (depth-first) and body inertias.
     pub(crate) fn new(joints: &[Joint], inertias: &[SpatialInertia]) -> Self {
         let mut plan = Self {
+            joints_key: {
+                use std::hash::{Hash, Hasher};
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                for j in joints {
+                    format!("{:?} {:?}", j.parent, j.kind).hash(&mut h);
+                }
+                h.finish()
+            },
             dof_S: Vec::new(),
             dof_joint: Vec::new(),
             dof_axis: Vec::new(),

@@ -569,3 +569,70 @@ fn data_of_another_nq_is_a_data_mismatch() {
         Err(MultibodyError::DataMismatch { .. })
     ));
 }
+
+/// A `Data` made for a model of the same shape (joints, nq, nv) but other joints is refused
+/// with `DataMismatch`: the same elbow about another axis, and the same joints on another tree.
+/// It holds the constant motion subspaces and the derivatives' tree of the model it was made
+/// for, which would otherwise give the new model's calls the old model's axes.
+#[test]
+fn data_of_other_joints_of_the_same_shape_is_a_data_mismatch() {
+    use rigid::mass::SpatialInertia;
+    use rigid::spatial::{Mat3, Transform, Vec3};
+    let model = |axes: [Vec3; 3], chain: bool| {
+        let mut b = ModelBuilder::new("three");
+        let body = SpatialInertia::from_com(
+            1.0,
+            Vec3::new(0.1, 0.0, 0.0),
+            rigid::mass::RotationalInertia::diagonal(0.01, 0.02, 0.03),
+        );
+        let at = Transform::new(Mat3::identity(), Vec3::new(0.3, 0.0, 0.0));
+        let root = b
+            .add_joint(
+                None,
+                "root",
+                JointType::Revolute { axis: axes[0] },
+                at,
+                body,
+            )
+            .unwrap();
+        let one = b
+            .add_joint(
+                Some(root),
+                "one",
+                JointType::Revolute { axis: axes[1] },
+                at,
+                body,
+            )
+            .unwrap();
+        let parent = if chain { one } else { root };
+        b.add_joint(
+            Some(parent),
+            "two",
+            JointType::Revolute { axis: axes[2] },
+            at,
+            body,
+        )
+        .unwrap();
+        b.build().unwrap()
+    };
+    let chain = model([Vec3::z(), Vec3::y(), Vec3::y()], true);
+    let other_axis = model([Vec3::z(), Vec3::x(), Vec3::y()], true);
+    let star = model([Vec3::z(), Vec3::y(), Vec3::y()], false);
+    let mut data = Data::new(&chain);
+    let (q, v) = (vec![0.3; 3], vec![0.2; 3]);
+    // the same model, rebuilt, is the same joints
+    let again = model([Vec3::z(), Vec3::y(), Vec3::y()], true);
+    assert!(aba(&again, &mut data, &q, &v, &v).is_ok());
+    for other in [&other_axis, &star] {
+        assert!(matches!(
+            aba(other, &mut data, &q, &v, &v),
+            Err(MultibodyError::DataMismatch { .. })
+        ));
+        assert!(matches!(
+            rnea_derivatives(other, &mut data, &q, &v, &v),
+            Err(MultibodyError::DataMismatch { .. })
+        ));
+        // a data of its own gives its numbers
+        assert!(aba(other, &mut Data::new(other), &q, &v, &v).is_ok());
+    }
+}
