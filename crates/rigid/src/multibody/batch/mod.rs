@@ -48,7 +48,7 @@ mod rnea;
 mod rows;
 mod simd;
 
-use super::{check_q, check_v, Data, JointId, JointType, Model, MultibodyError};
+use super::{check_q, check_v, Data, Model, MultibodyError};
 use crate::error::DimensionError;
 pub use calls::{
     aba_batch, aba_derivatives_batch, crba_batch, crba_lower_batch, rnea_batch,
@@ -56,11 +56,6 @@ pub use calls::{
 };
 use rayon::prelude::*;
 use simd::{Algo, Lanes};
-
-/// Each joint's parent and type (with its axes): what [`Batch::follow`] compares.
-fn joints(model: &Model) -> Vec<(Option<JointId>, JointType)> {
-    model.joints().iter().map(|j| (j.parent, j.kind)).collect()
-}
 
 /// Tasks per rayon thread: a few, so that a slow thread can be helped, each with its own
 /// workspaces.
@@ -111,8 +106,9 @@ fn count(
 pub struct Batch {
     datas: Vec<Data>,
     lanes: Vec<Lanes>,
-    /// The joints (parent, type) of the model the workspaces were made for ([`Batch::follow`]).
-    joints: Vec<(Option<JointId>, JointType)>,
+    /// The joints of the model the workspaces were made for (`Plan::joints_key`, as a `Data`
+    /// keeps it), compared by [`Batch::follow`].
+    joints_key: u64,
     /// The caller's velocity order (empty: rigid's) and a buffer per task to reorder through.
     order: rows::Order,
     scratch: Vec<Vec<f64>>,
@@ -141,7 +137,7 @@ impl Batch {
                 .into_par_iter()
                 .map(|_| Lanes::new(model, width))
                 .collect(),
-            joints: joints(model),
+            joints_key: model.plan().joints_key,
             order: rows::Order::default(),
             scratch: vec![Vec::new(); tasks],
         }
@@ -154,13 +150,8 @@ impl Batch {
     /// handed any model of its shape (any two 6-joint arms). Another shape is left to the
     /// checks that refuse it.
     fn follow(&mut self, model: &Model) {
-        let same = self.joints.len() == model.njoints()
-            && self
-                .joints
-                .iter()
-                .zip(model.joints())
-                .all(|(j, m)| *j == (m.parent, m.kind));
-        if same || !self.lanes.iter().all(|l| l.fits(model)) {
+        let key = model.plan().joints_key;
+        if key == self.joints_key || !self.lanes.iter().all(|l| l.fits(model)) {
             return;
         }
         let width = self.lanes();
@@ -170,7 +161,7 @@ impl Batch {
         for lanes in &mut self.lanes {
             *lanes = Lanes::new(model, width);
         }
-        self.joints = joints(model);
+        self.joints_key = key;
     }
 
     /// This batch for states whose velocity-space numbers are in another order than rigid's:

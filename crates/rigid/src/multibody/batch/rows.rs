@@ -203,7 +203,8 @@ pub(super) fn transpose_out<const W: usize>(
 /// pack, in 4x4 blocks in registers ([`transpose4`]), then the last `per mod 4` entries one by
 /// one. Only for a pack in the CPU's own instructions (`Io::native`) of 4 or 8 lanes (the
 /// generic path, and a task's last pack when it is not full, go lane by lane through
-/// [`Pack::gather`](super::pack::Pack::gather)). Panics if `src` holds fewer than `(k + W) per` numbers.
+/// [`Pack::gather`](super::pack::Pack::gather)). Panics if `src` holds fewer than
+/// `(k + W) per` numbers.
 ///
 /// # Safety
 /// On x86-64 the CPU has AVX (the blocks are [`transpose4`]'s).
