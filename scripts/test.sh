@@ -10,9 +10,12 @@
 # whose MJCF files MuJoCo's cross-check loads), points RIGID_PYTHON at it, runs the Rust tests, then builds and installs the Python
 # module into the same environment (`pip install ./crates/rigid-py`, the README's command) and
 # runs its tests against Pinocchio. Nothing is installed into the system's Python. The live
-# checks also use a C compiler, rustfmt and a browser (`chromium`, which .ci/run installs).
+# checks also use a C compiler, rustfmt, a browser (`chromium`) and OpenBLAS: scripts/setup.sh,
+# run first, installs the system packages that are missing (apt-get, as root) or says which
+# ones to install and stops.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+bash scripts/setup.sh
 export PIP_DISABLE_PIP_VERSION_CHECK=1
 venv=target/test-venv
 requirements=scripts/requirements-test.txt
@@ -36,17 +39,10 @@ if ! sha256sum --status -c "$stamp" 2>/dev/null; then
     sha256sum "$requirements" "$mjcf_packages" > "$stamp"
 fi
 export RIGID_PYTHON="$python" RIGID_CROSSCHECK=1
-# the physically consistent identification (crate feature `sdp`) links OpenBLAS from the system:
-# tested when it is there (.ci/run installs it)
-features=()
-if pkg-config --exists openblas 2>/dev/null; then
-    features=(--features rigid/sdp,rigid-cli/sdp,rigid-py/sdp)
-    export MATURIN_PEP517_ARGS="--features sdp"
-else
-    echo "note: no OpenBLAS (pkg-config openblas): the physically consistent identification is" \
-        "not built nor tested; apt-get install libopenblas-dev libgfortran-12-dev pkg-config"
-fi
-cargo test --workspace ${features[@]+"${features[@]}"}
+# the physically consistent identification (crate feature `sdp`) links OpenBLAS from the system
+# (scripts/setup.sh installed it)
+export MATURIN_PEP517_ARGS="--features sdp"
+cargo test --workspace --features rigid/sdp,rigid-cli/sdp,rigid-py/sdp
 start=$(date +%s)
 "$python" -m pip install --quiet ./crates/rigid-py
 echo "pip install ./crates/rigid-py: $(($(date +%s) - start)) s"

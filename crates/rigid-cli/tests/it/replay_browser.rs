@@ -11,7 +11,8 @@
 //! - the PNG plot of the same run is not blank and has four panels.
 //!
 //! The PNG is checked in every run; the browser is a live check, run when `RIGID_CROSSCHECK=1`
-//! (`.ci/run` installs `chromium`; without it on the PATH the test fails, saying so).
+//! (`scripts/setup.sh`, run by the README's test command, installs `chromium`; without it on the
+//! PATH the test fails, saying so).
 
 #![cfg(unix)]
 
@@ -401,7 +402,7 @@ fn replay_page_shows_the_moving_robot_in_a_browser_without_errors_or_requests() 
     }
     let exe = chromium().expect(
         "no chromium on PATH: RIGID_CROSSCHECK=1 tests the replay page in a browser: \
-         `apt-get install chromium` (CI's .ci/run does)",
+         `apt-get install chromium` (bash scripts/test.sh does)",
     );
     let (dir, html, _) = simulate_arm("page");
 
