@@ -5,7 +5,9 @@ ground and coming to rest).
 Both step 3 s at dt = 1 ms with no control: MuJoCo with the file's own options (Euler, its
 default solver and pyramidal cones, the file's floor plane and every geom pair it collides, the
 timestep set to 1 ms); rigid with its time-stepping scheme (semi-implicit, PGS on the exact
-Coulomb cone, the ground `z = 0` against the model's geoms, no self-contact). The two solve
+Coulomb cone, the file's own floor and every geom pair MuJoCo collides; `--ground-flag` runs a
+rigid built before issue 47 with `--ground`: the ground `z = 0` against the model's geoms, no
+self-contact). The two solve
 different contact models (MuJoCo's soft convex one, rigid's hard complementarity one), so the
 ratio compares the cost of a step, not identical trajectories; the contacts at the end are
 printed for both. Reported: steps per second of the stepping loop (rigid's from its own summary
@@ -58,13 +60,18 @@ def mujoco_rate(path):
 
 def rigid_rate(rigid, path):
     out = subprocess.run(
-        [rigid, "simulate", str(path), "--ground", "--duration", str(SECONDS), "--dt", str(DT)],
+        [rigid, "simulate", str(path), *RIGID_GROUND, "--duration", str(SECONDS), "--dt", str(DT)],
         capture_output=True, text=True, check=True,
     ).stdout
     rate = float(re.search(r"\(([0-9.]+) steps/s\)", out).group(1))
     active = int(re.search(r"contacts at the end: (\d+) active", out).group(1))
     return rate, active
 
+
+# rigid reads the file's own floor and collides every geom pair MuJoCo does (since issue 47);
+# `--ground-flag` restores the older call for rigid builds before it (the ground z = 0 against
+# the geoms, no self-contact)
+RIGID_GROUND = []
 
 STANCE = [0, 0, 0.3, 0, 0, 0, 1, 0.1, 0.8, -1.6, -0.1, 0.8, -1.6, 0.1, -0.8, 1.6, -0.1, -0.8, 1.6]
 
@@ -171,7 +178,11 @@ def main():
     ap.add_argument("--rigid", default="target/release/rigid")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--only", choices=["solo", "mjcf"])
+    ap.add_argument("--ground-flag", action="store_true",
+                    help="pass --ground to rigid for the MJCF models (builds before issue 47)")
     args = ap.parse_args()
+    if args.ground_flag:
+        RIGID_GROUND.append("--ground")
     print(f"mujoco {mujoco.__version__}; {SECONDS} s at dt = {DT} s; median of {args.rounds}")
     print("| model | rigid steps/s | MuJoCo steps/s | rigid / MuJoCo time | contacts at the end (rigid, MuJoCo) |")
     print("| --- | --- | --- | --- | --- |")

@@ -2,17 +2,14 @@
 //! (a `rigid mass` TOML spec, [`body`]), chosen by the input.
 
 mod body;
-mod closed_loop;
-mod ground;
 mod plot;
 mod robot;
 mod robot_plot;
+mod world;
 
 use crate::load::LoadArgs;
 use clap::Args;
-use rigid::multibody::simulation::{
-    ControlKind, Integrator, JointLimits, SimulationError, TimeScaling,
-};
+use rigid::simulation::{ControlKind, Integrator, JointLimits, SimulationError, TimeScaling};
 use rigid::spatial::Vec3;
 use std::path::PathBuf;
 
@@ -68,13 +65,17 @@ pub struct SimulateArgs {
     pub pivot: Option<Vec3>,
     /// Robot or body: a ground plane `z = HEIGHT` (0 when no number is given), which the robot's
     /// collision geometry (URDF `<collision>`, MJCF geoms; meshes as convex hulls) touches with
-    /// Coulomb friction (contacts between the robot's own bodies are off). Steps with the
-    /// `semi-implicit` time-stepping scheme (rk4 is replaced, another integrator refused). A
-    /// floating robot starts set down on it (its lowest geometry touching), at --target when
-    /// given and no --q0; `--controller pd` then holds the stance with the torques that carry
-    /// its weight on the feet. A body spec (`.toml`) collides through its parts' shapes; its pose
-    /// is then --q0 (`x,y,z,qx,qy,qz,qw` of its CoM with the spec axes; default: set down), its
-    /// twist --omega and --velocity. A negative height is written `--ground=-0.5`.
+    /// Coulomb friction. An MJCF file's own `plane` is its ground without this flag (which then
+    /// refuses to add a second), and its geoms collide with each other as MuJoCo collides them
+    /// (`contype`/`conaffinity`, not parent and child, `<contact><exclude>` and `<pair>`); a
+    /// URDF's bodies touch each other only with --self-collision. Anything that can touch is
+    /// stepped by the `semi-implicit` time-stepping scheme (rk4 is replaced, variational
+    /// refused). A floating robot starts set down on the ground (its lowest geometry touching),
+    /// at --target when given and no --q0; `--controller pd` then holds the stance with the
+    /// torques that carry its weight on the feet. A body spec (`.toml`) collides through its
+    /// parts' shapes; its pose is then --q0 (`x,y,z,qx,qy,qz,qw` of its CoM with the spec axes;
+    /// default: set down), its twist --omega and --velocity. A negative height is written
+    /// `--ground=-0.5`.
     #[arg(
         long,
         num_args = 0..=1,
@@ -82,18 +83,22 @@ pub struct SimulateArgs {
         value_name = "HEIGHT"
     )]
     pub ground: Option<f64>,
-    /// Coulomb friction coefficient of the contacts with the ground (with --ground; default 0.8).
+    /// Coulomb friction coefficient of every contact (default: an MJCF file's geoms', else 0.8).
     #[arg(long, allow_hyphen_values = true, value_name = "MU")]
     pub friction: Option<f64>,
+    /// Robot (URDF): its bodies collide with each other (not parent with child); an MJCF file's
+    /// always do, as its masks say.
+    #[arg(long)]
+    pub self_collision: bool,
     /// Newton restitution of the contacts, in [0, 1] (with --ground; default 0: no bounce).
     #[arg(long, allow_hyphen_values = true, value_name = "E")]
     pub restitution: Option<f64>,
     /// Simulated time (s).
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub duration: f64,
-    /// Time step (s).
-    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
-    pub dt: f64,
+    /// Time step (s; default: an MJCF file's `<option timestep>`, else 0.001).
+    #[arg(long, allow_hyphen_values = true)]
+    pub dt: Option<f64>,
     /// `rk4` (the default for bodies and robots: explicit, 4th order, any force), `variational`
     /// (4th order, symplectic: no energy or momentum drift, 10-40 times the cost), `semi-implicit`
     /// (symplectic Euler, 1st order) or, for a body only, `lgvi` (the 2nd-order Lie-group
@@ -105,16 +110,20 @@ pub struct SimulateArgs {
         value_name = "rk4|variational|semi-implicit|lgvi"
     )]
     pub integrator: Integrator,
-    /// Robot: a closed loop (`{"constraints": [...]}` as `rigid eval --constraints`, or the MJCF
-    /// model's own file for its `<equality>` elements), simulated without torques by RKMK4 on
-    /// the constrained dynamics, projected back onto the constraints each step; prints the
-    /// largest violation and energy change; the CSV has `t`, q, v, `energy`,
-    /// `violation_position`, `violation_velocity`.
+    /// Robot: closed loops and welds (`{"constraints": [...]}` as `rigid eval --constraints`),
+    /// held exactly by the same step as everything else (contacts, limits, control): the
+    /// constrained dynamics under rk4, bilateral rows of the contact problem under the
+    /// time-stepping scheme, then a projection back onto the constraints each step. An MJCF
+    /// file's own `<equality>` elements are held without this flag. Prints the largest
+    /// violation; the CSV gains `violation_position` and `violation_velocity`.
     #[arg(long)]
     pub constraints: Option<PathBuf>,
-    /// Write one row per step to this CSV file (robot: `t`, then q, v and τ with joint-named
-    /// columns, then with --ground `contacts` (active contacts) and `normal_force` (the sum of
-    /// their normal forces, N); body: `t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz`).
+    /// Write one row per step to this CSV file. Robot: `t`, then q, v and τ with joint-named
+    /// columns, then `energy` (K + U, J); body: `t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz` (the
+    /// CoM frame's pose and body twist), with --ground then `energy`. When anything can touch,
+    /// then `contacts` (active contacts) and `normal_force` (the sum of their normal forces,
+    /// N); with constraints, then `violation_position` and `violation_velocity` (the largest
+    /// constraint error, m or rad, and its rate).
     #[arg(long)]
     pub csv: Option<PathBuf>,
     /// Draw a figure to this SVG or PNG file (robot: joint angles, velocities, torques and total
@@ -152,11 +161,16 @@ pub fn parse_list(s: &str) -> Result<Numbers, String> {
         .map(Numbers)
 }
 
-/// The number of steps for `--duration` and `--dt` ([`rigid::multibody::simulation::step_count`]),
+/// The number of steps for `--duration` and `--dt` ([`rigid::simulation::step_count`]),
 /// its errors naming the flags.
 fn step_count(args: &SimulateArgs) -> Result<u64, String> {
-    use rigid::multibody::simulation::{step_count, MAX_STEPS};
-    step_count(args.duration, args.dt).map_err(|e| match e {
+    step_count_dt(args.duration, args.dt.unwrap_or(1e-3))
+}
+
+/// [`step_count`] with the step `dt` (a file's own).
+fn step_count_dt(duration: f64, dt: f64) -> Result<u64, String> {
+    use rigid::simulation::{step_count, MAX_STEPS};
+    step_count(duration, dt).map_err(|e| match e {
         SimulationError::TimeStep { dt } => format!("--dt must be positive and finite, got {dt}"),
         SimulationError::Duration { duration } => {
             format!("--duration must be positive and finite, got {duration}")
@@ -212,7 +226,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         };
         return Err(format!("{flag} applies to {what}, not to {}", args.model));
     }
-    if args.ground.is_none() {
+    if body && args.ground.is_none() {
         if let Some(flag) = [
             ("--friction", args.friction),
             ("--restitution", args.restitution),
@@ -223,22 +237,13 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             return Err(format!("{flag} applies with --ground"));
         }
     }
-    if let Some(path) = &args.constraints {
-        let other = [
-            ("a body spec (.toml)", body),
-            ("--ground", args.ground.is_some()),
-            ("--controller", args.controller != ControlKind::None),
-            ("--integrator", args.integrator != Integrator::Rk4),
-            ("--plot", args.plot.is_some()),
-            ("--html", args.html.is_some()),
-        ];
-        if let Some((what, _)) = other.iter().find(|(_, given)| *given) {
-            return Err(format!(
-                "--constraints: not with {what} (a closed loop is simulated without torques, by \
-                 RKMK4 on the constrained dynamics)"
-            ));
-        }
-        return closed_loop::run(args, path);
+    if body && (args.constraints.is_some() || args.self_collision) {
+        let flag = if args.self_collision {
+            "--self-collision"
+        } else {
+            "--constraints"
+        };
+        return Err(format!("{flag} applies to a robot, not to {}", args.model));
     }
     if body && args.ground.is_none() {
         body::run(args)

@@ -11,7 +11,7 @@ use rigid::io::spec::{parse_spec, read_spec, SpecError};
 use rigid::mass::{
     Compound, MassProperties, RotationalInertia, SpatialInertia, DEFAULT_INERTIA_TOLERANCE,
 };
-use rigid::multibody::simulation::step_count;
+use rigid::simulation::step_count;
 use rigid::spatial::{so3, Mat3, Vec3};
 use std::path::{Path, PathBuf};
 

@@ -283,6 +283,28 @@ impl ConstraintData {
     }
 }
 
+/// The library's constraints of `constraints`, each made for the model of `core`.
+pub(crate) fn rigid_constraints(
+    func: &str,
+    core: &ModelCore,
+    constraints: &[PyRef<'_, ConstraintModel>],
+) -> PyResult<Vec<cs::ConstraintModel>> {
+    constraints
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            if c.model.id == core.id {
+                Ok(c.inner.clone())
+            } else {
+                Err(value_error(
+                    func,
+                    format!("constraint {i} was made for another model"),
+                ))
+            }
+        })
+        .collect()
+}
+
 #[pymethods]
 impl ConstraintData {
     #[new]
@@ -291,16 +313,7 @@ impl ConstraintData {
         constraints: Vec<PyRef<'_, ConstraintModel>>,
     ) -> PyResult<Self> {
         let core = &model.inner;
-        let mut set = Vec::with_capacity(constraints.len());
-        for (i, c) in constraints.iter().enumerate() {
-            if c.model.id != core.id {
-                return Err(value_error(
-                    "ConstraintData",
-                    format!("constraint {i} was made for another model"),
-                ));
-            }
-            set.push(c.inner.clone());
-        }
+        let set = rigid_constraints("ConstraintData", core, &constraints)?;
         Ok(Self {
             inner: cs::ConstraintData::new(&core.model, &set)
                 .map_err(|e| value_error("ConstraintData", e))?,

@@ -14,9 +14,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
 use rayon::{ThreadPool, ThreadPoolBuilder};
-use rigid::multibody::simulation::{
-    step_count, ControlKind, ControlLaw, Controller, Integrator, JointLimits, SimulationError,
-    SimulationOptions, Simulator, TimeScaling,
+use rigid::simulation::{
+    step_count, ControlKind, Integrator, JointLimits, Scenario, SimulationError, SimulationOptions,
+    TimeScaling,
 };
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -320,14 +320,15 @@ pub fn simulate_batch<'py>(
     let kind: ControlKind = controller.parse().map_err(err)?;
     let time = move_time.unwrap_or(0.5 * duration);
     let one = |i: usize| -> Result<Record, SimulationError> {
-        let m = &cores[i].model;
-        let q0 = q0s[i]
-            .clone()
-            .unwrap_or_else(|| rigid::multibody::neutral(m));
-        let v0 = v0s[i].clone().unwrap_or_else(|| vec![0.0; m.nv()]);
-        let law = ControlLaw::builtin(m, kind, &q0, targets[i].as_deref(), time, scaling)?;
-        let ctrl = Controller::new(m, law)?;
-        let mut sim = Simulator::new(m, &q0, &v0, opts, ctrl)?;
+        let mut s = Scenario::new(cores[i].model.clone());
+        s.q0 = q0s[i].clone();
+        s.v0 = v0s[i].clone();
+        s.target = targets[i].clone();
+        s.controller = kind;
+        s.move_time = time;
+        s.profile = scaling;
+        s.options = opts;
+        let mut sim = s.build()?;
         let mut rec = Record::default();
         run(&mut sim, steps, every, &mut rec)?;
         Ok(rec)

@@ -1,4 +1,4 @@
-//! Robot simulation from Python: `simulate` (rigid's `multibody::simulation`, the same options
+//! Robot simulation from Python: `simulate` (rigid's `simulation`, the same options
 //! and built-in controllers as `rigid simulate`, or a Python control law `u(t, q, v)`) and
 //! `replay_html` (the 3D replay page of `rigid simulate --html`).
 
@@ -8,11 +8,13 @@ use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rigid::multibody::simulation::{
-    step_count, Control, ControlKind, ControlLaw, Controller, Integrator, JointLimits,
-    SimulationError, SimulationOptions, Simulator, TimeScaling,
-};
+use rigid::io::collision::{file_world, ground_model, FileWorld, WorldOptions};
+use rigid::multibody::constraints::ProximalSettings;
 use rigid::multibody::{Data, Model as RigidModel, MultibodyError};
+use rigid::simulation::{
+    step_count, ConstraintOptions, Control, Integrator, JointLimits, Scenario, SimulationError,
+    SimulationOptions, Simulator,
+};
 use std::path::PathBuf;
 
 /// A configuration argument (model layout) in rigid's layout.
@@ -76,7 +78,8 @@ impl Control for PyControl<'_> {
     }
 }
 
-/// The recorded run: times and, per row, `q`, `v`, `τ` (the control's) and the energy.
+/// The recorded run: times and, per row, `q`, `v`, `τ` (the control's), the energy, the
+/// contacts and the constraint violation.
 #[derive(Default)]
 pub(crate) struct Record {
     pub t: Vec<f64>,
@@ -86,6 +89,8 @@ pub(crate) struct Record {
     pub energy: Vec<f64>,
     pub contacts: Vec<f64>,
     pub normal_force: Vec<f64>,
+    pub violation_position: Vec<f64>,
+    pub violation_velocity: Vec<f64>,
 }
 
 pub(crate) fn run<C: Control>(
@@ -105,6 +110,9 @@ pub(crate) fn run<C: Control>(
         rec.contacts.push(stats.active as f64);
         rec.normal_force
             .push(stats.normal_impulse / sim.options().dt);
+        let w = sim.violation()?;
+        rec.violation_position.push(w.position);
+        rec.violation_velocity.push(w.velocity);
         Ok(())
     };
     push(sim, rec)?;
@@ -117,23 +125,39 @@ pub(crate) fn run<C: Control>(
     Ok(())
 }
 
-/// Simulates `model` from `(q0, v0)` for `duration` seconds with a fixed step `dt` (the options
-/// and built-in controllers of `rigid simulate`; `control`, a Python function `u(t, q, v) -> τ`,
-/// replaces `controller`). Returns a dict of numpy arrays: `t` (N), `q` (N × nq), `v` (N × nv),
-/// `tau` (N × nv, the control law's torques) and `energy` (N, kinetic + potential, J), one row
-/// every `every` steps and the last; in the model's layout. `ground` (a height, m) puts the
-/// ground plane `z = ground` under the robot (its URDF `<collision>` or MJCF geoms, Coulomb
-/// `friction`, default 0.8, and `restitution`, default 0; `rigid simulate --ground`): the
-/// integrator is then the time-stepping `semi-implicit` one (`rk4` replaced), a floating robot
-/// without `q0` starts set down on the ground at `target` (or neutral), `controller="pd"` holds
-/// the stance on its feet, and the dict gains `contacts` (N, active contacts) and `normal_force`
-/// (N, their normal force sum, N).
+/// Warns in Python with each of `warnings`, prefixed by `func`.
+fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyResult<()> {
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    for w in warnings {
+        let text =
+            std::ffi::CString::new(format!("{func}: {w}").replace('\0', " ")).unwrap_or_default();
+        PyErr::warn(py, category.as_any(), &text, 2)?;
+    }
+    Ok(())
+}
+
+/// Simulates `model` from `(q0, v0)` for `duration` seconds with a fixed step `dt` (the options,
+/// the world and the built-in controllers of `rigid simulate`, the library's `Scenario`;
+/// `control`, a Python function `u(t, q, v) -> τ`, replaces `controller`). Returns a dict of
+/// numpy arrays, one row every `every` steps and the last, in the model's layout: `t` (N),
+/// `q` (N × nq), `v` (N × nv), `tau` (N × nv, the control law's torques), `energy` (N, kinetic
+/// + potential, J); when anything can touch, `contacts` (N, active contacts) and
+/// `normal_force` (N, their normal force sum, N); with constraints, `violation_position` and
+/// `violation_velocity` (N, the largest constraint error and its rate). The world: an MJCF
+/// file's own floor, geom pairs and `<equality>` elements; `ground` (a height, m) adds the
+/// plane `z = ground` under a robot without one (its URDF `<collision>` or MJCF geoms, Coulomb
+/// `friction`, default the file's or 0.8, and `restitution`, default 0); `self_collision`
+/// makes a URDF's bodies collide with each other; `constraints` (a list of
+/// `rigid.ConstraintModel`) replaces the file's. Anything that can touch is stepped by the
+/// time-stepping `semi-implicit` scheme (`rk4` replaced), a floating robot without `q0`
+/// starts set down on the ground at `target` (or its home), and `controller="pd"` holds the
+/// stance on its feet.
 #[pyfunction]
 #[pyo3(signature = (
-    model, q0 = None, v0 = None, duration = 1.0, dt = 1e-3, integrator = "rk4",
+    model, q0 = None, v0 = None, duration = 1.0, dt = None, integrator = "rk4",
     controller = "none", target = None, move_time = None, profile = "quintic",
     limits = "spring", joint_dynamics = true, control = None, every = 1, ground = None,
-    friction = None, restitution = None
+    friction = None, restitution = None, self_collision = false, constraints = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
@@ -142,7 +166,7 @@ pub fn simulate<'py>(
     q0: Option<&Bound<'py, PyAny>>,
     v0: Option<&Bound<'py, PyAny>>,
     duration: f64,
-    dt: f64,
+    dt: Option<f64>,
     integrator: &str,
     controller: &str,
     target: Option<&Bound<'py, PyAny>>,
@@ -155,75 +179,73 @@ pub fn simulate<'py>(
     ground: Option<f64>,
     friction: Option<f64>,
     restitution: Option<f64>,
+    self_collision: bool,
+    constraints: Option<Vec<PyRef<'py, crate::constraints::ConstraintModel>>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let func = "simulate";
     let core: &ModelCore = &model.inner;
     let m = &core.model;
     let err = |e: SimulationError| value_error(func, e);
-    let steps = step_count(duration, dt).map_err(err)?;
     if every == 0 {
         return Err(PyValueError::new_err("simulate: every must be at least 1"));
     }
-    if ground.is_none() && (friction.is_some() || restitution.is_some()) {
-        return Err(value_error(
-            func,
-            "friction and restitution apply with ground",
-        ));
-    }
-    let collision = match ground {
-        Some(h) => {
-            let (geometries, warnings) = match &core.source {
-                Some(path) => rigid::io::collision::file_geometries(path, m)
-                    .map_err(|e| value_error(func, e))?,
-                None => (Vec::new(), Vec::new()),
-            };
-            let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
-            for w in warnings {
-                let text = std::ffi::CString::new(format!("{func}: {w}").replace('\0', " "))
-                    .unwrap_or_default();
-                PyErr::warn(py, category.as_any(), &text, 2)?;
-            }
-            Some(
-                rigid::io::collision::ground_model(h, friction, restitution, geometries)
-                    .map_err(|e| value_error(func, e))?,
-            )
-        }
-        None => None,
+    let options = WorldOptions {
+        ground,
+        friction,
+        restitution,
+        self_collision,
     };
-    let mut target = target.map(|x| q_arg(core, func, "target", x)).transpose()?;
-    let given_q0 = q0.is_some();
-    let mut q0 = match q0 {
-        Some(x) => q_arg(core, func, "q0", x)?,
-        None => target
-            .clone()
-            .unwrap_or_else(|| rigid::multibody::neutral(m)),
+    let world = match &core.source {
+        Some(path) => file_world(path, m, &options).map_err(|e| value_error(func, e))?,
+        None => FileWorld {
+            collision: match ground {
+                Some(_) => Some(
+                    ground_model(ground, friction, restitution, Vec::new())
+                        .map_err(|e| value_error(func, e))?,
+                ),
+                None => None,
+            },
+            constraints: Vec::new(),
+            constraint_settings: Default::default(),
+            timestep: None,
+            warnings: Vec::new(),
+        },
     };
-    if let Some(cm) = &collision {
-        let place = |q: &mut [f64]| {
-            rigid::collision::place_on_ground(m, cm, q).map_err(|e| value_error(func, e))
-        };
-        if !given_q0 {
-            place(&mut q0)?;
-        }
-        if let Some(t) = target.as_mut() {
-            place(t)?;
-        }
-    }
-    let v0 = match v0 {
-        Some(x) => v_arg(core, func, "v0", x)?,
-        None => vec![0.0; m.nv()],
-    };
-    let integrator = match (integrator.parse::<Integrator>().map_err(err)?, &collision) {
-        (Integrator::Rk4, Some(_)) => Integrator::SemiImplicitEuler,
-        (i, _) => i,
-    };
-    let opts = SimulationOptions {
+    warn_all(py, func, &world.warnings)?;
+    let dt = dt.or(world.timestep).unwrap_or(1e-3);
+    let steps = step_count(duration, dt).map_err(err)?;
+    let mut s = Scenario::new(m.clone());
+    s.q0 = q0.map(|x| q_arg(core, func, "q0", x)).transpose()?;
+    s.v0 = v0.map(|x| v_arg(core, func, "v0", x)).transpose()?;
+    s.target = target.map(|x| q_arg(core, func, "target", x)).transpose()?;
+    s.controller = controller.parse().map_err(err)?;
+    s.profile = profile.parse().map_err(err)?;
+    s.move_time = move_time.unwrap_or(0.5 * duration);
+    s.options = SimulationOptions {
         dt,
-        integrator,
+        integrator: integrator.parse::<Integrator>().map_err(err)?,
         limits: limits.parse::<JointLimits>().map_err(err)?,
         joint_dynamics,
         ..SimulationOptions::default()
     };
+    s.collision = world.collision;
+    s.constraint_options = ConstraintOptions {
+        settings: world.constraint_settings,
+        ..ConstraintOptions::default()
+    };
+    s.constraints = match &constraints {
+        Some(list) => {
+            s.constraint_options.settings = ProximalSettings::new(1e-12, 1e-6, 1000);
+            crate::constraints::rigid_constraints(func, core, list)?
+        }
+        None => world.constraints,
+    };
+    if !s.touches() && (friction.is_some() || restitution.is_some()) {
+        return Err(value_error(
+            func,
+            "friction and restitution apply when something can touch (ground=, or a file with a floor)",
+        ));
+    }
     let mut rec = Record::default();
     match control {
         Some(f) => {
@@ -237,10 +259,7 @@ pub fn simulate<'py>(
                 core,
                 error: None,
             };
-            let mut sim = Simulator::new(m, &q0, &v0, opts, law).map_err(err)?;
-            if let Some(cm) = collision.clone() {
-                sim = sim.with_collision(cm).map_err(err)?;
-            }
+            let mut sim = s.build_with(law).map_err(err)?;
             let result = run(&mut sim, steps, every, &mut rec);
             if let Some(e) = sim.control_mut().error.take() {
                 return Err(e);
@@ -248,25 +267,24 @@ pub fn simulate<'py>(
             result.map_err(err)?;
         }
         None => {
-            let scaling: TimeScaling = profile.parse().map_err(err)?;
-            let kind: ControlKind = controller.parse().map_err(err)?;
-            let time = move_time.unwrap_or(0.5 * duration);
-            let law = match (&collision, kind, &target) {
-                (Some(cm), ControlKind::Pd, Some(t)) => ControlLaw::standing(m, t, cm),
-                _ => ControlLaw::builtin(m, kind, &q0, target.as_deref(), time, scaling),
-            }
-            .map_err(err)?;
-            let ctrl = Controller::new(m, law).map_err(err)?;
-            let mut sim = Simulator::new(m, &q0, &v0, opts, ctrl).map_err(err)?;
-            if let Some(cm) = collision.clone() {
-                sim = sim.with_collision(cm).map_err(err)?;
-            }
+            let mut sim = s.build().map_err(err)?;
             py.detach(|| run(&mut sim, steps, every, &mut rec))
                 .map_err(err)?;
         }
     }
+    trajectory(py, core, rec, s.touches(), !s.constraints.is_empty())
+}
+
+/// The dict of a recorded run (see [`simulate`]).
+fn trajectory<'py>(
+    py: Python<'py>,
+    core: &ModelCore,
+    rec: Record,
+    contacts: bool,
+    loops: bool,
+) -> PyResult<Bound<'py, PyDict>> {
     let n = rec.t.len();
-    let (nq, nv) = (m.nq(), m.nv());
+    let (nq, nv) = (core.model.nq(), core.model.nv());
     let q_rows: Vec<f64> = rec
         .q
         .chunks_exact(nq.max(1))
@@ -285,9 +303,14 @@ pub fn simulate<'py>(
     out.set_item("v", rows_array(py, v_rows(&rec.v), n, nv)?)?;
     out.set_item("tau", rows_array(py, v_rows(&rec.tau), n, nv)?)?;
     out.set_item("energy", PyArray1::from_vec(py, rec.energy))?;
-    if collision.is_some() {
+    if contacts {
         out.set_item("contacts", PyArray1::from_vec(py, rec.contacts))?;
         out.set_item("normal_force", PyArray1::from_vec(py, rec.normal_force))?;
+    }
+    if loops {
+        let (p, v) = (rec.violation_position, rec.violation_velocity);
+        out.set_item("violation_position", PyArray1::from_vec(py, p))?;
+        out.set_item("violation_velocity", PyArray1::from_vec(py, v))?;
     }
     Ok(out)
 }
@@ -382,38 +405,20 @@ impl BodyOnGround<'_> {
         if let Some(g) = self.gravity {
             model = model.with_gravity(g);
         }
-        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
-        for w in warnings {
-            let text = std::ffi::CString::new(format!("{func}: {w}").replace('\0', " "))
-                .unwrap_or_default();
-            PyErr::warn(py, category.as_any(), &text, 2)?;
-        }
-        let cm = rigid::io::collision::ground_model(
-            self.height,
+        warn_all(py, func, &warnings)?;
+        let cm = ground_model(
+            Some(self.height),
             self.friction,
             self.restitution,
             geometries,
         )
         .map_err(|e| value_error(func, e))?;
-        let q0 = match &self.q0 {
-            Some(q) => q.clone(),
-            None => {
-                let mut q = rigid::multibody::neutral(&model);
-                rigid::collision::place_on_ground(&model, &cm, &mut q)
-                    .map_err(|e| value_error(func, e))?;
-                q
-            }
-        };
-        let opts = SimulationOptions {
-            dt: self.dt,
-            integrator: Integrator::SemiImplicitEuler,
-            ..SimulationOptions::default()
-        };
-        let ctrl = Controller::none(&model);
-        let mut sim = Simulator::new(&model, &q0, &self.twist, opts, ctrl)
-            .map_err(err)?
-            .with_collision(cm)
-            .map_err(err)?;
+        let mut s = Scenario::new(model);
+        s.q0 = self.q0.clone();
+        s.v0 = Some(self.twist.to_vec());
+        s.options.dt = self.dt;
+        s.collision = Some(cm);
+        let mut sim = s.build().map_err(err)?;
         let mut rec = Record::default();
         py.detach(|| run(&mut sim, steps, self.every, &mut rec))
             .map_err(err)?;

@@ -10,8 +10,9 @@
 //! | --- | --- | --- |
 //! | [`spatial`] | SO(3), SE(3), twists, wrenches, `Ad`, `ad`, exp and log; the small dense kernels | core |
 //! | [`mass`] | rotational inertia, shapes, meshes, compound bodies, spatial inertia `G`, pseudo-inertia and physical consistency | core |
-//! | [`multibody`] | kinematic trees: `Model` (with its compiled plan), `Data`, joints, the textbook [`multibody::reference`] algorithms beside the fast ones (kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis, energies, derivatives), constraints, simulation, builders, built-in robots | core (`batch`: `parallel`) |
+//! | [`multibody`] | kinematic trees: `Model` (with its compiled plan), `Data`, joints, the textbook [`multibody::reference`] algorithms beside the fast ones (kinematics, Jacobians, RNEA, CRBA, ABA, `M⁻¹`, Coriolis, energies, derivatives), constrained dynamics, builders, built-in robots; no geometry | core (`batch`: `parallel`) |
 //! | [`collision`] | collision geometry (URDF `<collision>`, MJCF geoms, body parts, a ground plane) and contact points, on parry3d-f64 | `collision` |
+//! | [`simulation`] | the one simulation step: kinematics, collision, one constraint problem (loops, contacts, limits), integration; controllers, trajectories, batches | core (`collision` for contacts) |
 //! | [`kinematics`] | inverse kinematics: Newton / Levenberg-Marquardt on the SE(3) log error (`IKinBody`, `IKinSpace`), position or full pose, limits, restarts | core |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, Lagrange by autodiff, and its simulator (the one-joint case of the multibody simulator, plus the Lie-group variational integrator) | core (`lagrange`: `autodiff`) |
 //! | [`identification`] | inertial parameters from measured motion: joint-torque regressor, base parameters, least squares, physically consistent estimate (semidefinite program, feature `sdp`), exciting trajectories | core (`regressor_batch`: `parallel`; `sdp`) |
@@ -44,6 +45,7 @@ pub mod io;
 pub mod kinematics;
 pub mod mass;
 pub mod multibody;
+pub mod simulation;
 pub mod spatial;
 #[cfg(feature = "parallel")]
 pub mod timing;

@@ -45,8 +45,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let setup = setup(args)?;
     let (x0, body) = (setup.x0, &setup.body);
     let (mass, inertia) = (body.inertia().mass(), body.inertia().inertia_com());
-    let mut sim =
-        Simulator::new(body.clone(), x0, integrator, args.dt).map_err(|e| e.to_string())?;
+    let mut sim = Simulator::new(body.clone(), x0, integrator, args.dt.unwrap_or(1e-3))
+        .map_err(|e| e.to_string())?;
 
     let mut csv = match &args.csv {
         Some(path) => {
@@ -110,7 +110,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
                 "free"
             }
         );
-        scene.info = format!("{integrator}, dt = {} s, {} s", args.dt, args.duration);
+        scene.info = format!(
+            "{integrator}, dt = {} s, {} s",
+            args.dt.unwrap_or(1e-3),
+            args.duration
+        );
         crate::util::write_atomic(path, scene.html(&rec).as_bytes())?;
     }
     if let Some(e) = failure {

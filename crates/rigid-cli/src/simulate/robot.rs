@@ -1,209 +1,114 @@
 //! `rigid simulate MODEL` for a robot: a URDF file, a robot of example-robot-data by name, or a
-//! built-in model, simulated by `rigid::multibody::simulation`.
+//! built-in model, simulated by `rigid::simulation`.
 
-use super::ground;
-use super::{robot_plot::Samples, Numbers, SimulateArgs, PLOT_POINTS};
-use crate::load::{load_printing_warnings, urdf_path};
-use rigid::collision::CollisionModel;
-use rigid::multibody::simulation::{
-    ControlKind, ControlLaw, Controller, Integrator, JointLimits, SimulationError,
-    SimulationOptions, Simulator,
-};
-use rigid::multibody::{center_of_mass, column_names, neutral, Data, Model};
+use super::world;
+use super::{robot_plot::Samples, SimulateArgs, PLOT_POINTS};
+use crate::load::urdf_path;
+use rigid::multibody::{center_of_mass, column_names, Data, Model};
+use rigid::simulation::{JointLimits, Simulator};
 use rigid::spatial::Vec3;
 use rigid_replay::{collision_nodes, robot_nodes, Recording};
 use std::io::Write;
 
-/// `t`, then `q_<joint>`, `v_<joint>`, `tau_<joint>` (`_<coordinate>` for multi-dof joints).
-fn csv_header(model: &Model, contacts: bool) -> String {
-    let mut cols = vec!["t".to_string()];
-    cols.extend(column_names(model, &["q", "v", "tau"]));
+/// The CSV header (docs/cli.md): `t`, then `q_<joint>`, `v_<joint>`, `tau_<joint>`
+/// (`_<coordinate>` for multi-dof joints) and `energy`; a body spec's `t,px,py,pz,qx,qy,qz,qw,
+/// wx,wy,wz,vx,vy,vz` (the CoM frame's pose and body twist) and `energy`; then `contacts` and
+/// `normal_force` when anything can touch, `violation_position` and `violation_velocity` with
+/// bilateral constraints.
+fn csv_header(model: &Model, spec: bool, contacts: bool, loops: bool) -> String {
+    let mut cols: Vec<String> = if spec {
+        super::body::CSV_HEADER
+            .split(',')
+            .map(String::from)
+            .collect()
+    } else {
+        let mut c = vec!["t".to_string()];
+        c.extend(column_names(model, &["q", "v", "tau"]));
+        c
+    };
+    cols.push("energy".into());
     if contacts {
         cols.extend(["contacts".to_string(), "normal_force".to_string()]);
+    }
+    if loops {
+        cols.extend(["violation_position", "violation_velocity"].map(String::from));
     }
     cols.join(",")
 }
 
+/// One CSV row of `sim` (a body spec: no torques).
 fn write_row(
     out: &mut impl Write,
-    t: f64,
-    q: &[f64],
-    v: &[f64],
-    tau: &[f64],
-    contacts: Option<(usize, f64)>,
-) -> std::io::Result<()> {
-    write!(out, "{t}")?;
-    for x in q.iter().chain(v).chain(tau) {
-        write!(out, ",{x}")?;
-    }
-    if let Some((n, f)) = contacts {
-        write!(out, ",{n},{f}")?;
-    }
-    writeln!(out)
-}
-
-/// A configuration from the command line: `nq` numbers, quaternions of unit norm.
-pub(super) fn configuration(
-    model: &Model,
-    what: &str,
-    x: &Option<Numbers>,
-) -> Result<Vec<f64>, String> {
-    let q = x.clone().map_or_else(|| neutral(model), |n| n.0);
-    if q.len() != model.nq() {
-        return Err(format!(
-            "--{what} has {} numbers; {} has nq = {} ({})",
-            q.len(),
-            model.name(),
-            model.nq(),
-            joint_list(model)
-        ));
-    }
-    Ok(q)
-}
-
-/// The initial velocity from the command line: `nv` numbers, zero by default.
-pub(super) fn velocity(model: &Model, x: &Option<Numbers>) -> Result<Vec<f64>, String> {
-    let v0 = x.clone().map_or_else(|| vec![0.0; model.nv()], |n| n.0);
-    if v0.len() != model.nv() {
-        return Err(format!(
-            "--v0 has {} numbers; nv = {}",
-            v0.len(),
-            model.nv()
-        ));
-    }
-    Ok(v0)
-}
-
-/// `name (nq)` for every joint.
-fn joint_list(model: &Model) -> String {
-    model
-        .joints()
-        .iter()
-        .map(|j| format!("{} ({})", j.name, j.nq))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-fn options(args: &SimulateArgs) -> Result<SimulationOptions, String> {
-    // contacts step with the time-stepping scheme; rk4, the default, gives way to it
-    let integrator = match (args.ground, args.integrator) {
-        (Some(_), Integrator::Rk4) => Integrator::SemiImplicitEuler,
-        (_, i) => i,
+    sim: &mut Simulator,
+    spec: bool,
+    contacts: bool,
+    loops: bool,
+    dt: f64,
+) -> Result<(), String> {
+    let (t, q, v) = (sim.time(), sim.q().to_vec(), sim.v().to_vec());
+    let tau = if spec {
+        Vec::new()
+    } else {
+        sim.torques().map_err(|e| e.to_string())?.0.to_vec()
     };
-    Ok(SimulationOptions {
-        dt: args.dt,
-        integrator,
-        limits: args.limits,
-        joint_dynamics: !args.no_joint_dynamics,
-        ..SimulationOptions::default()
-    })
-}
-
-fn controller(
-    args: &SimulateArgs,
-    model: &Model,
-    q0: &[f64],
-    target: Option<Vec<f64>>,
-    collision: Option<&CollisionModel>,
-) -> Result<Controller, String> {
-    if let (Some(cm), ControlKind::Pd, Some(target)) = (collision, args.controller, &target) {
-        // standing: PD to the stance with the torques that hold it on its contacts
-        let law = ControlLaw::standing(model, target, cm).map_err(|e| format!("--target: {e}"))?;
-        return Controller::new(model, law).map_err(|e| e.to_string());
+    let e = sim.energy().map_err(|e| e.to_string())?;
+    let mut row = format!("{t}");
+    for x in q.iter().chain(&v).chain(&tau) {
+        row += &format!(",{x}");
     }
-    let time = args.move_time.unwrap_or(0.5 * args.duration);
-    let law = ControlLaw::builtin(
-        model,
-        args.controller,
-        q0,
-        target.as_deref(),
-        time,
-        args.profile,
-    )
-    .map_err(|e| match e {
-        SimulationError::MissingTarget { controller, nq } => {
-            format!("--controller {controller} needs --target (nq = {nq} numbers)")
-        }
-        e => format!("--target: {e}"),
-    })?;
-    Controller::new(model, law).map_err(|e| e.to_string())
+    row += &format!(",{e}");
+    if contacts {
+        let s = sim.contact_stats();
+        row += &format!(",{},{}", s.active, s.normal_impulse / dt);
+    }
+    if loops {
+        let w = sim.violation().map_err(|e| e.to_string())?;
+        row += &format!(",{},{}", w.position, w.velocity);
+    }
+    writeln!(out, "{row}").map_err(|e| e.to_string())
 }
 
-/// Runs `rigid simulate` on a robot.
+/// Runs `rigid simulate` on a robot (or a body spec on the ground).
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
-    let steps = super::step_count(args)?;
-    // a body spec on the ground is a one-body model: its pose is --q0 (the CoM and the spec
-    // axes), its twist --omega and --velocity
-    let spec = super::is_body_spec(&args.model);
-    let (loaded, collision) = if spec {
-        let (loaded, cm) = ground::body_on_ground(args)?;
-        (loaded, Some(cm))
-    } else {
-        let loaded = load_printing_warnings(&args.model, &args.load)?;
-        let cm = ground::collision_model(args, &loaded)?;
-        (loaded, cm)
-    };
-    let home = loaded.home();
-    let mut model = loaded.model;
-    if let Some(g) = args.gravity {
-        model = model.with_gravity(g);
-    }
-    // an MJCF model starts where the file puts it (MuJoCo's qpos0)
-    let mut target = match &args.target {
-        Some(_) => Some(configuration(&model, "target", &args.target)?),
-        None => None,
-    };
-    let mut q0 = match (&args.q0, &target, &collision) {
-        (None, Some(t), Some(_)) => t.clone(),
-        (None, _, _) => home,
-        (Some(_), _, _) => configuration(&model, "q0", &args.q0)?,
-    };
-    if let Some(cm) = &collision {
-        // a floating robot starts on the ground, and its stance is on the ground
-        if args.q0.is_none() {
-            ground::set_down(&model, cm, &mut q0)?;
-        }
-        if let Some(t) = target.as_mut() {
-            ground::set_down(&model, cm, t)?;
+    super::step_count(args)?; // the flags' own errors first
+    let world = world::world(args)?;
+    let (scenario, spec, dt) = (&world.scenario, world.spec, world.dt);
+    let steps = super::step_count_dt(args.duration, dt)?;
+    let model = &scenario.model;
+    let contacts = scenario.touches();
+    let loops = !scenario.constraints.is_empty();
+    if !contacts {
+        if let Some(flag) = [
+            ("--friction", args.friction),
+            ("--restitution", args.restitution),
+        ]
+        .iter()
+        .find_map(|(f, x)| x.map(|_| f))
+        {
+            return Err(format!(
+                "{flag} applies when something can touch (--ground, or a file with a floor)"
+            ));
         }
     }
-    let v0 = if spec {
-        let (w, v) = (args.omega, args.velocity);
-        vec![w.x, w.y, w.z, v.x, v.y, v.z]
-    } else {
-        velocity(&model, &args.v0)?
-    };
-    let opts = options(args)?;
-    let ctrl = controller(args, &model, &q0, target, collision.as_ref())?;
-    let mut sim = Simulator::new(&model, &q0, &v0, opts, ctrl).map_err(|e| e.to_string())?;
-    let contacts = collision.is_some();
+    let mut sim = scenario.build().map_err(world::simulation_error)?;
+    let opts = *sim.options();
+    let q0 = sim.q().to_vec();
     // a body spec has no visual of its own: the page draws its parts' shapes
-    let spec_nodes = collision
+    let spec_nodes = scenario
+        .collision
         .as_ref()
         .filter(|_| spec && args.html.is_some())
         .map(collision_nodes);
-    if let Some(cm) = collision {
-        sim = sim.with_collision(cm).map_err(|e| e.to_string())?;
-    }
-    let contact_row = |sim: &Simulator| {
-        contacts.then(|| {
-            let s = sim.contact_stats();
-            (s.active, s.normal_impulse / args.dt)
-        })
-    };
     let (nq, nv) = (model.nq(), model.nv());
 
     let mut csv = match &args.csv {
         Some(path) => Some(crate::util::AtomicFile::create(path)?),
         None => None,
     };
-    let tau_row = |sim: &mut Simulator| -> Result<Vec<f64>, String> {
-        Ok(sim.torques().map_err(|e| e.to_string())?.0.to_vec())
-    };
     if let Some(f) = csv.as_mut() {
-        writeln!(f.writer(), "{}", csv_header(&model, contacts)).map_err(|e| e.to_string())?;
-        let tau = tau_row(&mut sim)?;
-        write_row(f.writer(), 0.0, &q0, &v0, &tau, contact_row(&sim)).map_err(|e| e.to_string())?;
+        writeln!(f.writer(), "{}", csv_header(model, spec, contacts, loops))
+            .map_err(|e| e.to_string())?;
+        write_row(f.writer(), &mut sim, spec, contacts, loops, dt)?;
     }
     let mut scene = match (spec_nodes, &args.html) {
         (Some((nodes, warnings)), _) => rigid_replay::Scene {
@@ -212,17 +117,18 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             extent: 0.5,
             ..Default::default()
         },
-        (None, Some(_)) => robot_nodes(&model, urdf_path(&args.model).as_deref()),
+        (None, Some(_)) => robot_nodes(model, urdf_path(&args.model).as_deref()),
         (None, None) => Default::default(),
     };
     let mut rec = Recording::default();
-    let mut data = Data::new(&model);
+    let mut data = Data::new(model);
     // with --ground the page draws the ground, marks the contacts that push and draws their
     // forces (the last step's impulse over dt), the weight's arrow half the robot's size
-    let height = args.ground.unwrap_or_default();
-    let markers = match (&args.html, contacts) {
-        (Some(_), true) => {
-            let c = center_of_mass(&model, &mut data, &q0).map_err(|e| e.to_string())?;
+    let ground = scenario.collision.as_ref().and_then(|c| c.ground);
+    let height = ground.map_or(0.0, |g| g.height);
+    let markers = match (&args.html, ground) {
+        (Some(_), Some(_)) => {
+            let c = center_of_mass(model, &mut data, &q0).map_err(|e| e.to_string())?;
             let weight = model.total_mass() * model.gravity().norm();
             Some(scene.add_ground(height, c, weight))
         }
@@ -235,21 +141,25 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
                 .iter()
                 .zip(sim.contact_impulses())
                 .filter(|(_, p)| p.norm() > 0.0)
-                .map(|(c, p)| (c.point, p / args.dt))
+                .map(|(c, p)| (c.point, p / dt))
                 .collect();
             scene.set_contacts(first, &pushing, height);
         }
     };
     if args.html.is_some() {
         mark(&mut scene, &sim);
-        rec.record_model(&scene, &model, &mut data, 0.0, &q0, true)?;
+        rec.record_model(&scene, model, &mut data, 0.0, &q0, true)?;
     }
     let stride = (steps as usize).div_ceil(PLOT_POINTS).max(1) as u64;
-    let mut samples = Samples::new(&model);
+    let mut samples = Samples::new(model);
     let (e0, k0) = {
         let (k, u) = sim.energies().map_err(|e| e.to_string())?;
         (k + u, k)
     };
+    let tau_row = |sim: &mut Simulator| -> Result<Vec<f64>, String> {
+        Ok(sim.torques().map_err(|e| e.to_string())?.0.to_vec())
+    };
+    let mut worst = rigid::simulation::Violation::default();
     if args.plot.is_some() {
         let tau = tau_row(&mut sim)?;
         let c = contacts.then_some((0.0, 0.0));
@@ -271,22 +181,24 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
                 max_speed = (x.abs(), i);
             }
         }
-        let plot_now = args.plot.is_some() && (k.is_multiple_of(stride) || k == steps);
-        if csv.is_some() || plot_now {
+        if loops {
+            let w = sim.violation().map_err(|e| e.to_string())?;
+            worst.position = worst.position.max(w.position);
+            worst.velocity = worst.velocity.max(w.velocity);
+        }
+        if let Some(f) = csv.as_mut() {
+            write_row(f.writer(), &mut sim, spec, contacts, loops, dt)?;
+        }
+        if args.plot.is_some() && (k.is_multiple_of(stride) || k == steps) {
             let tau = tau_row(&mut sim)?;
-            if let Some(f) = csv.as_mut() {
-                write_row(f.writer(), t, sim.q(), sim.v(), &tau, contact_row(&sim))
-                    .map_err(|e| e.to_string())?;
-            }
-            if plot_now {
-                let e = sim.energy().map_err(|e| e.to_string())?;
-                let c = contact_row(&sim).map(|(_, n)| (n, sim.contact_dissipation()));
-                samples.push(t, sim.q(), sim.v(), &tau, e, c);
-            }
+            let e = sim.energy().map_err(|e| e.to_string())?;
+            let normal = sim.contact_stats().normal_impulse / dt;
+            let c = contacts.then(|| (normal, sim.contact_dissipation()));
+            samples.push(t, sim.q(), sim.v(), &tau, e, c);
         }
         if args.html.is_some() && (rec.due(t) || k == steps) {
             mark(&mut scene, &sim);
-            rec.record_model(&scene, &model, &mut data, t, sim.q(), k == steps)?;
+            rec.record_model(&scene, model, &mut data, t, sim.q(), k == steps)?;
         }
         progress.tick(k);
     }
@@ -312,7 +224,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         scene.info = format!(
             "{}, dt = {} s, {:.3} s simulated; limits {}",
             opts.integrator,
-            args.dt,
+            dt,
             sim.time(),
             if opts.limits == JointLimits::Ignored {
                 "ignored"
@@ -349,8 +261,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         && opts.joint_dynamics;
     println!("model: {} (nq = {nq}, nv = {nv})", model.name());
     println!(
-        "integrator: {}, dt = {} s, controller: {}",
-        opts.integrator, args.dt, args.controller
+        "integrator: {}, dt = {dt} s, controller: {}",
+        opts.integrator, args.controller
     );
     println!("joint limits: {limits}");
     println!(
@@ -361,17 +273,39 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             "off"
         }
     );
-    if let Some(h) = args.ground {
-        let s = sim.contact_stats();
+    if let Some(g) = ground {
+        let n = g.normal;
+        let plane = if n == Vec3::z() {
+            format!("z = {} m", g.height)
+        } else {
+            format!("n·x = {} m, n = ({}, {}, {})", g.height, n.x, n.y, n.z)
+        };
         println!(
-            "ground: z = {h} m, friction {}, restitution {}",
-            args.friction.unwrap_or(rigid::collision::DEFAULT_FRICTION),
-            args.restitution.unwrap_or(0.0)
+            "ground: {plane}, friction {}, restitution {}",
+            g.friction, g.restitution
         );
+    }
+    if let Some(cm) = &scenario.collision {
+        let pairs = if cm.self_collision { "on" } else { "off" };
+        println!(
+            "collision: {} geometries, between bodies {pairs}",
+            cm.geometries.len()
+        );
+    }
+    if contacts {
+        let s = sim.contact_stats();
         println!(
             "contacts at the end: {} active, normal force {:.6} N; deepest penetration {max_penetration:.3e} m",
             s.active,
-            s.normal_impulse / args.dt
+            s.normal_impulse / dt
+        );
+    }
+    if loops {
+        println!(
+            "constraints: {} (closed loops, welds), largest violation {:.2e} (position), {:.2e} (velocity)",
+            scenario.constraints.len(),
+            worst.position,
+            worst.velocity
         );
     }
     println!("steps: {}", sim.steps());

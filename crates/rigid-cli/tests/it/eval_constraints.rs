@@ -357,14 +357,65 @@ fn simulate_closes_the_loop() {
     // the crank turns: the loop is in motion, not stuck
     let crank = col("q_crank_joint");
     assert!((rows[2000][crank] - rows[0][crank]).abs() > 0.1);
+    // the file's own <equality> is held without the flag: the same run, the same numbers
+    let again = temp_file("fb_sim_own.csv", "");
     let out = rigid(&[
         "simulate",
         xml,
-        "--constraints",
+        "--duration",
+        "2",
+        "--v0",
+        "2,0,0",
+        "--csv",
+        &again,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&again).unwrap(), text);
+    // a controller acts on the closed loop too: gravity compensation holds it still
+    let held = temp_file("fb_sim_held.csv", "");
+    let out = rigid(&[
+        "simulate",
         xml,
         "--controller",
         "gravity",
+        "--duration",
+        "1",
+        "--csv",
+        &held,
     ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&held).unwrap();
+    let last: Vec<f64> = text
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let first: Vec<f64> = text
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!(
+        (last[crank] - first[crank]).abs() < 1e-6,
+        "{} -> {}",
+        first[crank],
+        last[crank]
+    );
+    // a body spec has no loops to close
+    let spec = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/compound.toml");
+    let out = rigid(&["simulate", spec.to_str().unwrap(), "--constraints", xml]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--constraints: not with --controller"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--constraints applies to a robot"));
 }

@@ -230,7 +230,7 @@ fn robot_csv_has_joint_named_columns_and_one_row_per_step() {
     let text = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(
         text.lines().next().unwrap(),
-        "t,q_joint1,q_joint2,v_joint1,v_joint2,tau_joint1,tau_joint2"
+        "t,q_joint1,q_joint2,v_joint1,v_joint2,tau_joint1,tau_joint2,energy"
     );
     let r = rows(&text);
     assert_eq!(r.len(), 11, "t = 0 and 10 steps");

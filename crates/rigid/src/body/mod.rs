@@ -13,7 +13,7 @@
 //! | `M(q) q̈ + c(q, q̇) + g(q) = τ` from `K`, `U` | [`lagrange`] |
 //!
 //! The simulator speaks the multibody simulator's vocabulary ([`Integrator`] is
-//! [`multibody::simulation::Integrator`](crate::multibody::simulation::Integrator), with the same
+//! [`simulation::Integrator`](crate::simulation::Integrator), with the same
 //! default, `rk4`): a free body is the one-joint case of a multibody model (a free-flyer), a body
 //! on a pivot too (a spherical joint), and `semi-implicit`, `rk4` and `variational` step that
 //! model with the multibody code. The Lie-group variational integrator of Lee, Leok &
@@ -31,7 +31,7 @@ mod rigid_body;
 mod setup;
 mod simulate;
 
-pub use crate::multibody::simulation::Integrator;
+pub use crate::simulation::Integrator;
 pub use newton_euler::{
     euler_acceleration, euler_moment, forward_dynamics, gravity_wrench, inverse_dynamics,
     world_force_at_point, InverseInertia, InverseRotationalInertia,
@@ -41,8 +41,8 @@ pub use setup::Setup;
 pub use simulate::{Simulator, Summary};
 
 use crate::error::InertiaError;
-use crate::multibody::simulation::SimulationError;
 use crate::multibody::ModelError;
+use crate::simulation::SimulationError;
 use thiserror::Error;
 
 /// What can go wrong when setting up or stepping a body.

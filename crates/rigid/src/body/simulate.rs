@@ -12,8 +12,8 @@
 use super::lgvi::{lgvi_step, Momenta};
 use super::rigid_body::{RigidBody, State, Support, WrenchFn};
 use super::BodyError;
-use crate::multibody::simulation::{self, Control, Integrator, SimulationError, SimulationOptions};
 use crate::multibody::{JointType, Model, ModelBuilder, MultibodyError};
+use crate::simulation::{self, Control, Integrator, SimulationError, SimulationOptions};
 use crate::spatial::{quat_to_rot, so3, Transform, Twist, Vec3, Wrench};
 
 /// Energy and momentum of the initial and current state, for reporting drift.
@@ -355,7 +355,7 @@ impl<W: WrenchFn> Simulator<W> {
 mod tests {
     use super::*;
     use crate::mass::{RotationalInertia, SpatialInertia};
-    use crate::multibody::simulation::Controller;
+    use crate::simulation::Controller;
 
     const G: Vec3 = Vec3::new(0.0, 0.0, -9.81);
 

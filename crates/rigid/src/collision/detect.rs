@@ -1,8 +1,8 @@
 //! The workspace of a collision model and the contact points at a configuration.
 
 use super::shape::{from_parry, pose, Parry};
+use super::ContactPoint;
 use super::{CollisionError, CollisionModel};
-use crate::multibody::contact::ContactPoint;
 use crate::multibody::{JointId, Model};
 use crate::spatial::{Transform, Vec3};
 use parry3d_f64::query::{ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher};
@@ -51,7 +51,9 @@ impl CollisionData {
                         cm.self_collision && x != y && parent(x) != Some(y) && parent(y) != Some(x)
                     }
                 };
-                if masks && meet {
+                let listed = |l: &[(usize, usize)]| l.contains(&(i, j)) || l.contains(&(j, i));
+                let moving = a.body.is_some() || b.body.is_some();
+                if (masks && meet && !listed(&cm.excluded)) || (moving && listed(&cm.included)) {
                     pairs.push((i, j));
                 }
             }
@@ -111,8 +113,12 @@ impl CollisionData {
                         point: x - n * (0.5 * d),
                         normal: n,
                         gap: d,
-                        friction: ground.friction,
-                        restitution: ground.restitution,
+                        friction: g
+                            .friction
+                            .map_or(ground.friction, |f| f.max(ground.friction)),
+                        restitution: g
+                            .restitution
+                            .map_or(ground.restitution, |e| e.max(ground.restitution)),
                         geometries: (k, None),
                     });
                 }
@@ -149,6 +155,7 @@ impl CollisionData {
             };
             let friction = pick(a.friction, b.friction, cm.friction);
             let restitution = pick(a.restitution, b.restitution, cm.restitution);
+            let first = out.len();
             for m in &self.manifolds[p] {
                 // the normal out of shape i, towards j: body i is pushed along its opposite
                 let n1 = pi.rotation * from_parry(m.local_n1);
@@ -160,10 +167,19 @@ impl CollisionData {
                         pi.act_point(&from_parry(c.local_p1)),
                         pj.act_point(&from_parry(c.local_p2)),
                     );
+                    let point = (x1 + x2) * 0.5;
+                    // two manifolds of one pair may hold the same point (a capsule's segment
+                    // against a face): a duplicate makes the contact problem singular
+                    if out[first..]
+                        .iter()
+                        .any(|o: &ContactPoint| (o.point - point).norm() < SAME_POINT)
+                    {
+                        continue;
+                    }
                     out.push(ContactPoint {
                         body1: a.body,
                         body2: b.body,
-                        point: (x1 + x2) * 0.5,
+                        point,
                         normal: -n1,
                         gap: c.dist,
                         friction,
@@ -175,6 +191,9 @@ impl CollisionData {
         }
     }
 }
+
+/// Two contact points of one pair of geometries closer than this (m) are one.
+const SAME_POINT: f64 = 1e-6;
 
 /// Points of a shape within this height (m) of its deepest one are its resting face: a mesh's
 /// flat sole is uneven by a fraction of a millimetre.

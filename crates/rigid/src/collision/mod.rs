@@ -1,7 +1,7 @@
 //! Collision geometry and contact points, on parry3d-f64 (the `collision` feature, on by
 //! default): the shapes fixed in the bodies of a multibody [`Model`](crate::multibody::Model), a ground plane, and the
 //! contact points between them at a configuration, for the contact dynamics of
-//! [`multibody::contact`](crate::multibody::contact).
+//! [`simulation::contact`](crate::simulation::contact).
 //!
 //! A [`CollisionModel`] is constant (Pinocchio's `GeometryModel`): geometries, each a
 //! [`Shape`] placed in a joint's frame, a [`Ground`], and the rules of which pairs collide; a
@@ -20,8 +20,12 @@
 //! moving ones. A pair is skipped cheaply when the bounding spheres are farther apart than the
 //! margin.
 //!
-//! Friction and restitution of a contact: the ground's for the ground, else the larger of the
-//! two geometries' (MuJoCo's rule for friction), else the model's default.
+//! Which pairs besides: [`CollisionModel::excluded`] pairs never, [`CollisionModel::included`]
+//! pairs always (MJCF's `<contact><exclude>` and `<pair>`).
+//!
+//! Friction and restitution of a contact: the larger of the two sides' (MuJoCo's rule for
+//! friction), the ground's for the ground when the geometry gives none, else the model's
+//! default.
 //!
 //! ```
 //! use rigid::collision::{CollisionData, CollisionModel, Geometry, Ground, Shape};
@@ -98,6 +102,29 @@ impl Geometry {
     }
 }
 
+/// One contact between two bodies (or a body and the world), the output of collision detection and the contact solver's input ([`simulation::contact`](crate::simulation::contact)): where, along
+/// which normal, how far apart, with which friction and restitution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactPoint {
+    /// The body pushed along `+normal` (`None`: the world).
+    pub body1: Option<JointId>,
+    /// The other body (`None`: the world, as for the ground).
+    pub body2: Option<JointId>,
+    /// The contact point in the world (m): the middle of the two closest points.
+    pub point: Vec3,
+    /// The unit contact normal in the world, from body 2 towards body 1.
+    pub normal: Vec3,
+    /// The signed distance along `normal` (m): positive apart, negative penetrating.
+    pub gap: f64,
+    /// Coulomb's friction coefficient `μ ≥ 0`.
+    pub friction: f64,
+    /// Newton's restitution coefficient `e ∈ [0, 1]`.
+    pub restitution: f64,
+    /// The collision geometries in contact (indices into the collision model; `None` for the
+    /// ground), for reports.
+    pub geometries: (usize, Option<usize>),
+}
+
 /// The ground: the half-space `nᵀ x ≤ height` (its surface the plane `nᵀ x = height`), with its
 /// friction and restitution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -151,6 +178,12 @@ pub struct CollisionModel {
     pub restitution: f64,
     /// Contact candidates are the pairs closer than this (m, [`DEFAULT_MARGIN`]).
     pub margin: f64,
+    /// Pairs of geometries (indices into `geometries`) that never collide (MJCF's
+    /// `<contact><exclude>`, an SRDF's disabled pairs).
+    pub excluded: Vec<(usize, usize)>,
+    /// Pairs of geometries that collide whatever the other rules say (MJCF's
+    /// `<contact><pair>`).
+    pub included: Vec<(usize, usize)>,
 }
 
 impl CollisionModel {
@@ -165,6 +198,8 @@ impl CollisionModel {
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
             margin: DEFAULT_MARGIN,
+            excluded: Vec::new(),
+            included: Vec::new(),
         }
     }
 
@@ -194,6 +229,18 @@ impl CollisionModel {
                     what: "the ground".into(),
                 });
             }
+        }
+        let n = self.geometries.len();
+        if let Some(&(i, j)) = self
+            .excluded
+            .iter()
+            .chain(&self.included)
+            .find(|(i, j)| *i >= n || *j >= n || i == j)
+        {
+            return Err(CollisionError::Pair {
+                first: i,
+                second: j,
+            });
         }
         for g in &self.geometries {
             if g.body.is_some_and(|j| j.0 >= njoints) {
@@ -242,6 +289,15 @@ pub enum CollisionError {
     Body {
         /// The geometry.
         geometry: String,
+    },
+    /// An excluded or included pair that names a geometry the model does not have, or one
+    /// geometry twice.
+    #[error("the pair of geometries ({first}, {second}) is not two of the model's geometries")]
+    Pair {
+        /// The first index.
+        first: usize,
+        /// The second index.
+        second: usize,
     },
     /// A placement with a non-finite entry.
     #[error("geometry \"{geometry}\": the placement is not finite")]

@@ -216,16 +216,27 @@ pub fn spec_mesh_vertices(path: &Path) -> Result<Vec<Option<Vec<Vec3>>>, String>
 /// placement, with its `contype` and `conaffinity` (MuJoCo's collision filter), a mesh as the
 /// convex hull of its vertices (as MuJoCo collides meshes). Returns the geometries (named by the
 /// geom, else `geom LINE`) and the warnings. Geoms with `contype = conaffinity = 0` (drawn,
-/// never colliding) are left out. Planes and height fields are not bodies' shapes
-/// (a plane is the ground: `--ground`), a mesh that cannot be read; each is skipped.
+/// never colliding) and planes (the ground of [`mjcf_world`]) are left out; height fields and
+/// a mesh that cannot be read are skipped with a warning. Each
+/// geometry has its geom's sliding `friction`.
 #[cfg(feature = "mjcf")]
 #[must_use]
 pub fn mjcf_geometries(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<String>) {
+    let (out, _, warnings) = mjcf_geoms(mjcf);
+    (out, warnings)
+}
+
+/// [`mjcf_geometries`], with the index in `mjcf.geoms` of each geometry's geom.
+#[cfg(feature = "mjcf")]
+fn mjcf_geoms(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<usize>, Vec<String>) {
     use super::mjcf::MjcfShape;
-    let (mut out, mut warnings) = (Vec::new(), Vec::new());
-    for g in &mjcf.geoms {
+    let (mut out, mut from, mut warnings) = (Vec::new(), Vec::new(), Vec::new());
+    for (i, g) in mjcf.geoms.iter().enumerate() {
         if g.contype == 0 && g.conaffinity == 0 {
             continue; // a visual geom: it collides with nothing in MuJoCo, the floor included
+        }
+        if matches!(g.shape, MjcfShape::Plane { .. }) {
+            continue; // the ground of `mjcf_world`
         }
         let name = g.name.clone().unwrap_or_else(|| format!("geom {}", g.line));
         let shape = match &g.shape {
@@ -261,9 +272,7 @@ pub fn mjcf_geometries(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<Str
                         .collect(),
                 })
                 .map_err(|e| format!("{}: {e}", file.display())),
-            MjcfShape::Plane { .. } => {
-                Err("a plane is not a body's shape (the ground: --ground)".into())
-            }
+            MjcfShape::Plane { .. } => Err("a plane is the ground (mjcf_world)".into()),
             MjcfShape::Hfield { .. } => Err("height fields are not read".into()),
         };
         match shape.and_then(|s| s.check().map(|()| s)) {
@@ -271,63 +280,370 @@ pub fn mjcf_geometries(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<Str
                 let mut geometry = Geometry::new(name, g.parent, g.placement, shape);
                 geometry.contype = u32::try_from(g.contype).unwrap_or(0);
                 geometry.conaffinity = u32::try_from(g.conaffinity).unwrap_or(0);
+                geometry.friction = Some(g.friction);
                 out.push(geometry);
+                from.push(i);
             }
             Err(e) => warnings.push(format!("{name} (line {}): collision skipped: {e}", g.line)),
         }
     }
-    (out, warnings)
+    (out, from, warnings)
 }
 
-/// The collision geometry of the robot file at `path` that `model` was built from: an MJCF
-/// file's geoms ([`mjcf_geometries`], by the `.xml` extension), else a URDF's `<collision>`
-/// elements ([`urdf_geometries`]). Returns the geometries and the warnings.
+/// What a robot file describes beyond its tree, for a simulation: its collision model (with
+/// the [`WorldOptions`]), its bilateral constraints (an MJCF file's `<equality>` elements) with
+/// the settings that hold them, its time step (MJCF `<option timestep>`), and the warnings of
+/// what was left out.
+#[derive(Clone, Debug)]
+pub struct FileWorld {
+    /// The collision model, `None` when nothing can touch.
+    pub collision: Option<crate::collision::CollisionModel>,
+    /// The bilateral constraints the file declares.
+    pub constraints: Vec<crate::multibody::constraints::ConstraintModel>,
+    /// Their solver: proximal, `μ = 1e-6` (a loop's redundant rows, as a planar four-bar's in
+    /// 3D, need no care).
+    pub constraint_settings: crate::multibody::constraints::ProximalSettings,
+    /// The file's time step (s), if it gives one.
+    pub timestep: Option<f64>,
+    /// What was left out, each naming its element and line.
+    pub warnings: Vec<String>,
+}
+
+/// The world of an MJCF file ([`mjcf_world`], its active `<equality>` elements, its
+/// `timestep`).
 ///
 /// # Errors
-/// The file cannot be read or parsed.
+/// As [`mjcf_world`]; an `<equality>` naming nothing.
+#[cfg(feature = "mjcf")]
+pub fn mjcf_file_world(
+    mjcf: &super::mjcf::MjcfModel,
+    options: &WorldOptions,
+) -> Result<FileWorld, WorldError> {
+    let (collision, mut warnings) = mjcf_world(mjcf, options)?;
+    let (constraints, skipped) = mjcf.constraint_models()?;
+    warnings.extend(skipped.iter().map(ToString::to_string));
+    Ok(FileWorld {
+        collision,
+        constraints,
+        constraint_settings: crate::multibody::constraints::ProximalSettings::new(
+            1e-12, 1e-6, 1000,
+        ),
+        timestep: mjcf.timestep,
+        warnings,
+    })
+}
+
+/// The world of the robot file at `path` that `model` was built from: an MJCF file's
+/// ([`mjcf_file_world`], by the `.xml` extension), else a URDF's ([`urdf_world`]).
+///
+/// # Errors
+/// The file cannot be read or parsed (the message names it), or as [`mjcf_world`] and
+/// [`urdf_world`].
 #[cfg(all(feature = "urdf", feature = "mjcf"))]
-pub fn file_geometries(path: &Path, model: &Model) -> Result<(Vec<Geometry>, Vec<String>), String> {
+pub fn file_world(
+    path: &Path,
+    model: &Model,
+    options: &WorldOptions,
+) -> Result<FileWorld, WorldError> {
+    let unreadable = |e: String| WorldError::File {
+        path: path.display().to_string(),
+        message: e,
+    };
     let xml = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
     if xml {
-        let m = super::mjcf::load_mjcf(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        Ok(mjcf_geometries(&m))
+        let m = super::mjcf::load_mjcf(path).map_err(|e| unreadable(e.to_string()))?;
+        mjcf_file_world(&m, options)
     } else {
-        let robot =
-            super::urdf::parse_urdf_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        Ok(urdf_geometries(&robot, model))
+        let robot = super::urdf::parse_urdf_file(path).map_err(|e| unreadable(e.to_string()))?;
+        let (collision, warnings) = urdf_world(&robot, model, options)?;
+        Ok(FileWorld {
+            collision,
+            constraints: Vec::new(),
+            constraint_settings: crate::multibody::constraints::ProximalSettings::default(),
+            timestep: None,
+            warnings,
+        })
     }
+}
+
+/// What a simulation's world adds to a robot file: `rigid simulate`'s `--ground`, `--friction`,
+/// `--restitution` and `--self-collision`, Python's `ground=`, `friction=`, `restitution=`,
+/// `self_collision=`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WorldOptions {
+    /// A horizontal ground `z = height` under the robot (a file's own floor is read without it).
+    pub ground: Option<f64>,
+    /// Coulomb friction of every contact (default: the file's, else
+    /// [`DEFAULT_FRICTION`](crate::collision::DEFAULT_FRICTION)).
+    pub friction: Option<f64>,
+    /// Newton restitution of every contact (default 0).
+    pub restitution: Option<f64>,
+    /// Contacts between the robot's own bodies (a URDF's are off by default; an MJCF file's
+    /// follow its masks, always on).
+    pub self_collision: bool,
+}
+
+/// What is wrong with a world: an option out of range, or an element of the file that names
+/// nothing or that the solver cannot handle.
+#[derive(Debug, thiserror::Error)]
+pub enum WorldError {
+    /// A friction that is negative or not finite.
+    #[error("friction must be finite and >= 0, got {0}")]
+    Friction(f64),
+    /// A restitution outside `[0, 1]`.
+    #[error("restitution must be in [0, 1], got {0}")]
+    Restitution(f64),
+    /// A ground height that is not finite.
+    #[error("the ground height must be finite, got {0}")]
+    Height(f64),
+    /// An element of the file (its tag or name, and its line).
+    #[error("{element} (line {line}): {message}")]
+    Element {
+        /// The element.
+        element: String,
+        /// Its line.
+        line: u32,
+        /// What is wrong.
+        message: String,
+    },
+    /// A file that cannot be read or parsed.
+    #[error("{path}: {message}")]
+    File {
+        /// The file.
+        path: String,
+        /// Why.
+        message: String,
+    },
+    /// An MJCF `<equality>` element that names nothing (its line in the message).
+    #[cfg(feature = "mjcf")]
+    #[error(transparent)]
+    Equality(#[from] super::mjcf::MjcfError),
+    /// A bad collision model (a shape, a placement).
+    #[error(transparent)]
+    Collision(#[from] crate::collision::CollisionError),
+}
+
+impl WorldOptions {
+    fn check(&self) -> Result<(), WorldError> {
+        if let Some(f) = self.friction.filter(|f| !(f.is_finite() && *f >= 0.0)) {
+            return Err(WorldError::Friction(f));
+        }
+        if let Some(e) = self.restitution.filter(|e| !(0.0..=1.0).contains(e)) {
+            return Err(WorldError::Restitution(e));
+        }
+        if let Some(h) = self.ground.filter(|h| !h.is_finite()) {
+            return Err(WorldError::Height(h));
+        }
+        Ok(())
+    }
+}
+
+/// The world of an MJCF file as MuJoCo collides it: its geoms ([`mjcf_geometries`], each with
+/// its friction; the larger of two is a contact's, MuJoCo's rule), its `plane` in the world as
+/// the ground (its friction the plane's), every pair of geoms on different bodies that are not
+/// parent and child and whose `contype`/`conaffinity` match, less `<contact><exclude>`'s body
+/// pairs, plus `<contact><pair>`'s geom pairs. `options.ground` adds a horizontal ground to a
+/// file without a floor; `friction` and `restitution` replace every contact's. `None` when
+/// nothing can touch (no ground and no pair of geoms on two bodies). Returns the warnings of
+/// the geoms left out.
+///
+/// # Errors
+/// A bad option; a plane on a moving body, a second plane, or `--ground` with the file's own
+/// floor (rigid's contact model has one ground half-space); an `<exclude>` or `<pair>` naming
+/// a body or geom the file does not have (each named with its line).
+#[cfg(feature = "mjcf")]
+pub fn mjcf_world(
+    mjcf: &super::mjcf::MjcfModel,
+    options: &WorldOptions,
+) -> Result<(Option<crate::collision::CollisionModel>, Vec<String>), WorldError> {
+    use super::mjcf::MjcfShape;
+    use crate::collision::{CollisionModel, Ground, DEFAULT_FRICTION};
+    options.check()?;
+    let element = |tag: &str, name: &Option<String>, line: u32, message: String| {
+        let element = match name {
+            Some(n) => format!("<{tag} name=\"{n}\">"),
+            None => format!("<{tag}>"),
+        };
+        WorldError::Element {
+            element,
+            line,
+            message,
+        }
+    };
+    let mut ground = None;
+    for g in &mjcf.geoms {
+        if !matches!(g.shape, MjcfShape::Plane { .. }) || (g.contype == 0 && g.conaffinity == 0) {
+            continue;
+        }
+        let why = if g.parent.is_some() {
+            "a plane on a moving body: rigid's ground is a half-space fixed in the world"
+        } else if ground.is_some() {
+            "a second plane: rigid's contact model has one ground half-space"
+        } else if options.ground.is_some() {
+            "the file has its own floor: --ground (ground=) adds one only to a file without"
+        } else {
+            let normal = g.placement.rotation * Vec3::z();
+            let friction = options.friction.unwrap_or(g.friction);
+            ground = Some(Ground {
+                height: normal.dot(&g.placement.translation),
+                normal,
+                friction,
+                restitution: options.restitution.unwrap_or(0.0),
+            });
+            continue;
+        };
+        return Err(element("geom", &g.name, g.line, why.into()));
+    }
+    if let Some(h) = options.ground {
+        let mut plane = Ground::horizontal(h, options.friction.unwrap_or(DEFAULT_FRICTION));
+        plane.restitution = options.restitution.unwrap_or(0.0);
+        ground = Some(plane);
+    }
+    // the geometries and, for each, the geom it came from
+    let (mut geometries, from, mut warnings) = mjcf_geoms(mjcf);
+    if options.friction.is_some() || options.restitution.is_some() {
+        for g in &mut geometries {
+            g.friction = options.friction.or(g.friction);
+            g.restitution = options.restitution;
+        }
+    }
+    let body_of = |name: &str, line: u32, tag: &str| {
+        mjcf.bodies
+            .iter()
+            .position(|b| b.name == name)
+            .ok_or_else(|| WorldError::Element {
+                element: format!("<{tag}>"),
+                line,
+                message: format!("no body named \"{name}\""),
+            })
+    };
+    let mut excluded = Vec::new();
+    for x in &mjcf.contact.excludes {
+        let (b1, b2) = (
+            body_of(&x.body1, x.line, "exclude")?,
+            body_of(&x.body2, x.line, "exclude")?,
+        );
+        for (i, gi) in from.iter().enumerate() {
+            for (j, gj) in from.iter().enumerate() {
+                let (a, b) = (mjcf.geoms[*gi].body, mjcf.geoms[*gj].body);
+                if i < j && ((a, b) == (b1, b2) || (a, b) == (b2, b1)) {
+                    excluded.push((i, j));
+                }
+            }
+        }
+    }
+    let mut included = Vec::new();
+    for p in &mjcf.contact.pairs {
+        let find = |name: &str| {
+            let geom = mjcf
+                .geoms
+                .iter()
+                .position(|g| g.name.as_deref() == Some(name));
+            let Some(geom) = geom else {
+                return Err(WorldError::Element {
+                    element: "<pair>".into(),
+                    line: p.line,
+                    message: format!("no geom named \"{name}\""),
+                });
+            };
+            from.iter()
+                .position(|&g| g == geom)
+                .ok_or_else(|| WorldError::Element {
+                    element: "<pair>".into(),
+                    line: p.line,
+                    message: format!("geom \"{name}\" does not collide (a plane, or skipped)"),
+                })
+        };
+        included.push((find(&p.geom1)?, find(&p.geom2)?));
+        if p.friction.is_some() {
+            warnings.push(format!(
+                "<pair> (line {}): its friction is not used (a contact takes the larger of its \
+                 two geoms')",
+                p.line
+            ));
+        }
+    }
+    let mut cm = CollisionModel::new(ground);
+    cm.self_collision = true;
+    cm.friction = options.friction.unwrap_or(DEFAULT_FRICTION);
+    cm.restitution = options.restitution.unwrap_or(0.0);
+    cm.geometries = geometries;
+    cm.excluded = excluded;
+    cm.included = included;
+    let bodies = cm
+        .geometries
+        .iter()
+        .filter_map(|g| g.body)
+        .collect::<std::collections::BTreeSet<_>>();
+    let touches = cm.ground.is_some()
+        || !cm.included.is_empty()
+        || bodies.len() >= 2
+        || (!bodies.is_empty() && cm.geometries.iter().any(|g| g.body.is_none()));
+    cm.check(mjcf.model.njoints())?;
+    Ok((touches.then_some(cm), warnings))
+}
+
+/// The world of a URDF robot: its `<collision>` elements ([`urdf_geometries`]) on a horizontal
+/// ground when `options.ground` is given (friction and restitution of every contact from the
+/// options, [`DEFAULT_FRICTION`](crate::collision::DEFAULT_FRICTION) and 0 by default), the
+/// robot's bodies against each other when `options.self_collision` (not parent and child).
+/// `None` without a ground and without self-collision. Returns the warnings of the elements
+/// left out.
+///
+/// # Errors
+/// A bad option.
+#[cfg(feature = "urdf")]
+pub fn urdf_world(
+    robot: &UrdfRobot,
+    model: &Model,
+    options: &WorldOptions,
+) -> Result<(Option<crate::collision::CollisionModel>, Vec<String>), WorldError> {
+    options.check()?;
+    if options.ground.is_none() && !options.self_collision {
+        return Ok((None, Vec::new()));
+    }
+    let (geometries, warnings) = urdf_geometries(robot, model);
+    let mut cm = ground_model(
+        options.ground,
+        options.friction,
+        options.restitution,
+        geometries,
+    )?;
+    cm.self_collision = options.self_collision;
+    Ok((Some(cm), warnings))
 }
 
 /// The collision model of `rigid simulate --ground HEIGHT --friction MU --restitution E` and of
 /// Python's `simulate(ground=, friction=, restitution=)`: the horizontal ground `z = height`,
 /// `geometries` (the robot's), `friction` (default [`DEFAULT_FRICTION`](crate::collision::DEFAULT_FRICTION)) and `restitution`
-/// (default 0) for every contact, no contact between the robot's own bodies.
+/// (default 0) for every contact, no contact between the robot's own bodies. Without a height,
+/// no ground.
 ///
 /// # Errors
 /// A friction that is negative or not finite, a restitution outside `[0, 1]`, a height that is
-/// not finite; the message names the option.
+/// not finite.
 pub fn ground_model(
-    height: f64,
+    height: Option<f64>,
     friction: Option<f64>,
     restitution: Option<f64>,
     geometries: Vec<Geometry>,
-) -> Result<crate::collision::CollisionModel, String> {
+) -> Result<crate::collision::CollisionModel, WorldError> {
     use crate::collision::{CollisionModel, Ground, DEFAULT_FRICTION};
+    WorldOptions {
+        ground: height,
+        friction,
+        restitution,
+        self_collision: false,
+    }
+    .check()?;
     let friction = friction.unwrap_or(DEFAULT_FRICTION);
     let restitution = restitution.unwrap_or(0.0);
-    if !(friction.is_finite() && friction >= 0.0) {
-        return Err(format!("friction must be finite and >= 0, got {friction}"));
-    }
-    if !(0.0..=1.0).contains(&restitution) {
-        return Err(format!("restitution must be in [0, 1], got {restitution}"));
-    }
-    if !height.is_finite() {
-        return Err(format!("the ground height must be finite, got {height}"));
-    }
-    let mut ground = Ground::horizontal(height, friction);
-    ground.restitution = restitution;
+    let ground = height.map(|h| Ground {
+        restitution,
+        ..Ground::horizontal(h, friction)
+    });
     let mut cm = CollisionModel::new(ground);
     cm.self_collision = false;
     cm.friction = friction;

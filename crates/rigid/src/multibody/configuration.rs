@@ -78,6 +78,38 @@ pub fn integrate(
     Ok(())
 }
 
+/// `q_out = q ⊕ h v` with every free-flyer stepped in world-aligned axes, its part of `carry`
+/// turned to its new body axes ([`JointType::integrate_world_aligned`]); the time-stepping
+/// scheme's configuration update. Lengths are the caller's (unchecked).
+pub(crate) fn integrate_world_aligned(
+    model: &Model,
+    q: &[f64],
+    v: &[f64],
+    h: f64,
+    q_out: &mut [f64],
+    carry: &mut [f64],
+) {
+    for j in model.joints() {
+        let (iq, iv) = (j.idx_q..j.idx_q + j.nq, j.idx_v..j.idx_v + j.nv);
+        j.kind.integrate_world_aligned(
+            &q[iq.clone()],
+            &v[iv.clone()],
+            h,
+            &mut q_out[iq],
+            &mut carry[iv],
+        );
+    }
+}
+
+/// The frame's turning over `h` of every joint stepped in world-aligned axes, added to `dv`
+/// ([`JointType::world_aligned_turn`]).
+pub(crate) fn world_aligned_turn(model: &Model, v: &[f64], h: f64, dv: &mut [f64]) {
+    for j in model.joints() {
+        let iv = j.idx_v..j.idx_v + j.nv;
+        j.kind.world_aligned_turn(&v[iv.clone()], h, &mut dv[iv]);
+    }
+}
+
 /// `v_out = q1 ⊖ q0`, the velocity with `q0 ⊕ v_out = q1` (dt = 1).
 ///
 /// # Errors

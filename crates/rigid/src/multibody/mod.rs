@@ -27,7 +27,7 @@
 //! | `(Mᵢ, Gᵢ, Sᵢ)`, DH tables | [`from_modern_robotics`], [`from_dh`] | Lynch & Park §8.3.2; Craig, Spong |
 //! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`PinocchioLayout`](crate::interop::PinocchioLayout) | URDF models loaded with sibling joints sorted by name |
 //! | `∂τ/∂(q, v)`, `∂q̈/∂(q, v, τ)`, `∂g/∂q`, frame kinematics, `∂(q ⊕ v)`, `∂(q₁ ⊖ q₀)` | [`derivatives`] ([`rnea_derivatives`], [`aba_derivatives`], …; `q` along `q ⊕ δ`) | Carpentier & Mansard, RSS 2018 |
-//! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`] | ABA; Lynch & Park ch. 9, 11 |
+//! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`](crate::simulation), the layer above this one | ABA; Lynch & Park ch. 9, 11 |
 //! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`, `crba_lower_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |
 //!
 //! No algorithm allocates after [`Data::new`] (tested with a counting allocator), and each
@@ -50,7 +50,6 @@ mod builder;
 mod builtins;
 pub(crate) mod configuration;
 pub mod constraints;
-pub mod contact;
 mod data;
 pub(crate) mod joint;
 mod textbook;
@@ -60,7 +59,6 @@ pub(crate) mod plan;
 pub mod reference;
 #[cfg(feature = "serde")]
 mod serialize;
-pub mod simulation;
 
 pub use algorithms::*;
 pub use builder::{InertiaCheck, ModelBuilder};

@@ -1,14 +1,18 @@
 //! After `Data::new` and `ConstraintData::new`, the constrained algorithms allocate nothing:
 //! `constraint_dynamics` (exact and proximal), `impulse_dynamics`, `contact_inverse_dynamics`,
-//! and a step of `ConstrainedSimulator` (counted by this binary's allocator, per thread).
+//! and a step of the simulator with a closed loop, smooth or with a ground contact (counted by
+//! this binary's allocator, per thread).
 
 use super::allocations_in as allocations;
 use rigid::io::urdf::{load_urdf_with, SiblingOrder, UrdfOptions};
 use rigid::multibody::constraints::{
-    constraint_dynamics, contact_inverse_dynamics, impulse_dynamics, ConstrainedSimulator,
-    ConstrainedStepOptions, ConstraintData, ConstraintKind, ConstraintModel, ProximalSettings,
+    constraint_dynamics, contact_inverse_dynamics, impulse_dynamics, ConstraintData,
+    ConstraintKind, ConstraintModel, ProximalSettings,
 };
 use rigid::multibody::{neutral, Data};
+use rigid::simulation::{
+    ConstraintOptions, Controller, Integrator, JointLimits, SimulationOptions, Simulator,
+};
 use rigid::spatial::{Transform, Vec3};
 
 fn load(rel: &str, floating: bool) -> rigid::multibody::Model {
@@ -63,23 +67,33 @@ fn constrained_algorithms_allocate_nothing() {
         fourbar.joint_id("rocker_joint"),
         tip(0.6),
     );
-    let opts = ConstrainedStepOptions {
+    let opts = ConstraintOptions {
         settings: ProximalSettings::new(1e-12, 1e-6, 100),
-        ..ConstrainedStepOptions::default()
+        ..ConstraintOptions::default()
     };
-    let mut sim = ConstrainedSimulator::new(
-        &fourbar,
-        &[closure],
-        &[0.5, 1.2, 1.9],
-        &[1.0, 0.0, 0.0],
-        opts,
-    )
-    .unwrap();
-    sim.project().unwrap();
-    let n = allocations(|| {
-        for _ in 0..10 {
-            sim.step(&[0.0; 3]).unwrap();
-        }
-    });
-    assert_eq!(n, 0);
+    // smooth (rk4 on the constrained dynamics), then the time-stepping scheme (the loop's rows
+    // in the contact problem, with the unilateral joint limits)
+    for (integrator, limits) in [
+        (Integrator::Rk4, JointLimits::Ignored),
+        (Integrator::SemiImplicitEuler, JointLimits::Unilateral),
+    ] {
+        let so = SimulationOptions {
+            limits,
+            ..SimulationOptions::conservative(1e-3, integrator)
+        };
+        let none = Controller::none(&fourbar);
+        // assembled at crank angle 0.5 rad (fixtures/constraints/fourbar.xml)
+        let q0 = [0.5, 0.02116623166979137, 1.1280269456729848];
+        let mut sim = Simulator::new(&fourbar, &q0, &[1.0, 0.0, 0.0], so, none)
+            .unwrap()
+            .with_constraints(std::slice::from_ref(&closure), opts)
+            .unwrap();
+        sim.run(3, |_| {}).unwrap(); // the contact solver's pool grows on its first steps
+        let n = allocations(|| {
+            for _ in 0..10 {
+                sim.step().unwrap();
+            }
+        });
+        assert_eq!(n, 0, "{integrator}");
+    }
 }

@@ -8,6 +8,7 @@
 use crate::allocations_in as allocations;
 use crate::common;
 use rigid::multibody::*;
+use rigid::simulation;
 use rigid::spatial::Wrench;
 
 #[test]

@@ -16,8 +16,8 @@ use rigid::identification::*;
 use rigid::io::urdf::load_urdf;
 #[cfg(feature = "sdp")]
 use rigid::mass::{Consistency, SpatialInertia, Verdict};
-use rigid::multibody::simulation::{Integrator, JointLimits, SimulationOptions, Simulator};
 use rigid::multibody::*;
+use rigid::simulation::{Integrator, JointLimits, SimulationOptions, Simulator};
 
 use crate::common;
 

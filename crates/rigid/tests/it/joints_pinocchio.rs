@@ -293,7 +293,7 @@ fn derivatives_and_the_coriolis_matrix_refuse_a_universal_joint_by_name() {
 /// the kinetic energy assumes constant motion subspaces, refuses it by name.
 #[test]
 fn the_simulator_takes_every_joint_type_and_the_variational_integrator_says_what_it_cannot() {
-    use rigid::multibody::simulation::{Controller, Integrator, SimulationOptions, Simulator};
+    use rigid::simulation::{Controller, Integrator, SimulationOptions, Simulator};
     let model = every_joint_tree(2, 8);
     let mut rng = Rng::new(4);
     let q0 = random_configuration(&model, &mut rng);

@@ -1,4 +1,4 @@
-//! The claims of the multibody simulator (`rigid::multibody::simulation`):
+//! The claims of the multibody simulator (`rigid::simulation`):
 //!
 //! - energy and momentum: UR5 and Talos on a free-flyer, no gravity, no damping, from a random
 //!   state, 10 s at 1 ms: the variational integrator keeps the energy to 1e-6 (relative, at
@@ -16,11 +16,11 @@
 //! The robots are example-robot-data's, from the copies under `tests/fixtures/robots/`.
 
 use rigid::io::urdf::load_urdf;
-use rigid::multibody::simulation::{
+use rigid::multibody::{builtin, difference, random_configuration, Model, Rng};
+use rigid::simulation::{
     simulate_batch, ControlLaw, Controller, Integrator, JointTrajectory, SimulationOptions,
     Simulator, TimeScaling,
 };
-use rigid::multibody::{builtin, difference, random_configuration, Model, Rng};
 
 fn robot(rel: &str, floating: bool) -> Model {
     load_urdf(common::example_robot_data().join(rel), floating).unwrap()
@@ -307,8 +307,8 @@ fn batch_gives_the_single_runs_bit_for_bit() {
 /// a pure moment on the body acts as the same joint torque.
 #[test]
 fn limits_damping_friction_and_external_wrenches_act_as_documented() {
-    use rigid::multibody::simulation::JointLimits;
     use rigid::multibody::{JointId, JointType, ModelBuilder};
+    use rigid::simulation::JointLimits;
     use rigid::spatial::{Transform, Vec3, Wrench};
     let build = |damping: f64, friction: f64| {
         let rod = *builtin("pendulum").unwrap().inertia(JointId(0));

@@ -38,9 +38,11 @@
 //! | `<equality>` | kept in [`MjcfEquality`]; `connect`, `weld` and `joint` become constraint models ([`MjcfModel::constraint_models`]) |
 //! | `<site>`, `<tendon>` | kept in [`MjcfSite`], [`MjcfTendon`] |
 //! | `<option gravity>`, `<flag gravity="disable">` | the model's gravity |
+//! | `<option timestep>` | kept in [`MjcfModel::timestep`] (the simulator's default step) |
+//! | `<geom friction>`, `<contact><exclude>`, `<contact><pair>` | kept in [`MjcfGeom::friction`] and [`MjcfContact`] (the collision model of `rigid::io::collision::mjcf_world`) |
 //! | `gravcomp` | kept in [`MjcfBody::gravcomp`] and reported |
 //!
-//! What rigid does not model (actuators, sensors, contacts, keyframes, cameras, lights,
+//! What rigid does not model (actuators, sensors, keyframes, cameras, lights,
 //! textures, solver options) is read past with one warning per kind, naming the first line.
 //! What it cannot load (`<composite>`, `<flexcomp>`, `<replicate>`, `<attach>`, a mesh whose
 //! inertia needs the convex hull) is an error naming the element and line.
@@ -92,6 +94,10 @@ pub struct MjcfModel {
     pub equalities: Vec<MjcfEquality>,
     /// The tendons.
     pub tendons: Vec<MjcfTendon>,
+    /// `<option timestep>`, if the file gives one (s).
+    pub timestep: Option<f64>,
+    /// `<contact>`: the excluded body pairs and the explicit geom pairs.
+    pub contact: MjcfContact,
     /// MuJoCo's `qpos0` (its layout): each free joint's body pose at load, each ball joint
     /// `(1, 0, 0, 0)`, each hinge or slide its `ref`.
     pub qpos0: Vec<f64>,
@@ -288,6 +294,8 @@ pub struct MjcfGeom {
     pub contype: i32,
     /// `conaffinity`.
     pub conaffinity: i32,
+    /// The sliding friction, the first number of `friction` (MuJoCo's default 1).
+    pub friction: f64,
     /// Colour: `rgba`, else its material's, else MuJoCo's grey.
     pub rgba: [f64; 4],
     /// The mass it gives its body (0 when its inertia is not taken from geoms).
@@ -358,6 +366,40 @@ pub enum MjcfEqualityKind {
     },
     /// Another kind (`flex`, ...), by its tag.
     Other(String),
+}
+
+/// The `<contact>` section: which body pairs never collide, and which geom pairs collide
+/// whatever their masks.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MjcfContact {
+    /// `<exclude body1 body2>`.
+    pub excludes: Vec<MjcfExclude>,
+    /// `<pair geom1 geom2>`.
+    pub pairs: Vec<MjcfPair>,
+}
+
+/// `<exclude body1 body2>`: the two bodies' geoms never collide.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfExclude {
+    /// The first body's name.
+    pub body1: String,
+    /// The second body's name.
+    pub body2: String,
+    /// Line of the element.
+    pub line: u32,
+}
+
+/// `<pair geom1 geom2 friction>`: the two geoms collide whatever their masks.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfPair {
+    /// The first geom's name.
+    pub geom1: String,
+    /// The second geom's name.
+    pub geom2: String,
+    /// The pair's sliding friction (its `friction`'s first number), if given.
+    pub friction: Option<f64>,
+    /// Line of the element.
+    pub line: u32,
 }
 
 /// An `<equality>` constraint.

@@ -10,7 +10,10 @@ use super::defaults::{Defaults, MAIN};
 use super::mesh::MeshInertia;
 use super::orientation::{self, Quat};
 use super::xml::Element;
-use super::{MjcfEquality, MjcfEqualityKind, MjcfError, MjcfTendon, MjcfTendonKind, Reader};
+use super::{
+    MjcfContact, MjcfEquality, MjcfEqualityKind, MjcfError, MjcfExclude, MjcfPair, MjcfTendon,
+    MjcfTendonKind, Reader,
+};
 use crate::spatial::Vec3;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -80,6 +83,10 @@ pub(super) struct MeshAsset {
 pub(super) struct Document {
     pub compiler: Compiler,
     pub gravity: Vec3,
+    /// `<option timestep>`, if given.
+    pub timestep: Option<f64>,
+    /// `<contact>`'s `<exclude>` and `<pair>` elements.
+    pub contact: MjcfContact,
     pub defaults: Defaults,
     pub meshes: Vec<MeshAsset>,
     /// Height field name → `size` (for a height-field geom's box).
@@ -102,11 +109,13 @@ pub(super) fn document(root: &Element, r: &mut Reader) -> Result<Document, MjcfE
     for e in root.children_named("compiler") {
         compiler(e, r, &mut c)?;
     }
-    let gravity = option(root, r)?;
+    let (gravity, timestep) = option(root, r)?;
     let defaults = Defaults::read(root, r)?;
     let mut doc = Document {
         compiler: c,
         gravity,
+        timestep,
+        contact: MjcfContact::default(),
         defaults,
         meshes: Vec::new(),
         hfields: HashMap::new(),
@@ -121,6 +130,11 @@ pub(super) fn document(root: &Element, r: &mut Reader) -> Result<Document, MjcfE
         for e in &section.children {
             let eq = equality(e, r, &doc)?;
             doc.equalities.push(eq);
+        }
+    }
+    for section in root.children_named("contact") {
+        for e in &section.children {
+            contact(e, r, &mut doc.contact)?;
         }
     }
     for section in root.children_named("tendon") {
@@ -241,13 +255,20 @@ fn compiler(e: &Element, r: &mut Reader, c: &mut Compiler) -> Result<(), MjcfErr
     Ok(())
 }
 
-/// `<option gravity>` and `<flag gravity="disable">`.
-fn option(root: &Element, r: &mut Reader) -> Result<Vec3, MjcfError> {
+/// `<option gravity timestep>` and `<flag gravity="disable">`.
+fn option(root: &Element, r: &mut Reader) -> Result<(Vec3, Option<f64>), MjcfError> {
     let mut g = [0.0, 0.0, -9.81];
     let mut enabled = true;
+    let mut timestep = None;
     for e in root.children_named("option") {
         let a = own(e);
         g = array(r, e, &a, "gravity", g)?;
+        if let Some(v) = numbers(r, e, a.get("timestep"), "timestep", 1, true)? {
+            if v[0] <= 0.0 {
+                return Err(r.invalid(e, format!("timestep = {} must be positive", v[0])));
+            }
+            timestep = Some(v[0]);
+        }
         for f in e.children_named("flag") {
             let fa = own(f);
             if fa.get("gravity").is_some() {
@@ -255,11 +276,45 @@ fn option(root: &Element, r: &mut Reader) -> Result<Vec3, MjcfError> {
             }
         }
     }
-    Ok(if enabled {
+    let g = if enabled {
         Vec3::from(g)
     } else {
         Vec3::zeros()
-    })
+    };
+    Ok((g, timestep))
+}
+
+/// One element of `<contact>`: `<exclude body1 body2>` or `<pair geom1 geom2 [friction]>` (the
+/// names are resolved with the geometry, `rigid::io::collision`).
+fn contact(e: &Element, r: &mut Reader, out: &mut MjcfContact) -> Result<(), MjcfError> {
+    let a = own(e);
+    let name = |key: &str| {
+        a.get(key)
+            .map(str::to_string)
+            .ok_or_else(|| r.invalid(e, format!("<{}> needs \"{key}\"", e.tag)))
+    };
+    match e.tag.as_str() {
+        "exclude" => out.excludes.push(MjcfExclude {
+            body1: name("body1")?,
+            body2: name("body2")?,
+            line: e.line,
+        }),
+        "pair" => {
+            let friction = numbers(r, e, a.get("friction"), "friction", 5, false)?
+                .and_then(|v| v.first().copied());
+            if friction.is_some_and(|f| f < 0.0) {
+                return Err(r.invalid(e, "a negative friction".into()));
+            }
+            out.pairs.push(MjcfPair {
+                geom1: name("geom1")?,
+                geom2: name("geom2")?,
+                friction,
+                line: e.line,
+            });
+        }
+        _ => r.warn(e, format!("<contact><{}> is not read", e.tag)),
+    }
+    Ok(())
 }
 
 fn assets(section: &Element, r: &mut Reader, doc: &mut Document) -> Result<(), MjcfError> {
@@ -484,7 +539,8 @@ fn tendon(e: &Element, r: &mut Reader, doc: &Document) -> Result<MjcfTendon, Mjc
 
 /// What rigid reads past: one warning per kind of element, at its first occurrence.
 fn ignored_sections(root: &Element, r: &mut Reader) {
-    const KNOWN: [&str; 8] = [
+    const KNOWN: [&str; 9] = [
+        "contact",
         "compiler",
         "option",
         "default",
@@ -494,13 +550,9 @@ fn ignored_sections(root: &Element, r: &mut Reader) {
         "tendon",
         "size",
     ];
-    const SKIPPED: [(&str, &str); 9] = [
+    const SKIPPED: [(&str, &str); 8] = [
         ("actuator", "actuators are not modelled by rigid"),
         ("sensor", "sensors are not modelled by rigid"),
-        (
-            "contact",
-            "contact pairs and exclusions are not modelled by rigid (yet)",
-        ),
         ("keyframe", "keyframes are not read"),
         ("visual", "rendering settings"),
         ("statistic", "rendering statistics"),

@@ -93,6 +93,8 @@ pub(super) struct Geom {
     pub group: i32,
     pub contype: i32,
     pub conaffinity: i32,
+    /// The sliding friction (`friction`'s first number).
+    pub friction: f64,
     /// Mesh asset name.
     pub mesh: Option<String>,
     /// Height field asset name.
@@ -506,6 +508,13 @@ fn geom(
         group: int(r, e, a, "group", 0)?,
         contype: int(r, e, a, "contype", 1)?,
         conaffinity: int(r, e, a, "conaffinity", 1)?,
+        friction: {
+            let f = partial(r, e, a, "friction", [1.0, 0.005, 0.0001])?;
+            if f.iter().any(|x| *x < 0.0) && !is_site {
+                return Err(r.invalid(e, "a negative friction".into()));
+            }
+            f[0]
+        },
         mesh,
         hfield: a.get("hfield").map(str::to_string),
         rgba: parse::numbers(r, e, a.get("rgba"), "rgba", 4, true)?

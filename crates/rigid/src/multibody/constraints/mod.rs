@@ -38,7 +38,7 @@
 //! | [`constraint_dynamics`] | `q̈`, `λ` | KKT system by the tree-sparse `M = LᵀL` and the Delassus matrix `J M⁻¹ Jᵀ`; proximal iterations for redundant constraints (RSS 2021, Alg. 1) |
 //! | [`impulse_dynamics`] | `q̇⁺`, the impulse `Λ` | `M (q̇⁺ − q̇⁻) = Jᵀ Λ`, `J q̇⁺ = −e J q̇⁻` (Newton's impact law) |
 //! | [`contact_inverse_dynamics`] | `τ`, `λ` | the least-norm `(τ_a, λ)` with `S_aᵀ τ_a + Jᵀ λ = M q̈ + c + g` |
-//! | [`ConstrainedSimulator`] | `(q, q̇)(t)` | RK4 on the constrained dynamics, projection of `q` and `q̇` on the constraint manifold |
+//! | [`Simulator::with_constraints`](crate::simulation::Simulator::with_constraints) | `(q, q̇)(t)` | the one simulator: constrained dynamics (or bilateral rows beside the contacts), projection of `q` and `q̇` on the constraint manifold |
 //!
 //! The workspace [`ConstraintData`] is made once per (model, constraint set), like Pinocchio's
 //! `initConstraintDynamics`; no verb allocates afterwards.
@@ -69,7 +69,6 @@ mod dynamics;
 mod impulse;
 mod inverse;
 mod kinematics;
-mod simulate;
 pub(crate) mod solver;
 pub(crate) mod workspace;
 
@@ -78,7 +77,6 @@ pub(crate) use dynamics::constraint_rows;
 pub use impulse::impulse_dynamics;
 pub use inverse::contact_inverse_dynamics;
 pub use kinematics::ConstraintPlacement;
-pub use simulate::{ConstrainedSimulator, ConstrainedStepOptions, Violation};
 pub use workspace::ConstraintData;
 
 pub use crate::multibody::ReferenceFrame;

@@ -6,14 +6,13 @@ use nalgebra::{DVector, Vector2};
 use rigid::body::lagrange::{equations_of_motion, no_force, rk4_step, RodOnPivot};
 use rigid::mass::{RotationalInertia, SpatialInertia};
 use rigid::multibody::constraints::{
-    constraint_dynamics, ConstrainedSimulator, ConstrainedStepOptions, ConstraintData,
-    ConstraintModel, ProximalSettings,
+    constraint_dynamics, ConstraintData, ConstraintModel, ProximalSettings,
 };
-use rigid::multibody::simulation::{Controller, SimulationOptions, Simulator};
 use rigid::multibody::{
     crba, integrate, nonlinear_effects, Data, JointId, JointType, Model, ModelBuilder,
     ReferenceFrame,
 };
+use rigid::simulation::{ConstraintOptions, Controller, Integrator, SimulationOptions, Simulator};
 use rigid::spatial::{so3, Mat3, Transform, Vec3};
 
 const M: f64 = 1.5;
@@ -144,12 +143,16 @@ fn rod_on_a_pivot_moves_as_lagrange_says() {
     let (q0, qd0) = (Vector2::new(0.3, 0.8), Vector2::new(1.5, 0.3));
     let (model, c) = free_rod(ReferenceFrame::WorldAligned);
     let (qf, vf) = free_state(&q0, &qd0);
-    let opts = ConstrainedStepOptions::default();
-    let mut sim = ConstrainedSimulator::new(&model, &[c], &qf, &vf, opts).unwrap();
+    let opts = SimulationOptions::conservative(1e-3, Integrator::Rk4);
+    let mut sim = Simulator::new(&model, &qf, &vf, opts, Controller::none(&model))
+        .unwrap()
+        .with_constraints(&[c], ConstraintOptions::default())
+        .unwrap();
     let (mut q, mut qd) = (q0, qd0);
     let mut worst: f64 = 0.0;
     for k in 0..2000 {
-        let v = sim.step(&[0.0; 6]).unwrap();
+        sim.step().unwrap();
+        let v = sim.violation().unwrap();
         assert!(v.position < 1e-12 && v.velocity < 1e-12, "{v:?}");
         (q, qd) = rk4_step(&rod, k as f64 * 1e-3, &q, &qd, 1e-3, no_force).unwrap();
         let x = sim.q();
@@ -196,26 +199,29 @@ fn fourbar_runs_ten_seconds_on_its_manifold() {
     let settings = ProximalSettings::new(1e-12, 1e-6, 100);
     // (largest violation, largest relative energy change, final crank angle, q̇ at the start)
     let run = |c: &ConstraintModel, project: bool, rate: f64, dt: f64| {
-        let opts = ConstrainedStepOptions {
-            dt,
+        let opts = ConstraintOptions {
             settings,
             project,
-            ..ConstrainedStepOptions::default()
+            ..ConstraintOptions::default()
         };
-        let mut sim = ConstrainedSimulator::new(
+        let conservative = SimulationOptions::conservative(dt, Integrator::Rk4);
+        let mut sim = Simulator::new(
             &model,
-            std::slice::from_ref(c),
             &q0,
             &[rate, 0.0, 0.0],
-            opts,
+            conservative,
+            Controller::none(&model),
         )
+        .unwrap()
+        .with_constraints(std::slice::from_ref(c), opts)
         .unwrap();
-        sim.project().unwrap(); // start on the manifold, q̇ tangent to it
+        sim.project_constraints().unwrap(); // start on the manifold, q̇ tangent to it
         let v0 = sim.v().to_vec();
         let e0 = sim.energy().unwrap();
         let (mut violation, mut drift): (f64, f64) = (0.0, 0.0);
         for _ in 0..(10.0 / dt).round() as usize {
-            let v = sim.step(&[0.0; 3]).unwrap();
+            sim.step().unwrap();
+            let v = sim.violation().unwrap();
             violation = violation.max(v.position);
             drift = drift.max((sim.energy().unwrap() - e0).abs());
         }

@@ -1,4 +1,4 @@
-//! Contacts with friction (`multibody::contact`, `collision`): the closed forms of mechanics
+//! Contacts with friction (`simulation::contact`, `collision`): the closed forms of mechanics
 //! (a box sliding to a stop, a ball rolling or slipping down a slope, bounces of restitution
 //! `e`, a box and a tower of boxes at rest), kinetic energy never made by a contact, unilateral
 //! joint limits, and robots standing on the ground (Solo-12, ANYmal, TALOS).
@@ -8,11 +8,12 @@
 mod closed_form;
 mod energy;
 mod robots;
+mod world;
 
 use rigid::collision::{CollisionModel, Geometry, Ground, Shape};
 use rigid::mass::{RotationalInertia, SpatialInertia};
-use rigid::multibody::simulation::{Controller, Integrator, SimulationOptions, Simulator};
 use rigid::multibody::{JointId, JointType, Model, ModelBuilder};
+use rigid::simulation::{Controller, Integrator, SimulationOptions, Simulator};
 use rigid::spatial::{so3, Mat3, Transform, Vec3};
 
 /// Standard gravity in the tests (m/s²).

@@ -10,7 +10,7 @@ use crate::common::example_robot_data;
 use rigid::collision::place_on_ground;
 use rigid::io::collision::{ground_model, urdf_geometries};
 use rigid::io::urdf::{load_urdf, parse_urdf_file};
-use rigid::multibody::simulation::{ControlLaw, Controller, Simulator};
+use rigid::simulation::{ControlLaw, Controller, Simulator};
 
 /// Simulates `urdf` (floating) standing at `stance` (rigid's layout) for 10 s at 1 ms and checks
 /// the bars: after the first 0.5 s (settling) the base height stays within 1 cm of its
@@ -22,7 +22,7 @@ fn stands(urdf: &str, stance: &[f64], contacts: usize) -> f64 {
     let model = load_urdf(&path, true).unwrap();
     let robot = parse_urdf_file(&path).unwrap();
     let (geometries, _) = urdf_geometries(&robot, &model);
-    let cm = ground_model(0.0, None, None, geometries).unwrap();
+    let cm = ground_model(Some(0.0), None, None, geometries).unwrap();
     let mut q0 = stance.to_vec();
     place_on_ground(&model, &cm, &mut q0).unwrap();
     let law = ControlLaw::standing(&model, &q0, &cm).unwrap();

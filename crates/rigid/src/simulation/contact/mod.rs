@@ -25,7 +25,7 @@
 //! `PGSContactSolverTpl`): per contact, the normal impulse by a projected Newton step on its
 //! row, then the tangential impulse by the 2×2 block and a radial projection on the disc
 //! `μ λ_n`. `G` comes from the tree-sparse factor `M = LᵀL` of the constraint machinery
-//! ([`constraints`](super::constraints)): `Z = L⁻ᵀ Jᵀ`, `G = Zᵀ Z`.
+//! ([`constraints`](crate::multibody::constraints)): `Z = L⁻ᵀ Jᵀ`, `G = Zᵀ Z`.
 //!
 //! # What it guarantees
 //!
@@ -53,32 +53,6 @@
 mod solver;
 
 pub(crate) use solver::ContactSolver;
-
-use crate::multibody::JointId;
-use crate::spatial::Vec3;
-
-/// One contact between two bodies (or a body and the world), the solver's input: where, along
-/// which normal, how far apart, with which friction and restitution.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactPoint {
-    /// The body pushed along `+normal` (`None`: the world).
-    pub body1: Option<JointId>,
-    /// The other body (`None`: the world, as for the ground).
-    pub body2: Option<JointId>,
-    /// The contact point in the world (m): the middle of the two closest points.
-    pub point: Vec3,
-    /// The unit contact normal in the world, from body 2 towards body 1.
-    pub normal: Vec3,
-    /// The signed distance along `normal` (m): positive apart, negative penetrating.
-    pub gap: f64,
-    /// Coulomb's friction coefficient `μ ≥ 0`.
-    pub friction: f64,
-    /// Newton's restitution coefficient `e ∈ [0, 1]`.
-    pub restitution: f64,
-    /// The collision geometries in contact (indices into the collision model; `None` for the
-    /// ground), for reports.
-    pub geometries: (usize, Option<usize>),
-}
 
 /// The solver's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]

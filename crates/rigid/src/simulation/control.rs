@@ -103,7 +103,7 @@ pub enum ControlLaw {
 /// [`ControlLaw::builtin`] for the law and gains each stands for).
 ///
 /// ```
-/// use rigid::multibody::simulation::{ControlKind, SimulationError};
+/// use rigid::simulation::{ControlKind, SimulationError};
 /// assert_eq!("pd".parse::<ControlKind>()?, ControlKind::Pd);
 /// assert_eq!(ControlKind::Track.to_string(), "track");
 /// assert!(matches!("fly".parse::<ControlKind>(), Err(SimulationError::UnknownController { .. })));
@@ -169,11 +169,12 @@ impl ControlLaw {
     /// `ë + 20 ė + 100 e = 0` (critically damped at 10 rad/s).
     ///
     /// ```
-    /// use rigid::multibody::{builtin, simulation::{ControlKind, ControlLaw, TimeScaling}};
+    /// use rigid::multibody::builtin;
+    /// use rigid::simulation::{ControlKind, ControlLaw, TimeScaling};
     /// let model = builtin("pendulum").unwrap();
     /// let law = ControlLaw::builtin(&model, ControlKind::Track, &[0.0], Some(&[1.0]), 2.0, TimeScaling::Quintic)?;
     /// assert!(matches!(law, ControlLaw::ComputedTorque { kp, .. } if kp == 100.0));
-    /// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+    /// # Ok::<(), rigid::simulation::SimulationError>(())
     /// ```
     ///
     /// # Errors
@@ -211,11 +212,12 @@ impl ControlLaw {
     /// fixed step stays stable).
     ///
     /// ```
-    /// use rigid::multibody::{builtin, simulation::ControlLaw};
+    /// use rigid::multibody::builtin;
+    /// use rigid::simulation::ControlLaw;
     /// let model = builtin("pendulum").unwrap(); // M = 1/3 kg·m²
     /// let ControlLaw::Pd { kp, kd, .. } = ControlLaw::pd(&model, &[0.0], 10.0, 1.0)? else { panic!() };
     /// assert!((kp[0] - 100.0 / 3.0).abs() < 1e-12 && (kd[0] - 20.0 / 3.0).abs() < 1e-12);
-    /// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+    /// # Ok::<(), rigid::simulation::SimulationError>(())
     /// ```
     ///
     /// # Errors
@@ -240,7 +242,8 @@ impl ControlLaw {
 /// A built-in control law with its workspace (allocated once).
 ///
 /// ```
-/// use rigid::multibody::{builtin, simulation::{Control, ControlLaw, Controller}};
+/// use rigid::multibody::builtin;
+/// use rigid::simulation::{Control, ControlLaw, Controller};
 /// let model = builtin("double_pendulum").unwrap();
 /// let mut c = Controller::new(&model, ControlLaw::GravityCompensation)?;
 /// let mut tau = [0.0; 2];

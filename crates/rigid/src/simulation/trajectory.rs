@@ -40,7 +40,7 @@ impl TimeScaling {
     /// `(s, ṡ, s̈)` at time `t` for a motion of duration `T`.
     ///
     /// ```
-    /// use rigid::multibody::simulation::TimeScaling;
+    /// use rigid::simulation::TimeScaling;
     /// let (s, ds, _) = TimeScaling::Trapezoidal { accel_fraction: 0.25 }.eval(1.0, 2.0);
     /// assert!((s - 0.5).abs() < 1e-15 && (ds - 1.0 / 1.5).abs() < 1e-15); // cruising at 1/(T - t_a)
     /// ```
@@ -82,13 +82,14 @@ impl TimeScaling {
 /// A straight-line joint trajectory from `start` to `end` in `duration` seconds.
 ///
 /// ```
-/// use rigid::multibody::{builtin, simulation::{JointTrajectory, TimeScaling}};
+/// use rigid::multibody::builtin;
+/// use rigid::simulation::{JointTrajectory, TimeScaling};
 /// let model = builtin("double_pendulum").unwrap();
 /// let traj = JointTrajectory::new(&model, &[0.0, 0.0], &[1.0, -0.5], 2.0, TimeScaling::Quintic)?;
 /// let (mut q, mut v, mut a) = ([0.0; 2], [0.0; 2], [0.0; 2]);
 /// traj.sample(&model, 1.0, &mut q, &mut v, &mut a);
 /// assert!((q[0] - 0.5).abs() < 1e-15 && (v[0] - 0.9375).abs() < 1e-15); // s(½) = ½, ṡ = 15/8 / T
-/// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+/// # Ok::<(), rigid::simulation::SimulationError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct JointTrajectory {

@@ -1,6 +1,6 @@
 //! The time-stepping scheme with contacts and unilateral joint limits (Moreau–Jean; Stewart &
 //! Trinkle 1996; Anitescu & Potra 1997), the equations in
-//! [`multibody::contact`](crate::multibody::contact):
+//! [`simulation::contact`](crate::simulation::contact):
 //!
 //! 1. `v_f = v_k + h M⁻¹ (τ(t_k, q_k, v_k) − c − g + Σ Jᵢᵀ Fᵢ)`: symplectic Euler's free velocity
 //!    (the factor `M = LᵀL` kept for step 3). A controller's PD part (`K_p`, `K_d`,
@@ -9,30 +9,34 @@
 //!    linearisation of `K_p (q* ⊖ q⁺) − K_d v⁺`), so that stiff gains on light joints (an ankle
 //!    that carries a humanoid, [`ControlLaw::stance`](super::ControlLaw::stance)) do not need a
 //!    smaller step; the contact problem of step 3 is then posed on `M̃`;
-//! 2. the contacts at `q_k` (collision geometry, parry) and the joints at or near a limit;
-//! 3. the impulses `λ` of the contact problem, `v_{k+1} = v_f + M⁻¹ Jᵀ λ`;
-//! 4. `q_{k+1} = q_k ⊕ h v_{k+1} ⊕ δq`, with `δq` the position correction of any penetration.
+//! 2. the bilateral constraints' rows at `q_k` (closed loops, welds: [`loops`](super::loops)),
+//!    the contacts at `q_k` (collision geometry, parry) and the joints at or near a limit;
+//! 3. the impulses `λ` of the one problem over their shared Delassus rows (bilateral rows
+//!    `J_B v⁺ = 0`, the contacts' Signorini–Coulomb), `v_{k+1} = v_f + M⁻¹ Jᵀ λ`;
+//! 4. `q_{k+1} = q_k ⊕ h v_{k+1} ⊕ δq`, with `δq` the position correction of any penetration
+//!    and constraint error.
 //!
 //! First order in `h`, as MuJoCo's Euler and Pinocchio's simulators are; the smooth forces are
 //! those of the other integrators (control, joint damping and friction, limit springs, external
 //! wrenches).
 //!
 //! A free-flyer joint is stepped on SO(3) × R³ with its velocity in world-aligned axes over the
-//! step (as MuJoCo's free joint): its origin moves in a straight line, `p⁺ = p + h R v_b⁺`, and
-//! its twist is carried to the new body axes, `V⁺ ← ΔRᵀ V⁺` with `ΔR = Rᵀ R⁺`. In body axes the
-//! explicit step would turn `v_b` by `−h ω × v_b`, which lengthens it by `√(1 + h²ω²)` every
-//! step: a ball rolling at 20 rad/s would gain 20 % of its speed a second.
+//! step (as MuJoCo's free joint), by the joint module
+//! ([`JointType::integrate_world_aligned`](crate::multibody::JointType)).
 
 use super::control::Control;
 use super::simulator::Dynamics;
 use super::{JointLimits, SimulationError};
+#[cfg(feature = "collision")]
+use crate::collision::ContactPoint;
 use crate::multibody::algorithms::{ltl_factor, ltl_solve_lower, ltl_solve_transposed};
-use crate::multibody::contact::{ContactPoint, ContactSettings, ContactSolver, ContactStats};
-use crate::multibody::JointType;
+use crate::multibody::configuration::{integrate_world_aligned, world_aligned_turn};
+use crate::multibody::constraints::constraint_rows;
 use crate::multibody::{
-    compute_joint_jacobians, crba, integrate, nonlinear_effects, rnea_with_external, Model,
+    compute_joint_jacobians, crba, nonlinear_effects, rnea_with_external, Model,
 };
-use crate::spatial::{quat_to_rot, Vec3};
+use crate::simulation::contact::{ContactSettings, ContactSolver, ContactStats};
+use crate::spatial::Vec3;
 
 /// The contact part of a simulator: the solver's workspace, the collision geometry and its
 /// workspace, and the results of the last step.
@@ -74,6 +78,7 @@ impl ContactStepper {
     }
 
     /// The contacts of the last step (those given to the solver: gap under the margin).
+    #[cfg(feature = "collision")]
     pub(crate) fn contacts(&self) -> &[ContactPoint] {
         &self.solver.points
     }
@@ -132,19 +137,14 @@ pub(crate) fn contact_step<C: Control>(
     }
     // free-flyers in world-aligned axes over the step: the frame's turning `−ω × v_b`, which
     // `a` holds, is not a force
-    for j in model.joints() {
-        if j.kind == JointType::FreeFlyer {
-            let k = j.idx_v;
-            let w = Vec3::new(v[k], v[k + 1], v[k + 2]);
-            let vb = Vec3::new(v[k + 3], v[k + 4], v[k + 5]);
-            let turn = w.cross(&vb) * h;
-            for i in 0..3 {
-                v_new[k + 3 + i] += turn[i];
-            }
-        }
-    }
+    world_aligned_turn(model, v, h, v_new);
     compute_joint_jacobians(model, data, q)?;
     cs.solver.clear();
+    if let Some(l) = &mut d.loops {
+        // the bodies' velocities and drift accelerations of the RNEA above
+        constraint_rows(model, data, &mut l.cdata, q, v, true);
+        cs.solver.push_bilateral(&l.cdata);
+    }
     #[cfg(feature = "collision")]
     if let Some((cm, cd)) = &mut cs.collision {
         cd.contacts(cm, &data.placements, &mut cs.points);
@@ -180,21 +180,6 @@ pub(crate) fn contact_step<C: Control>(
             cs.v_step[k] = v_new[k] + cs.dq[k] / h;
         }
     }
-    integrate(model, q, &cs.v_step, h, q_new)?;
-    for j in model.joints() {
-        if j.kind == JointType::FreeFlyer {
-            let (iq, k) = (j.idx_q, j.idx_v);
-            let r0 = quat_to_rot(q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]);
-            let r1 = quat_to_rot(q_new[iq + 3], q_new[iq + 4], q_new[iq + 5], q_new[iq + 6]);
-            let vb = Vec3::new(cs.v_step[k + 3], cs.v_step[k + 4], cs.v_step[k + 5]);
-            let p = Vec3::new(q[iq], q[iq + 1], q[iq + 2]) + r0 * vb * h;
-            q_new[iq..iq + 3].copy_from_slice(p.as_slice());
-            let turn = r1.tr_mul(&r0);
-            for at in [k, k + 3] {
-                let x = turn * Vec3::new(v_new[at], v_new[at + 1], v_new[at + 2]);
-                v_new[at..at + 3].copy_from_slice(x.as_slice());
-            }
-        }
-    }
+    integrate_world_aligned(model, q, &cs.v_step, h, q_new, v_new);
     Ok(())
 }

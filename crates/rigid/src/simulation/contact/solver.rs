@@ -1,22 +1,34 @@
 //! The contact problem of one step: rows of `J`, the Delassus operator through the constraint
 //! machinery's kernels, the projected Gauss–Seidel iterations, the energy safeguard and the
 //! position correction (see the [module](super) documentation for the equations).
+//!
+//! Bilateral rows (closed loops, welds, MJCF equalities: a [`ConstraintData`]'s rows) come first
+//! and are one block of the Gauss–Seidel sweep, solved whole at each sweep by the proximal step
+//! `λ_B ← λ_B − (K_BB + ρ I)⁻¹ (σ_B − σ*_B)` (`ρ = 10⁻¹⁰ max diag K_BB`, so redundant rows such
+//! as a planar loop's out-of-plane row need no care), with the target `σ*_B = 0`: `J_B v⁺ = 0`,
+//! a hard constraint. Their position error is removed by the position correction with the
+//! contacts' penetration (`σ*_B = −β e/h`).
 
-use super::{ContactPoint, ContactSettings, ContactStats};
-use crate::multibody::constraints::solver::{delassus_rows, primal_rows};
+use super::{ContactSettings, ContactStats};
+#[cfg(feature = "collision")]
+use crate::collision::ContactPoint;
+use crate::multibody::constraints::solver::{cholesky, cholesky_solve, delassus_rows, primal_rows};
 use crate::multibody::constraints::workspace::Support;
+use crate::multibody::constraints::ConstraintData;
 use crate::multibody::{Data, JointId, Model};
 use crate::spatial::Vec3;
 use nalgebra::DMatrix;
 
-/// One row block of the problem: a contact (3 rows: normal, two tangents) or a joint limit
-/// (1 row).
+/// One row block of the problem: a contact (3 rows: normal, two tangents), a joint limit
+/// (1 row) or a bilateral constraint (1, 3 or 6 rows).
 #[derive(Clone, Copy, Debug)]
 struct Block {
     /// First row.
     row: usize,
-    /// 3 (contact) or 1 (limit).
+    /// 3 (contact), 1 (limit), or the constraint's rows (bilateral).
     dim: usize,
+    /// A bilateral constraint (its rows in the leading bilateral group).
+    bilateral: bool,
     /// `μ` (0 for a limit).
     friction: f64,
     /// `e`.
@@ -26,7 +38,7 @@ struct Block {
     /// The contact frame `(n, t1, t2)` in the world (a limit: unused).
     frame: [Vec3; 3],
     /// The impulse of the same contact at the last step (the warm start).
-    warm: [f64; 3],
+    warm: [f64; 6],
     /// The approach speed of an impact whose gap closed in the last step (0: none).
     impact: f64,
     /// The kinetic energy the rebound of that impact may give back (J): `e²` times what the
@@ -42,7 +54,7 @@ struct Block {
 struct Memory {
     key: (usize, usize),
     point: Vec3,
-    lambda: [f64; 3],
+    lambda: [f64; 6],
     /// The speed at which its gap closed in that step (0: it did not).
     impact: f64,
     /// `e²` times the kinetic energy the contact took in that step if its gap closed (J).
@@ -61,6 +73,7 @@ pub(crate) struct ContactSolver {
     chains: Vec<Vec<usize>>,
     blocks: Vec<Block>,
     /// The contact points given, in block order (limits excluded).
+    #[cfg(feature = "collision")]
     pub(crate) points: Vec<ContactPoint>,
     /// The impulse (N·s, world axes) of each of `points` on its body 1, as last solved.
     pub(crate) impulses: Vec<Vec3>,
@@ -78,6 +91,15 @@ pub(crate) struct ContactSolver {
     lambda: Vec<f64>,
     sigma: Vec<f64>,
     x: Vec<f64>,
+    /// The rows of the bilateral group (the leading rows), and the Cholesky factor of
+    /// `K_BB + ρ I` (`None` until a step has bilateral rows).
+    bilateral_rows: usize,
+    bilateral_factor: DMatrix<f64>,
+    /// The bilateral rows' errors `e` at this step's `q`, and their largest `‖e‖∞`.
+    bilateral_e: Vec<f64>,
+    bilateral_error: f64,
+    /// Scratch of the bilateral group's step (length: its rows).
+    bilateral_step: Vec<f64>,
     /// The contacts of the last step, and of this one (for the next).
     memory: Vec<Memory>,
     next_memory: Vec<Memory>,
@@ -107,6 +129,7 @@ impl ContactSolver {
             nv,
             chains,
             blocks: Vec::new(),
+            #[cfg(feature = "collision")]
             points: Vec::new(),
             impulses: Vec::new(),
             rows: vec![0],
@@ -120,6 +143,11 @@ impl ContactSolver {
             lambda: Vec::new(),
             sigma: Vec::new(),
             x: vec![0.0; nv],
+            bilateral_rows: 0,
+            bilateral_factor: DMatrix::zeros(0, 0),
+            bilateral_e: Vec::new(),
+            bilateral_error: 0.0,
+            bilateral_step: Vec::new(),
             memory: Vec::new(),
             next_memory: Vec::new(),
             keys: Vec::new(),
@@ -163,9 +191,13 @@ impl ContactSolver {
         self.next_memory.clear();
         self.keys.clear();
         self.blocks.clear();
+        #[cfg(feature = "collision")]
         self.points.clear();
         self.impulses.clear();
         self.rows.truncate(1);
+        self.bilateral_rows = 0;
+        self.bilateral_e.clear();
+        self.bilateral_error = 0.0;
         self.stats = ContactStats::default();
     }
 
@@ -187,7 +219,7 @@ impl ContactSolver {
                     .total_cmp(&(b.point - point).norm())
             });
         let (warm, impact, credit) =
-            found.map_or(([0.0; 3], 0.0, 0.0), |m| (m.lambda, m.impact, m.credit));
+            found.map_or(([0.0; 6], 0.0, 0.0), |m| (m.lambda, m.impact, m.credit));
         let block = Block {
             warm,
             impact,
@@ -222,11 +254,12 @@ impl ContactSolver {
         let block = Block {
             row: 0,
             dim: 3,
+            bilateral: false,
             friction: c.friction,
             restitution: c.restitution,
             gap: c.gap,
             frame,
-            warm: [0.0; 3],
+            warm: [0.0; 6],
             impact: 0.0,
             credit: 0.0,
             closing: 0.0,
@@ -260,11 +293,12 @@ impl ContactSolver {
         let block = Block {
             row: 0,
             dim: 1,
+            bilateral: false,
             friction: 0.0,
             restitution: 0.0,
             gap,
             frame: [Vec3::zeros(); 3],
-            warm: [0.0; 3],
+            warm: [0.0; 6],
             impact: 0.0,
             credit: 0.0,
             closing: 0.0,
@@ -276,6 +310,46 @@ impl ContactSolver {
         merge_chains(Some(self.chains[joint.0].as_slice()), None, cols);
         for &(k, _, _) in cols.iter() {
             self.jacobian[(row, k)] = if k == dof { sign } else { 0.0 };
+        }
+    }
+
+    /// Adds every constraint of `cd` as a bilateral block, from its rows of `J` and its error
+    /// (`constraint_rows` at this step's `q`). Called first in a step, before any contact or
+    /// limit: the bilateral rows lead.
+    pub(crate) fn push_bilateral(&mut self, cd: &ConstraintData) {
+        debug_assert!(self.blocks.iter().all(|b| b.bilateral));
+        for i in 0..cd.constraints.len() {
+            let rows = cd.rows_of(i);
+            let block = Block {
+                row: 0,
+                dim: rows.len(),
+                bilateral: true,
+                friction: 0.0,
+                restitution: 0.0,
+                gap: 0.0,
+                frame: [Vec3::zeros(); 3],
+                warm: [0.0; 6],
+                impact: 0.0,
+                credit: 0.0,
+                closing: 0.0,
+            };
+            let row = self.push_block(block, (usize::MAX - 2, i), Vec3::zeros());
+            let b = self.blocks.len() - 1;
+            self.support[b].cols.clear();
+            self.support[b].cols.extend_from_slice(&cd.support[i].cols);
+            for (r, src) in rows.enumerate() {
+                for &(k, _, _) in &cd.support[i].cols {
+                    self.jacobian[(row + r, k)] = cd.jacobian[(src, k)];
+                }
+                self.bilateral_e.push(cd.error[src]);
+                self.bilateral_error = self.bilateral_error.max(cd.error[src].abs());
+            }
+            self.bilateral_rows = row + self.blocks[b].dim;
+        }
+        let mb = self.bilateral_rows;
+        if self.bilateral_factor.nrows() < mb {
+            self.bilateral_factor = DMatrix::zeros(mb, mb);
+            self.bilateral_step.resize(mb, 0.0);
         }
     }
 
@@ -310,7 +384,7 @@ impl ContactSolver {
     ) {
         let nblocks = self.blocks.len();
         let m = self.m();
-        self.stats.candidates = nblocks;
+        self.stats.candidates = self.blocks.iter().filter(|b| !b.bilateral).count();
         if nblocks == 0 {
             return;
         }
@@ -336,6 +410,10 @@ impl ContactSolver {
         let mut credit = 0.0;
         for b in &mut self.blocks {
             let r = b.row;
+            if b.bilateral {
+                self.target[r..r + b.dim].fill(0.0);
+                continue;
+            }
             penetration = penetration.max(-b.gap);
             let rebound = |speed: f64| {
                 if speed > settings.restitution_speed {
@@ -381,9 +459,14 @@ impl ContactSolver {
                 }
             }
         }
+        let mb = self.bilateral_rows;
+        if mb > 0 {
+            factor_bilateral(K, m, mb, &mut self.bilateral_factor);
+        }
         let (iterations, converged) = pgs(
             &self.blocks,
             K,
+            (&self.bilateral_factor, &mut self.bilateral_step[..mb]),
             &self.target[..m],
             lambda,
             sigma,
@@ -414,7 +497,7 @@ impl ContactSolver {
             scaled = true;
         }
         for (i, b) in self.blocks.iter().enumerate() {
-            let mut l = [0.0; 3];
+            let mut l = [0.0; 6];
             l[..b.dim].copy_from_slice(&lambda[b.row..b.row + b.dim]);
             // the block's share of ΔK: ½ λ_bᵀ (σ_f + σ)_b
             let share: f64 = (b.row..b.row + b.dim)
@@ -447,7 +530,8 @@ impl ContactSolver {
             *v += dv;
         }
         let (mut active, mut normal) = (0, 0.0);
-        for b in &self.blocks {
+        let unilateral = self.blocks.iter().filter(|b| !b.bilateral).count();
+        for b in self.blocks.iter().filter(|b| !b.bilateral) {
             let l = &self.lambda[b.row..b.row + b.dim];
             if l[0] > 0.0 {
                 active += 1;
@@ -459,7 +543,7 @@ impl ContactSolver {
             }
         }
         self.stats = ContactStats {
-            candidates: nblocks,
+            candidates: unilateral,
             active,
             iterations,
             converged,
@@ -471,8 +555,9 @@ impl ContactSolver {
     }
 
     /// The position correction after [`solve`](Self::solve): normal impulses `μ ≥ 0` with
-    /// `G_nn μ ≥ β max(0, −φ)/h`, and `dq = h M⁻¹ J_nᵀ μ` into `dq` (zero when nothing
-    /// penetrates).
+    /// `G_nn μ ≥ β max(0, −φ)/h` and bilateral ones with `(G μ)_B = −β e/h`, and
+    /// `dq = h M⁻¹ Jᵀ μ` into `dq` (zero when nothing penetrates and every bilateral error is
+    /// zero).
     pub(crate) fn correction(
         &mut self,
         data: &Data,
@@ -482,15 +567,21 @@ impl ContactSolver {
     ) {
         dq.fill(0.0);
         let beta = settings.stabilization;
-        if self.stats.penetration <= 0.0 || beta == 0.0 {
+        if (self.stats.penetration <= 0.0 && self.bilateral_error == 0.0) || beta == 0.0 {
             return;
         }
         let m = self.m();
         for b in &self.blocks {
+            if b.bilateral {
+                continue; // set by `set_bilateral_targets`
+            }
             self.target[b.row] = beta * (-b.gap).max(0.0) / h;
             for i in 1..b.dim {
                 self.target[b.row + i] = 0.0;
             }
+        }
+        for (r, e) in self.bilateral_e.iter().enumerate() {
+            self.target[r] = -beta * e / h;
         }
         let (lambda, sigma) = (&mut self.lambda[..m], &mut self.sigma[..m]);
         lambda.fill(0.0);
@@ -498,6 +589,10 @@ impl ContactSolver {
         pgs(
             &self.blocks,
             &self.delassus[..m * m],
+            (
+                &self.bilateral_factor,
+                &mut self.bilateral_step[..self.bilateral_rows],
+            ),
             &self.target[..m],
             lambda,
             sigma,
@@ -519,13 +614,17 @@ impl ContactSolver {
 }
 
 /// Projected Gauss–Seidel on `σ = σ₀ + K λ` (`σ` holds `σ₀` on entry, `K` m x m with stride m):
-/// per block, the normal row `λ_n ← max(0, λ_n − (σ_n − σ*_n)/K_nn)`, then (when `friction`
-/// and the block is a contact with `μ > 0`) the tangent rows by the 2x2 block and a radial
-/// projection on the disc `‖λ_t‖ ≤ μ λ_n`; `σ` kept equal to `σ₀ + K λ`. Returns the sweeps
-/// done and whether the tolerance was met.
+/// first the bilateral group (the leading `mb` rows, `factor` that of `K_BB + ρ I`) by the
+/// proximal step `λ_B ← λ_B − (K_BB + ρ I)⁻¹ (σ_B − σ*_B)`; then per block, the normal row
+/// `λ_n ← max(0, λ_n − (σ_n − σ*_n)/K_nn)`, then (when `friction` and the block is a contact
+/// with `μ > 0`) the tangent rows by the 2x2 block and a radial projection on the disc
+/// `‖λ_t‖ ≤ μ λ_n`; `σ` kept equal to `σ₀ + K λ`. Returns the sweeps done and whether the
+/// tolerance was met.
+#[allow(clippy::too_many_arguments)]
 fn pgs(
     blocks: &[Block],
     K: &[f64],
+    (factor, step): (&DMatrix<f64>, &mut [f64]),
     target: &[f64],
     lambda: &mut [f64],
     sigma: &mut [f64],
@@ -539,9 +638,25 @@ fn pgs(
             *s += k * d;
         }
     };
+    let mb = step.len();
     for it in 1..=settings.max_iterations {
         let (mut change, mut largest): (f64, f64) = (0.0, 0.0);
-        for b in blocks {
+        if mb > 0 {
+            let d = &mut *step;
+            for r in 0..mb {
+                d[r] = target[r] - sigma[r];
+            }
+            cholesky_solve(factor, mb, d);
+            for r in 0..mb {
+                if d[r] != 0.0 {
+                    lambda[r] += d[r];
+                    update(sigma, r, d[r]);
+                    change = change.max(d[r].abs());
+                }
+                largest = largest.max(lambda[r].abs());
+            }
+        }
+        for b in blocks.iter().filter(|b| !b.bilateral) {
             let r = b.row;
             let g = K[r * m + r];
             if g > 0.0 {
@@ -582,6 +697,23 @@ fn pgs(
         }
     }
     (settings.max_iterations, false)
+}
+
+/// The Cholesky factor of `K_BB + ρ I` (`ρ = 10⁻¹⁰ max diag K_BB`) into the leading `mb x mb`
+/// block of `factor`: `K_BB` the leading rows and columns of `K` (`m x m`, stride `m`). A
+/// factor that fails (NaN in `K`) is left as the identity's, and the NaN shows in the state.
+fn factor_bilateral(K: &[f64], m: usize, mb: usize, factor: &mut DMatrix<f64>) {
+    let rho = 1e-10 * (0..mb).map(|r| K[r * m + r]).fold(0.0, f64::max);
+    for i in 0..mb {
+        for k in 0..=i {
+            factor[(i, k)] = K[k * m + i];
+        }
+        factor[(i, i)] += rho;
+    }
+    if cholesky(factor, mb).is_err() {
+        factor.fill(0.0);
+        factor.fill_diagonal(1.0);
+    }
 }
 
 /// The minimiser of `½ xᵀ A x + bᵀ x` over the disc `‖x‖ ≤ R` (`A = [[a, c], [c, e]]` positive

@@ -1,5 +1,5 @@
 //! Multibody simulation on the configuration manifold: a state `(q, v)` with quaternions moved
-//! by [`integrate`](super::integrate) (never renormalised by hand), forward dynamics by ABA,
+//! by [`integrate`](crate::multibody::integrate) (never renormalised by hand), forward dynamics by ABA,
 //! three fixed-step integrators, passive joint forces, control laws, external wrenches, and
 //! many initial states at once on every core ([`simulate_batch`]).
 //!
@@ -12,19 +12,20 @@
 //! | one rigid body: discrete Moser-Veselov on SO(3) | [`Integrator::Lgvi`] ([`body::Simulator`](crate::body::Simulator)) | Lee, Leok & McClamroch 2007 |
 //! | `τ = -b v - F_c tanh(v / v_s)` | [`SimulationOptions::joint_dynamics`] | URDF `<dynamics>` |
 //! | `τ = -D (e/τ_c² + 2ζ v/τ_c)` past a limit | [`JointLimits::Spring`] | MuJoCo's soft limits (`solref`) |
-//! | contacts with friction, unilateral joint limits: impulses per step | [`Simulator::with_collision`], [`JointLimits::Unilateral`] ([`contact`](crate::multibody::contact)) | Moreau–Jean time stepping; Jean 1999 |
+//! | contacts with friction, unilateral joint limits: impulses per step | [`Simulator::with_collision`], [`JointLimits::Unilateral`] ([`contact`](crate::simulation::contact)) | Moreau–Jean time stepping; Jean 1999 |
 //! | quintic / trapezoidal `s(t)` | [`TimeScaling`] | Lynch & Park §9.2 |
 //! | gravity compensation, PD, computed torque | [`ControlLaw`] | Lynch & Park §11.4 |
 //!
 //! ```
-//! use rigid::multibody::{builtin, simulation::{Controller, SimulationOptions, Simulator}};
+//! use rigid::multibody::builtin;
+//! use rigid::simulation::{Controller, SimulationOptions, Simulator};
 //! let model = builtin("pendulum").unwrap();
 //! let opts = SimulationOptions { dt: 1e-3, ..SimulationOptions::default() };
 //! let mut sim = Simulator::new(&model, &[1.0], &[0.0], opts, Controller::none(&model))?;
 //! let e0 = sim.energy()?;
 //! sim.run(1000, |_| {})?;
 //! assert!((sim.energy()? - e0).abs() < 1e-9 * e0.abs()); // RK4, 1 s of swinging
-//! # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+//! # Ok::<(), rigid::simulation::SimulationError>(())
 //! ```
 
 // loops over several per-dof arrays at once read better indexed
@@ -32,22 +33,27 @@
 
 #[cfg(feature = "parallel")]
 mod batch;
+pub mod contact;
 mod contact_step;
 mod control;
 mod integrators;
-
+pub mod loops;
 mod momentum;
+mod scenario;
 mod simulator;
+#[cfg(feature = "collision")]
 mod stance;
 mod trajectory;
 
 #[cfg(feature = "parallel")]
 pub use batch::simulate_batch;
 pub use control::{Control, ControlKind, ControlLaw, Controller};
+pub use loops::{ConstraintOptions, Violation, MAX_INITIAL_VIOLATION};
+pub use scenario::{Scenario, Start};
 pub use simulator::Simulator;
 pub use trajectory::{JointTrajectory, TimeScaling};
 
-use super::MultibodyError;
+use crate::multibody::MultibodyError;
 use std::fmt;
 use std::str::FromStr;
 use thiserror::Error;
@@ -58,6 +64,42 @@ pub enum SimulationError {
     /// A bad state or input to an algorithm.
     #[error(transparent)]
     Multibody(#[from] MultibodyError),
+    /// A bad constraint, or a constraint solve that failed.
+    #[error(transparent)]
+    Constraint(#[from] crate::multibody::constraints::ConstraintError),
+    /// Bilateral constraints asked of the variational integrator.
+    #[error(
+        "closed loops and other bilateral constraints are stepped by rk4 or semi-implicit \
+         (with contacts: the time-stepping scheme), not by {integrator}"
+    )]
+    ConstrainedIntegrator {
+        /// The integrator given.
+        integrator: Integrator,
+    },
+    /// A constraint that does not hold at the start: farther than
+    /// [`MAX_INITIAL_VIOLATION`] from closing.
+    #[error(
+        "constraint {index} is {violation:.3e} (m or rad) from closing at the start (at most \
+         {MAX_INITIAL_VIOLATION}): assemble the mechanism (q0) or fix the constraint's frames"
+    )]
+    OpenLoop {
+        /// The constraint (its position in the list).
+        index: usize,
+        /// Its largest error at the start.
+        violation: f64,
+    },
+    /// A start, velocity or target of the wrong length.
+    #[error("{what} has {got} numbers; the model has {expected} ({joints})")]
+    Length {
+        /// `q0`, `v0` or `target`.
+        what: &'static str,
+        /// The length given.
+        got: usize,
+        /// The length it needs (`nq` or `nv`).
+        expected: usize,
+        /// The joints and their `nq`.
+        joints: String,
+    },
     /// A bad option or parameter (the message says which).
     #[error("{0}")]
     Invalid(String),
@@ -264,7 +306,7 @@ pub const MAX_STEPS: u64 = 1_000_000_000;
 /// and Python's `simulate` and `simulate_body` take them.
 ///
 /// ```
-/// use rigid::multibody::simulation::{step_count, SimulationError};
+/// use rigid::simulation::{step_count, SimulationError};
 /// assert_eq!(step_count(1.0, 1e-3)?, 1000);
 /// assert!(matches!(step_count(1e6, 1e-6), Err(SimulationError::TooManySteps { .. })));
 /// # Ok::<(), SimulationError>(())
@@ -306,7 +348,7 @@ pub enum JointLimits {
     },
     /// Unilateral constraints `lower ≤ q ≤ upper`: an impulse stops a joint at its limit (no
     /// bounce, no penetration beyond the position correction), solved with the contacts
-    /// ([`contact`](crate::multibody::contact)); stepped by the time-stepping scheme, so the
+    /// ([`contact`](crate::simulation::contact)); stepped by the time-stepping scheme, so the
     /// integrator must be `semi-implicit`. Only 1-dof joints have limits.
     Unilateral,
 }

@@ -4,7 +4,11 @@
 use super::contact_step::{contact_step, ContactStepper};
 use super::control::Control;
 use super::integrators::{self, Workspace};
+use super::loops::{ConstraintOptions, Loops, Violation, MAX_INITIAL_VIOLATION};
 use super::{Integrator, JointLimits, SimulationError, SimulationOptions};
+use crate::multibody::constraints::{
+    constraint_dynamics, ConstraintData, ConstraintError, ConstraintModel,
+};
 
 use crate::multibody::{
     aba, aba_with_external, check_q, check_v, forward_kinematics_qv, gravity_torques,
@@ -29,6 +33,8 @@ pub(crate) struct Dynamics<C> {
     pub(crate) tau_control: Vec<f64>,
     pub(crate) tau: Vec<f64>,
     zeros: Vec<f64>,
+    /// The bilateral constraints, if any ([`Simulator::with_constraints`]).
+    pub(crate) loops: Option<Box<Loops>>,
 }
 
 impl<C: Control> Dynamics<C> {
@@ -69,15 +75,32 @@ impl<C: Control> Dynamics<C> {
         Ok(())
     }
 
-    /// `a = q̈(t, q, v)` by ABA with every force.
+    /// `a = q̈(t, q, v)` by ABA with every force, or by the constrained dynamics when there are
+    /// bilateral constraints.
     pub(crate) fn acceleration(
         &mut self,
         t: f64,
         q: &[f64],
         v: &[f64],
         a: &mut [f64],
-    ) -> Result<(), MultibodyError> {
+    ) -> Result<(), SimulationError> {
         self.torques(t, q, v)?;
+        if let Some(l) = &mut self.loops {
+            // τ + Σ Jᵀ F: rnea without gravity, at rest, with F gives −Σ Jᵀ F
+            l.tau.copy_from_slice(&self.tau);
+            if self.has_fext {
+                let z = &self.zeros;
+                let r = rnea_with_external(&self.free, &mut self.data, q, z, z, &self.fext)?;
+                for (t, rk) in l.tau.iter_mut().zip(r.iter()) {
+                    *t -= rk;
+                }
+            }
+            let (model, data) = (&self.model, &mut self.data);
+            let settings = l.options.settings;
+            let ddq = constraint_dynamics(model, data, &mut l.cdata, q, v, &l.tau, &settings)?;
+            a.copy_from_slice(ddq.as_slice());
+            return Ok(());
+        }
         let ddq = if self.has_fext {
             aba_with_external(&self.model, &mut self.data, q, v, &self.tau, &self.fext)?
         } else {
@@ -133,14 +156,14 @@ impl<C: Control> Dynamics<C> {
 ///
 /// ```
 /// use rigid::multibody::builtin;
-/// use rigid::multibody::simulation::{ControlLaw, Controller, Integrator, SimulationOptions, Simulator};
+/// use rigid::simulation::{ControlLaw, Controller, Integrator, SimulationOptions, Simulator};
 /// let model = builtin("double_pendulum").unwrap();
 /// let ctrl = Controller::new(&model, ControlLaw::GravityCompensation)?;
 /// let opts = SimulationOptions { integrator: Integrator::SemiImplicitEuler, ..Default::default() };
 /// let mut sim = Simulator::new(&model, &[0.5, -0.3], &[0.0, 0.0], opts, ctrl)?;
 /// sim.run(500, |_| {})?;
 /// assert!((sim.q()[0] - 0.5).abs() < 1e-12); // held still
-/// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+/// # Ok::<(), rigid::simulation::SimulationError>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct Simulator<C = super::Controller> {
@@ -208,6 +231,7 @@ impl<C: Control> Simulator<C> {
                 tau_control: vec![0.0; nv],
                 tau: vec![0.0; nv],
                 zeros,
+                loops: None,
             },
             ws: Workspace::new(nq, nv),
             t: 0.0,
@@ -238,13 +262,13 @@ impl<C: Control> Simulator<C> {
 
     /// The same simulator with collision geometry: contacts with the ground and between bodies,
     /// with Coulomb friction and restitution, solved at every step
-    /// ([`contact`](crate::multibody::contact)). The integrator must be `semi-implicit` (the
+    /// ([`contact`](crate::simulation::contact)). The integrator must be `semi-implicit` (the
     /// time-stepping scheme).
     ///
     /// ```
     /// use rigid::collision::{CollisionModel, Geometry, Ground, Shape};
     /// use rigid::mass::{RotationalInertia, SpatialInertia};
-    /// use rigid::multibody::simulation::{Controller, Integrator, SimulationOptions, Simulator};
+    /// use rigid::simulation::{Controller, Integrator, SimulationOptions, Simulator};
     /// use rigid::multibody::{JointId, JointType, ModelBuilder};
     /// use rigid::spatial::{Transform, Vec3};
     /// // a 1 kg ball of radius 0.1 m dropped from 0.5 m onto the ground
@@ -259,7 +283,7 @@ impl<C: Control> Simulator<C> {
     /// let mut sim = Simulator::new(&model, &q0, &[0.0; 6], opts, Controller::none(&model))?.with_collision(cm)?;
     /// sim.run(1000, |_| {})?;
     /// assert!((sim.q()[2] - 0.1).abs() < 1e-6); // resting on the ground
-    /// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+    /// # Ok::<(), rigid::simulation::SimulationError>(())
     /// ```
     ///
     /// # Errors
@@ -275,6 +299,108 @@ impl<C: Control> Simulator<C> {
         Ok(self)
     }
 
+    /// The same simulator with bilateral constraints (closed loops, welds, MJCF equalities),
+    /// held exactly at every step whatever else acts (contacts, limits, control): by the
+    /// constrained dynamics under a smooth integrator, as bilateral rows of the contact problem
+    /// under the time-stepping scheme, then projected onto the constraint manifold
+    /// ([`ConstraintOptions::project`]); see [`loops`](super::loops). With the projection on, the
+    /// start state is projected too. Call it before or after
+    /// [`with_collision`](Self::with_collision).
+    ///
+    /// ```
+    /// use rigid::multibody::constraints::ConstraintModel;
+    /// use rigid::simulation::{ConstraintOptions, Controller, SimulationOptions, Simulator};
+    /// use rigid::multibody::{builtin, forward_kinematics_q, Data, JointId};
+    /// use rigid::spatial::{Transform, Vec3};
+    /// // the double pendulum's tip pinned where it is at q0: a loop without freedom
+    /// let model = builtin("double_pendulum").unwrap();
+    /// let q0 = [0.5, -1.0];
+    /// let mut data = Data::new(&model);
+    /// forward_kinematics_q(&model, &mut data, &q0)?;
+    /// let tip = Transform::from_translation(Vec3::new(0.0, 0.0, -1.0));
+    /// let c = ConstraintModel::point(Some(JointId(1)), tip, None, data.placements[1] * tip);
+    /// let mut opts = ConstraintOptions::default();
+    /// opts.settings.mu = 1e-6; // the y row is redundant (planar motion)
+    /// let none = Controller::none(&model);
+    /// let sim = Simulator::new(&model, &q0, &[1.0, -2.0], SimulationOptions::default(), none)?;
+    /// let mut sim = sim.with_constraints(&[c], opts)?; // the start's velocity projected: zero
+    /// sim.run(1000, |_| {})?;
+    /// assert!(sim.violation()?.position < 1e-12);
+    /// assert!((sim.q()[0] - 0.5).abs() < 1e-9 && (sim.q()[1] + 1.0).abs() < 1e-9);
+    /// # Ok::<(), rigid::simulation::SimulationError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// A bad constraint or option ([`SimulationError::Constraint`]), the variational integrator
+    /// ([`SimulationError::ConstrainedIntegrator`]), a start farther than
+    /// [`MAX_INITIAL_VIOLATION`] from closing ([`SimulationError::OpenLoop`]).
+    pub fn with_constraints(
+        mut self,
+        constraints: &[ConstraintModel],
+        options: ConstraintOptions,
+    ) -> Result<Self, SimulationError> {
+        let integrator = self.dynamics.options.integrator;
+        if integrator == Integrator::Variational {
+            return Err(SimulationError::ConstrainedIntegrator { integrator });
+        }
+        let d = &mut self.dynamics;
+        let mut loops = Box::new(Loops::new(&d.model, constraints, options)?);
+        loops.violation(&d.model, &mut d.data, &self.q, &self.v, self.t)?;
+        let e = &loops.cdata.error;
+        if let Some(r) = (0..e.len()).find(|&r| e[r].abs() > MAX_INITIAL_VIOLATION) {
+            let index = (0..constraints.len())
+                .find(|&i| loops.cdata.rows_of(i).contains(&r))
+                .unwrap_or(0);
+            return Err(SimulationError::OpenLoop {
+                index,
+                violation: e[r].abs(),
+            });
+        }
+        d.loops = Some(loops);
+        if options.project {
+            self.project_constraints()?;
+        }
+        Ok(self)
+    }
+
+    /// Moves the state onto the constraint manifold and its tangent space (the projection of
+    /// [`ConstraintOptions::project`]); returns the Newton iterations done (0 without
+    /// constraints).
+    ///
+    /// # Errors
+    /// A singular constraint set (use `μ > 0` for redundant constraints).
+    pub fn project_constraints(&mut self) -> Result<usize, SimulationError> {
+        let d = &mut self.dynamics;
+        let Some(l) = &mut d.loops else {
+            return Ok(0);
+        };
+        let n = l.project(&d.model, &mut d.data, &mut self.q, &mut self.v, true)?;
+        self.sync_momentum();
+        Ok(n)
+    }
+
+    /// The constraint violation of the current state (zero without constraints).
+    ///
+    /// # Errors
+    /// A state that is no longer valid.
+    pub fn violation(&mut self) -> Result<Violation, SimulationError> {
+        let d = &mut self.dynamics;
+        match &mut d.loops {
+            Some(l) => l.violation(&d.model, &mut d.data, &self.q, &self.v, self.t),
+            None => Ok(Violation {
+                time: self.t,
+                ..Violation::default()
+            }),
+        }
+    }
+
+    /// The constraints' workspace (`None` without constraints): after a step with a smooth
+    /// integrator, its `lambda` holds the constraint forces of the last acceleration.
+    #[must_use]
+    pub fn constraint_data(&self) -> Option<&ConstraintData> {
+        self.dynamics.loops.as_ref().map(|l| &l.cdata)
+    }
+
     /// The same simulator with these contact solver settings.
     ///
     /// # Errors
@@ -282,7 +408,7 @@ impl<C: Control> Simulator<C> {
     /// [`SimulationError::ContactIntegrator`].
     pub fn with_contact_settings(
         mut self,
-        settings: crate::multibody::contact::ContactSettings,
+        settings: crate::simulation::contact::ContactSettings,
     ) -> Result<Self, SimulationError> {
         if !settings.is_valid() {
             return Err(SimulationError::ContactSettings);
@@ -293,8 +419,9 @@ impl<C: Control> Simulator<C> {
 
     /// The contacts of the last step: every contact point given to the solver (a gap under the
     /// margin), whether it pushed or not; empty without collision geometry.
+    #[cfg(feature = "collision")]
     #[must_use]
-    pub fn contacts(&self) -> &[crate::multibody::contact::ContactPoint] {
+    pub fn contacts(&self) -> &[crate::collision::ContactPoint] {
         self.contact.as_ref().map_or(&[], |c| c.contacts())
     }
 
@@ -307,7 +434,7 @@ impl<C: Control> Simulator<C> {
 
     /// What the last step's contact solve did (all zero without contacts).
     #[must_use]
-    pub fn contact_stats(&self) -> crate::multibody::contact::ContactStats {
+    pub fn contact_stats(&self) -> crate::simulation::contact::ContactStats {
         self.contact.as_ref().map(|c| c.stats()).unwrap_or_default()
     }
 
@@ -376,11 +503,33 @@ impl<C: Control> Simulator<C> {
             }
         };
         let time = self.t + h;
+        let ok = ok.and_then(|()| {
+            let d = &mut self.dynamics;
+            match &mut d.loops {
+                Some(l) if l.options.project => {
+                    let ws = &mut self.ws;
+                    // the time-stepping scheme solved J v⁺ = 0 with the contacts
+                    let velocity = self.contact.is_none();
+                    l.project(
+                        &d.model,
+                        &mut d.data,
+                        &mut ws.q_new,
+                        &mut ws.v_new,
+                        velocity,
+                    )
+                    .map(|_| ())
+                }
+                _ => Ok(()),
+            }
+        });
         match ok {
             Ok(()) => {}
-            Err(SimulationError::Multibody(MultibodyError::NonFinite { .. })) => {
-                return Err(SimulationError::Diverged { time })
-            }
+            Err(
+                SimulationError::Multibody(MultibodyError::NonFinite { .. })
+                | SimulationError::Constraint(ConstraintError::Multibody(
+                    MultibodyError::NonFinite { .. },
+                )),
+            ) => return Err(SimulationError::Diverged { time }),
             Err(e) => return Err(e),
         }
         let ws = &self.ws;

@@ -307,8 +307,8 @@ pub(crate) fn variational<C: Control>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::multibody::simulation::{Controller, Integrator, SimulationOptions, Simulator};
     use crate::multibody::{difference, random_configuration, Rng};
+    use crate::simulation::{Controller, Integrator, SimulationOptions, Simulator};
 
     fn free_tree() -> crate::multibody::Model {
         use crate::mass::{RotationalInertia, SpatialInertia};

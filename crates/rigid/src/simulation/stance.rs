@@ -2,10 +2,10 @@
 //! the feedforward torques that hold the stance on its contacts.
 
 use super::{ControlLaw, SimulationError};
+use crate::collision::ContactPoint;
 use crate::multibody::constraints::{
     constraint_rows, contact_inverse_dynamics, ConstraintData, ConstraintModel,
 };
-use crate::multibody::contact::ContactPoint;
 use crate::multibody::{
     compute_joint_jacobians, crba, forward_kinematics_q, Data, JointId, JointType, Model,
     ReferenceFrame,

@@ -13,14 +13,15 @@ use rayon::prelude::*;
 /// bit for bit, whatever the number of threads.
 ///
 /// ```
-/// use rigid::multibody::{builtin, simulation::{simulate_batch, Controller, SimulationOptions}};
+/// use rigid::multibody::builtin;
+/// use rigid::simulation::{simulate_batch, Controller, SimulationOptions};
 /// let model = builtin("pendulum").unwrap();
 /// let q0s = [0.1, 0.2, 0.3];
 /// let (mut qs, mut vs) = ([0.0; 3], [0.0; 3]);
 /// simulate_batch(&model, &q0s, &[0.0; 3], SimulationOptions::default(), 100,
 ///                |_| Controller::none(&model), &mut qs, &mut vs)?;
 /// assert!(qs.iter().zip(&q0s).all(|(q, q0)| q.abs() < *q0)); // all swing down
-/// # Ok::<(), rigid::multibody::simulation::SimulationError>(())
+/// # Ok::<(), rigid::simulation::SimulationError>(())
 /// ```
 ///
 /// # Errors

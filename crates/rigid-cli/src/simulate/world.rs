@@ -1,0 +1,175 @@
+//! `rigid simulate`'s flags as a [`Scenario`]: the model file, the world it describes (an MJCF
+//! file's floor, geoms, `<contact>` and `<equality>`; a URDF's `<collision>` on `--ground`,
+//! `--self-collision`), `--constraints`, the start, the controller and the step's options. The
+//! rules are the library's (`rigid::simulation::Scenario`, `rigid::io::collision`); this only
+//! reads the flags and names them in errors.
+
+use super::SimulateArgs;
+use crate::load::{load_printing_warnings, urdf_path, Loaded};
+use rigid::io::collision::{
+    ground_model, mjcf_file_world, spec_body, urdf_world, FileWorld, WorldError, WorldOptions,
+};
+use rigid::io::urdf::parse_urdf_file;
+use rigid::simulation::{ConstraintOptions, Scenario, SimulationError, SimulationOptions};
+
+/// What `rigid simulate` runs: the scenario, whether the model is a body spec, and the MJCF
+/// import (for the replay's geometry).
+pub struct World {
+    pub scenario: Scenario,
+    pub spec: bool,
+    /// The time step: `--dt`, else the MJCF file's `<option timestep>`, else 1 ms.
+    pub dt: f64,
+}
+
+/// A world error with the flag it comes from named.
+fn flag_error(e: WorldError) -> String {
+    match e {
+        WorldError::Friction(_) => format!("--{e}"),
+        WorldError::Restitution(_) => format!("--{e}"),
+        WorldError::Height(h) => format!("--ground must be finite, got {h}"),
+        e => e.to_string(),
+    }
+}
+
+/// A scenario error with the flag it comes from named.
+pub fn simulation_error(e: SimulationError) -> String {
+    match e {
+        SimulationError::MissingTarget { controller, nq } => {
+            format!("--controller {controller} needs --target (nq = {nq} numbers)")
+        }
+        SimulationError::Length {
+            what,
+            got,
+            expected,
+            joints,
+        } => format!("--{what} has {got} numbers; the model has {expected} ({joints})"),
+        e => e.to_string(),
+    }
+}
+
+/// The world of `args` (files read, warnings printed on stderr).
+pub fn world(args: &SimulateArgs) -> Result<World, String> {
+    let options = WorldOptions {
+        ground: args.ground,
+        friction: args.friction,
+        restitution: args.restitution,
+        self_collision: args.self_collision,
+    };
+    let warn = |ws: &[String]| {
+        for w in ws {
+            eprintln!("warning: {}: {w}", args.model);
+        }
+    };
+    let spec = super::is_body_spec(&args.model);
+    // a body spec on the ground is a one-body model: its pose is --q0 (the CoM and the spec
+    // axes), its twist --omega and --velocity
+    let (loaded, world) = if spec {
+        let (model, geometries, warnings) = spec_body(std::path::Path::new(&args.model))?;
+        warn(&warnings);
+        let cm = ground_model(args.ground, args.friction, args.restitution, geometries)
+            .map_err(flag_error)?;
+        let loaded = Loaded {
+            model,
+            warnings: Vec::new(),
+            mjcf: None,
+        };
+        let world = FileWorld {
+            collision: Some(cm),
+            constraints: Vec::new(),
+            constraint_settings: Default::default(),
+            timestep: None,
+            warnings: Vec::new(),
+        };
+        (loaded, world)
+    } else {
+        let loaded = load_printing_warnings(&args.model, &args.load)?;
+        let world = file_world(args, &loaded, &options)?;
+        warn(&world.warnings);
+        (loaded, world)
+    };
+    let mut s = Scenario::new(loaded.model.clone());
+    if let Some(g) = args.gravity {
+        s.model = s.model.with_gravity(g);
+    }
+    s.home = Some(loaded.home());
+    s.q0 = args.q0.clone().map(|n| n.0);
+    s.v0 = if spec {
+        let (w, v) = (args.omega, args.velocity);
+        Some(vec![w.x, w.y, w.z, v.x, v.y, v.z])
+    } else {
+        args.v0.clone().map(|n| n.0)
+    };
+    s.controller = args.controller;
+    s.target = args.target.clone().map(|n| n.0);
+    s.profile = args.profile;
+    let dt = args.dt.or(world.timestep).unwrap_or(1e-3);
+    s.move_time = args.move_time.unwrap_or(0.5 * args.duration);
+    s.options = SimulationOptions {
+        dt,
+        integrator: args.integrator,
+        limits: args.limits,
+        joint_dynamics: !args.no_joint_dynamics,
+        ..SimulationOptions::default()
+    };
+    s.collision = world.collision;
+    // the loops: --constraints FILE, else the file's own (an MJCF file's <equality> elements)
+    let (constraints, settings) = match &args.constraints {
+        Some(path) => {
+            let f = crate::eval_constraints::read(&s.model, path, loaded.mjcf.as_ref())?;
+            (f.constraints, f.settings)
+        }
+        None => (world.constraints, world.constraint_settings),
+    };
+    s.constraints = constraints;
+    s.constraint_options = ConstraintOptions {
+        settings,
+        ..ConstraintOptions::default()
+    };
+    Ok(World {
+        scenario: s,
+        spec,
+        dt,
+    })
+}
+
+/// The world of a robot file: an MJCF file's own (floor, geoms, `<contact>`, `<equality>`,
+/// timestep), a URDF's `<collision>` on `--ground` (and between its bodies with
+/// `--self-collision`), a built-in model's ground (it has no geometry).
+fn file_world(
+    args: &SimulateArgs,
+    loaded: &Loaded,
+    options: &WorldOptions,
+) -> Result<FileWorld, String> {
+    let world = if let Some(m) = &loaded.mjcf {
+        mjcf_file_world(m, options).map_err(|e| format!("{}: {}", args.model, flag_error(e)))?
+    } else {
+        let (collision, warnings) = if let Some(path) = urdf_path(&args.model) {
+            let robot = parse_urdf_file(&path).map_err(|e| format!("{}: {e}", args.model))?;
+            urdf_world(&robot, &loaded.model, options).map_err(flag_error)?
+        } else if args.ground.is_some() {
+            let cm = ground_model(args.ground, args.friction, args.restitution, Vec::new())
+                .map_err(flag_error)?;
+            (Some(cm), Vec::new())
+        } else {
+            (None, Vec::new())
+        };
+        FileWorld {
+            collision,
+            constraints: Vec::new(),
+            constraint_settings: Default::default(),
+            timestep: None,
+            warnings,
+        }
+    };
+    if world
+        .collision
+        .as_ref()
+        .is_some_and(|c| c.geometries.is_empty())
+    {
+        eprintln!(
+            "warning: {}: no collision geometry: nothing touches the ground",
+            args.model
+        );
+    }
+    Ok(world)
+}

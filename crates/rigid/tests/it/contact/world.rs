@@ -1,0 +1,221 @@
+//! The world a file describes, in one step: a closed-loop mechanism dropped onto the ground
+//! (a box on a parallelogram leg, as URDF with a constraint and as MJCF with `<connect>` and a
+//! floor plane), loops, contacts and unilateral limits solved together; and an MJCF scene of
+//! free bodies stacked on the file's floor (every pair of geoms colliding, as MuJoCo's).
+
+use super::G;
+use rigid::io::collision::{mjcf_file_world, urdf_world, WorldOptions};
+use rigid::io::mjcf::load_mjcf_str;
+use rigid::io::urdf::{load_urdf_str, parse_urdf_str};
+use rigid::multibody::constraints::{ConstraintModel, ProximalSettings};
+use rigid::simulation::{ConstraintOptions, JointLimits, Scenario, SimulationError};
+use rigid::spatial::{Transform, Vec3};
+
+/// A 2 kg box on a parallelogram leg: two 0.3 m thighs hinged (about y) under the box 0.2 m
+/// apart, a 0.5 kg foot plate hinged at the end of thigh A; the loop is closed by holding the
+/// foot's point (0.2, 0, 0) at the end of thigh B. Thigh A's hinge is limited to ±0.2 rad, so
+/// the parallelogram folds until the limit and the box stands on the plate.
+const LEG_URDF: &str = r#"<robot name="leg">
+  <link name="box">
+    <inertial><mass value="2"/><inertia ixx="0.0083" iyy="0.0167" izz="0.0217" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.3 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="thigh_a">
+    <inertial><origin xyz="0 0 -0.15"/><mass value="0.2"/><inertia ixx="0.0015" iyy="0.0015" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <link name="thigh_b">
+    <inertial><origin xyz="0 0 -0.15"/><mass value="0.2"/><inertia ixx="0.0015" iyy="0.0015" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <link name="foot">
+    <inertial><origin xyz="0.1 0 -0.01"/><mass value="0.5"/><inertia ixx="0.0038" iyy="0.0067" izz="0.0104" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0.1 0 -0.01"/><geometry><box size="0.4 0.3 0.02"/></geometry></collision>
+  </link>
+  <joint name="hip_a" type="revolute"><parent link="box"/><child link="thigh_a"/>
+    <origin xyz="-0.1 0 -0.05"/><axis xyz="0 1 0"/><limit lower="-0.2" upper="0.2" effort="0" velocity="10"/></joint>
+  <joint name="hip_b" type="continuous"><parent link="box"/><child link="thigh_b"/>
+    <origin xyz="0.1 0 -0.05"/><axis xyz="0 1 0"/></joint>
+  <joint name="ankle" type="continuous"><parent link="thigh_a"/><child link="foot"/>
+    <origin xyz="0 0 -0.3"/><axis xyz="0 1 0"/></joint>
+</robot>"#;
+
+/// The same mechanism in MJCF, on the file's floor, its loop a `<connect>`.
+const LEG_MJCF: &str = r#"<mujoco model="leg">
+  <compiler angle="radian"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="box" pos="0 0 0.5">
+      <freejoint/>
+      <inertial pos="0 0 0" mass="2" diaginertia="0.0083 0.0167 0.0217"/>
+      <geom type="box" size="0.15 0.1 0.05" mass="0"/>
+      <body name="thigh_a" pos="-0.1 0 -0.05">
+        <joint name="hip_a" axis="0 1 0" limited="true" range="-0.2 0.2"/>
+        <inertial pos="0 0 -0.15" mass="0.2" diaginertia="0.0015 0.0015 1e-5"/>
+        <body name="foot" pos="0 0 -0.3">
+          <joint name="ankle" axis="0 1 0"/>
+          <inertial pos="0.1 0 -0.01" mass="0.5" diaginertia="0.0038 0.0067 0.0104"/>
+          <geom type="box" pos="0.1 0 -0.01" size="0.2 0.15 0.01" mass="0"/>
+        </body>
+      </body>
+      <body name="thigh_b" pos="0.1 0 -0.05">
+        <joint name="hip_b" axis="0 1 0"/>
+        <inertial pos="0 0 -0.15" mass="0.2" diaginertia="0.0015 0.0015 1e-5"/>
+      </body>
+    </body>
+  </worldbody>
+  <contact><exclude body1="box" body2="thigh_b"/></contact>
+  <equality><connect body1="foot" body2="thigh_b" anchor="0.2 0 0"/></equality>
+</mujoco>"#;
+
+/// What a drop of the leg showed.
+#[derive(Debug)]
+struct Drop {
+    /// The largest loop closure error at the end of any step (m).
+    violation: f64,
+    /// The largest rise of `K + U` above its start (J).
+    rise: f64,
+    /// `K + U` at the start and at the end (J).
+    e0: f64,
+    e1: f64,
+    /// The mean normal force over the last 0.5 s over the weight.
+    support: f64,
+    /// The largest speed over the last 0.5 s.
+    speed: f64,
+}
+
+fn drop(s: &Scenario, seconds: f64) -> Result<Drop, SimulationError> {
+    let mut sim = s.build()?;
+    let dt = sim.options().dt;
+    let weight = s.model.total_mass() * G;
+    let e0 = sim.energy()?;
+    let (mut violation, mut rise, mut normal, mut n, mut speed) = (0.0f64, 0.0f64, 0.0, 0, 0.0f64);
+    let steps = (seconds / dt).round() as u64;
+    for k in 1..=steps {
+        sim.step()?;
+        violation = violation.max(sim.violation()?.position);
+        rise = rise.max(sim.energy()? - e0);
+        if k as f64 * dt > seconds - 0.5 {
+            normal += sim.contact_stats().normal_impulse / dt;
+            n += 1;
+            speed = sim.v().iter().fold(speed, |a, x| a.max(x.abs()));
+        }
+    }
+    Ok(Drop {
+        violation,
+        rise,
+        e0,
+        e1: sim.energy()?,
+        support: normal / n as f64 / weight,
+        speed,
+    })
+}
+
+fn check(what: &str, d: &Drop) {
+    eprintln!("{what}: {d:?}");
+    assert!(d.violation <= 1e-6, "{what}: the loop opened: {d:?}");
+    assert!(d.rise <= 5e-3, "{what}: the energy rose: {d:?}");
+    // the box was dropped 0.1 m: at least half of m g h taken by the landing and the limit
+    assert!(d.e0 - d.e1 > 0.5 * 2.9 * G * 0.1, "{what}: {d:?}");
+    assert!((d.support - 1.0).abs() <= 0.03, "{what}: {d:?}");
+    assert!(d.speed < 1e-2, "{what}: not at rest: {d:?}");
+}
+
+#[test]
+fn a_closed_loop_leg_dropped_onto_the_ground_keeps_its_loop_and_comes_to_rest() {
+    // URDF + a constraint + --ground
+    let model = load_urdf_str(LEG_URDF, true).unwrap();
+    let robot = parse_urdf_str(LEG_URDF).unwrap();
+    let options = WorldOptions {
+        ground: Some(0.0),
+        ..WorldOptions::default()
+    };
+    let (cm, _) = urdf_world(&robot, &model, &options).unwrap();
+    let foot = model.joint_id("ankle");
+    let thigh_b = model.joint_id("hip_b");
+    let tip = |x: f64, z: f64| Transform::from_translation(Vec3::new(x, 0.0, z));
+    let closure = ConstraintModel::point(foot, tip(0.2, 0.0), thigh_b, tip(0.0, -0.3));
+    let mut s = Scenario::new(model.clone());
+    let mut q0 = rigid::multibody::neutral(&model);
+    q0[2] = 0.47; // the plate 0.1 m above the ground
+    let hip_a = model.joints()[model.joint_id("hip_a").unwrap().0].idx_q;
+    let (hip_b, ankle) = (
+        model.joints()[thigh_b.unwrap().0].idx_q,
+        model.joints()[foot.unwrap().0].idx_q,
+    );
+    // a parallelogram tilted by 0.05 rad: both thighs turn, the foot turns back
+    q0[hip_a] = 0.05;
+    q0[hip_b] = 0.05;
+    q0[ankle] = -0.05;
+    s.q0 = Some(q0);
+    s.collision = cm;
+    s.options.limits = JointLimits::Unilateral;
+    s.constraints = vec![closure];
+    s.constraint_options = ConstraintOptions {
+        settings: ProximalSettings::new(1e-12, 1e-6, 1000),
+        ..ConstraintOptions::default()
+    };
+    check("URDF leg", &drop(&s, 3.0).unwrap());
+
+    // MJCF: the file's floor and <connect>, no flag
+    let mj = load_mjcf_str(LEG_MJCF, std::path::Path::new(".")).unwrap();
+    let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
+    assert_eq!(world.constraints.len(), 1);
+    assert!(world.collision.as_ref().unwrap().ground.is_some());
+    let mut s = Scenario::new(mj.model.clone());
+    let mut q0 = rigid::multibody::neutral(&mj.model);
+    q0[2] = 0.47;
+    let at = |name: &str| mj.model.joints()[mj.model.joint_id(name).unwrap().0].idx_q;
+    q0[at("hip_a")] = 0.05;
+    q0[at("hip_b")] = 0.05;
+    q0[at("ankle")] = -0.05;
+    s.q0 = Some(q0);
+    s.collision = world.collision;
+    s.options.limits = JointLimits::Unilateral;
+    s.constraints = world.constraints;
+    s.constraint_options.settings = world.constraint_settings;
+    check("MJCF leg", &drop(&s, 3.0).unwrap());
+}
+
+/// Three boxes stacked on the file's floor with a capsule across the top (the scene MuJoCo 4.0
+/// holds, every CoM within 0.9 mm).
+fn stack_xml() -> std::path::PathBuf {
+    crate::common::fixtures_dir().join("contact/stack.xml")
+}
+
+#[test]
+fn free_bodies_stacked_on_the_files_floor_stay_stacked() {
+    let mj = rigid::io::mjcf::load_mjcf(stack_xml()).unwrap();
+    let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
+    let cm = world.collision.clone().unwrap();
+    assert!(cm.ground.is_some() && cm.self_collision);
+    assert_eq!(world.timestep, Some(0.001));
+    let mut s = Scenario::new(mj.model.clone());
+    let mut home = rigid::multibody::neutral(&mj.model);
+    mj.layout().q_from_mujoco(&mj.qpos0, &mut home).unwrap();
+    s.home = Some(home.clone());
+    s.collision = world.collision;
+    s.options.dt = 0.001;
+    let mut sim = s.build().unwrap();
+    let mut worst = 0.0f64;
+    for _ in 0..5000 {
+        sim.step().unwrap();
+        for j in mj.model.joints() {
+            let p = j.idx_q;
+            let d = (0..3)
+                .map(|i| (sim.q()[p + i] - home[p + i]).powi(2))
+                .sum::<f64>();
+            worst = worst.max(d.sqrt());
+        }
+    }
+    eprintln!("stack: largest CoM displacement over 5 s {worst:.2e} m");
+    assert!(worst <= 2e-3, "{worst}");
+    // MuJoCo on the same file, side by side
+    if crate::common::reference::live("the stacked scene in MuJoCo") {
+        let out = crate::common::reference::run_script(
+            "mujoco/stack.py",
+            &[stack_xml().to_str().unwrap()],
+        );
+        let mujoco: f64 = String::from_utf8_lossy(&out).trim().parse().unwrap();
+        eprintln!("stack: MuJoCo's largest CoM displacement over 5 s {mujoco:.2e} m");
+        assert!(mujoco <= 2e-3, "MuJoCo: {mujoco}");
+    }
+}
