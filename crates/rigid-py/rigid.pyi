@@ -346,30 +346,44 @@ computeABADerivatives = aba_derivatives
 computeGeneralizedGravityDerivatives = gravity_derivatives
 
 def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = None,
-             duration: float = 1.0, dt: float = 1e-3, integrator: str = "rk4",
+             duration: float = 1.0, dt: float | None = None, integrator: str = "rk4",
              controller: str = "none", target: ArrayLike | None = None,
              move_time: float | None = None, profile: str = "quintic", limits: str = "spring",
              joint_dynamics: bool = True,
              control: Callable[[float, Vector, Vector], ArrayLike] | None = None,
              every: int = 1, ground: float | None = None, friction: float | None = None,
-             restitution: float | None = None) -> dict[str, npt.NDArray[np.float64]]:
-    """Simulate the robot from ``(q0, v0)`` (default: neutral, at rest) for ``duration`` s with a
-    fixed step ``dt``: forward dynamics by ABA, ``integrator`` ``"semi-implicit"`` (symplectic
-    Euler), ``"rk4"`` (Runge-Kutta-Munthe-Kaas on the joint groups, quaternions never
+             restitution: float | None = None, self_collision: bool = False,
+             constraints: list[ConstraintModel] | None = None
+             ) -> dict[str, npt.NDArray[np.float64]]:
+    """Simulate the robot from ``(q0, v0)`` (default: its home, at rest) for ``duration`` s with
+    a fixed step ``dt`` (default: an MJCF file's ``timestep``, else 1 ms), as ``rigid simulate``
+    (the library's ``Scenario``): forward dynamics by ABA, ``integrator`` ``"semi-implicit"``
+    (symplectic Euler), ``"rk4"`` (Runge-Kutta-Munthe-Kaas on the joint groups, quaternions never
     renormalised) or ``"variational"`` (a 4th-order Lie-group variational integrator); joint
     damping and friction from the URDF (``joint_dynamics``), limits as a stiff spring-damper
-    (``limits="spring"``) or ``"ignored"``. ``controller``: ``"none"``, ``"gravity"``
-    (compensation), ``"pd"`` (to ``target`` with gravity compensation) or ``"track"`` (computed
-    torque along a ``profile`` ``"quintic"``/``"trapezoidal"`` motion from ``q0`` to ``target``
-    in ``move_time``); or ``control(t, q, v) -> τ``, a Python function (its exceptions propagate).
+    (``limits="spring"``), ``"ignored"`` or ``"unilateral"``. ``controller``: ``"none"``,
+    ``"gravity"`` (compensation), ``"pd"`` (to ``target`` with gravity compensation) or
+    ``"track"`` (computed torque along a ``profile`` ``"quintic"``/``"trapezoidal"`` motion from
+    ``q0`` to ``target`` in ``move_time``); or ``control(t, q, v) -> τ``, a Python function (its
+    exceptions propagate).
+
+    The world: an MJCF file's own floor (its ``plane``), its geom pairs (``contype``/
+    ``conaffinity``, not parent and child, ``<contact><exclude>``/``<pair>``, the larger friction
+    of the two) and its ``<equality>`` loops, without being asked; ``ground`` (a height, m)
+    adds the plane ``z = ground`` under a robot without a floor (URDF ``<collision>``, MJCF
+    geoms), with Coulomb ``friction`` (default: the file's, else 0.8) and ``restitution``
+    (default 0); ``self_collision`` makes a URDF's bodies collide with each other;
+    ``constraints`` (``ConstraintModel`` of this model) replaces the file's loops. Anything that
+    can touch is stepped by ``"semi-implicit"`` time stepping (``"rk4"`` is replaced), a
+    floating robot without ``q0`` starts set down at ``target`` (or its home), and
+    ``controller="pd"`` holds that stance on its feet. Loops are held exactly by the same step.
+
     Returns ``t`` (N,), ``q`` (N, nq), ``v`` (N, nv), ``tau`` (N, nv; the control torques) and
-    ``energy`` (N,; J), one row every ``every`` steps and the last, in the model's layout.
-    ``ground`` (a height, m; ``rigid simulate --ground``) puts the plane ``z = ground`` under the
-    robot's collision geometry (URDF ``<collision>``, MJCF geoms) with Coulomb ``friction``
-    (default 0.8) and ``restitution`` (default 0): the integrator becomes ``"semi-implicit"``
-    (``"rk4"`` is replaced), a floating robot without ``q0`` starts set down at ``target`` (or
-    neutral), ``controller="pd"`` holds that stance on its feet, and the result gains ``contacts``
-    (N,; active contacts) and ``normal_force`` (N,; their normal force sum, N)."""
+    ``energy`` (N,; J), one row every ``every`` steps and the last, in the model's layout; when
+    anything can touch also ``contacts`` (N,; active contacts) and ``normal_force`` (N,; their
+    normal force sum, N); with constraints ``violation_position`` and ``violation_velocity``
+    (N,; the largest constraint error, m or rad, and its rate): the columns of ``rigid simulate
+    --csv``."""
 
 def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -> None:
     """Write the 3D replay of ``traj`` (a dict or object with ``t`` (N,) and ``q`` (N, nq), such

@@ -2,6 +2,8 @@
 ``rigid simulate --ground --friction --restitution``: a URDF box falls onto the ground and rests
 on its face, Solo-12 stands on its feet under ``controller="pd"``, bad values raise."""
 
+import os
+
 import numpy as np
 import pytest
 
@@ -49,8 +51,45 @@ def test_bad_friction_and_restitution_raise(tmp_path):
         rigid.simulate(m, duration=0.01, ground=0.0, friction=-1.0)
     with pytest.raises(ValueError, match=r"restitution must be in \[0, 1\]"):
         rigid.simulate(m, duration=0.01, ground=0.0, restitution=2.0)
-    with pytest.raises(ValueError, match="apply with ground"):
+    with pytest.raises(ValueError, match="apply when something can touch"):
         rigid.simulate(m, duration=0.01, friction=0.5)
+
+
+FIX = os.path.join(os.path.dirname(__file__), "..", "..", "rigid", "tests", "fixtures")
+
+
+def test_an_mjcf_world_stands_on_its_own_floor_without_flags():
+    """stack.xml: three boxes and a capsule on the file's floor, every geom pair colliding (as
+    MuJoCo): 1 s at the file's timestep, every body within 2 mm of its start, the contacts in the
+    result, the step the file's."""
+    m = rigid.Model.from_mjcf(os.path.join(FIX, "contact", "stack.xml"))
+    run = rigid.simulate(m, duration=1.0, every=100)
+    assert run["t"][1] == pytest.approx(0.1)  # the file's timestep, 1 ms, every 100 steps
+    q = run["q"]
+    for k in range(4):  # the free bodies' origins: 7 numbers each, position first
+        assert np.max(np.linalg.norm(q[:, 7 * k:7 * k + 3] - q[0, 7 * k:7 * k + 3], axis=1)) < 2e-3
+    assert run["contacts"][-1] >= 12
+    assert "violation_position" not in run
+
+
+def test_a_closed_loop_is_held_and_reported():
+    """fourbar.xml: its <connect> held without being asked, and the same loop given as
+    constraints= on the URDF: the violation columns in the result, 1e-9 at most."""
+    xml = rigid.Model.from_mjcf(os.path.join(FIX, "constraints", "fourbar.xml"))
+    run = rigid.simulate(xml, v0=[2.0, 0.0, 0.0], duration=0.5, every=50)
+    assert np.max(run["violation_position"]) < 1e-9
+    assert np.max(run["violation_velocity"]) < 1e-9
+    assert abs(run["q"][-1, 0] - run["q"][0, 0]) > 0.1  # the crank turns
+    assert "contacts" not in run
+    # the URDF's angles are the MJCF's plus the assembly's (fourbar.xml's bodies are assembled)
+    urdf = rigid.Model.from_urdf(os.path.join(FIX, "constraints", "fourbar.urdf"))
+    pin = rigid.ConstraintModel(urdf, "point", "coupler_joint", (np.eye(3), [0.8, 0, 0]),
+                                "rocker_joint", (np.eye(3), [0.6, 0, 0]))
+    assembly = np.array([0.5, 0.02116623166979137, 1.1280269456729848])
+    same = rigid.simulate(urdf, q0=run["q"][0] + assembly, v0=[2.0, 0.0, 0.0], duration=0.5,
+                          every=50, constraints=[pin], limits="ignored", joint_dynamics=False)
+    assert np.max(same["violation_position"]) < 1e-9
+    np.testing.assert_allclose(same["q"] - assembly, run["q"], atol=1e-8)
 
 
 # a 2 kg cylinder (axis z) with a 1.5 kg box bolted to its side, as tall as it, and a 0.5 kg
