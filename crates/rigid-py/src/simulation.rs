@@ -212,7 +212,10 @@ pub fn simulate<'py>(
         },
     };
     warn_all(py, func, &world.warnings)?;
-    let dt = dt.or(world.timestep).unwrap_or(1e-3);
+    world
+        .check_materials(&options)
+        .map_err(|e| value_error(func, e))?;
+    let dt = world.time_step(dt);
     let steps = step_count(duration, dt).map_err(err)?;
     let mut s = Scenario::new(m.clone());
     s.q0 = q0.map(|x| q_arg(core, func, "q0", x)).transpose()?;
@@ -240,12 +243,6 @@ pub fn simulate<'py>(
         }
         None => world.constraints,
     };
-    if !s.touches() && (friction.is_some() || restitution.is_some()) {
-        return Err(value_error(
-            func,
-            "friction and restitution apply when something can touch (ground=, or a file with a floor)",
-        ));
-    }
     let mut rec = Record::default();
     match control {
         Some(f) => {

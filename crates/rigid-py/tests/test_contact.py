@@ -51,7 +51,7 @@ def test_bad_friction_and_restitution_raise(tmp_path):
         rigid.simulate(m, duration=0.01, ground=0.0, friction=-1.0)
     with pytest.raises(ValueError, match=r"restitution must be in \[0, 1\]"):
         rigid.simulate(m, duration=0.01, ground=0.0, restitution=2.0)
-    with pytest.raises(ValueError, match="apply when something can touch"):
+    with pytest.raises(ValueError, match="applies when something can touch"):
         rigid.simulate(m, duration=0.01, friction=0.5)
 
 

@@ -77,19 +77,6 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let model = &scenario.model;
     let contacts = scenario.touches();
     let loops = !scenario.constraints.is_empty();
-    if !contacts {
-        if let Some(flag) = [
-            ("--friction", args.friction),
-            ("--restitution", args.restitution),
-        ]
-        .iter()
-        .find_map(|(f, x)| x.map(|_| f))
-        {
-            return Err(format!(
-                "{flag} applies when something can touch (--ground, or a file with a floor)"
-            ));
-        }
-    }
     let mut sim = scenario.build().map_err(world::simulation_error)?;
     let opts = *sim.options();
     let q0 = sim.q().to_vec();

@@ -27,6 +27,11 @@ fn flag_error(e: WorldError) -> String {
         WorldError::Friction(_) => format!("--{e}"),
         WorldError::Restitution(_) => format!("--{e}"),
         WorldError::Height(h) => format!("--ground must be finite, got {h}"),
+        WorldError::NothingToTouch { option } => {
+            format!(
+                "--{option} applies when something can touch (--ground, or a file with a floor)"
+            )
+        }
         e => e.to_string(),
     }
 }
@@ -85,6 +90,7 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
         let loaded = load_printing_warnings(&args.model, &args.load)?;
         let world = file_world(args, &loaded, &options)?;
         warn(&world.warnings);
+        world.check_materials(&options).map_err(flag_error)?;
         (loaded, world)
     };
     let mut s = Scenario::new(loaded.model.clone());
@@ -102,7 +108,7 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
     s.controller = args.controller;
     s.target = args.target.clone().map(|n| n.0);
     s.profile = args.profile;
-    let dt = args.dt.or(world.timestep).unwrap_or(1e-3);
+    let dt = world.time_step(args.dt);
     s.move_time = args.move_time.unwrap_or(0.5 * args.duration);
     s.options = SimulationOptions {
         dt,

@@ -336,3 +336,171 @@ fn the_replay_draws_the_contact_forces_of_a_resting_body_summing_to_its_weight()
         "{info} vs {scale}"
     );
 }
+
+/// `fixtures/constraints/FILE` of the library's tests.
+fn constraints_fixture(file: &str) -> PathBuf {
+    crate::common::rigid_tests("fixtures/constraints").join(file)
+}
+
+/// The start of the leg: the plate 0.1 m above the ground, the parallelogram tilted by 0.05 rad
+/// (both hips turned, the ankle back), as `--q0` for a run whose CSV header is `header`.
+fn leg_start(header: &[&str]) -> String {
+    let q: Vec<&str> = header
+        .iter()
+        .copied()
+        .filter(|h| h.starts_with("q_"))
+        .collect();
+    q.iter()
+        .map(|h| match *h {
+            h if h.ends_with("_z") => "0.47",
+            h if h.ends_with("_qw") => "1",
+            "q_hip_a" | "q_hip_b" => "0.05",
+            "q_ankle" => "-0.05",
+            _ => "0",
+        })
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// Runs `rigid simulate` on the leg (`model` and `flags`), dropped from `leg_start` for 3 s;
+/// checks the CSV: the loop closed to 1e-6 m at every step, `K + U` never above its start by
+/// more than 5 mJ, the landing taking energy, and at rest the normal force the weight (3 %).
+fn drop_leg(name: &str, model: &str, flags: &[&str]) {
+    let dir = scratch(name);
+    let probe = dir.join("probe.csv");
+    let mut all = vec!["simulate", model, "--duration", "0.001", "--csv"];
+    all.push(probe.to_str().unwrap());
+    all.extend_from_slice(flags);
+    let out = rigid(&all);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&probe).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let q0 = leg_start(&header);
+    let csv = dir.join("leg.csv");
+    let mut all = vec!["simulate", model, "--duration", "3", "--q0", &q0, "--csv"];
+    all.push(csv.to_str().unwrap());
+    all.extend_from_slice(flags);
+    let out = rigid(&all);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("constraints: 1"), "{stdout}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| header.iter().position(|h| *h == n).unwrap();
+    let (e, p, f) = (
+        col("energy"),
+        col("violation_position"),
+        col("normal_force"),
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 3001);
+    let e0 = rows[0][e];
+    for r in &rows {
+        assert!(r[p] <= 1e-6, "t = {}: the loop opened by {} m", r[0], r[p]);
+        assert!(
+            r[e] <= e0 + 5e-3,
+            "t = {}: energy {} above {e0}",
+            r[0],
+            r[e]
+        );
+    }
+    assert!(
+        rows[3000][e] < e0 - 0.5 * 2.9 * 9.81 * 0.1,
+        "{}",
+        rows[3000][e]
+    );
+    let rest = &rows[2500..];
+    let mean = rest.iter().map(|r| r[f]).sum::<f64>() / rest.len() as f64;
+    let weight = 2.9 * 9.81;
+    assert!((mean - weight).abs() <= 0.03 * weight, "{mean} vs {weight}");
+}
+
+#[test]
+fn a_closed_loop_leg_lands_on_the_ground_with_its_loop_closed() {
+    // URDF + constraint file + --ground: loops and contacts in one step (refused before)
+    let urdf = constraints_fixture("leg.urdf");
+    let json = constraints_fixture("leg.json");
+    drop_leg(
+        "leg-urdf",
+        urdf.to_str().unwrap(),
+        &[
+            "--floating",
+            "--ground",
+            "--limits",
+            "unilateral",
+            "--constraints",
+            json.to_str().unwrap(),
+        ],
+    );
+    // MJCF: the file's floor and <connect>, no flag
+    let xml = constraints_fixture("leg.xml");
+    drop_leg(
+        "leg-mjcf",
+        xml.to_str().unwrap(),
+        &["--limits", "unilateral"],
+    );
+}
+
+#[test]
+fn an_open_loop_or_a_world_the_solver_cannot_hold_is_refused_by_name() {
+    let urdf = constraints_fixture("leg.urdf");
+    let json = constraints_fixture("leg.json");
+    // thigh A turned, thigh B not: the loop 0.1 m from closing
+    let out = rigid(&[
+        "simulate",
+        urdf.to_str().unwrap(),
+        "--floating",
+        "--constraints",
+        json.to_str().unwrap(),
+        "--q0",
+        "0,0,1,0,0,0,1,0.3,0,0",
+        "--duration",
+        "0.01",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("from closing at the start"), "{stderr}");
+    let dir = scratch("bad-world");
+    for (xml, message) in [
+        (
+            r#"<mujoco><worldbody><geom type="plane" size="1 1 0.1"/>
+  <body name="a"><freejoint/><geom size="0.1"/></body></worldbody>
+  <contact><exclude body1="a" body2="nothing"/></contact></mujoco>"#,
+            "(line 3): no body named \"nothing\"",
+        ),
+        (
+            r#"<mujoco><worldbody>
+  <body name="a"><freejoint/><geom size="0.1"/><geom name="tray" type="plane" size="1 1 0.1"/></body>
+  </worldbody></mujoco>"#,
+            "line 2: geom \"tray\": a plane is only allowed in a static body",
+        ),
+        (
+            r#"<mujoco><worldbody><geom type="plane" size="1 1 0.1"/>
+  <body name="a"><freejoint/><geom size="0.1"/></body></worldbody></mujoco>"#,
+            "the file has its own floor",
+        ),
+    ] {
+        let path = dir.join("world.xml");
+        std::fs::write(&path, xml).unwrap();
+        let mut all = vec!["simulate", path.to_str().unwrap(), "--duration", "0.01"];
+        if message.contains("own floor") {
+            all.push("--ground");
+        }
+        let out = rigid(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(message), "{message}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}

@@ -309,6 +309,31 @@ pub struct FileWorld {
     pub warnings: Vec<String>,
 }
 
+impl FileWorld {
+    /// The time step of a run: `given`, else the file's, else 1 ms.
+    #[must_use]
+    pub fn time_step(&self, given: Option<f64>) -> f64 {
+        given.or(self.timestep).unwrap_or(1e-3)
+    }
+
+    /// Refuses a friction or restitution given for a world where nothing can touch.
+    ///
+    /// # Errors
+    /// [`WorldError::NothingToTouch`] naming the option.
+    pub fn check_materials(&self, options: &WorldOptions) -> Result<(), WorldError> {
+        if self.collision.is_some() {
+            return Ok(());
+        }
+        match (options.friction, options.restitution) {
+            (Some(_), _) => Err(WorldError::NothingToTouch { option: "friction" }),
+            (None, Some(_)) => Err(WorldError::NothingToTouch {
+                option: "restitution",
+            }),
+            (None, None) => Ok(()),
+        }
+    }
+}
+
 /// The world of an MJCF file ([`mjcf_world`], its active `<equality>` elements, its
 /// `timestep`).
 ///
@@ -407,6 +432,12 @@ pub enum WorldError {
         line: u32,
         /// What is wrong.
         message: String,
+    },
+    /// A friction or restitution for a world where nothing can touch.
+    #[error("{option} applies when something can touch (a ground, or a file with a floor)")]
+    NothingToTouch {
+        /// `friction` or `restitution`.
+        option: &'static str,
     },
     /// A file that cannot be read or parsed.
     #[error("{path}: {message}")]

@@ -5,66 +5,14 @@
 
 use super::G;
 use rigid::io::collision::{mjcf_file_world, urdf_world, WorldOptions};
-use rigid::io::mjcf::load_mjcf_str;
 use rigid::io::urdf::{load_urdf_str, parse_urdf_str};
-use rigid::multibody::constraints::{ConstraintModel, ProximalSettings};
 use rigid::simulation::{ConstraintOptions, JointLimits, Scenario, SimulationError};
-use rigid::spatial::{Transform, Vec3};
 
-/// A 2 kg box on a parallelogram leg: two 0.3 m thighs hinged (about y) under the box 0.2 m
-/// apart, a 0.5 kg foot plate hinged at the end of thigh A; the loop is closed by holding the
-/// foot's point (0.2, 0, 0) at the end of thigh B. Thigh A's hinge is limited to ±0.2 rad, so
-/// the parallelogram folds until the limit and the box stands on the plate.
-const LEG_URDF: &str = r#"<robot name="leg">
-  <link name="box">
-    <inertial><mass value="2"/><inertia ixx="0.0083" iyy="0.0167" izz="0.0217" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><box size="0.3 0.2 0.1"/></geometry></collision>
-  </link>
-  <link name="thigh_a">
-    <inertial><origin xyz="0 0 -0.15"/><mass value="0.2"/><inertia ixx="0.0015" iyy="0.0015" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
-  <link name="thigh_b">
-    <inertial><origin xyz="0 0 -0.15"/><mass value="0.2"/><inertia ixx="0.0015" iyy="0.0015" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
-  <link name="foot">
-    <inertial><origin xyz="0.1 0 -0.01"/><mass value="0.5"/><inertia ixx="0.0038" iyy="0.0067" izz="0.0104" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><origin xyz="0.1 0 -0.01"/><geometry><box size="0.4 0.3 0.02"/></geometry></collision>
-  </link>
-  <joint name="hip_a" type="revolute"><parent link="box"/><child link="thigh_a"/>
-    <origin xyz="-0.1 0 -0.05"/><axis xyz="0 1 0"/><limit lower="-0.2" upper="0.2" effort="0" velocity="10"/></joint>
-  <joint name="hip_b" type="continuous"><parent link="box"/><child link="thigh_b"/>
-    <origin xyz="0.1 0 -0.05"/><axis xyz="0 1 0"/></joint>
-  <joint name="ankle" type="continuous"><parent link="thigh_a"/><child link="foot"/>
-    <origin xyz="0 0 -0.3"/><axis xyz="0 1 0"/></joint>
-</robot>"#;
-
-/// The same mechanism in MJCF, on the file's floor, its loop a `<connect>`.
-const LEG_MJCF: &str = r#"<mujoco model="leg">
-  <compiler angle="radian"/>
-  <worldbody>
-    <geom name="floor" type="plane" size="2 2 0.1"/>
-    <body name="box" pos="0 0 0.5">
-      <freejoint/>
-      <inertial pos="0 0 0" mass="2" diaginertia="0.0083 0.0167 0.0217"/>
-      <geom type="box" size="0.15 0.1 0.05" mass="0"/>
-      <body name="thigh_a" pos="-0.1 0 -0.05">
-        <joint name="hip_a" axis="0 1 0" limited="true" range="-0.2 0.2"/>
-        <inertial pos="0 0 -0.15" mass="0.2" diaginertia="0.0015 0.0015 1e-5"/>
-        <body name="foot" pos="0 0 -0.3">
-          <joint name="ankle" axis="0 1 0"/>
-          <inertial pos="0.1 0 -0.01" mass="0.5" diaginertia="0.0038 0.0067 0.0104"/>
-          <geom type="box" pos="0.1 0 -0.01" size="0.2 0.15 0.01" mass="0"/>
-        </body>
-      </body>
-      <body name="thigh_b" pos="0.1 0 -0.05">
-        <joint name="hip_b" axis="0 1 0"/>
-        <inertial pos="0 0 -0.15" mass="0.2" diaginertia="0.0015 0.0015 1e-5"/>
-      </body>
-    </body>
-  </worldbody>
-  <contact><exclude body1="box" body2="thigh_b"/></contact>
-  <equality><connect body1="foot" body2="thigh_b" anchor="0.2 0 0"/></equality>
-</mujoco>"#;
+/// The leg of `fixtures/constraints/leg.urdf` (a box on a parallelogram leg, the loop in
+/// `leg.json`) and the same as MJCF (`leg.xml`, a floor plane and a `<connect>`).
+fn leg(file: &str) -> std::path::PathBuf {
+    crate::common::fixtures_dir().join("constraints").join(file)
+}
 
 /// What a drop of the leg showed.
 #[derive(Debug)]
@@ -122,17 +70,17 @@ fn check(what: &str, d: &Drop) {
 #[test]
 fn a_closed_loop_leg_dropped_onto_the_ground_keeps_its_loop_and_comes_to_rest() {
     // URDF + a constraint + --ground
-    let model = load_urdf_str(LEG_URDF, true).unwrap();
-    let robot = parse_urdf_str(LEG_URDF).unwrap();
+    let text = std::fs::read_to_string(leg("leg.urdf")).unwrap();
+    let model = load_urdf_str(&text, true).unwrap();
+    let robot = parse_urdf_str(&text).unwrap();
     let options = WorldOptions {
         ground: Some(0.0),
         ..WorldOptions::default()
     };
     let (cm, _) = urdf_world(&robot, &model, &options).unwrap();
-    let foot = model.joint_id("ankle");
-    let thigh_b = model.joint_id("hip_b");
-    let tip = |x: f64, z: f64| Transform::from_translation(Vec3::new(x, 0.0, z));
-    let closure = ConstraintModel::point(foot, tip(0.2, 0.0), thigh_b, tip(0.0, -0.3));
+    let file = std::fs::read_to_string(leg("leg.json")).unwrap();
+    let file = rigid::io::constraints::parse_constraints(&file, &model).unwrap();
+    let (foot, thigh_b) = (model.joint_id("ankle"), model.joint_id("hip_b"));
     let mut s = Scenario::new(model.clone());
     let mut q0 = rigid::multibody::neutral(&model);
     q0[2] = 0.47; // the plate 0.1 m above the ground
@@ -148,15 +96,15 @@ fn a_closed_loop_leg_dropped_onto_the_ground_keeps_its_loop_and_comes_to_rest() 
     s.q0 = Some(q0);
     s.collision = cm;
     s.options.limits = JointLimits::Unilateral;
-    s.constraints = vec![closure];
+    s.constraints = file.constraints;
     s.constraint_options = ConstraintOptions {
-        settings: ProximalSettings::new(1e-12, 1e-6, 1000),
+        settings: file.settings,
         ..ConstraintOptions::default()
     };
     check("URDF leg", &drop(&s, 3.0).unwrap());
 
     // MJCF: the file's floor and <connect>, no flag
-    let mj = load_mjcf_str(LEG_MJCF, std::path::Path::new(".")).unwrap();
+    let mj = rigid::io::mjcf::load_mjcf(leg("leg.xml")).unwrap();
     let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
     assert_eq!(world.constraints.len(), 1);
     assert!(world.collision.as_ref().unwrap().ground.is_some());
