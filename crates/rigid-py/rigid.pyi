@@ -353,7 +353,7 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
              control: Callable[[float, Vector, Vector], ArrayLike] | None = None,
              every: int = 1, ground: float | None = None, friction: float | None = None,
              restitution: float | None = None, self_collision: bool = False,
-             constraints: list[ConstraintModel] | None = None
+             constraints: list[ConstraintModel] | None = None, srdf: Path | None = None
              ) -> dict[str, npt.NDArray[np.float64]]:
     """Simulate the robot from ``(q0, v0)`` (default: its home, at rest) for ``duration`` s with
     a fixed step ``dt`` (default: an MJCF file's ``timestep``, else 1 ms), as ``rigid simulate``
@@ -372,7 +372,8 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
     of the two) and its ``<equality>`` loops, without being asked; ``ground`` (a height, m)
     adds the plane ``z = ground`` under a robot without a floor (URDF ``<collision>``, MJCF
     geoms), with Coulomb ``friction`` (default: the file's, else 0.8) and ``restitution``
-    (default 0); ``self_collision`` makes a URDF's bodies collide with each other;
+    (default 0); ``self_collision`` makes a URDF's bodies collide with each other (less the
+    pairs of links an ``srdf`` file's ``<disable_collisions>`` name);
     ``constraints`` (``ConstraintModel`` of this model) replaces the file's loops. Anything that
     can touch is stepped by ``"semi-implicit"`` time stepping (``"rk4"`` is replaced), a
     floating robot without ``q0`` starts set down at ``target`` (or its home), and

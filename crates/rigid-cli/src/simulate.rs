@@ -90,6 +90,10 @@ pub struct SimulateArgs {
     /// always do, as its masks say.
     #[arg(long)]
     pub self_collision: bool,
+    /// Robot (URDF): an SRDF file whose `<disable_collisions link1 link2>` pairs never collide
+    /// (with --self-collision).
+    #[arg(long, value_name = "FILE")]
+    pub srdf: Option<PathBuf>,
     /// Newton restitution of the contacts, in [0, 1] (with --ground; default 0: no bounce).
     #[arg(long, allow_hyphen_values = true, value_name = "E")]
     pub restitution: Option<f64>,
@@ -236,6 +240,13 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         {
             return Err(format!("{flag} applies with --ground"));
         }
+    }
+    if args.srdf.is_some() && !args.self_collision {
+        return Err(
+            "--srdf applies with --self-collision (its pairs are of the robot's own \
+                    bodies)"
+                .into(),
+        );
     }
     if body && (args.constraints.is_some() || args.self_collision) {
         let flag = if args.self_collision {

@@ -8,7 +8,7 @@ use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rigid::io::collision::{file_world, ground_model, FileWorld, WorldOptions};
+use rigid::io::collision::{exclude_srdf_pairs, file_world, ground_model, FileWorld, WorldOptions};
 use rigid::multibody::constraints::ProximalSettings;
 use rigid::multibody::{Data, Model as RigidModel, MultibodyError};
 use rigid::simulation::{
@@ -147,7 +147,8 @@ fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyResult<()> {
 /// file's own floor, geom pairs and `<equality>` elements; `ground` (a height, m) adds the
 /// plane `z = ground` under a robot without one (its URDF `<collision>` or MJCF geoms, Coulomb
 /// `friction`, default the file's or 0.8, and `restitution`, default 0); `self_collision`
-/// makes a URDF's bodies collide with each other; `constraints` (a list of
+/// makes a URDF's bodies collide with each other (`srdf`, a path: less the pairs of links its
+/// `<disable_collisions>` name); `constraints` (a list of
 /// `rigid.ConstraintModel`) replaces the file's. Anything that can touch is stepped by the
 /// time-stepping `semi-implicit` scheme (`rk4` replaced), a floating robot without `q0`
 /// starts set down on the ground at `target` (or its home), and `controller="pd"` holds the
@@ -157,7 +158,8 @@ fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyResult<()> {
     model, q0 = None, v0 = None, duration = 1.0, dt = None, integrator = "rk4",
     controller = "none", target = None, move_time = None, profile = "quintic",
     limits = "spring", joint_dynamics = true, control = None, every = 1, ground = None,
-    friction = None, restitution = None, self_collision = false, constraints = None
+    friction = None, restitution = None, self_collision = false, constraints = None,
+    srdf = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
@@ -181,6 +183,7 @@ pub fn simulate<'py>(
     restitution: Option<f64>,
     self_collision: bool,
     constraints: Option<Vec<PyRef<'py, crate::constraints::ConstraintModel>>>,
+    srdf: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let func = "simulate";
     let core: &ModelCore = &model.inner;
@@ -215,6 +218,13 @@ pub fn simulate<'py>(
     world
         .check_materials(&options)
         .map_err(|e| value_error(func, e))?;
+    let mut world = world;
+    if let Some(path) = &srdf {
+        let Some(cm) = world.collision.as_mut().filter(|_| self_collision) else {
+            return Err(value_error(func, "srdf applies with self_collision=True"));
+        };
+        exclude_srdf_pairs(cm, path).map_err(|e| value_error(func, e))?;
+    }
     let dt = world.time_step(dt);
     let steps = step_count(duration, dt).map_err(err)?;
     let mut s = Scenario::new(m.clone());

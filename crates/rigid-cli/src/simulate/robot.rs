@@ -274,8 +274,13 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     }
     if let Some(cm) = &scenario.collision {
         let pairs = if cm.self_collision { "on" } else { "off" };
+        let excluded = if cm.excluded.is_empty() {
+            String::new()
+        } else {
+            format!(" ({} pairs excluded)", cm.excluded.len())
+        };
         println!(
-            "collision: {} geometries, between bodies {pairs}",
+            "collision: {} geometries, between bodies {pairs}{excluded}",
             cm.geometries.len()
         );
     }

@@ -88,8 +88,12 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
         (loaded, world)
     } else {
         let loaded = load_printing_warnings(&args.model, &args.load)?;
-        let world = file_world(args, &loaded, &options)?;
+        let mut world = file_world(args, &loaded, &options)?;
         warn(&world.warnings);
+        if let (Some(srdf), Some(cm)) = (&args.srdf, world.collision.as_mut()) {
+            let n = rigid::io::collision::exclude_srdf_pairs(cm, srdf).map_err(flag_error)?;
+            eprintln!("{}: {n} pairs of geometries never collide", srdf.display());
+        }
         world.check_materials(&options).map_err(flag_error)?;
         (loaded, world)
     };

@@ -646,6 +646,57 @@ pub fn urdf_world(
     Ok((Some(cm), warnings))
 }
 
+/// Excludes from `cm` the pairs of links an SRDF file disables (`<disable_collisions link1
+/// link2>`, MoveIt's and Pinocchio's `removeCollisionPairs`): every pair of geometries of the two
+/// links (a URDF geometry is named `link/k`, [`urdf_geometries`]). Returns the number of
+/// geometry pairs excluded.
+///
+/// # Errors
+/// The file cannot be read or is not XML; a `<disable_collisions>` without `link1` or `link2`
+/// (named with its line).
+pub fn exclude_srdf_pairs(
+    cm: &mut crate::collision::CollisionModel,
+    srdf: &Path,
+) -> Result<usize, WorldError> {
+    let file = |message: String| WorldError::File {
+        path: srdf.display().to_string(),
+        message,
+    };
+    let text = std::fs::read_to_string(srdf).map_err(|e| file(e.to_string()))?;
+    let doc = roxmltree::Document::parse(&text).map_err(|e| file(e.to_string()))?;
+    let link_of = |g: &Geometry| {
+        g.name
+            .rsplit_once('/')
+            .map_or(g.name.clone(), |(l, _)| l.into())
+    };
+    let links: Vec<String> = cm.geometries.iter().map(link_of).collect();
+    let mut n = 0;
+    for e in doc
+        .descendants()
+        .filter(|e| e.has_tag_name("disable_collisions"))
+    {
+        let line = doc.text_pos_at(e.range().start).row;
+        let name = |key: &str| {
+            e.attribute(key).ok_or_else(|| WorldError::Element {
+                element: "<disable_collisions>".into(),
+                line,
+                message: format!("needs \"{key}\""),
+            })
+        };
+        let (l1, l2) = (name("link1")?, name("link2")?);
+        for i in 0..links.len() {
+            for j in i + 1..links.len() {
+                let (a, b) = (links[i].as_str(), links[j].as_str());
+                if ((a, b) == (l1, l2) || (a, b) == (l2, l1)) && !cm.excluded.contains(&(i, j)) {
+                    cm.excluded.push((i, j));
+                    n += 1;
+                }
+            }
+        }
+    }
+    Ok(n)
+}
+
 /// The collision model of `rigid simulate --ground HEIGHT --friction MU --restitution E` and of
 /// Python's `simulate(ground=, friction=, restitution=)`: the horizontal ground `z = height`,
 /// `geometries` (the robot's), `friction` (default [`DEFAULT_FRICTION`](crate::collision::DEFAULT_FRICTION)) and `restitution`

@@ -167,3 +167,41 @@ fn free_bodies_stacked_on_the_files_floor_stay_stacked() {
         assert!(mujoco <= 2e-3, "MuJoCo: {mujoco}");
     }
 }
+
+/// `--self-collision` on a URDF: the box and the foot plate of the leg are a candidate pair
+/// (not parent and child); an SRDF's `<disable_collisions>` takes it out, and an element
+/// without `link2` is refused with its line.
+#[test]
+fn an_srdf_disables_the_pairs_it_names() {
+    use rigid::collision::CollisionData;
+    use rigid::io::collision::exclude_srdf_pairs;
+    let text = std::fs::read_to_string(leg("leg.urdf")).unwrap();
+    let model = load_urdf_str(&text, true).unwrap();
+    let robot = parse_urdf_str(&text).unwrap();
+    let options = WorldOptions {
+        self_collision: true,
+        ..WorldOptions::default()
+    };
+    let (cm, _) = urdf_world(&robot, &model, &options).unwrap();
+    let mut cm = cm.unwrap();
+    assert!(cm.ground.is_none());
+    assert_eq!(CollisionData::new(&model, &cm).unwrap().pairs(), 1);
+    let dir = std::env::temp_dir().join(format!("rigid-srdf-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let srdf = dir.join("leg.srdf");
+    std::fs::write(
+        &srdf,
+        r#"<robot name="leg"><disable_collisions link1="foot" link2="box" reason="Never"/>
+<disable_collisions link1="thigh_a" link2="thigh_b"/></robot>"#,
+    )
+    .unwrap();
+    assert_eq!(exclude_srdf_pairs(&mut cm, &srdf).unwrap(), 1);
+    assert_eq!(CollisionData::new(&model, &cm).unwrap().pairs(), 0);
+    std::fs::write(
+        &srdf,
+        "<robot>\n<disable_collisions link1=\"foot\"/></robot>",
+    )
+    .unwrap();
+    let e = exclude_srdf_pairs(&mut cm, &srdf).unwrap_err().to_string();
+    assert_eq!(e, "<disable_collisions> (line 2): needs \"link2\"");
+}
