@@ -1,6 +1,9 @@
 """MuJoCo's side of the stacked scene (crates/rigid/tests/it/contact/world.rs): the MJCF file
-given, 5 s at its own timestep, no control; prints the largest displacement of any free body's
-origin (its CoM) from where it starts (m)."""
+given, 5 s at its own timestep, no control; prints, for each free body in the file's order, the
+largest displacement of its origin (its CoM) from where it starts (m). MuJoCo's contacts are
+soft: a loaded stack sinks into itself by a fraction of a millimetre, and a capsule lying on a
+face creeps sideways (4.8 mm in 5 s on stack.xml), while rigid's hard contacts hold both to
+round-off."""
 import sys
 
 import mujoco
@@ -12,9 +15,9 @@ mujoco.mj_forward(model, data)
 free = [j for j in range(model.njnt) if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
 adr = [model.jnt_qposadr[j] for j in free]
 start = np.array([data.qpos[a:a + 3] for a in adr])
-worst = 0.0
+worst = np.zeros(len(adr))
 for _ in range(int(round(5.0 / model.opt.timestep))):
     mujoco.mj_step(model, data)
     now = np.array([data.qpos[a:a + 3] for a in adr])
-    worst = max(worst, float(np.max(np.linalg.norm(now - start, axis=1))))
-print(worst)
+    worst = np.maximum(worst, np.linalg.norm(now - start, axis=1))
+print(" ".join(repr(float(w)) for w in worst))

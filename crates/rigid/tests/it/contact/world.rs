@@ -123,8 +123,9 @@ fn a_closed_loop_leg_dropped_onto_the_ground_keeps_its_loop_and_comes_to_rest() 
     check("MJCF leg", &drop(&s, 3.0).unwrap());
 }
 
-/// Three boxes stacked on the file's floor with a capsule across the top (the scene MuJoCo 4.0
-/// holds, every CoM within 0.9 mm).
+/// Three boxes stacked on the file's floor with a capsule across the top: MuJoCo 4.0 holds the
+/// boxes (its soft contacts sink them by 0.2-0.7 mm) and lets the capsule creep 4.8 mm sideways
+/// in 5 s; rigid holds all four to round-off.
 fn stack_xml() -> std::path::PathBuf {
     crate::common::fixtures_dir().join("contact/stack.xml")
 }
@@ -158,13 +159,22 @@ fn free_bodies_stacked_on_the_files_floor_stay_stacked() {
     assert!(worst <= 2e-3, "{worst}");
     // MuJoCo on the same file, side by side
     if crate::common::reference::live("the stacked scene in MuJoCo") {
-        let out = crate::common::reference::run_script(
-            "mujoco/stack.py",
-            &[stack_xml().to_str().unwrap()],
+        let xml = stack_xml();
+        let out = crate::common::reference::run_script("mujoco/stack.py", &[xml.to_str().unwrap()]);
+        let text = String::from_utf8_lossy(&out);
+        let n: Vec<f64> = text
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect();
+        eprintln!(
+            "stack: MuJoCo's largest displacement of each body over 5 s (m): {n:?} (its soft \
+             contacts: the boxes sink, the capsule creeps sideways)"
         );
-        let mujoco: f64 = String::from_utf8_lossy(&out).trim().parse().unwrap();
-        eprintln!("stack: MuJoCo's largest CoM displacement over 5 s {mujoco:.2e} m");
-        assert!(mujoco <= 2e-3, "MuJoCo: {mujoco}");
+        // MuJoCo holds the boxes too (they sink into each other by less than a millimetre)
+        assert!(
+            n.len() == 4 && n[..3].iter().all(|x| *x <= 2e-3),
+            "MuJoCo: {text}"
+        );
     }
 }
 
