@@ -474,7 +474,8 @@ impl WorldOptions {
 /// The world of an MJCF file as MuJoCo collides it: its geoms ([`mjcf_geometries`], each with
 /// its friction; the larger of two is a contact's, MuJoCo's rule), its `plane` in the world as
 /// the ground (its friction the plane's), every pair of geoms on different bodies that are not
-/// parent and child and whose `contype`/`conaffinity` match, less `<contact><exclude>`'s body
+/// parent and child (MuJoCo's bodies welded together, a body with several joints one body)
+/// and whose `contype`/`conaffinity` match, less `<contact><exclude>`'s body
 /// pairs, plus `<contact><pair>`'s geom pairs. `options.ground` adds a horizontal ground to a
 /// file without a floor; `friction` and `restitution` replace every contact's. `None` when
 /// nothing can touch (no ground and no pair of geoms on two bodies). Returns the warnings of
@@ -594,6 +595,30 @@ pub fn mjcf_world(
                  two geoms')",
                 p.line
             ));
+        }
+    }
+    // MuJoCo's parent filter is on bodies welded together (a body without joints is welded to
+    // its parent): the geoms of a weld and of its parent weld never collide, unless that parent
+    // is the world. rigid's own filter (parent and child joints) misses a body with several
+    // joints (a hip's three hinges: its geoms against the pelvis's)
+    let weld_parent = |j: crate::multibody::JointId| {
+        let mut top = mjcf.bodies.iter().position(|b| b.joint == Some(j))?;
+        while let Some(p) = mjcf.bodies[top]
+            .parent
+            .filter(|&p| mjcf.bodies[p].joint == Some(j))
+        {
+            top = p;
+        }
+        mjcf.bodies[top].parent.and_then(|p| mjcf.bodies[p].joint)
+    };
+    for (i, a) in geometries.iter().enumerate() {
+        for (k, b) in geometries.iter().enumerate().skip(i + 1) {
+            if let (Some(x), Some(y)) = (a.body, b.body) {
+                let family = x != y && (weld_parent(x) == Some(y) || weld_parent(y) == Some(x));
+                if family && !excluded.contains(&(i, k)) {
+                    excluded.push((i, k));
+                }
+            }
         }
     }
     let mut cm = CollisionModel::new(ground);

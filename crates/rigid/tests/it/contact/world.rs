@@ -215,3 +215,29 @@ fn an_srdf_disables_the_pairs_it_names() {
     let e = exclude_srdf_pairs(&mut cm, &srdf).unwrap_err().to_string();
     assert_eq!(e, "<disable_collisions> (line 2): needs \"link2\"");
 }
+
+/// MuJoCo's parent filter is on bodies, and a body with two hinges is one body: a thigh hinged
+/// twice under a pelvis, their capsules overlapping (as gymnasium's humanoid's butt and thighs),
+/// never collide, while the thigh and a second pelvis-level body that it does not hang from do.
+#[test]
+fn a_body_with_several_joints_is_one_body_for_the_parent_filter() {
+    use rigid::collision::CollisionData;
+    let mj = rigid::io::mjcf::load_mjcf_str(
+        r#"<mujoco><worldbody>
+  <body name="pelvis" pos="0 0 1"><freejoint/><geom type="capsule" fromto="0 -0.1 0 0 0.1 0" size="0.09"/>
+    <body name="thigh" pos="0 0.1 -0.04">
+      <joint name="hip_x" axis="1 0 0"/><joint name="hip_y" axis="0 1 0"/>
+      <geom type="capsule" fromto="0 0 0 0 0 -0.3" size="0.06"/>
+    </body>
+    <body name="tail" pos="0 -0.1 -0.04"><joint name="wag" axis="0 1 0"/>
+      <geom type="capsule" fromto="0 0 0 0 0.1 -0.3" size="0.05"/></body>
+  </body></worldbody></mujoco>"#,
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
+    let cm = world.collision.unwrap();
+    // pelvis-thigh and pelvis-tail are parent and child; thigh-tail collide
+    assert_eq!(cm.excluded, vec![(0, 1), (0, 2)]);
+    assert_eq!(CollisionData::new(&mj.model, &cm).unwrap().pairs(), 1);
+}
