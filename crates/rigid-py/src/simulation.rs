@@ -211,6 +211,7 @@ pub fn simulate<'py>(
             constraints: Vec::new(),
             constraint_settings: Default::default(),
             timestep: None,
+            home: None,
             warnings: Vec::new(),
         },
     };
@@ -228,6 +229,7 @@ pub fn simulate<'py>(
     let dt = world.time_step(dt);
     let steps = step_count(duration, dt).map_err(err)?;
     let mut s = Scenario::new(m.clone());
+    s.home = world.home.clone();
     s.q0 = q0.map(|x| q_arg(core, func, "q0", x)).transpose()?;
     s.v0 = v0.map(|x| v_arg(core, func, "v0", x)).transpose()?;
     s.target = target.map(|x| q_arg(core, func, "target", x)).transpose()?;

@@ -83,6 +83,7 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
             constraints: Vec::new(),
             constraint_settings: Default::default(),
             timestep: None,
+            home: None,
             warnings: Vec::new(),
         };
         (loaded, world)
@@ -101,7 +102,7 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
     if let Some(g) = args.gravity {
         s.model = s.model.with_gravity(g);
     }
-    s.home = Some(loaded.home());
+    s.home = world.home.clone();
     s.q0 = args.q0.clone().map(|n| n.0);
     s.v0 = if spec {
         let (w, v) = (args.omega, args.velocity);
@@ -168,6 +169,7 @@ fn file_world(
             constraints: Vec::new(),
             constraint_settings: Default::default(),
             timestep: None,
+            home: None,
             warnings,
         }
     };

@@ -305,6 +305,9 @@ pub struct FileWorld {
     pub constraint_settings: crate::multibody::constraints::ProximalSettings,
     /// The file's time step (s), if it gives one.
     pub timestep: Option<f64>,
+    /// The configuration the file places the model in (an MJCF file's `qpos0`, in rigid's
+    /// layout), if it gives one.
+    pub home: Option<Vec<f64>>,
     /// What was left out, each naming its element and line.
     pub warnings: Vec<String>,
 }
@@ -347,7 +350,15 @@ pub fn mjcf_file_world(
     let (collision, mut warnings) = mjcf_world(mjcf, options)?;
     let (constraints, skipped) = mjcf.constraint_models()?;
     warnings.extend(skipped.iter().map(ToString::to_string));
+    let mut home = crate::multibody::neutral(&mjcf.model);
+    mjcf.layout()
+        .q_from_mujoco(&mjcf.qpos0, &mut home)
+        .map_err(|e| WorldError::File {
+            path: "qpos0".into(),
+            message: e.to_string(),
+        })?;
     Ok(FileWorld {
+        home: Some(home),
         collision,
         constraints,
         constraint_settings: crate::multibody::constraints::ProximalSettings::new(
@@ -388,6 +399,7 @@ pub fn file_world(
             constraints: Vec::new(),
             constraint_settings: crate::multibody::constraints::ProximalSettings::default(),
             timestep: None,
+            home: None,
             warnings,
         })
     }

@@ -6,8 +6,10 @@
 //!   stepped by the time-stepping scheme: `rk4`, the default, gives way to `semi-implicit`;
 //!   `variational` is refused ([`SimulationError::ContactIntegrator`]);
 //! - **start**: `q0` when given, else the target when there is a ground and a target, else the
-//!   model's home (an MJCF file's `qpos0`, else neutral); with a ground, a floating robot's start
-//!   and target are set down on it ([`place_on_ground`](crate::collision::place_on_ground));
+//!   model's home (an MJCF file's `qpos0`, else neutral); with a ground, a floating robot's
+//!   target, and its start when neither `q0` nor a home places it (a URDF has no place in the
+//!   world), are set down on it ([`place_on_ground`](crate::collision::place_on_ground)); a
+//!   file that places its bodies (MJCF) starts where it places them, as in MuJoCo;
 //! - **controller**: `pd` with a ground and a target holds the stance on the contacts
 //!   ([`ControlLaw::standing`]); otherwise the built-in law ([`ControlLaw::builtin`]);
 //! - **constraints**: held by the same step ([`Simulator::with_constraints`]), the start
@@ -39,8 +41,8 @@ use crate::multibody::{neutral, Model};
 pub struct Scenario {
     /// The model (gravity included).
     pub model: Model,
-    /// The configuration when no `q0` is given and nothing is set down (an MJCF file's
-    /// `qpos0`); `None`: the neutral one.
+    /// Where the file places the model (an MJCF file's `qpos0`): the start when no `q0` is
+    /// given, not set down; `None`: the neutral configuration, set down on a ground.
     pub home: Option<Vec<f64>>,
     /// The initial configuration (`nq` numbers).
     pub q0: Option<Vec<f64>>,
@@ -152,7 +154,7 @@ impl Scenario {
         #[cfg(feature = "collision")]
         if let Some(cm) = self.collision.as_ref().filter(|c| c.ground.is_some()) {
             use crate::collision::place_on_ground;
-            if self.q0.is_none() {
+            if self.q0.is_none() && (self.home.is_none() || target.is_some()) {
                 place_on_ground(m, cm, &mut q0)?;
             }
             if let Some(t) = target.as_mut() {
