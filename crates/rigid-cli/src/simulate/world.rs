@@ -48,6 +48,11 @@ pub fn simulation_error(e: SimulationError) -> String {
             expected,
             joints,
         } => format!("--{what} has {got} numbers; the model has {expected} ({joints})"),
+        SimulationError::Constraint(rigid::multibody::constraints::ConstraintError::Singular) => {
+            "--constraints: the constraints are redundant (a planar loop held by a 3D point, \
+             say): give the file \"mu\": 1e-6 (proximal iterations)"
+                .into()
+        }
         e => e.to_string(),
     }
 }

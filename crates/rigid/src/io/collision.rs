@@ -569,6 +569,13 @@ pub fn mjcf_world(
             body_of(&x.body1, x.line, "exclude")?,
             body_of(&x.body2, x.line, "exclude")?,
         );
+        if b1 == 0 || b2 == 0 {
+            warnings.push(format!(
+                "<exclude> (line {}): with the world: rigid's ground touches every geom, and \
+                 this exclusion applies only to geoms fixed in the world",
+                x.line
+            ));
+        }
         for (i, gi) in from.iter().enumerate() {
             for (j, gj) in from.iter().enumerate() {
                 let (a, b) = (mjcf.geoms[*gi].body, mjcf.geoms[*gj].body);
@@ -579,7 +586,20 @@ pub fn mjcf_world(
         }
     }
     let mut included = Vec::new();
+    let plane = |name: &str| {
+        mjcf.geoms
+            .iter()
+            .any(|g| g.name.as_deref() == Some(name) && matches!(g.shape, MjcfShape::Plane { .. }))
+    };
     for p in &mjcf.contact.pairs {
+        if plane(&p.geom1) || plane(&p.geom2) {
+            warnings.push(format!(
+                "<pair> (line {}): with the floor: rigid's ground touches every geom already \
+                 (the pair is not needed)",
+                p.line
+            ));
+            continue;
+        }
         let find = |name: &str| {
             let geom = mjcf
                 .geoms
@@ -613,20 +633,23 @@ pub fn mjcf_world(
     // its parent): the geoms of a weld and of its parent weld never collide, unless that parent
     // is the world. rigid's own filter (parent and child joints) misses a body with several
     // joints (a hip's three hinges: its geoms against the pelvis's)
-    let weld_parent = |j: crate::multibody::JointId| {
-        let mut top = mjcf.bodies.iter().position(|b| b.joint == Some(j))?;
-        while let Some(p) = mjcf.bodies[top]
-            .parent
-            .filter(|&p| mjcf.bodies[p].joint == Some(j))
-        {
-            top = p;
-        }
-        mjcf.bodies[top].parent.and_then(|p| mjcf.bodies[p].joint)
-    };
+    let weld_parent: Vec<Option<crate::multibody::JointId>> = (0..mjcf.model.njoints())
+        .map(|j| {
+            let j = Some(crate::multibody::JointId(j));
+            let mut top = mjcf.bodies.iter().position(|b| b.joint == j)?;
+            while let Some(p) = mjcf.bodies[top]
+                .parent
+                .filter(|&p| mjcf.bodies[p].joint == j)
+            {
+                top = p;
+            }
+            mjcf.bodies[top].parent.and_then(|p| mjcf.bodies[p].joint)
+        })
+        .collect();
     for (i, a) in geometries.iter().enumerate() {
         for (k, b) in geometries.iter().enumerate().skip(i + 1) {
             if let (Some(x), Some(y)) = (a.body, b.body) {
-                let family = x != y && (weld_parent(x) == Some(y) || weld_parent(y) == Some(x));
+                let family = x != y && (weld_parent[x.0] == Some(y) || weld_parent[y.0] == Some(x));
                 if family && !excluded.contains(&(i, k)) {
                     excluded.push((i, k));
                 }
@@ -640,15 +663,9 @@ pub fn mjcf_world(
     cm.geometries = geometries;
     cm.excluded = excluded;
     cm.included = included;
-    let bodies = cm
-        .geometries
-        .iter()
-        .filter_map(|g| g.body)
-        .collect::<std::collections::BTreeSet<_>>();
-    let touches = cm.ground.is_some()
-        || !cm.included.is_empty()
-        || bodies.len() >= 2
-        || (!bodies.is_empty() && cm.geometries.iter().any(|g| g.body.is_none()));
+    // something can touch: a ground, or a pair the filters let through
+    let touches =
+        cm.ground.is_some() || crate::collision::CollisionData::new(&mjcf.model, &cm)?.pairs() > 0;
     cm.check(mjcf.model.njoints())?;
     Ok((touches.then_some(cm), warnings))
 }

@@ -143,7 +143,7 @@ pub(crate) fn contact_step<C: Control>(
     if let Some(l) = &mut d.loops {
         // the bodies' velocities and drift accelerations of the RNEA above
         constraint_rows(model, data, &mut l.cdata, q, v, true);
-        cs.solver.push_bilateral(&l.cdata);
+        cs.solver.push_bilateral(&l.cdata, l.options.tolerance);
     }
     #[cfg(feature = "collision")]
     if let Some((cm, cd)) = &mut cs.collision {

@@ -508,8 +508,9 @@ impl<C: Control> Simulator<C> {
             match &mut d.loops {
                 Some(l) if l.options.project => {
                     let ws = &mut self.ws;
-                    // the time-stepping scheme solved J v⁺ = 0 with the contacts
-                    let velocity = self.contact.is_none();
+                    // the time-stepping scheme solved J v⁺ = 0 with the contacts, unless its
+                    // energy safeguard scaled the impulse (the bilateral part with it)
+                    let velocity = self.contact.as_ref().is_none_or(|c| c.stats().scaled);
                     l.project(
                         &d.model,
                         &mut d.data,

@@ -100,6 +100,9 @@ pub(crate) struct ContactSolver {
     bilateral_error: f64,
     /// Scratch of the bilateral group's step (length: its rows).
     bilateral_step: Vec<f64>,
+    /// The bilateral rows that move nothing (`K_rr` ≤ 1e-9 of the largest: a planar loop's
+    /// out-of-plane row); their impulse stays 0.
+    bilateral_idle: Vec<bool>,
     /// The contacts of the last step, and of this one (for the next).
     memory: Vec<Memory>,
     next_memory: Vec<Memory>,
@@ -148,6 +151,7 @@ impl ContactSolver {
             bilateral_e: Vec::new(),
             bilateral_error: 0.0,
             bilateral_step: Vec::new(),
+            bilateral_idle: Vec::new(),
             memory: Vec::new(),
             next_memory: Vec::new(),
             keys: Vec::new(),
@@ -314,9 +318,10 @@ impl ContactSolver {
     }
 
     /// Adds every constraint of `cd` as a bilateral block, from its rows of `J` and its error
-    /// (`constraint_rows` at this step's `q`). Called first in a step, before any contact or
-    /// limit: the bilateral rows lead.
-    pub(crate) fn push_bilateral(&mut self, cd: &ConstraintData) {
+    /// (`constraint_rows` at this step's `q`); an error within `tolerance` (the projection's)
+    /// asks no position correction. Called first in a step, before any contact or limit: the
+    /// bilateral rows lead.
+    pub(crate) fn push_bilateral(&mut self, cd: &ConstraintData, tolerance: f64) {
         debug_assert!(self.blocks.iter().all(|b| b.bilateral));
         for i in 0..cd.constraints.len() {
             let rows = cd.rows_of(i);
@@ -342,7 +347,9 @@ impl ContactSolver {
                     self.jacobian[(row + r, k)] = cd.jacobian[(src, k)];
                 }
                 self.bilateral_e.push(cd.error[src]);
-                self.bilateral_error = self.bilateral_error.max(cd.error[src].abs());
+                if cd.error[src].abs() > tolerance {
+                    self.bilateral_error = self.bilateral_error.max(cd.error[src].abs());
+                }
             }
             self.bilateral_rows = row + self.blocks[b].dim;
         }
@@ -350,6 +357,7 @@ impl ContactSolver {
         if self.bilateral_factor.nrows() < mb {
             self.bilateral_factor = DMatrix::zeros(mb, mb);
             self.bilateral_step.resize(mb, 0.0);
+            self.bilateral_idle.resize(mb, false);
         }
     }
 
@@ -446,9 +454,17 @@ impl ContactSolver {
         self.stats.penetration = penetration;
         let K = &self.delassus[..m * m];
         let (lambda, sigma) = (&mut self.lambda[..m], &mut self.sigma[..m]);
+        let mb = self.bilateral_rows;
+        let idle = &mut self.bilateral_idle[..mb];
+        if mb > 0 {
+            factor_bilateral(K, m, &mut self.bilateral_factor, idle);
+        }
         // warm start: the impulses of the same contacts at the last step, σ = σ_f + K λ
         for b in &self.blocks {
             lambda[b.row..b.row + b.dim].copy_from_slice(&b.warm[..b.dim]);
+        }
+        for (l, _) in lambda.iter_mut().zip(idle.iter()).filter(|(_, i)| **i) {
+            *l = 0.0;
         }
         sigma.copy_from_slice(&self.sigma_free[..m]);
         for s in 0..m {
@@ -459,14 +475,10 @@ impl ContactSolver {
                 }
             }
         }
-        let mb = self.bilateral_rows;
-        if mb > 0 {
-            factor_bilateral(K, m, mb, &mut self.bilateral_factor);
-        }
         let (iterations, converged) = pgs(
             &self.blocks,
             K,
-            (&self.bilateral_factor, &mut self.bilateral_step[..mb]),
+            (&self.bilateral_factor, &mut self.bilateral_step[..mb], idle),
             &self.target[..m],
             lambda,
             sigma,
@@ -592,6 +604,7 @@ impl ContactSolver {
             (
                 &self.bilateral_factor,
                 &mut self.bilateral_step[..self.bilateral_rows],
+                &self.bilateral_idle[..self.bilateral_rows],
             ),
             &self.target[..m],
             lambda,
@@ -624,7 +637,7 @@ impl ContactSolver {
 fn pgs(
     blocks: &[Block],
     K: &[f64],
-    (factor, step): (&DMatrix<f64>, &mut [f64]),
+    (factor, step, idle): (&DMatrix<f64>, &mut [f64], &[bool]),
     target: &[f64],
     lambda: &mut [f64],
     sigma: &mut [f64],
@@ -644,7 +657,7 @@ fn pgs(
         if mb > 0 {
             let d = &mut *step;
             for r in 0..mb {
-                d[r] = target[r] - sigma[r];
+                d[r] = if idle[r] { 0.0 } else { target[r] - sigma[r] };
             }
             cholesky_solve(factor, mb, d);
             for r in 0..mb {
@@ -700,15 +713,30 @@ fn pgs(
 }
 
 /// The Cholesky factor of `K_BB + ρ I` (`ρ = 10⁻¹⁰ max diag K_BB`) into the leading `mb x mb`
-/// block of `factor`: `K_BB` the leading rows and columns of `K` (`m x m`, stride `m`). A
-/// factor that fails (NaN in `K`) is left as the identity's, and the NaN shows in the state.
-fn factor_bilateral(K: &[f64], m: usize, mb: usize, factor: &mut DMatrix<f64>) {
-    let rho = 1e-10 * (0..mb).map(|r| K[r * m + r]).fold(0.0, f64::max);
+/// block of `factor` (`mb = idle.len()`): `K_BB` the leading rows and columns of `K` (`m x m`,
+/// stride `m`). A row whose `K_rr` is at most 1e-9 of the largest moves nothing (a planar loop's
+/// out-of-plane row, zero to round-off): it is marked `idle` and given a unit pivot of its own,
+/// so that its impulse stays 0 rather than growing by round-off over `ρ` each sweep (which held
+/// the sweep from ever meeting its tolerance). A factor that fails (NaN in `K`) is left as the
+/// identity's, and the NaN shows in the state.
+fn factor_bilateral(K: &[f64], m: usize, factor: &mut DMatrix<f64>, idle: &mut [bool]) {
+    let mb = idle.len();
+    let top = (0..mb).map(|r| K[r * m + r]).fold(0.0, f64::max);
+    let rho = 1e-10 * top;
+    for (r, i) in idle.iter_mut().enumerate() {
+        *i = K[r * m + r] <= 1e-9 * top;
+    }
     for i in 0..mb {
         for k in 0..=i {
-            factor[(i, k)] = K[k * m + i];
+            factor[(i, k)] = if idle[i] || idle[k] {
+                f64::from(u8::from(i == k))
+            } else {
+                K[k * m + i]
+            };
         }
-        factor[(i, i)] += rho;
+        if !idle[i] {
+            factor[(i, i)] += rho;
+        }
     }
     if cholesky(factor, mb).is_err() {
         factor.fill(0.0);
