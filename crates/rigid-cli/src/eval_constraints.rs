@@ -71,7 +71,7 @@ pub(crate) fn read(
         }
         return Ok(ConstraintFile {
             constraints,
-            settings: ProximalSettings::new(1e-12, 1e-6, 1000),
+            settings: ProximalSettings::redundant(),
             restitution: 0.0,
         });
     }

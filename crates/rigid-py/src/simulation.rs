@@ -200,20 +200,7 @@ pub fn simulate<'py>(
     };
     let world = match &core.source {
         Some(path) => file_world(path, m, &options).map_err(|e| value_error(func, e))?,
-        None => FileWorld {
-            collision: match ground {
-                Some(_) => Some(
-                    ground_model(ground, friction, restitution, Vec::new())
-                        .map_err(|e| value_error(func, e))?,
-                ),
-                None => None,
-            },
-            constraints: Vec::new(),
-            constraint_settings: Default::default(),
-            timestep: None,
-            home: None,
-            warnings: Vec::new(),
-        },
+        None => FileWorld::without_file(&options, Vec::new()).map_err(|e| value_error(func, e))?,
     };
     warn_all(py, func, &world.warnings)?;
     world
@@ -250,7 +237,7 @@ pub fn simulate<'py>(
     };
     s.constraints = match &constraints {
         Some(list) => {
-            s.constraint_options.settings = ProximalSettings::new(1e-12, 1e-6, 1000);
+            s.constraint_options.settings = ProximalSettings::redundant();
             crate::constraints::rigid_constraints(func, core, list)?
         }
         None => world.constraints,

@@ -7,7 +7,7 @@
 use super::SimulateArgs;
 use crate::load::{load_printing_warnings, urdf_path, Loaded};
 use rigid::io::collision::{
-    ground_model, mjcf_file_world, spec_body, urdf_world, FileWorld, WorldError, WorldOptions,
+    mjcf_file_world, spec_body, urdf_file_world, FileWorld, WorldError, WorldOptions,
 };
 use rigid::io::urdf::parse_urdf_file;
 use rigid::simulation::{ConstraintOptions, Scenario, SimulationError, SimulationOptions};
@@ -76,20 +76,11 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
     let (loaded, world) = if spec {
         let (model, geometries, warnings) = spec_body(std::path::Path::new(&args.model))?;
         warn(&warnings);
-        let cm = ground_model(args.ground, args.friction, args.restitution, geometries)
-            .map_err(flag_error)?;
+        let world = FileWorld::without_file(&options, geometries).map_err(flag_error)?;
         let loaded = Loaded {
             model,
             warnings: Vec::new(),
             mjcf: None,
-        };
-        let world = FileWorld {
-            collision: Some(cm),
-            constraints: Vec::new(),
-            constraint_settings: Default::default(),
-            timestep: None,
-            home: None,
-            warnings: Vec::new(),
         };
         (loaded, world)
     } else {
@@ -158,25 +149,11 @@ fn file_world(
 ) -> Result<FileWorld, String> {
     let world = if let Some(m) = &loaded.mjcf {
         mjcf_file_world(m, options).map_err(|e| format!("{}: {}", args.model, flag_error(e)))?
+    } else if let Some(path) = urdf_path(&args.model) {
+        let robot = parse_urdf_file(&path).map_err(|e| format!("{}: {e}", args.model))?;
+        urdf_file_world(&robot, &loaded.model, options).map_err(flag_error)?
     } else {
-        let (collision, warnings) = if let Some(path) = urdf_path(&args.model) {
-            let robot = parse_urdf_file(&path).map_err(|e| format!("{}: {e}", args.model))?;
-            urdf_world(&robot, &loaded.model, options).map_err(flag_error)?
-        } else if args.ground.is_some() {
-            let cm = ground_model(args.ground, args.friction, args.restitution, Vec::new())
-                .map_err(flag_error)?;
-            (Some(cm), Vec::new())
-        } else {
-            (None, Vec::new())
-        };
-        FileWorld {
-            collision,
-            constraints: Vec::new(),
-            constraint_settings: Default::default(),
-            timestep: None,
-            home: None,
-            warnings,
-        }
+        FileWorld::without_file(options, Vec::new()).map_err(flag_error)?
     };
     if world
         .collision

@@ -313,6 +313,34 @@ pub struct FileWorld {
 }
 
 impl FileWorld {
+    /// The world of a model without a file (a built-in model, a body spec's parts): `geometries`
+    /// on the ground of `options` when it gives one ([`ground_model`]), else nothing to touch.
+    ///
+    /// # Errors
+    /// As [`ground_model`].
+    pub fn without_file(
+        options: &WorldOptions,
+        geometries: Vec<Geometry>,
+    ) -> Result<Self, WorldError> {
+        let collision = match options.ground {
+            Some(_) => Some(ground_model(
+                options.ground,
+                options.friction,
+                options.restitution,
+                geometries,
+            )?),
+            None => None,
+        };
+        Ok(Self {
+            collision,
+            constraints: Vec::new(),
+            constraint_settings: crate::multibody::constraints::ProximalSettings::default(),
+            timestep: None,
+            home: None,
+            warnings: Vec::new(),
+        })
+    }
+
     /// The time step of a run: `given`, else the file's, else 1 ms.
     #[must_use]
     pub fn time_step(&self, given: Option<f64>) -> f64 {
@@ -361,11 +389,27 @@ pub fn mjcf_file_world(
         home: Some(home),
         collision,
         constraints,
-        constraint_settings: crate::multibody::constraints::ProximalSettings::new(
-            1e-12, 1e-6, 1000,
-        ),
+        constraint_settings: crate::multibody::constraints::ProximalSettings::redundant(),
         timestep: mjcf.timestep,
         warnings,
+    })
+}
+
+/// The world of a URDF robot ([`urdf_world`]; a URDF declares no loops, step or placement).
+///
+/// # Errors
+/// As [`urdf_world`].
+#[cfg(feature = "urdf")]
+pub fn urdf_file_world(
+    robot: &UrdfRobot,
+    model: &Model,
+    options: &WorldOptions,
+) -> Result<FileWorld, WorldError> {
+    let (collision, warnings) = urdf_world(robot, model, options)?;
+    Ok(FileWorld {
+        collision,
+        warnings,
+        ..FileWorld::without_file(&WorldOptions::default(), Vec::new())?
     })
 }
 
@@ -393,15 +437,7 @@ pub fn file_world(
         mjcf_file_world(&m, options)
     } else {
         let robot = super::urdf::parse_urdf_file(path).map_err(|e| unreadable(e.to_string()))?;
-        let (collision, warnings) = urdf_world(&robot, model, options)?;
-        Ok(FileWorld {
-            collision,
-            constraints: Vec::new(),
-            constraint_settings: crate::multibody::constraints::ProximalSettings::default(),
-            timestep: None,
-            home: None,
-            warnings,
-        })
+        urdf_file_world(&robot, model, options)
     }
 }
 

@@ -390,6 +390,14 @@ impl ProximalSettings {
         }
     }
 
+    /// The settings that hold loops whose rows may be redundant (a planar loop closed by a 3D
+    /// point, an MJCF file's `<equality>` elements): accuracy `1e-12`, `μ = 1e-6`, at most 1000
+    /// proximal iterations.
+    #[must_use]
+    pub fn redundant() -> Self {
+        Self::new(1e-12, 1e-6, 1000)
+    }
+
     pub(crate) fn check(&self) -> Result<(), ConstraintError> {
         let ok = self.mu.is_finite()
             && self.mu >= 0.0
