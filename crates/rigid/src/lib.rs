@@ -14,6 +14,7 @@
 //! | [`collision`] | collision geometry (URDF `<collision>`, MJCF geoms, body parts, a ground plane) and contact points, on parry3d-f64 | `collision` |
 //! | [`simulation`] | the one simulation step: kinematics, collision, one constraint problem (loops, contacts, limits), integration; controllers, trajectories, batches | core (`collision` for contacts) |
 //! | [`kinematics`] | inverse kinematics: Newton / Levenberg-Marquardt on the SE(3) log error (`IKinBody`, `IKinSpace`), position or full pose, limits, restarts | core |
+//! | [`mobile`] | wheeled mobile robots: omnidirectional and nonholonomic bases, `H(φ)`, `F`, odometry, mobile manipulators, task-space feedback, the *Modern Robotics* capstone | core |
 //! | [`body`] | one body in motion: Newton-Euler, Euler, Lagrange by autodiff, and its simulator (the one-joint case of the multibody simulator, plus the Lie-group variational integrator) | core (`lagrange`: `autodiff`) |
 //! | [`identification`] | inertial parameters from measured motion: joint-torque regressor, base parameters, least squares, physically consistent estimate (semidefinite program, feature `sdp`), exciting trajectories | core (`regressor_batch`: `parallel`; `sdp`) |
 //! | [`io`] | reading files: meshes (STL, OBJ, COLLADA), `rigid mass` specs (TOML), URDF and MJCF robots, case and constraint files, example-robot-data | `mesh`, `spec`, `urdf`, `mjcf`, `serde` |
@@ -44,6 +45,7 @@ pub mod interop;
 pub mod io;
 pub mod kinematics;
 pub mod mass;
+pub mod mobile;
 pub mod multibody;
 pub mod simulation;
 pub mod spatial;

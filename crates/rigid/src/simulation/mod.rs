@@ -14,6 +14,7 @@
 //! | `τ = -D (e/τ_c² + 2ζ v/τ_c)` past a limit | [`JointLimits::Spring`] | MuJoCo's soft limits (`solref`) |
 //! | contacts with friction, unilateral joint limits: impulses per step | [`Simulator::with_collision`], [`JointLimits::Unilateral`] ([`contact`](crate::simulation::contact)) | Moreau–Jean time stepping; Jean 1999 |
 //! | quintic / trapezoidal `s(t)` | [`TimeScaling`] | Lynch & Park §9.2 |
+//! | screw and Cartesian pose paths `X(s)` | [`PoseTrajectory`] | Lynch & Park §9.1.3 |
 //! | gravity compensation, PD, computed torque | [`ControlLaw`] | Lynch & Park §11.4 |
 //!
 //! ```
@@ -51,7 +52,7 @@ pub use control::{Control, ControlKind, ControlLaw, Controller};
 pub use loops::{ConstraintOptions, Violation, MAX_INITIAL_VIOLATION};
 pub use scenario::{Scenario, Start};
 pub use simulator::Simulator;
-pub use trajectory::{JointTrajectory, TimeScaling};
+pub use trajectory::{JointTrajectory, PosePath, PoseTrajectory, TimeScaling};
 
 use crate::multibody::MultibodyError;
 use std::fmt;

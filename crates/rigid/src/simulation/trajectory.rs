@@ -1,11 +1,13 @@
 //! Point-to-point joint trajectories: a straight line in joint space (on each joint's group,
 //! `q(t) = q_start ⊕ s(t) Δ`, `Δ = q_end ⊖ q_start`) timed by a quintic or a trapezoidal time
 //! scaling `s: [0, T] → [0, 1]` (Lynch & Park, *Modern Robotics*, §9.2). Before `t = 0` the
-//! trajectory rests at `q_start`, after `T` at `q_end`.
+//! trajectory rests at `q_start`, after `T` at `q_end`. And pose trajectories in SE(3), along a
+//! constant screw or a straight line with a decoupled rotation (§9.1.3).
 
 use super::SimulationError;
 use crate::error::DimensionError;
 use crate::multibody::{check_q, difference, Model};
+use crate::spatial::{so3, Transform};
 
 /// How the path parameter `s` goes from 0 to 1 in time `T`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -172,6 +174,74 @@ impl JointTrajectory {
             v[k] = ds * self.delta[k];
             a[k] = dds * self.delta[k];
         }
+    }
+}
+
+/// The path a pose follows from `start` to `end` (Lynch & Park §9.1.3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PosePath {
+    /// The constant screw motion `X(s) = X_start exp(log(X_start⁻¹ X_end) s)` (`ScrewTrajectory`):
+    /// the origin moves on a helix in general.
+    Screw,
+    /// The origin on a straight line and the rotation about a constant axis, decoupled:
+    /// `p(s) = p_start + s (p_end - p_start)`, `R(s) = R_start exp(log(R_startᵀ R_end) s)`
+    /// (`CartesianTrajectory`, eq. 9.7).
+    Cartesian,
+}
+
+/// A pose trajectory from `start` to `end` in `duration` seconds along a [`PosePath`] timed by a
+/// [`TimeScaling`] (Lynch & Park §9.1–9.2; the code library's `ScrewTrajectory` and
+/// `CartesianTrajectory` return it sampled at `N` equal steps).
+///
+/// ```
+/// use rigid::simulation::{PosePath, PoseTrajectory, TimeScaling};
+/// use rigid::spatial::{Transform, Vec3};
+/// let end = Transform::from_translation(Vec3::new(1.0, 2.0, 0.0));
+/// let traj = PoseTrajectory { start: Transform::identity(), end, duration: 2.0,
+///     scaling: TimeScaling::Quintic, path: PosePath::Cartesian };
+/// assert!((traj.sample(1.0).translation - Vec3::new(0.5, 1.0, 0.0)).norm() < 1e-15);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PoseTrajectory {
+    /// `X_start`.
+    pub start: Transform,
+    /// `X_end`.
+    pub end: Transform,
+    /// `T` (s), positive.
+    pub duration: f64,
+    /// `s(t)`.
+    pub scaling: TimeScaling,
+    /// Screw or Cartesian.
+    pub path: PosePath,
+}
+
+impl PoseTrajectory {
+    /// `X(s(t))`; `start` before 0 and `end` after `duration`.
+    #[must_use]
+    pub fn sample(&self, t: f64) -> Transform {
+        let (s, _, _) = self.scaling.eval(t, self.duration);
+        match self.path {
+            PosePath::Screw => {
+                self.start * Transform::exp(&((self.start.inverse() * self.end).log() * s))
+            }
+            PosePath::Cartesian => {
+                let (r0, r1) = (self.start.rotation, self.end.rotation);
+                let w = so3::log(&(r0.transpose() * r1));
+                let p =
+                    self.start.translation + (self.end.translation - self.start.translation) * s;
+                Transform::new(r0 * so3::exp(&(w * s)), p)
+            }
+        }
+    }
+
+    /// The `n ≥ 2` poses at `t = k T/(n - 1)`, `k = 0 … n-1`, as the code library's
+    /// `ScrewTrajectory(Xstart, Xend, Tf, N, method)` returns them.
+    #[must_use]
+    pub fn samples(&self, n: usize) -> Vec<Transform> {
+        let n = n.max(2);
+        (0..n)
+            .map(|k| self.sample(self.duration * k as f64 / (n - 1) as f64))
+            .collect()
     }
 }
 

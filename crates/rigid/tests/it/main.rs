@@ -42,6 +42,7 @@ mod joints_pinocchio;
 mod mesh;
 mod mjcf;
 mod mjcf_import;
+mod mobile;
 mod multibody_batch;
 mod multibody_builders;
 mod multibody_closed_form;
