@@ -8,6 +8,7 @@
 mod closed_form;
 mod energy;
 mod robots;
+mod wheels;
 mod world;
 
 use rigid::collision::{CollisionModel, Geometry, Ground, Shape};
