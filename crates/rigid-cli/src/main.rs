@@ -15,6 +15,7 @@ mod identify;
 mod ik;
 mod load;
 mod mass;
+mod mobile;
 mod model;
 mod plotting;
 mod simulate;
@@ -54,6 +55,9 @@ enum Command {
     Model(model::ModelArgs),
     /// Draw a robot in one pose, as a self-contained HTML page (WebGL).
     View(view::ViewArgs),
+    /// Wheeled mobile robots: a base's H(φ) and F, odometry on wheel angles, the Modern Robotics
+    /// capstone (a youBot picking and placing a cube).
+    Mobile(mobile::MobileArgs),
 }
 
 /// Exit code 2 and the message on stderr for an error.
@@ -108,5 +112,6 @@ fn main() -> ExitCode {
         Command::Model(args) => report(model::run(&args)),
         Command::Explicit(args) => report(explicit::run(&args)),
         Command::View(args) => report(view::run(&args)),
+        Command::Mobile(args) => report(mobile::run(&args)),
     }
 }

@@ -18,6 +18,7 @@
 //! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_lie`) |
 //! | `scale.rs` | `threads=` pools, `regressor_batch`, `simulate_batch`, `Model.with_dynamic_parameters`, the refusal of dask arrays |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
+//! | `mobile.rs` | `rigid.mobile`: `Base`, `MobileManipulator`, `Feedback`, `pick_and_place`, `capstone`, `fkin_body`/`fkin_space`/`jacobian_body`/`jacobian_space` (the native `_mobile`, re-exported by `python/rigid/mobile.py`) |
 
 mod batch;
 mod body;
@@ -29,6 +30,7 @@ mod dynamics;
 mod identification;
 mod inverse_kinematics;
 mod lie;
+mod mobile;
 mod model;
 mod outputs;
 mod pinocchio;
@@ -123,6 +125,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     constraints::register(m)?;
     pinocchio::register(m)?;
     scale::register(m)?;
+    mobile::register(m)?;
     for (alias, name) in PINOCCHIO_ALIASES {
         m.add(alias, m.getattr(name)?)?;
     }

@@ -17,7 +17,7 @@ mod mjcf;
 mod shapes;
 
 pub use ground::{collision_nodes, CONTACT_MARKERS, WEIGHT_ARROW};
-pub use shapes::{body_box, robot_nodes};
+pub use shapes::{body_box, robot_nodes, robot_nodes_of_urdf};
 
 use base64::Engine;
 use rigid::multibody::{Data, JointId, Model};

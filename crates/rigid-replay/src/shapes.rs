@@ -3,7 +3,7 @@
 
 use super::{Mesh, Node, Scene, Shape};
 use rigid::io::mesh_file::read_mesh;
-use rigid::io::urdf::{parse_urdf_file, resolve_mesh_path, UrdfGeometry, UrdfShape};
+use rigid::io::urdf::{parse_urdf_file, resolve_mesh_path, UrdfGeometry, UrdfRobot, UrdfShape};
 use rigid::mass::{RotationalInertia, TriMesh};
 use rigid::multibody::{FrameKind, JointId, Model};
 use rigid::spatial::{Mat3, Transform, Vec3};
@@ -188,33 +188,7 @@ pub fn robot_nodes(model: &Model, urdf: Option<&Path>) -> Scene {
     }
     if let Some(path) = urdf {
         match parse_urdf_file(path) {
-            Ok(robot) => {
-                let mut meshes = Meshes {
-                    urdf: path,
-                    cache: HashMap::new(),
-                };
-                for link in &robot.links {
-                    let geoms = if link.visuals.is_empty() {
-                        &link.collisions
-                    } else {
-                        &link.visuals
-                    };
-                    if geoms.is_empty() {
-                        continue;
-                    }
-                    let Some(f) = model.frame_id_of_kind(&link.name, FrameKind::Body) else {
-                        continue;
-                    };
-                    let frame = &model.frames()[f.0];
-                    let shapes = link_shapes(&mut scene, &mut meshes, &link.name, geoms);
-                    scene.nodes.push(Node {
-                        name: link.name.clone(),
-                        parent: frame.parent,
-                        placement: frame.placement,
-                        shapes,
-                    });
-                }
-            }
+            Ok(robot) => urdf_nodes(&mut scene, model, &robot, path),
             Err(e) => scene.warnings.push(format!("{e}: drawn as a stick figure")),
         }
     }
@@ -222,6 +196,48 @@ pub fn robot_nodes(model: &Model, urdf: Option<&Path>) -> Scene {
         stick_figure(model, &mut scene);
     }
     scene
+}
+
+/// The nodes of the links of a parsed URDF (its meshes resolved beside `path`, which need not
+/// exist when the file has none), as [`robot_nodes`] draws a URDF file.
+pub fn robot_nodes_of_urdf(model: &Model, robot: &UrdfRobot, path: &Path) -> Scene {
+    let mut scene = Scene {
+        extent: model_extent(model),
+        ..Scene::default()
+    };
+    urdf_nodes(&mut scene, model, robot, path);
+    if scene.nodes.is_empty() {
+        stick_figure(model, &mut scene);
+    }
+    scene
+}
+
+fn urdf_nodes(scene: &mut Scene, model: &Model, robot: &UrdfRobot, path: &Path) {
+    let mut meshes = Meshes {
+        urdf: path,
+        cache: HashMap::new(),
+    };
+    for link in &robot.links {
+        let geoms = if link.visuals.is_empty() {
+            &link.collisions
+        } else {
+            &link.visuals
+        };
+        if geoms.is_empty() {
+            continue;
+        }
+        let Some(f) = model.frame_id_of_kind(&link.name, FrameKind::Body) else {
+            continue;
+        };
+        let frame = &model.frames()[f.0];
+        let shapes = link_shapes(scene, &mut meshes, &link.name, geoms);
+        scene.nodes.push(Node {
+            name: link.name.clone(),
+            parent: frame.parent,
+            placement: frame.placement,
+            shapes,
+        });
+    }
 }
 
 /// The largest distance from the world origin to a joint origin at `q = neutral`, plus 0.1 m.

@@ -20,6 +20,7 @@ mod explicit_cli;
 mod identify_cli;
 mod ik_cli;
 mod mass_cli;
+mod mobile_cli;
 mod replay_browser;
 mod simulate;
 mod simulate_ground;

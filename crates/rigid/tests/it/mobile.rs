@@ -476,3 +476,39 @@ fn bad_geometry_is_refused_by_name() {
     assert!(fb.command(&youbot, &x, &x, &x, 0.0, &[0.0; 5]).is_err());
     let _ = DVector::<f64>::zeros(1);
 }
+
+/// `examples/youbot.urdf` (the replay's model, its joints placed from the screw axes) has the
+/// kinematics of `MobileManipulator::youbot()`: the frame `gripper` by the multibody forward
+/// kinematics equals `T_sb(q) T_b0 M_0e e^{[B_1]θ_1} ⋯` to 1e-12 at random configurations.
+#[test]
+fn the_youbot_urdf_has_the_capstones_kinematics() {
+    use rigid::multibody::{forward_kinematics_q, update_frame_placements, Data};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/youbot.urdf");
+    let model = rigid::io::urdf::load_urdf(&path, false).unwrap();
+    let youbot = MobileManipulator::youbot();
+    let at = |n: &str| model.joints()[model.joint_id(n).unwrap().0].idx_q;
+    let gripper = model.frame_id("gripper").unwrap();
+    let mut data = Data::new(&model);
+    let mut rng = rigid::multibody::Rng::new(5);
+    for _ in 0..20 {
+        let chassis = [
+            rng.uniform(-3.0, 3.0),
+            rng.uniform(-2.0, 2.0),
+            rng.uniform(-2.0, 2.0),
+        ];
+        let theta: Vec<f64> = (0..5).map(|_| rng.uniform(-2.0, 2.0)).collect();
+        let mut q = vec![0.0; model.nq()];
+        q[at("base_yaw")] = chassis[0];
+        q[at("base_x")] = chassis[1];
+        q[at("base_y")] = chassis[2];
+        for (i, t) in theta.iter().enumerate() {
+            q[at(&format!("arm_joint_{}", i + 1))] = *t;
+        }
+        forward_kinematics_q(&model, &mut data, &q).unwrap();
+        update_frame_placements(&model, &mut data);
+        let urdf = data.frame_placements[gripper.0];
+        let poe = youbot.forward(chassis, &theta).unwrap();
+        let e = (urdf.to_homogeneous() - poe.to_homogeneous()).amax();
+        assert!(e < 1e-12, "{e:e}");
+    }
+}

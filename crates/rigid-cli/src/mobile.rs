@@ -1,0 +1,504 @@
+//! `rigid mobile h|odometry|capstone`: wheeled mobile robots ([`rigid::mobile`]). This file parses
+//! the flags and prints; the kinematics, odometry and the capstone are the library's.
+
+use crate::plotting::{color, Panel};
+use crate::util::write_atomic;
+use clap::{Args, Subcommand};
+use rigid::io::urdf::{load_urdf_str, parse_urdf_str};
+use rigid::mobile::{Base, Capstone, CapstoneRun, Kind};
+use rigid::multibody::Data;
+use rigid::spatial::{so3, Mat6};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Options of `rigid mobile`.
+#[derive(Args, Debug)]
+pub struct MobileArgs {
+    #[command(subcommand)]
+    pub command: MobileCommand,
+}
+
+/// The verbs of `rigid mobile`.
+#[derive(Subcommand, Debug)]
+pub enum MobileCommand {
+    /// A base's H(φ) (wheel speeds u = H(φ) q̇ for q = (φ, x, y)), F = H(0)† and its
+    /// nonholonomic constraint.
+    H(HArgs),
+    /// Odometry: the chassis configuration (φ, x, y) along a CSV of wheel angles.
+    Odometry(OdometryArgs),
+    /// The Modern Robotics capstone: the youBot picks a cube and places it, its end effector
+    /// driven along the reference by feedforward plus PI; the course's scene CSV, X_err, a plot
+    /// and a replay.
+    Capstone(CapstoneArgs),
+}
+
+/// The base: its kind and geometry.
+#[derive(Args, Debug)]
+pub struct BaseArgs {
+    /// `mecanum` (--radius, --half-length l, --half-width w), `omni3` (--radius, --distance d),
+    /// `diff-drive` (--radius, --track), `car` (--radius, --track, --wheelbase), or `youbot`
+    /// (the capstone's mecanum base: r = 0.0475, l = 0.235, w = 0.15).
+    #[arg(long)]
+    pub base: String,
+    /// Wheel radius r (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub radius: Option<f64>,
+    /// Mecanum: half the distance between the front and rear axles, l (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub half_length: Option<f64>,
+    /// Mecanum: half the distance between the left and right wheels, w (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub half_width: Option<f64>,
+    /// Omni3: the wheels' distance from the centre, d (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub distance: Option<f64>,
+    /// Differential drive, car: distance between the driven wheels (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub track: Option<f64>,
+    /// Car: rear axle to front axle (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub wheelbase: Option<f64>,
+}
+
+impl BaseArgs {
+    fn base(&self) -> Result<Base, String> {
+        let need = |x: Option<f64>, flag: &str| {
+            x.ok_or_else(|| format!("--base {} needs --{flag}", self.base))
+        };
+        let r = || need(self.radius, "radius");
+        match self.base.as_str() {
+            "youbot" => Base::mecanum(0.0475, 0.235, 0.15),
+            "mecanum" => Base::mecanum(
+                r()?,
+                need(self.half_length, "half-length")?,
+                need(self.half_width, "half-width")?,
+            ),
+            "omni3" => Base::omni3(r()?, need(self.distance, "distance")?),
+            "diff-drive" => Base::diff_drive(r()?, need(self.track, "track")?),
+            "car" => Base::car(
+                r()?,
+                need(self.track, "track")?,
+                need(self.wheelbase, "wheelbase")?,
+            ),
+            other => {
+                return Err(format!(
+                    "unknown base {other:?}: expected mecanum, omni3, diff-drive, car or youbot"
+                ))
+            }
+        }
+        .map_err(|e| e.to_string())
+    }
+}
+
+/// Options of `rigid mobile h`.
+#[derive(Args, Debug)]
+pub struct HArgs {
+    #[command(flatten)]
+    pub base: BaseArgs,
+    /// The chassis heading φ (rad).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub phi: f64,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Options of `rigid mobile odometry`.
+#[derive(Args, Debug)]
+pub struct OdometryArgs {
+    #[command(flatten)]
+    pub base: BaseArgs,
+    /// A CSV of wheel angles (rad), one row per sample, one column per wheel (in the order of H's
+    /// rows), optionally a time column first; a header line is skipped.
+    pub wheels: PathBuf,
+    /// The chassis configuration at the first row, `φ,x,y`.
+    #[arg(long, value_parser = crate::simulate::parse_list, allow_hyphen_values = true)]
+    pub start: Option<crate::simulate::Numbers>,
+    /// Write the CSV here instead of printing it.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// Options of `rigid mobile capstone`.
+#[derive(Args, Debug)]
+pub struct CapstoneArgs {
+    /// The course's scene CSV (13 columns per row, no header: φ, x, y, 5 arm joints, 4 wheels,
+    /// gripper), for CoppeliaSim's scene 6.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// X_err at each step as CSV (`t,wx,wy,wz,vx,vy,vz`).
+    #[arg(long)]
+    pub errors: Option<PathBuf>,
+    /// A plot of X_err against time (SVG or PNG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// A 3D replay in the browser (self-contained HTML): the youBot carrying the cube.
+    #[arg(long)]
+    pub html: Option<PathBuf>,
+    /// K_p, the same on all six rows (1/s).
+    #[arg(long, default_value_t = 1.5)]
+    pub kp: f64,
+    /// K_i (1/s²).
+    #[arg(long, default_value_t = 0.0)]
+    pub ki: f64,
+    /// Keep arm joints 3 and 4 below -0.2 rad (away from the stretched-arm singularity), as the
+    /// capstone suggests: a joint about to leave its range stops and the others take over.
+    #[arg(long)]
+    pub limits: bool,
+    /// Control period and reference step (s).
+    #[arg(long, default_value_t = 0.01)]
+    pub dt: f64,
+    /// Speed limit of every wheel and joint (rad/s).
+    #[arg(long, default_value_t = 15.0)]
+    pub max_speed: f64,
+    /// The chassis at the start, `φ,x,y` (default 0.5,-0.2,0.2: 0.42 m and 30° off the reference).
+    #[arg(long, value_parser = crate::simulate::parse_list, allow_hyphen_values = true)]
+    pub chassis: Option<crate::simulate::Numbers>,
+}
+
+/// Runs `rigid mobile`.
+pub fn run(args: &MobileArgs) -> Result<(), String> {
+    match &args.command {
+        MobileCommand::H(a) => h(a),
+        MobileCommand::Odometry(a) => odometry(a),
+        MobileCommand::Capstone(a) => capstone(a),
+    }
+}
+
+fn rows_text(m: &nalgebra::DMatrix<f64>) -> String {
+    let mut s = String::new();
+    for r in 0..m.nrows() {
+        let row: Vec<String> = (0..m.ncols())
+            .map(|c| format!("{:>10.5}", m[(r, c)]))
+            .collect();
+        let _ = writeln!(s, "  {}", row.join(" "));
+    }
+    s
+}
+
+fn rows_json(m: &nalgebra::DMatrix<f64>) -> serde_json::Value {
+    (0..m.nrows())
+        .map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect::<Vec<_>>())
+        .collect()
+}
+
+fn h(args: &HArgs) -> Result<(), String> {
+    if !args.phi.is_finite() {
+        return Err(format!("--phi must be finite, got {}", args.phi));
+    }
+    let base = args.base.base()?;
+    let (hm, f) = (base.H(args.phi), base.F().clone());
+    let a = base.constraint([args.phi, 0.0, 0.0]);
+    if args.json {
+        let v = serde_json::json!({
+            "base": base.name(),
+            "wheels": base.wheels().len(),
+            "phi": args.phi,
+            "H": rows_json(&hm),
+            "F": rows_json(&f),
+            "constraint": a,
+        });
+        println!("{v}");
+        return Ok(());
+    }
+    println!(
+        "{} base, {} wheels, φ = {} rad",
+        base.name(),
+        base.wheels().len(),
+        args.phi
+    );
+    println!("H(φ): wheel speeds u = H(φ) q̇, q̇ = (φ̇, ẋ, ẏ) (rad/s per rad/s, m/s)");
+    print!("{}", rows_text(&hm));
+    println!("F = H(0)†: the body twist (ω_z, v_x, v_y) = F u");
+    print!("{}", rows_text(&f));
+    match (a, base.kind()) {
+        (Some(a), Kind::Car { wheelbase, .. }) => println!(
+            "nonholonomic: A(q) q̇ = 0 with A = [{:.5}, {:.5}, {:.5}]; steering ψ = atan({wheelbase} ω / v)",
+            a[0], a[1], a[2]
+        ),
+        (Some(a), _) => println!(
+            "nonholonomic: A(q) q̇ = 0 with A = [{:.5}, {:.5}, {:.5}]",
+            a[0], a[1], a[2]
+        ),
+        (None, _) => println!("omnidirectional: any (ω_z, v_x, v_y)"),
+    }
+    Ok(())
+}
+
+fn odometry(args: &OdometryArgs) -> Result<(), String> {
+    let base = args.base.base()?;
+    let m = base.wheels().len();
+    let text = std::fs::read_to_string(&args.wheels)
+        .map_err(|e| format!("{}: {e}", args.wheels.display()))?;
+    let mut q = match &args.start {
+        Some(n) if n.0.len() == 3 => [n.0[0], n.0[1], n.0[2]],
+        Some(n) => return Err(format!("--start has {} numbers; expected φ,x,y", n.0.len())),
+        None => [0.0; 3],
+    };
+    let mut out = String::new();
+    let mut previous: Option<Vec<f64>> = None;
+    let mut timed = None;
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() {
+            continue;
+        }
+        let cells: Result<Vec<f64>, _> = line.split(',').map(|c| c.trim().parse::<f64>()).collect();
+        let Ok(cells) = cells else {
+            if previous.is_none() && timed.is_none() {
+                continue; // a header
+            }
+            return Err(format!(
+                "{} line {}: not numbers: {line}",
+                args.wheels.display(),
+                i + 1
+            ));
+        };
+        let has_time = match cells.len() {
+            n if n == m => false,
+            n if n == m + 1 => true,
+            n => {
+                return Err(format!(
+                "{} line {}: {n} numbers; the {} base has {m} wheels (and an optional time first)",
+                args.wheels.display(),
+                i + 1,
+                base.name()
+            ))
+            }
+        };
+        if *timed.get_or_insert(has_time) != has_time {
+            return Err(format!(
+                "{} line {}: a time column on some rows only",
+                args.wheels.display(),
+                i + 1
+            ));
+        }
+        let angles = cells[usize::from(has_time)..].to_vec();
+        if let Some(p) = &previous {
+            let d: Vec<f64> = angles.iter().zip(p).map(|(a, b)| a - b).collect();
+            q = base
+                .odometry(q, &d)
+                .map_err(|e| format!("{} line {}: {e}", args.wheels.display(), i + 1))?;
+        } else {
+            let _ = writeln!(out, "{}phi,x,y", if has_time { "t," } else { "" });
+        }
+        if has_time {
+            let _ = write!(out, "{},", cells[0]);
+        }
+        let _ = writeln!(out, "{},{},{}", q[0], q[1], q[2]);
+        previous = Some(angles);
+    }
+    if previous.is_none() {
+        return Err(format!(
+            "{}: no rows of wheel angles",
+            args.wheels.display()
+        ));
+    }
+    match &args.out {
+        Some(path) => {
+            write_atomic(path, out.as_bytes())?;
+            println!("wrote {}", path.display());
+        }
+        None => print!("{out}"),
+    }
+    Ok(())
+}
+
+fn capstone(args: &CapstoneArgs) -> Result<(), String> {
+    for p in [&args.plot].into_iter().flatten() {
+        crate::plotting::check_format(p)?;
+    }
+    let mut c = Capstone::youbot();
+    c.feedback.Kp = Mat6::identity() * args.kp;
+    c.feedback.Ki = Mat6::identity() * args.ki;
+    if args.limits {
+        let free = (-3.2, 3.2);
+        c.feedback.limits = vec![free, free, (-3.2, -0.2), (-3.2, -0.2), free];
+        c.start.arm = vec![0.0, 0.0, -0.3, -1.6, 0.0];
+    }
+    if let Some(n) = &args.chassis {
+        if n.0.len() != 3 {
+            return Err(format!(
+                "--chassis has {} numbers; expected φ,x,y",
+                n.0.len()
+            ));
+        }
+        c.start.chassis = [n.0[0], n.0[1], n.0[2]];
+    }
+    c.dt = args.dt;
+    c.max_speed = args.max_speed;
+    let run = c.run().map_err(|e| e.to_string())?;
+    let norms: Vec<f64> = run.errors.iter().map(|e| e.norm()).collect();
+    let after = |t: f64| {
+        norms[((t / run.dt) as usize).min(norms.len() - 1)..]
+            .iter()
+            .fold(0.0f64, |a, &b| a.max(b))
+    };
+    println!(
+        "capstone: youBot, {} steps of {} s ({:.2} s), Kp = {} I, Ki = {} I{}",
+        run.states.len(),
+        run.dt,
+        run.dt * (run.states.len() - 1) as f64,
+        args.kp,
+        args.ki,
+        if args.limits {
+            ", joints 3 and 4 limited"
+        } else {
+            ""
+        }
+    );
+    println!(
+        "|X_err|: {:.3} at the start, largest after 1 s {:.2e}, after 5 s {:.2e}, at the end {:.2e}",
+        norms[0],
+        after(1.0),
+        after(5.0),
+        norms.last().copied().unwrap_or(0.0)
+    );
+    if let Some(path) = &args.csv {
+        let mut s = String::new();
+        for k in 0..run.states.len() {
+            let row: Vec<String> = run.row(k).iter().map(|x| format!("{x}")).collect();
+            let _ = writeln!(s, "{}", row.join(","));
+        }
+        write_atomic(path, s.as_bytes())?;
+        println!(
+            "wrote {} (the course's scene CSV, 13 columns)",
+            path.display()
+        );
+    }
+    if let Some(path) = &args.errors {
+        let mut s = String::from("t,wx,wy,wz,vx,vy,vz\n");
+        for (k, e) in run.errors.iter().enumerate() {
+            let v = e.to_vector();
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{}",
+                k as f64 * run.dt,
+                v[0],
+                v[1],
+                v[2],
+                v[3],
+                v[4],
+                v[5]
+            );
+        }
+        write_atomic(path, s.as_bytes())?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(path) = &args.plot {
+        let t: Vec<f64> = (0..run.errors.len()).map(|k| k as f64 * run.dt).collect();
+        let names = ["ω_x", "ω_y", "ω_z", "v_x", "v_y", "v_z"];
+        let curve = |i: usize| {
+            (
+                names[i].to_string(),
+                run.errors.iter().map(|e| e.to_vector()[i]).collect(),
+                color(i),
+            )
+        };
+        let panels = [
+            Panel {
+                title: "X_err, angular (rad)".into(),
+                y_label: "rad".into(),
+                curves: (0..3).map(curve).collect(),
+            },
+            Panel {
+                title: "X_err, linear (m)".into(),
+                y_label: "m".into(),
+                curves: (3..6).map(curve).collect(),
+            },
+        ];
+        crate::plotting::save(path, &t, &panels)?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(path) = &args.html {
+        replay(&c, &run, path)?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// The youBot of `examples/youbot.urdf` (planar base joints, the arm, the wheels, the cube on its
+/// own chain), compiled in.
+const YOUBOT_URDF: &str = include_str!("../../../examples/youbot.urdf");
+
+/// The replay: the youBot's configuration at each step, the cube at its initial pose until the
+/// gripper closes, carried by the gripper while it is closed (`T_sc = X T_ce,grasp⁻¹`), then
+/// at its final pose.
+fn replay(c: &Capstone, run: &CapstoneRun, path: &Path) -> Result<(), String> {
+    let model = load_urdf_str(YOUBOT_URDF, false).map_err(|e| e.to_string())?;
+    let robot = parse_urdf_str(YOUBOT_URDF).map_err(|e| e.to_string())?;
+    let mut scene = rigid_replay::robot_nodes_of_urdf(&model, &robot, Path::new("youbot.urdf"));
+    scene.title = "Modern Robotics capstone: the youBot".into();
+    scene.info = format!(
+        "feedforward + PI, Kp = {} I, Ki = {} I; |X_err| {:.3} at the start, {:.1e} at the end",
+        c.feedback.Kp[(0, 0)],
+        c.feedback.Ki[(0, 0)],
+        run.errors.first().map_or(0.0, |e| e.norm()),
+        run.errors.last().map_or(0.0, |e| e.norm())
+    );
+    let at = |name: &str| -> Result<usize, String> {
+        let j = model
+            .joint_id(name)
+            .ok_or_else(|| format!("examples/youbot.urdf has no joint {name}"))?;
+        Ok(model.joints()[j.0].idx_q)
+    };
+    let base = [at("base_yaw")?, at("base_x")?, at("base_y")?];
+    let arm: Vec<usize> = (1..=5)
+        .map(|i| at(&format!("arm_joint_{i}")))
+        .collect::<Result<_, _>>()?;
+    let wheels: Vec<usize> = ["fl", "fr", "rr", "rl"]
+        .iter()
+        .map(|w| at(&format!("wheel_{w}_joint")))
+        .collect::<Result<_, _>>()?;
+    let cube: Vec<usize> = [
+        "cube_x",
+        "cube_y",
+        "cube_z",
+        "cube_yaw",
+        "cube_pitch",
+        "cube_roll",
+    ]
+    .iter()
+    .map(|n| at(n))
+    .collect::<Result<_, _>>()?;
+    let mut rec = rigid_replay::Recording::default();
+    let mut data = Data::new(&model);
+    let mut q = vec![0.0; model.nq()];
+    let mut cube_pose = c.task.cube_initial;
+    let mut carried = false;
+    for (k, (s, closed)) in run.states.iter().enumerate() {
+        let t = k as f64 * run.dt;
+        for (i, &j) in base.iter().enumerate() {
+            q[j] = s.chassis[i];
+        }
+        for (&j, &a) in arm.iter().zip(&s.arm) {
+            q[j] = a;
+        }
+        for (&j, &a) in wheels.iter().zip(&s.wheels) {
+            q[j] = a;
+        }
+        if *closed {
+            let x = c
+                .robot
+                .forward(s.chassis, &s.arm)
+                .map_err(|e| e.to_string())?;
+            cube_pose = x * c.task.grasp.inverse();
+            carried = true;
+        } else if carried {
+            cube_pose = c.task.cube_final;
+        }
+        let (roll, pitch, yaw) = so3::to_rpy(&cube_pose.rotation);
+        for (&j, v) in cube.iter().zip([
+            cube_pose.translation.x,
+            cube_pose.translation.y,
+            cube_pose.translation.z,
+            yaw,
+            pitch,
+            roll,
+        ]) {
+            q[j] = v;
+        }
+        rec.record_model(&scene, &model, &mut data, t, &q, k == 0)?;
+    }
+    write_atomic(path, scene.html(&rec).as_bytes())
+}
