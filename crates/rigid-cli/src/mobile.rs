@@ -26,6 +26,9 @@ pub enum MobileCommand {
     H(HArgs),
     /// Odometry: the chassis configuration (φ, x, y) along a CSV of wheel angles.
     Odometry(OdometryArgs),
+    /// A robot (URDF) on the ground with its wheels under velocity control: how it moves, beside
+    /// its kinematic model; CSV and a replay.
+    Drive(Box<DriveArgs>),
     /// The Modern Robotics capstone: the youBot picks a cube and places it, its end effector
     /// driven along the reference by feedforward plus PI; the course's scene CSV, X_err, a plot
     /// and a replay.
@@ -119,6 +122,96 @@ pub struct OdometryArgs {
     pub out: Option<PathBuf>,
 }
 
+/// Options of `rigid mobile drive`.
+#[derive(Args, Debug)]
+pub struct DriveArgs {
+    /// A URDF file or a robot of example-robot-data by name (loaded with a free-flyer root and
+    /// set down on the ground z = 0).
+    pub model: String,
+    /// The wheel joints, comma-separated (revolute or continuous).
+    #[arg(long, value_delimiter = ',')]
+    pub wheels: Vec<String>,
+    /// Their commanded speeds (rad/s), comma-separated.
+    #[arg(long, value_parser = crate::simulate::parse_list, allow_hyphen_values = true)]
+    pub speeds: crate::simulate::Numbers,
+    /// The kinematic model to compare with (its wheels in the order of --wheels): v and ω it
+    /// predicts, `F u`, beside the simulated ones.
+    #[command(flatten)]
+    pub base: OptionalBase,
+    /// Simulated time (s).
+    #[arg(long, default_value_t = 3.0)]
+    pub time: f64,
+    /// Time step (s).
+    #[arg(long, default_value_t = 1e-3)]
+    pub dt: f64,
+    /// Velocity gain K of `τ = K (u_d − u)` on each wheel (N·m·s/rad).
+    #[arg(long, default_value_t = 20.0)]
+    pub gain: f64,
+    /// Coulomb friction of the ground.
+    #[arg(long, default_value_t = 1.0)]
+    pub friction: f64,
+    /// Friction of the wheels' own collision shapes (a shape's friction with the ground is the
+    /// larger of the two: `--friction 0 --wheel-friction 1` makes everything but the wheels
+    /// slide freely, as swivel casters that a URDF fixes).
+    #[arg(long)]
+    pub wheel_friction: Option<f64>,
+    /// Hold the other actuated joints at their start with the stance controller (an arm, a
+    /// torso); without it they are passive (casters).
+    #[arg(long)]
+    pub hold: bool,
+    /// CSV of `t,x,y,yaw,v,omega` and the wheel speeds, every step.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// A 3D replay in the browser (self-contained HTML).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
+}
+
+/// `--base` and its geometry, optional.
+#[derive(Args, Debug)]
+pub struct OptionalBase {
+    /// `diff-drive` (--radius, --track), `mecanum`, `omni3`, `car` or `youbot`: see `rigid mobile h`.
+    #[arg(long = "base")]
+    pub kind: Option<String>,
+    /// Wheel radius r (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub radius: Option<f64>,
+    /// Mecanum: l (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub half_length: Option<f64>,
+    /// Mecanum: w (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub half_width: Option<f64>,
+    /// Omni3: d (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub distance: Option<f64>,
+    /// Differential drive, car: distance between the driven wheels (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub track: Option<f64>,
+    /// Car: wheelbase (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub wheelbase: Option<f64>,
+}
+
+impl OptionalBase {
+    pub fn base(&self) -> Result<Option<Base>, String> {
+        let Some(kind) = &self.kind else {
+            return Ok(None);
+        };
+        BaseArgs {
+            base: kind.clone(),
+            radius: self.radius,
+            half_length: self.half_length,
+            half_width: self.half_width,
+            distance: self.distance,
+            track: self.track,
+            wheelbase: self.wheelbase,
+        }
+        .base()
+        .map(Some)
+    }
+}
+
 /// Options of `rigid mobile capstone`.
 #[derive(Args, Debug)]
 pub struct CapstoneArgs {
@@ -161,6 +254,7 @@ pub fn run(args: &MobileArgs) -> Result<(), String> {
     match &args.command {
         MobileCommand::H(a) => h(a),
         MobileCommand::Odometry(a) => odometry(a),
+        MobileCommand::Drive(a) => crate::mobile_drive::drive(a),
         MobileCommand::Capstone(a) => capstone(a),
     }
 }

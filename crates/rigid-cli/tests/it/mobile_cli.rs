@@ -229,3 +229,61 @@ fn bad_bases_are_refused_by_name() {
     let o = rigid(&["mobile", "h", "--base", "tank", "--radius", "0.05"]);
     assert!(stderr(&o).contains("unknown base"), "{}", stderr(&o));
 }
+
+/// `rigid mobile drive`: the differential drive of examples/diff_drive.urdf, its wheels under
+/// velocity control, moves as its kinematic model (v and ω within 2 % of the motion's speed) on a
+/// curve and turning in place; a wheel that is not a joint is named.
+#[test]
+fn drive_rolls_as_the_kinematic_model_says() {
+    let urdf = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/diff_drive.urdf"
+    );
+    for speeds in ["5,7", "-3,3"] {
+        let o = rigid(&[
+            "mobile",
+            "drive",
+            urdf,
+            "--wheels",
+            "left_wheel_joint,right_wheel_joint",
+            "--speeds",
+            speeds,
+            "--base",
+            "diff-drive",
+            "--radius",
+            "0.08",
+            "--track",
+            "0.36",
+            "--time",
+            "2",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let text = String::from_utf8_lossy(&o.stdout);
+        // "... v and ω within A % and B % (of the motion's speed)"
+        let tail = text.split("within ").nth(1).expect(&text);
+        let numbers: Vec<f64> = tail
+            .split(['%', ' '])
+            .filter_map(|w| w.parse().ok())
+            .take(2)
+            .collect();
+        assert!(
+            numbers.len() == 2 && numbers.iter().all(|p| *p < 2.0),
+            "{speeds}: {text}"
+        );
+    }
+    let o = rigid(&[
+        "mobile",
+        "drive",
+        urdf,
+        "--wheels",
+        "left_wheel,right_wheel_joint",
+        "--speeds",
+        "1,1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("wheel joint \"left_wheel\""),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -11,6 +11,7 @@
 //! | `V_b = F Δθ`, `F = H(0)†`; the planar exponential, `Δq = R(φ) Δq_b` | [`Base::F`], [`Base::odometry`] | §13.4, eq. 13.33–13.36 |
 //! | `T_se = T_sb(q) T_b0 T_0e(θ)`, `J_e = [[Ad_{T_0e⁻¹ T_b0⁻¹}] F6, J_arm]` | [`MobileManipulator::forward`], [`MobileManipulator::jacobian`] | §13.5 |
 //! | `V = [Ad_{X⁻¹X_d}] V_d + K_p X_err + K_i ∫X_err`, `(u, θ̇) = J_e† V` | [`Feedback::command`] | eq. 11.16, 13.37 |
+//! | `τ = K (u_d − u)` on the wheel joints of a robot model, implicit in the time stepper | [`WheelDrive`] | velocity control |
 //! | Euler step of chassis, arm and wheels; the pick-and-place reference; a whole run | [`MobileManipulator::next_state`], [`PickAndPlace::reference`], [`Capstone::run`] | the capstone project |
 //!
 //! ```
@@ -23,14 +24,19 @@
 //! ```
 //!
 //! Wheels that roll in the simulator are bodies with revolute joints and cylinder collision
-//! shapes touching the ground ([`crate::simulation`]); docs/mobile.md shows a differential drive.
+//! shapes touching the ground ([`crate::simulation`]); [`WheelDrive`] commands their speeds
+//! (`rigid mobile drive`); docs/mobile.md shows a differential drive and TIAGo.
 
 mod base;
 mod capstone;
+mod drive;
 mod manipulator;
 
 pub use base::{chassis_velocity, planar_rotation, Base, Kind, Wheel};
 pub use capstone::{Capstone, CapstoneRun, MobileState, PickAndPlace, ReferencePoint};
+pub use drive::{chassis_motion, WheelDrive};
+#[cfg(feature = "collision")]
+pub use drive::{wheel_simulator, DriveOptions};
 pub use manipulator::{Command, Feedback, MobileManipulator};
 
 use crate::error::DimensionError;
@@ -79,6 +85,17 @@ pub enum MobileError {
         /// The rank needed (3 omnidirectional, 2 nonholonomic).
         needed: usize,
     },
+    /// A wheel joint of a robot model that cannot be driven.
+    #[error("wheel joint {name:?}: {reason}")]
+    WheelJoint {
+        /// The joint's name.
+        name: String,
+        /// Why (absent, not revolute).
+        reason: String,
+    },
+    /// The simulator refused the run (its message).
+    #[error("{0}")]
+    Simulation(String),
     /// A vector of the wrong length.
     #[error(transparent)]
     Dimension(#[from] DimensionError),

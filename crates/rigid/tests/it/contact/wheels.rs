@@ -82,103 +82,45 @@ fn a_differential_drive_rolls_without_slipping() {
     }
 }
 
-/// The stance controller with the two wheels under velocity control `τ = K (u_d - u)`, whose
-/// damping `K` the time stepper takes implicitly (a wheel of 0.01 kg m² under `K = 20` at 1 ms
-/// would not be stable explicitly).
-struct Drive {
-    stance: rigid::simulation::Controller,
-    wheels: [(usize, f64); 2],
-    gain: f64,
-    kp: Vec<f64>,
-    kd: Vec<f64>,
-}
-
-impl rigid::simulation::Control for Drive {
-    fn torque(
-        &mut self,
-        model: &rigid::multibody::Model,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        tau: &mut [f64],
-    ) -> Result<(), rigid::multibody::MultibodyError> {
-        self.stance.torque(model, t, q, v, tau)?;
-        for (k, u) in self.wheels {
-            tau[k] = self.gain * (u - v[k]);
-        }
-        Ok(())
-    }
-    fn pd_gains(&self) -> Option<(&[f64], &[f64])> {
-        Some((&self.kp, &self.kd))
-    }
-}
-
-/// TIAGo (example-robot-data) drives a circle under a wheel-velocity controller,
-/// `τ_wheel = K (u_d - u)` with the wheel speeds `u_d = H(0) (ω, v, 0)` of the circle, the rest of
+/// TIAGo (example-robot-data) drives a circle under a wheel-velocity controller
+/// (`rigid::mobile::wheel_simulator`: `WheelDrive`, `τ_wheel = K (u_d - u)`) with the wheel speeds `u_d = H(0) (ω, v, 0)` of the circle, the rest of
 /// the body held by the stance controller. Its URDF fixes its four swivel casters (fixed joints,
 /// sphere collisions): they are made frictionless (the ground's friction 0, the wheels' 1: a
 /// geometry's friction with the ground is the larger of the two), as a free swivel caster drags
 /// nothing to first order.
 #[test]
 fn tiago_drives_a_circle() {
-    use rigid::collision::place_on_ground;
     use rigid::io::collision::{ground_model, urdf_geometries};
     use rigid::io::urdf::{load_urdf, parse_urdf_file};
-    use rigid::simulation::{Control, ControlLaw, Controller, SimulationOptions, Simulator};
+    use rigid::mobile::{chassis_motion, wheel_simulator, DriveOptions};
     let path = crate::common::example_robot_data().join("tiago_description/robots/tiago.urdf");
     let model = load_urdf(&path, true).unwrap();
     let robot = parse_urdf_file(&path).unwrap();
-    let (mut geometries, _) = urdf_geometries(&robot, &model);
-    for g in &mut geometries {
-        if g.name.starts_with("wheel_") {
-            g.friction = Some(1.0);
-        }
-    }
+    let (geometries, _) = urdf_geometries(&robot, &model);
     let cm = ground_model(Some(0.0), Some(0.0), None, geometries).unwrap();
-    let mut q0 = rigid::multibody::neutral(&model);
-    place_on_ground(&model, &cm, &mut q0).unwrap();
-    let law = ControlLaw::standing(&model, &q0, &cm).unwrap();
-    let stance = Controller::new(&model, law).unwrap();
-    let (mut kp, mut kd) = match stance.pd_gains() {
-        Some((kp, kd)) => (kp.to_vec(), kd.to_vec()),
-        None => (vec![0.0; model.nv()], vec![0.0; model.nv()]),
-    };
-    let v_of = |name: &str| model.joints()[model.joint_id(name).unwrap().0].idx_v;
-    let (left, right) = (v_of("wheel_left_joint"), v_of("wheel_right_joint"));
     let (r, track) = (0.0985, 2.0 * 0.2022);
     let base = Base::diff_drive(r, track).unwrap();
     let (radius, speed) = (1.0, 0.3);
     let ud = base.H(0.0) * nalgebra::Vector3::new(speed / radius, speed, 0.0);
-    let gain = 20.0;
-    for k in [left, right] {
-        kp[k] = 0.0;
-        kd[k] = gain;
-    }
-    let control = Drive {
-        stance,
-        wheels: [(left, ud[0]), (right, ud[1])],
-        gain,
-        kp,
-        kd,
-    };
-    let opts = SimulationOptions {
+    let options = DriveOptions {
+        wheels: vec!["wheel_left_joint".into(), "wheel_right_joint".into()],
+        speeds: vec![ud[0], ud[1]],
+        gain: 20.0,
+        wheel_friction: Some(1.0),
+        hold: true,
         dt: 1e-3,
-        integrator: rigid::simulation::Integrator::SemiImplicitEuler,
-        ..SimulationOptions::default()
     };
-    let v0 = vec![0.0; model.nv()];
-    let mut sim = Simulator::new(&model, &q0, &v0, opts, control)
-        .unwrap()
-        .with_collision(cm)
-        .unwrap();
+    let mut sim = wheel_simulator(&model, cm, &options).unwrap();
+    let [left, right] = [sim.control().wheels()[0], sim.control().wheels()[1]];
     // 6 s at 1 ms: a third of the circle of radius 1 m centred at (0, 1)
     let (mut worst_radius, mut worst_speed, mut worst_wheel) = (0.0f64, 0.0f64, 0.0f64);
     for k in 0..6000 {
         sim.step().unwrap();
         let (q, v) = (sim.q(), sim.v());
+        let [x, y, _, forward, _] = chassis_motion(q, v);
         if k >= 500 {
-            worst_radius = worst_radius.max(((q[0].hypot(q[1] - radius)) - radius).abs() / radius);
-            worst_speed = worst_speed.max((v[3] - speed).abs() / speed);
+            worst_radius = worst_radius.max((x.hypot(y - radius) - radius).abs() / radius);
+            worst_speed = worst_speed.max((forward - speed).abs() / speed);
             for (k, u) in [(left, ud[0]), (right, ud[1])] {
                 worst_wheel = worst_wheel.max((v[k] - u).abs() / u);
             }
