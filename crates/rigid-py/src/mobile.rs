@@ -631,6 +631,102 @@ pub fn jacobian_space<'py>(
     ))
 }
 
+/// A robot file (URDF or MJCF, loaded with a free-flyer root, set down on the ground z = 0) with
+/// its wheels under velocity control, `tau = gain (u_d - u)` (`rigid::mobile::wheel_simulator`,
+/// as `rigid mobile drive`): returns a dict of `t`, `x`, `y`, `yaw`, `v` (speed along the
+/// heading), `omega` (yaw rate), each (N,), `wheel_speeds` (N × m) and `q` (N × nq), every step.
+/// `friction` is the ground's; `wheel_friction` the wheels' shapes' (a shape's friction with the
+/// ground is the larger: `friction=0, wheel_friction=1` lets fixed casters slide); `hold` holds
+/// the other joints with the stance controller.
+#[pyfunction]
+#[pyo3(signature = (path, wheels, speeds, time = 3.0, dt = 1e-3, gain = 20.0, friction = 1.0, wheel_friction = None, hold = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn drive<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+    wheels: Vec<String>,
+    speeds: Vec<f64>,
+    time: f64,
+    dt: f64,
+    gain: f64,
+    friction: f64,
+    wheel_friction: Option<f64>,
+    hold: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    const F: &str = "drive";
+    if !(time.is_finite() && time > 0.0) {
+        return Err(value_error(F, format!("time must be positive, got {time}")));
+    }
+    let is_mjcf = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+    let model = if is_mjcf {
+        let model = rigid::io::mjcf::load_mjcf(&path)
+            .map_err(|e| value_error(F, e))?
+            .model;
+        if model.joints().first().map(|j| j.kind) != Some(rigid::multibody::JointType::FreeFlyer) {
+            return Err(value_error(
+                F,
+                format!("{}: its root body has no free joint", path.display()),
+            ));
+        }
+        model
+    } else {
+        rigid::io::urdf::load_urdf(&path, true).map_err(|e| value_error(F, e))?
+    };
+    let world_options = rigid::io::collision::WorldOptions {
+        ground: Some(0.0),
+        friction: Some(friction),
+        ..Default::default()
+    };
+    let world = rigid::io::collision::file_world(&path, &model, &world_options)
+        .map_err(|e| value_error(F, e))?;
+    let cm = world
+        .collision
+        .ok_or_else(|| value_error(F, "the robot file has no collision geometry"))?;
+    let options = mb::DriveOptions {
+        wheels,
+        speeds,
+        gain,
+        wheel_friction,
+        hold,
+        dt,
+    };
+    let mut sim = mb::wheel_simulator(&model, cm, &options).map_err(err(F))?;
+    let idx = sim.control().wheels().to_vec();
+    let steps = (time / dt).round() as usize;
+    let (nq, m) = (model.nq(), idx.len());
+    let mut cols: [Vec<f64>; 6] = Default::default();
+    let (mut qs, mut us) = (
+        Vec::with_capacity((steps + 1) * nq),
+        Vec::with_capacity((steps + 1) * m),
+    );
+    for k in 0..=steps {
+        if k > 0 {
+            sim.step()
+                .map_err(|e| value_error(F, format!("t = {:.3} s: {e}", k as f64 * dt)))?;
+        }
+        let (q, v) = (sim.q(), sim.v());
+        let motion = mb::chassis_motion(q, v);
+        cols[0].push(k as f64 * dt);
+        for (c, x) in cols[1..].iter_mut().zip(motion) {
+            c.push(x);
+        }
+        qs.extend_from_slice(q);
+        us.extend(idx.iter().map(|&i| v[i]));
+    }
+    let d = PyDict::new(py);
+    for (name, c) in ["t", "x", "y", "yaw", "v", "omega"].iter().zip(&cols) {
+        d.set_item(*name, array1(py, c))?;
+    }
+    d.set_item(
+        "wheel_speeds",
+        crate::convert::rows_array(py, us, steps + 1, m)?,
+    )?;
+    d.set_item("q", crate::convert::rows_array(py, qs, steps + 1, nq)?)?;
+    Ok(d)
+}
+
 /// The native submodule `rigid.rigid._mobile`, re-exported by `rigid/mobile.py`.
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
     let m = PyModule::new(parent.py(), "_mobile")?;
@@ -639,6 +735,7 @@ pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Feedback>()?;
     m.add_function(wrap_pyfunction!(pick_and_place, &m)?)?;
     m.add_function(wrap_pyfunction!(capstone, &m)?)?;
+    m.add_function(wrap_pyfunction!(drive, &m)?)?;
     m.add_function(wrap_pyfunction!(fkin_body, &m)?)?;
     m.add_function(wrap_pyfunction!(fkin_space, &m)?)?;
     m.add_function(wrap_pyfunction!(jacobian_body, &m)?)?;

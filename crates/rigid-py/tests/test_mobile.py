@@ -116,3 +116,18 @@ def test_bad_input_is_named():
         youbot.feedback(np.eye(3), np.eye(4), np.eye(4), 1.0, 0.0, 0.01, np.zeros(5))
     with pytest.raises(ValueError, match="dt"):
         youbot.feedback(np.eye(4), np.eye(4), np.eye(4), 1.0, 0.0, 0.0, np.zeros(5))
+
+
+def test_drive_rolls_as_the_kinematic_model_says():
+    import pathlib
+
+    urdf = pathlib.Path(__file__).resolve().parents[3] / "examples" / "diff_drive.urdf"
+    run = mobile.drive(str(urdf), ["left_wheel_joint", "right_wheel_joint"], [5.0, 7.0], time=2.0)
+    base = mobile.Base.diff_drive(0.08, 0.36)
+    late = run["t"] >= 0.5
+    model = np.array([base.body_twist(u) for u in run["wheel_speeds"][late]])
+    np.testing.assert_allclose(run["omega"][late], model[:, 0], rtol=0.02)
+    np.testing.assert_allclose(run["v"][late], model[:, 1], rtol=0.02)
+    assert run["q"].shape == (len(run["t"]), 7 + 4)
+    with pytest.raises(ValueError, match="no joint"):
+        mobile.drive(str(urdf), ["left_wheel"], [1.0])
