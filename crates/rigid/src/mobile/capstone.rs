@@ -42,7 +42,7 @@ impl MobileManipulator {
             crate::error::DimensionError::check(what, expected, got)?;
         }
         for (what, x) in [("dt", dt), ("max_speed", max_speed)] {
-            if !(x > 0.0) || x.is_nan() {
+            if x.is_nan() || x <= 0.0 {
                 return Err(MobileError::NotPositive { what, value: x });
             }
         }
