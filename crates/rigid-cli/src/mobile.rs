@@ -70,7 +70,7 @@ impl BaseArgs {
         };
         let r = || need(self.radius, "radius");
         match self.base.as_str() {
-            "youbot" => Base::mecanum(0.0475, 0.235, 0.15),
+            "youbot" => Ok(Base::youbot()),
             "mecanum" => Base::mecanum(
                 r()?,
                 need(self.half_length, "half-length")?,
@@ -112,7 +112,7 @@ pub struct OdometryArgs {
     #[command(flatten)]
     pub base: BaseArgs,
     /// A CSV of wheel angles (rad), one row per sample, one column per wheel (in the order of H's
-    /// rows), optionally a time column first; a header line is skipped.
+    /// rows); an optional header line, whose first cell `t` marks a time column first.
     pub wheels: PathBuf,
     /// The chassis configuration at the first row, `φ,x,y`.
     #[arg(long, value_parser = crate::simulate::parse_list, allow_hyphen_values = true)]
@@ -235,7 +235,8 @@ pub struct CapstoneArgs {
     #[arg(long, default_value_t = 0.0)]
     pub ki: f64,
     /// Keep arm joints 3 and 4 below -0.2 rad (away from the stretched-arm singularity), as the
-    /// capstone suggests: a joint about to leave its range stops and the others take over.
+    /// capstone suggests: a joint about to leave its range stops and the others take over; the
+    /// arm then starts at (0, 0, -0.3, -1.6, 0), inside that range.
     #[arg(long)]
     pub limits: bool,
     /// Control period and reference step (s).
@@ -254,7 +255,7 @@ pub fn run(args: &MobileArgs) -> Result<(), String> {
     match &args.command {
         MobileCommand::H(a) => h(a),
         MobileCommand::Odometry(a) => odometry(a),
-        MobileCommand::Drive(a) => crate::mobile_drive::drive(a),
+        MobileCommand::Drive(a) => crate::mobile_drive::run(a),
         MobileCommand::Capstone(a) => capstone(a),
     }
 }
@@ -329,54 +330,58 @@ fn odometry(args: &OdometryArgs) -> Result<(), String> {
         Some(n) => return Err(format!("--start has {} numbers; expected φ,x,y", n.0.len())),
         None => [0.0; 3],
     };
-    let mut out = String::new();
-    let mut previous: Option<Vec<f64>> = None;
-    let mut timed = None;
-    for (i, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() {
-            continue;
+    let file = args.wheels.display();
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .peekable();
+    // a header (a first line of names, no numbers) names a time column by a first cell `t`
+    let mut timed = false;
+    if let Some((_, first)) = lines.peek() {
+        let cells: Vec<&str> = first.split(',').map(str::trim).collect();
+        let words = cells.iter().filter(|c| c.parse::<f64>().is_err()).count();
+        if words > 0 && words < cells.len() {
+            return Err(format!("{file} line 1: not numbers, nor a header of names"));
         }
-        let cells: Result<Vec<f64>, _> = line.split(',').map(|c| c.trim().parse::<f64>()).collect();
-        let Ok(cells) = cells else {
-            if previous.is_none() && timed.is_none() {
-                continue; // a header
-            }
-            return Err(format!(
-                "{} line {}: not numbers: {line}",
-                args.wheels.display(),
-                i + 1
-            ));
-        };
-        let has_time = match cells.len() {
-            n if n == m => false,
-            n if n == m + 1 => true,
-            n => {
+        if words > 0 {
+            timed = cells[0].eq_ignore_ascii_case("t") || cells[0].eq_ignore_ascii_case("time");
+            if cells.len() != m + usize::from(timed) {
                 return Err(format!(
-                "{} line {}: {n} numbers; the {} base has {m} wheels (and an optional time first)",
-                args.wheels.display(),
-                i + 1,
-                base.name()
-            ))
+                    "{file} line 1: a header of {} columns; the {} base has {m} wheels (and an \
+                     optional time column t first)",
+                    cells.len(),
+                    base.name()
+                ));
             }
-        };
-        if *timed.get_or_insert(has_time) != has_time {
-            return Err(format!(
-                "{} line {}: a time column on some rows only",
-                args.wheels.display(),
-                i + 1
-            ));
+            lines.next();
         }
-        let angles = cells[usize::from(has_time)..].to_vec();
+    }
+    let mut out = String::from(if timed { "t,phi,x,y\n" } else { "phi,x,y\n" });
+    let mut previous: Option<Vec<f64>> = None;
+    for (i, line) in lines {
+        let at = |what: String| format!("{file} line {}: {what}", i + 1);
+        let cells: Vec<f64> = line
+            .split(',')
+            .map(|c| c.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| at(format!("not numbers: {}", line.trim())))?;
+        if cells.len() != m + usize::from(timed) {
+            return Err(at(format!(
+                "{} numbers; expected {}{m} wheel angles",
+                cells.len(),
+                if timed { "a time and " } else { "" }
+            )));
+        }
+        if cells.iter().any(|x| !x.is_finite()) {
+            return Err(at("a number that is not finite".into()));
+        }
+        let angles = cells[usize::from(timed)..].to_vec();
         if let Some(p) = &previous {
             let d: Vec<f64> = angles.iter().zip(p).map(|(a, b)| a - b).collect();
-            q = base
-                .odometry(q, &d)
-                .map_err(|e| format!("{} line {}: {e}", args.wheels.display(), i + 1))?;
-        } else {
-            let _ = writeln!(out, "{}phi,x,y", if has_time { "t," } else { "" });
+            q = base.odometry(q, &d).map_err(|e| at(e.to_string()))?;
         }
-        if has_time {
+        if timed {
             let _ = write!(out, "{},", cells[0]);
         }
         let _ = writeln!(out, "{},{},{}", q[0], q[1], q[2]);
@@ -402,14 +407,13 @@ fn capstone(args: &CapstoneArgs) -> Result<(), String> {
     for p in [&args.plot].into_iter().flatten() {
         crate::plotting::check_format(p)?;
     }
-    let mut c = Capstone::youbot();
+    let mut c = if args.limits {
+        Capstone::youbot_with_limits()
+    } else {
+        Capstone::youbot()
+    };
     c.feedback.Kp = Mat6::identity() * args.kp;
     c.feedback.Ki = Mat6::identity() * args.ki;
-    if args.limits {
-        let free = (-3.2, 3.2);
-        c.feedback.limits = vec![free, free, (-3.2, -0.2), (-3.2, -0.2), free];
-        c.start.arm = vec![0.0, 0.0, -0.3, -1.6, 0.0];
-    }
     if let Some(n) = &args.chassis {
         if n.0.len() != 3 {
             return Err(format!(

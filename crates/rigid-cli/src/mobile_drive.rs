@@ -1,17 +1,17 @@
 //! `rigid mobile drive MODEL --wheels L,R --speeds uL,uR`: a wheeled robot on the ground with its
-//! wheels under velocity control ([`rigid::mobile::WheelDrive`]) in the contact simulator, its
-//! motion beside the kinematic model's. This file parses, runs the library's simulator and prints.
+//! wheels under velocity control ([`rigid::mobile::drive`]), its motion beside the kinematic
+//! model's ([`rigid::mobile::DriveRecord::agreement`]). This file parses, draws and prints.
 
 use crate::load::{urdf_path, LoadArgs};
 use crate::mobile::DriveArgs;
 use crate::util::write_atomic;
 use rigid::io::collision::{file_world, WorldOptions};
 use rigid::io::urdf::{InertiaPolicy, SiblingOrder};
-use rigid::mobile::{chassis_motion, wheel_simulator, DriveOptions};
+use rigid::mobile::DriveOptions;
 use std::fmt::Write as _;
 
 /// Runs `rigid mobile drive`.
-pub fn drive(args: &DriveArgs) -> Result<(), String> {
+pub fn run(args: &DriveArgs) -> Result<(), String> {
     if args.wheels.is_empty() {
         return Err("--wheels names no joint".into());
     }
@@ -63,67 +63,24 @@ pub fn drive(args: &DriveArgs) -> Result<(), String> {
         hold: args.hold,
         dt: args.dt,
     };
-    let mut sim = wheel_simulator(&model, cm, &options).map_err(|e| e.to_string())?;
-    let wheels = sim.control().wheels().to_vec();
-    let q0 = sim.q().to_vec();
-
     // the replay draws the ground and the contact forces that push (the impulse over dt)
-    let (mut scene, markers) = if args.html.is_some() {
+    let mut replay = args.html.as_ref().map(|_| {
         let mut s = rigid_replay::robot_nodes(&model, Some(&path));
         let weight = model.total_mass() * model.gravity().norm();
-        let first = s.add_ground(0.0, nalgebra::Vector3::new(q0[0], q0[1], 0.0), weight);
+        let first = s.add_ground(0.0, nalgebra::Vector3::zeros(), weight);
         s.title = format!("{}: wheels at {:?} rad/s", model.name(), args.speeds.0);
-        (s, first)
-    } else {
-        (rigid_replay::Scene::default(), 0)
-    };
-    let mut rec = rigid_replay::Recording::default();
-    let mut data = rigid::multibody::Data::new(&model);
-    let mut csv = String::from("t,x,y,yaw,v,omega");
-    for w in &args.wheels {
-        let _ = write!(csv, ",{w}");
-    }
-    csv.push('\n');
-    let steps = (args.time / args.dt).round() as u64;
-    // the chassis twist (v forward, ω yaw rate) of the root's body twist (ω_b, v_b), and the
-    // kinematic model's F u of the measured wheel speeds
-    let (mut worst_v, mut worst_w) = (0.0f64, 0.0f64);
-    let (mut v_sum, mut w_sum, mut n_sum) = (0.0, 0.0, 0usize);
-    for k in 0..=steps {
-        if k > 0 {
-            sim.step()
-                .map_err(|e| format!("t = {:.3} s: {e}", k as f64 * args.dt))?;
-        }
-        let t = k as f64 * args.dt;
-        let (q, v) = (sim.q(), sim.v());
-        let [x, y, yaw, forward, yaw_rate] = chassis_motion(q, v);
-        let _ = write!(csv, "{t},{x},{y},{yaw},{forward},{yaw_rate}");
-        for &i in &wheels {
-            let _ = write!(csv, ",{}", v[i]);
-        }
-        csv.push('\n');
-        if let Some(b) = &base {
-            let u: Vec<f64> = wheels.iter().map(|&i| v[i]).collect();
-            let [wm, vm, _] = b.body_twist(&u).map_err(|e| e.to_string())?;
-            if t >= 0.5 {
-                let rim =
-                    u.iter().map(|x| x.abs()).sum::<f64>() / u.len() as f64 * b.wheels()[0].radius;
-                worst_v = worst_v.max((forward - vm).abs() / vm.abs().max(rim).max(1e-9));
-                // a turn in place: the rim speed over the wheels' distance from the centre
-                let reach = b
-                    .wheels()
-                    .iter()
-                    .map(|w| w.position[0].hypot(w.position[1]))
-                    .fold(0.0, f64::max);
-                worst_w = worst_w.max((yaw_rate - wm).abs() / wm.abs().max(rim / reach).max(1e-9));
-            }
-        }
-        if t > args.time - 1.0 {
-            v_sum += forward;
-            w_sum += yaw_rate;
-            n_sum += 1;
-        }
-        if args.html.is_some() && (k == 0 || rec.due(t)) {
+        (
+            s,
+            first,
+            rigid_replay::Recording::default(),
+            rigid::multibody::Data::new(&model),
+        )
+    });
+    let record = rigid::mobile::drive(&model, cm, &options, args.time, |t, sim| {
+        let Some((scene, markers, rec, data)) = replay.as_mut() else {
+            return Ok(());
+        };
+        if t == 0.0 || rec.due(t) {
             let pushing: Vec<_> = sim
                 .contacts()
                 .iter()
@@ -131,11 +88,13 @@ pub fn drive(args: &DriveArgs) -> Result<(), String> {
                 .filter(|(_, p)| p.norm() > 0.0)
                 .map(|(c, p)| (c.point, p / args.dt))
                 .collect();
-            scene.set_contacts(markers, &pushing, 0.0);
-            rec.record_model(&scene, &model, &mut data, t, sim.q(), k == 0)?;
+            scene.set_contacts(*markers, &pushing, 0.0);
+            rec.record_model(scene, &model, data, t, sim.q(), t == 0.0)?;
         }
-    }
-    let q = sim.q();
+        Ok(())
+    })
+    .map_err(|e| e.to_string())?;
+    let last = record.motion.last().copied().unwrap_or_default();
     println!(
         "{}: {} s at {} s, wheels {:?} at {:?} rad/s (gain {})",
         model.name(),
@@ -145,31 +104,51 @@ pub fn drive(args: &DriveArgs) -> Result<(), String> {
         args.speeds.0,
         args.gain
     );
-    let n = n_sum.max(1) as f64;
+    let tail: Vec<&[f64; 5]> = record
+        .motion
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k as f64 * args.dt > args.time - 1.0)
+        .map(|(_, m)| m)
+        .collect();
+    let n = tail.len().max(1) as f64;
     println!(
         "end: x = {:.4} m, y = {:.4} m; over the last second v = {:.4} m/s, ω = {:.4} rad/s",
-        q[0],
-        q[1],
-        v_sum / n,
-        w_sum / n
+        last[0],
+        last[1],
+        tail.iter().map(|m| m[3]).sum::<f64>() / n,
+        tail.iter().map(|m| m[4]).sum::<f64>() / n
     );
     if let Some(b) = &base {
         let [wc, vc, _] = b.body_twist(&args.speeds.0).map_err(|e| e.to_string())?;
+        let (dv, dw) = record.agreement(b, 0.5).map_err(|e| e.to_string())?;
         println!(
             "the {} model at the commanded speeds: v = {vc:.4} m/s, ω = {wc:.4} rad/s; at the \
              wheels' simulated speeds, after 0.5 s, v and ω within {:.2} % and {:.2} % (of the \
              motion's speed)",
             b.name(),
-            100.0 * worst_v,
-            100.0 * worst_w
+            100.0 * dv,
+            100.0 * dw
         );
     }
     if let Some(p) = &args.csv {
+        let mut csv = String::from("t,x,y,yaw,v,omega");
+        for w in &args.wheels {
+            let _ = write!(csv, ",{w}");
+        }
+        csv.push('\n');
+        for (k, (m, u)) in record.motion.iter().zip(&record.wheel_speeds).enumerate() {
+            let _ = write!(csv, "{}", k as f64 * args.dt);
+            for x in m.iter().chain(u) {
+                let _ = write!(csv, ",{x}");
+            }
+            csv.push('\n');
+        }
         write_atomic(p, csv.as_bytes())?;
         println!("wrote {}", p.display());
     }
-    if let Some(p) = &args.html {
-        scene.info = format!("{} s; end at ({:.3}, {:.3}) m", args.time, q[0], q[1]);
+    if let (Some(p), Some((mut scene, _, rec, _))) = (&args.html, replay) {
+        scene.info = format!("{} s; end at ({:.3}, {:.3}) m", args.time, last[0], last[1]);
         write_atomic(p, scene.html(&rec).as_bytes())?;
         println!("wrote {}", p.display());
     }

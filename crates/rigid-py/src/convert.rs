@@ -277,3 +277,48 @@ pub fn vec3(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<rigid::spa
     }
     Ok(rigid::spatial::Vec3::new(s[0], s[1], s[2]))
 }
+
+/// A 4 × 4 homogeneous matrix (any array-like) as a `Transform`: finite, its last row
+/// `(0, 0, 0, 1)`, its rotation checked (to 1e-6).
+pub fn pose(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<rigid::spatial::Transform> {
+    let m = matrix(x, func, name, "4", 4).map_err(|e| {
+        value_error(
+            func,
+            format!("{name} must be a 4 x 4 homogeneous matrix ({e})"),
+        )
+    })?;
+    let s = m.as_slice();
+    if m.rows != 4 || s[12..15].iter().any(|&v| v != 0.0) || s[15] != 1.0 {
+        return Err(value_error(
+            func,
+            format!("{name} must be a 4 x 4 homogeneous matrix (last row 0, 0, 0, 1)"),
+        ));
+    }
+    if s.iter().any(|v| !v.is_finite()) {
+        return Err(value_error(func, format!("{name} has a non-finite entry")));
+    }
+    let r = rigid::spatial::Mat3::new(s[0], s[1], s[2], s[4], s[5], s[6], s[8], s[9], s[10]);
+    rigid::spatial::so3::check(&r, 1e-6).map_err(|e| value_error(func, format!("{name}: {e}")))?;
+    Ok(rigid::spatial::Transform::new(
+        r,
+        rigid::spatial::Vec3::new(s[3], s[7], s[11]),
+    ))
+}
+
+/// The argument `name` of `func` as `n` finite numbers ([`vector`], NaN and infinities refused).
+///
+/// # Errors
+/// As [`vector`]; `ValueError` naming the argument for a non-finite entry.
+pub fn finite_vector(
+    x: &Bound<'_, PyAny>,
+    func: &str,
+    name: &str,
+    what: &str,
+    n: usize,
+) -> PyResult<Vec<f64>> {
+    let v = vector(x, func, name, what, n)?.as_slice().to_vec();
+    if v.iter().any(|x| !x.is_finite()) {
+        return Err(value_error(func, format!("{name} has a non-finite entry")));
+    }
+    Ok(v)
+}

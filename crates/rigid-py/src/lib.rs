@@ -18,7 +18,7 @@
 //! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_lie`) |
 //! | `scale.rs` | `threads=` pools, `regressor_batch`, `simulate_batch`, `Model.with_dynamic_parameters`, the refusal of dask arrays |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
-//! | `mobile.rs` | `rigid.mobile`: `Base`, `MobileManipulator`, `Feedback`, `pick_and_place`, `capstone`, `fkin_body`/`fkin_space`/`jacobian_body`/`jacobian_space` (the native `_mobile`, re-exported by `python/rigid/mobile.py`) |
+//! | `mobile.rs` | `rigid.mobile`: `Base`, `MobileManipulator`, `Feedback`, `pick_and_place`, `capstone`, `fkin_body`/`fkin_space`/`jacobian_body`/`jacobian_space` (the native `_mobile`, re-exported by `python/rigid/mobile.py`); `mobile_tasks.rs` its runs (`pick_and_place`, `capstone`, `drive`) and `fkin_*`/`jacobian_*` |
 
 mod batch;
 mod body;
@@ -31,6 +31,7 @@ mod identification;
 mod inverse_kinematics;
 mod lie;
 mod mobile;
+mod mobile_tasks;
 mod model;
 mod outputs;
 mod pinocchio;

@@ -5,48 +5,29 @@
 
 #![allow(non_snake_case)] // the notes' names: H, F, T_b0, M_0e, Blist, X, Kp
 
-use crate::convert::{array1, array2, matrix, value_error, vector};
+use crate::convert::{array1, array2, finite_vector, matrix, pose, value_error};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
-use rigid::kinematics::poe;
 use rigid::mobile::{self as mb, Kind, MobileError};
-use rigid::spatial::{Mat3, Mat6, Transform, Twist, Vec3};
+use rigid::spatial::{Mat6, Transform, Twist};
 
-fn err(func: &str) -> impl Fn(MobileError) -> PyErr + '_ {
+pub(crate) fn err(func: &str) -> impl Fn(MobileError) -> PyErr + '_ {
     move |e| value_error(func, e)
 }
 
-/// A 4 × 4 homogeneous matrix (any array-like) as a `Transform`; its rotation checked.
-fn pose(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<Transform> {
-    let m = matrix(x, func, name, "4", 4).map_err(|e| {
-        value_error(
-            func,
-            format!("{name} must be a 4 x 4 homogeneous matrix ({e})"),
-        )
-    })?;
-    let s = m.as_slice();
-    if m.rows != 4 || s[12..15].iter().any(|&v| v != 0.0) || s[15] != 1.0 {
-        return Err(value_error(
-            func,
-            format!("{name} must be a 4 x 4 homogeneous matrix (last row 0, 0, 0, 1)"),
-        ));
-    }
-    let r = Mat3::new(s[0], s[1], s[2], s[4], s[5], s[6], s[8], s[9], s[10]);
-    rigid::spatial::so3::check(&r, 1e-6).map_err(|e| value_error(func, format!("{name}: {e}")))?;
-    Ok(Transform::new(r, Vec3::new(s[3], s[7], s[11])))
-}
-
-fn homogeneous<'py>(py: Python<'py>, t: &Transform) -> Bound<'py, numpy::PyArray2<f64>> {
+pub(crate) fn homogeneous<'py>(py: Python<'py>, t: &Transform) -> Bound<'py, numpy::PyArray2<f64>> {
     let h = t.to_homogeneous();
     array2(py, 4, 4, |r, c| h[(r, c)])
 }
 
-fn dmatrix<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> Bound<'py, numpy::PyArray2<f64>> {
+pub(crate) fn dmatrix<'py>(
+    py: Python<'py>,
+    m: &nalgebra::DMatrix<f64>,
+) -> Bound<'py, numpy::PyArray2<f64>> {
     array2(py, m.nrows(), m.ncols(), |r, c| m[(r, c)])
 }
 
 /// A 6 × n screw-axis list (columns) as twists.
-fn screw_axes(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<Vec<Twist>> {
+pub(crate) fn screw_axes(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<Vec<Twist>> {
     let np = x.py().import("numpy")?;
     let t = np.call_method1("asarray", (x,))?.getattr("T")?;
     let m = matrix(
@@ -60,11 +41,11 @@ fn screw_axes(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<Vec<Twis
 }
 
 /// A gain: a number (times the 6 × 6 identity), 6 numbers (the diagonal) or a 6 × 6 matrix.
-fn gain(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<Mat6> {
+pub(crate) fn gain(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<Mat6> {
     if let Ok(k) = x.extract::<f64>() {
         return Ok(Mat6::identity() * k);
     }
-    if let Ok(d) = vector(x, func, name, "6", 6) {
+    if let Ok(d) = finite_vector(x, func, name, "6", 6) {
         return Ok(Mat6::from_diagonal(&nalgebra::Vector6::from_column_slice(
             d.as_slice(),
         )));
@@ -79,8 +60,8 @@ fn gain(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<Mat6> {
     Ok(Mat6::from_row_slice(m.as_slice()))
 }
 
-fn chassis(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<[f64; 3]> {
-    let v = vector(x, func, name, "3 (phi, x, y)", 3)?;
+pub(crate) fn chassis(x: &Bound<'_, PyAny>, func: &str, name: &str) -> PyResult<[f64; 3]> {
+    let v = finite_vector(x, func, name, "3 (phi, x, y)", 3)?;
     let s = v.as_slice();
     Ok([s[0], s[1], s[2]])
 }
@@ -140,8 +121,14 @@ impl Base {
     }
     /// H(phi) (m × 3): wheel speeds `u = H(phi) q̇` (eq. 13.5).
     #[pyo3(signature = (phi = 0.0))]
-    fn H<'py>(&self, py: Python<'py>, phi: f64) -> Bound<'py, numpy::PyArray2<f64>> {
-        dmatrix(py, &self.0.H(phi))
+    fn H<'py>(&self, py: Python<'py>, phi: f64) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        if !phi.is_finite() {
+            return Err(value_error(
+                "Base.H",
+                format!("phi must be finite, got {phi}"),
+            ));
+        }
+        Ok(dmatrix(py, &self.0.H(phi)))
     }
     /// F = H(0)† (3 × m): the planar body twist from wheel speeds.
     #[getter]
@@ -159,7 +146,7 @@ impl Base {
         py: Python<'py>,
         u: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
-        let u = vector(
+        let u = finite_vector(
             u,
             "Base.body_twist",
             "u",
@@ -181,7 +168,7 @@ impl Base {
     ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
         const F: &str = "Base.odometry";
         let q = chassis(q, F, "q")?;
-        let d = vector(
+        let d = finite_vector(
             dtheta,
             F,
             "dtheta",
@@ -204,7 +191,7 @@ impl Base {
     }
     /// A car's steering angle for the planar body twist (omega, v, 0); None otherwise.
     fn steering(&self, twist: &Bound<'_, PyAny>) -> PyResult<Option<f64>> {
-        let t = vector(twist, "Base.steering", "twist", "3", 3)?;
+        let t = finite_vector(twist, "Base.steering", "twist", "3", 3)?;
         let s = t.as_slice();
         Ok(self.0.steering([s[0], s[1], s[2]]))
     }
@@ -246,7 +233,8 @@ impl MobileManipulator {
             pose(T_b0, F, "T_b0")?,
             pose(M_0e, F, "M_0e")?,
             screw_axes(Blist, F, "Blist")?,
-        );
+        )
+        .map_err(err(F))?;
         m.height = height;
         Ok(Self(m))
     }
@@ -289,7 +277,7 @@ impl MobileManipulator {
         theta: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
         const F: &str = "MobileManipulator.forward";
-        let theta = vector(theta, F, "theta", "n", self.0.n_arm())?;
+        let theta = finite_vector(theta, F, "theta", "n", self.0.n_arm())?;
         let x = self
             .0
             .forward(chassis(q, F, "q")?, theta.as_slice())
@@ -303,7 +291,7 @@ impl MobileManipulator {
         theta: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
         const F: &str = "MobileManipulator.jacobian";
-        let theta = vector(theta, F, "theta", "n", self.0.n_arm())?;
+        let theta = finite_vector(theta, F, "theta", "n", self.0.n_arm())?;
         Ok(dmatrix(
             py,
             &self.0.jacobian(theta.as_slice()).map_err(err(F))?,
@@ -331,10 +319,12 @@ impl MobileManipulator {
         let (m, n) = (self.0.n_wheels(), self.0.n_arm());
         let state = mb::MobileState {
             chassis: chassis(chassis_q, F, "chassis")?,
-            arm: vector(arm, F, "arm", "n", n)?.as_slice().to_vec(),
-            wheels: vector(wheels, F, "wheels", "m", m)?.as_slice().to_vec(),
+            arm: finite_vector(arm, F, "arm", "n", n)?.as_slice().to_vec(),
+            wheels: finite_vector(wheels, F, "wheels", "m", m)?
+                .as_slice()
+                .to_vec(),
         };
-        let speeds = vector(speeds, F, "speeds", "m + n", m + n)?;
+        let speeds = finite_vector(speeds, F, "speeds", "m + n", m + n)?;
         let s = self
             .0
             .next_state(&state, speeds.as_slice(), dt, max_speed)
@@ -422,7 +412,7 @@ impl Feedback {
         theta: &Bound<'py, PyAny>,
     ) -> PyResult<Command<'py>> {
         const F: &str = "Feedback.command";
-        let theta = vector(theta, F, "theta", "n", robot.0.n_arm())?;
+        let theta = finite_vector(theta, F, "theta", "n", robot.0.n_arm())?;
         let c = self
             .0
             .command(
@@ -451,294 +441,12 @@ impl Feedback {
     }
 }
 
-fn reference_rows(points: &[mb::ReferencePoint]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len() * 13);
-    for p in points {
-        let (r, t) = (p.X.rotation, p.X.translation);
-        for i in 0..3 {
-            for j in 0..3 {
-                out.push(r[(i, j)]);
-            }
-        }
-        out.extend_from_slice(t.as_slice());
-        out.push(if p.closed { 1.0 } else { 0.0 });
-    }
-    out
-}
-
-fn task(
-    cube_initial: Option<&Bound<'_, PyAny>>,
-    cube_final: Option<&Bound<'_, PyAny>>,
-    grasp: Option<&Bound<'_, PyAny>>,
-    standoff: Option<&Bound<'_, PyAny>>,
-    func: &str,
-) -> PyResult<mb::PickAndPlace> {
-    let mut t = mb::PickAndPlace::course();
-    for (x, slot, name) in [
-        (cube_initial, &mut t.cube_initial, "cube_initial"),
-        (cube_final, &mut t.cube_final, "cube_final"),
-        (grasp, &mut t.grasp, "grasp"),
-        (standoff, &mut t.standoff, "standoff"),
-    ] {
-        if let Some(x) = x {
-            *slot = pose(x, func, name)?;
-        }
-    }
-    Ok(t)
-}
-
-/// The capstone's reference (TrajectoryGenerator): rows `r11, r12, r13, r21, ..., r33, px, py,
-/// pz, gripper` (N × 13, the course's CSV), from `start` through the eight segments of the
-/// pick-and-place, every `dt`. Cube poses and the grasp default to the course's.
-#[pyfunction]
-#[pyo3(signature = (start, cube_initial = None, cube_final = None, grasp = None, standoff = None, dt = 0.01))]
-pub fn pick_and_place<'py>(
-    py: Python<'py>,
-    start: &Bound<'py, PyAny>,
-    cube_initial: Option<&Bound<'py, PyAny>>,
-    cube_final: Option<&Bound<'py, PyAny>>,
-    grasp: Option<&Bound<'py, PyAny>>,
-    standoff: Option<&Bound<'py, PyAny>>,
-    dt: f64,
-) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-    const F: &str = "pick_and_place";
-    let t = task(cube_initial, cube_final, grasp, standoff, F)?;
-    let r = t.reference(&pose(start, F, "start")?, dt).map_err(err(F))?;
-    crate::convert::rows_array(py, reference_rows(&r), r.len(), 13)
-}
-
-/// A whole capstone run of the youBot (the course's defaults unless given): returns a dict with
-/// `states` (N × 13: phi, x, y, 5 joints, 4 wheels, gripper, the course's scene CSV), `errors`
-/// (N-1 × 6: X_err each step), `reference` (N × 13, as `pick_and_place`) and `dt`.
-#[pyfunction]
-#[pyo3(signature = (Kp = None, Ki = None, chassis = None, arm = None, cube_initial = None, cube_final = None, limits = None, dt = 0.01, max_speed = 15.0))]
-#[allow(clippy::too_many_arguments)]
-pub fn capstone<'py>(
-    py: Python<'py>,
-    Kp: Option<&Bound<'py, PyAny>>,
-    Ki: Option<&Bound<'py, PyAny>>,
-    chassis: Option<&Bound<'py, PyAny>>,
-    arm: Option<&Bound<'py, PyAny>>,
-    cube_initial: Option<&Bound<'py, PyAny>>,
-    cube_final: Option<&Bound<'py, PyAny>>,
-    limits: Option<Vec<(f64, f64)>>,
-    dt: f64,
-    max_speed: f64,
-) -> PyResult<Bound<'py, PyDict>> {
-    const F: &str = "capstone";
-    let mut c = mb::Capstone::youbot();
-    if let Some(k) = Kp {
-        c.feedback.Kp = gain(k, F, "Kp")?;
-    }
-    if let Some(k) = Ki {
-        c.feedback.Ki = gain(k, F, "Ki")?;
-    }
-    if let Some(q) = chassis {
-        c.start.chassis = self::chassis(q, F, "chassis")?;
-    }
-    if let Some(a) = arm {
-        c.start.arm = vector(a, F, "arm", "5", 5)?.as_slice().to_vec();
-    }
-    c.task = task(cube_initial, cube_final, None, None, F)?;
-    c.feedback.limits = limits.unwrap_or_default();
-    c.dt = dt;
-    c.max_speed = max_speed;
-    let run = c.run().map_err(err(F))?;
-    let rows: Vec<f64> = (0..run.states.len()).flat_map(|k| run.row(k)).collect();
-    let errors: Vec<f64> = run
-        .errors
-        .iter()
-        .flat_map(|e| e.to_vector().iter().copied().collect::<Vec<_>>())
-        .collect();
-    let d = PyDict::new(py);
-    d.set_item(
-        "states",
-        crate::convert::rows_array(py, rows, run.states.len(), 13)?,
-    )?;
-    d.set_item(
-        "errors",
-        crate::convert::rows_array(py, errors, run.errors.len(), 6)?,
-    )?;
-    d.set_item(
-        "reference",
-        crate::convert::rows_array(py, reference_rows(&run.reference), run.reference.len(), 13)?,
-    )?;
-    d.set_item("dt", run.dt)?;
-    Ok(d)
-}
-
-/// `FKinBody(M, Blist, theta)`: `M e^{[B_1]θ_1} ⋯ e^{[B_n]θ_n}` (4 × 4).
-#[pyfunction]
-pub fn fkin_body<'py>(
-    py: Python<'py>,
-    M: &Bound<'py, PyAny>,
-    Blist: &Bound<'py, PyAny>,
-    theta: &Bound<'py, PyAny>,
-) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-    const F: &str = "fkin_body";
-    let b = screw_axes(Blist, F, "Blist")?;
-    let theta = vector(theta, F, "theta", "n", b.len())?;
-    let t =
-        poe::fkin_body(&pose(M, F, "M")?, &b, theta.as_slice()).map_err(|e| value_error(F, e))?;
-    Ok(homogeneous(py, &t))
-}
-
-/// `FKinSpace(M, Slist, theta)`: `e^{[S_1]θ_1} ⋯ e^{[S_n]θ_n} M` (4 × 4).
-#[pyfunction]
-pub fn fkin_space<'py>(
-    py: Python<'py>,
-    M: &Bound<'py, PyAny>,
-    Slist: &Bound<'py, PyAny>,
-    theta: &Bound<'py, PyAny>,
-) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-    const F: &str = "fkin_space";
-    let s = screw_axes(Slist, F, "Slist")?;
-    let theta = vector(theta, F, "theta", "n", s.len())?;
-    let t =
-        poe::fkin_space(&pose(M, F, "M")?, &s, theta.as_slice()).map_err(|e| value_error(F, e))?;
-    Ok(homogeneous(py, &t))
-}
-
-/// `JacobianBody(Blist, theta)` (6 × n).
-#[pyfunction]
-pub fn jacobian_body<'py>(
-    py: Python<'py>,
-    Blist: &Bound<'py, PyAny>,
-    theta: &Bound<'py, PyAny>,
-) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-    const F: &str = "jacobian_body";
-    let b = screw_axes(Blist, F, "Blist")?;
-    let theta = vector(theta, F, "theta", "n", b.len())?;
-    Ok(dmatrix(
-        py,
-        &poe::jacobian_body(&b, theta.as_slice()).map_err(|e| value_error(F, e))?,
-    ))
-}
-
-/// `JacobianSpace(Slist, theta)` (6 × n).
-#[pyfunction]
-pub fn jacobian_space<'py>(
-    py: Python<'py>,
-    Slist: &Bound<'py, PyAny>,
-    theta: &Bound<'py, PyAny>,
-) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-    const F: &str = "jacobian_space";
-    let s = screw_axes(Slist, F, "Slist")?;
-    let theta = vector(theta, F, "theta", "n", s.len())?;
-    Ok(dmatrix(
-        py,
-        &poe::jacobian_space(&s, theta.as_slice()).map_err(|e| value_error(F, e))?,
-    ))
-}
-
-/// A robot file (URDF or MJCF, loaded with a free-flyer root, set down on the ground z = 0) with
-/// its wheels under velocity control, `tau = gain (u_d - u)` (`rigid::mobile::wheel_simulator`,
-/// as `rigid mobile drive`): returns a dict of `t`, `x`, `y`, `yaw`, `v` (speed along the
-/// heading), `omega` (yaw rate), each (N,), `wheel_speeds` (N × m) and `q` (N × nq), every step.
-/// `friction` is the ground's; `wheel_friction` the wheels' shapes' (a shape's friction with the
-/// ground is the larger: `friction=0, wheel_friction=1` lets fixed casters slide); `hold` holds
-/// the other joints with the stance controller.
-#[pyfunction]
-#[pyo3(signature = (path, wheels, speeds, time = 3.0, dt = 1e-3, gain = 20.0, friction = 1.0, wheel_friction = None, hold = false))]
-#[allow(clippy::too_many_arguments)]
-pub fn drive<'py>(
-    py: Python<'py>,
-    path: std::path::PathBuf,
-    wheels: Vec<String>,
-    speeds: Vec<f64>,
-    time: f64,
-    dt: f64,
-    gain: f64,
-    friction: f64,
-    wheel_friction: Option<f64>,
-    hold: bool,
-) -> PyResult<Bound<'py, PyDict>> {
-    const F: &str = "drive";
-    if !(time.is_finite() && time > 0.0) {
-        return Err(value_error(F, format!("time must be positive, got {time}")));
-    }
-    let is_mjcf = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-    let model = if is_mjcf {
-        let model = rigid::io::mjcf::load_mjcf(&path)
-            .map_err(|e| value_error(F, e))?
-            .model;
-        if model.joints().first().map(|j| j.kind) != Some(rigid::multibody::JointType::FreeFlyer) {
-            return Err(value_error(
-                F,
-                format!("{}: its root body has no free joint", path.display()),
-            ));
-        }
-        model
-    } else {
-        rigid::io::urdf::load_urdf(&path, true).map_err(|e| value_error(F, e))?
-    };
-    let world_options = rigid::io::collision::WorldOptions {
-        ground: Some(0.0),
-        friction: Some(friction),
-        ..Default::default()
-    };
-    let world = rigid::io::collision::file_world(&path, &model, &world_options)
-        .map_err(|e| value_error(F, e))?;
-    let cm = world
-        .collision
-        .ok_or_else(|| value_error(F, "the robot file has no collision geometry"))?;
-    let options = mb::DriveOptions {
-        wheels,
-        speeds,
-        gain,
-        wheel_friction,
-        hold,
-        dt,
-    };
-    let mut sim = mb::wheel_simulator(&model, cm, &options).map_err(err(F))?;
-    let idx = sim.control().wheels().to_vec();
-    let steps = (time / dt).round() as usize;
-    let (nq, m) = (model.nq(), idx.len());
-    let mut cols: [Vec<f64>; 6] = Default::default();
-    let (mut qs, mut us) = (
-        Vec::with_capacity((steps + 1) * nq),
-        Vec::with_capacity((steps + 1) * m),
-    );
-    for k in 0..=steps {
-        if k > 0 {
-            sim.step()
-                .map_err(|e| value_error(F, format!("t = {:.3} s: {e}", k as f64 * dt)))?;
-        }
-        let (q, v) = (sim.q(), sim.v());
-        let motion = mb::chassis_motion(q, v);
-        cols[0].push(k as f64 * dt);
-        for (c, x) in cols[1..].iter_mut().zip(motion) {
-            c.push(x);
-        }
-        qs.extend_from_slice(q);
-        us.extend(idx.iter().map(|&i| v[i]));
-    }
-    let d = PyDict::new(py);
-    for (name, c) in ["t", "x", "y", "yaw", "v", "omega"].iter().zip(&cols) {
-        d.set_item(*name, array1(py, c))?;
-    }
-    d.set_item(
-        "wheel_speeds",
-        crate::convert::rows_array(py, us, steps + 1, m)?,
-    )?;
-    d.set_item("q", crate::convert::rows_array(py, qs, steps + 1, nq)?)?;
-    Ok(d)
-}
-
 /// The native submodule `rigid.rigid._mobile`, re-exported by `rigid/mobile.py`.
 pub fn register(parent: &Bound<'_, PyModule>) -> PyResult<()> {
     let m = PyModule::new(parent.py(), "_mobile")?;
     m.add_class::<Base>()?;
     m.add_class::<MobileManipulator>()?;
     m.add_class::<Feedback>()?;
-    m.add_function(wrap_pyfunction!(pick_and_place, &m)?)?;
-    m.add_function(wrap_pyfunction!(capstone, &m)?)?;
-    m.add_function(wrap_pyfunction!(drive, &m)?)?;
-    m.add_function(wrap_pyfunction!(fkin_body, &m)?)?;
-    m.add_function(wrap_pyfunction!(fkin_space, &m)?)?;
-    m.add_function(wrap_pyfunction!(jacobian_body, &m)?)?;
-    m.add_function(wrap_pyfunction!(jacobian_space, &m)?)?;
+    crate::mobile_tasks::register(&m)?;
     parent.add_submodule(&m)
 }

@@ -116,6 +116,17 @@ def test_bad_input_is_named():
         youbot.feedback(np.eye(3), np.eye(4), np.eye(4), 1.0, 0.0, 0.01, np.zeros(5))
     with pytest.raises(ValueError, match="dt"):
         youbot.feedback(np.eye(4), np.eye(4), np.eye(4), 1.0, 0.0, 0.0, np.zeros(5))
+    # NaN and infinities are refused, never passed through
+    with pytest.raises(ValueError, match="phi"):
+        mobile.Base.mecanum(0.05, 0.2, 0.2).H(float("nan"))
+    with pytest.raises(ValueError, match="non-finite"):
+        mobile.fkin_body(M0E, BLIST, [0, np.nan, 0, 0, 0])
+    bad = TB0.copy()
+    bad[0, 3] = np.inf
+    with pytest.raises(ValueError, match="T_b0"):
+        mobile.MobileManipulator(mobile.Base.mecanum(0.05, 0.2, 0.2), bad, M0E, BLIST)
+    with pytest.raises(ValueError, match="non-finite"):
+        mobile.pick_and_place(np.array([[1, 0, 0, np.nan], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]]))
 
 
 def test_drive_rolls_as_the_kinematic_model_says():

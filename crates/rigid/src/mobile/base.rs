@@ -109,8 +109,15 @@ impl Base {
             }
         }
         let m = wheels.len();
-        let H0 = DMatrix::from_fn(m, 3, |i, j| wheels[i].h0()[j]);
         let needed = if kind == Kind::Omnidirectional { 3 } else { 2 };
+        if m == 0 {
+            return Err(MobileError::RankDeficient {
+                base: name,
+                rank: 0,
+                needed,
+            });
+        }
+        let H0 = DMatrix::from_fn(m, 3, |i, j| wheels[i].h0()[j]);
         let svd = H0.clone().svd(true, true);
         let smax = svd.singular_values.max();
         let rank = svd
@@ -170,6 +177,12 @@ impl Base {
                 wheel(-l, w, q),
             ],
         )
+    }
+
+    /// The KUKA youBot's mecanum base of the capstone: `r = 0.0475`, `l = 0.235`, `w = 0.15`.
+    #[must_use]
+    pub fn youbot() -> Self {
+        Self::mecanum(0.0475, 0.235, 0.15).expect("the youBot's base is valid")
     }
 
     /// Three omniwheels at distance `d` from the centre, 120° apart, driving tangentially; wheel 1

@@ -25,7 +25,8 @@ impl MobileManipulator {
     /// `θ ← θ + θ̇ dt`, wheels `← + u dt`, and the chassis by odometry on `Δθ = u dt`.
     ///
     /// # Errors
-    /// Wrong lengths, non-finite input, `dt` or `max_speed` not positive.
+    /// Wrong lengths, non-finite input, `dt` not positive and finite, `max_speed` not positive
+    /// (it may be infinite).
     pub fn next_state(
         &self,
         state: &MobileState,
@@ -41,12 +42,22 @@ impl MobileManipulator {
         ] {
             crate::error::DimensionError::check(what, expected, got)?;
         }
-        for (what, x) in [("dt", dt), ("max_speed", max_speed)] {
-            if x.is_nan() || x <= 0.0 {
-                return Err(MobileError::NotPositive { what, value: x });
-            }
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(MobileError::NotPositive {
+                what: "dt",
+                value: dt,
+            });
+        }
+        if max_speed.is_nan() || max_speed <= 0.0 {
+            return Err(MobileError::NotPositive {
+                what: "max_speed",
+                value: max_speed,
+            });
         }
         super::manipulator::finite("speeds", speeds)?;
+        super::manipulator::finite("chassis", &state.chassis)?;
+        super::manipulator::finite("arm", &state.arm)?;
+        super::manipulator::finite("wheels", &state.wheels)?;
         let clip: Vec<f64> = speeds
             .iter()
             .map(|s| s.clamp(-max_speed, max_speed) * dt)
@@ -127,7 +138,7 @@ impl PickAndPlace {
     /// sampled every `dt` (the first point is `start`, open).
     ///
     /// # Errors
-    /// `dt` or a speed not positive.
+    /// `dt` or a speed not positive; a non-finite pose.
     pub fn reference(
         &self,
         start: &Transform,
@@ -142,6 +153,16 @@ impl PickAndPlace {
             if !(x.is_finite() && x > 0.0) {
                 return Err(MobileError::NotPositive { what, value: x });
             }
+        }
+        for (what, t) in [
+            ("start", start),
+            ("cube_initial", &self.cube_initial),
+            ("cube_final", &self.cube_final),
+            ("grasp", &self.grasp),
+            ("standoff", &self.standoff),
+        ] {
+            super::manipulator::finite(what, t.rotation.as_slice())?;
+            super::manipulator::finite(what, t.translation.as_slice())?;
         }
         let (c0, c1) = (self.cube_initial, self.cube_final);
         let waypoints = [
@@ -165,13 +186,14 @@ impl PickAndPlace {
             let turn = d.w.norm() / self.angular_speed;
             let duration = travel.max(turn).max(self.gripper_time);
             let steps = (duration / dt).ceil() as usize;
-            let traj = PoseTrajectory {
-                start: from,
-                end: to,
-                duration: steps as f64 * dt,
-                scaling: TimeScaling::Quintic,
-                path: PosePath::Screw,
-            };
+            let traj = PoseTrajectory::new(
+                from,
+                to,
+                steps as f64 * dt,
+                TimeScaling::Quintic,
+                PosePath::Screw,
+            )
+            .map_err(|e| MobileError::Simulation(e.to_string()))?;
             out.extend((1..=steps).map(|k| ReferencePoint {
                 X: traj.sample(k as f64 * dt),
                 closed,
@@ -209,7 +231,8 @@ pub struct CapstoneRun {
     pub dt: f64,
     /// The reference followed.
     pub reference: Vec<ReferencePoint>,
-    /// The configuration at each step, with the gripper state (closed) of the reference.
+    /// The configuration at each step, with the gripper state (closed) of the reference point it
+    /// was driven to.
     pub states: Vec<(MobileState, bool)>,
     /// `X_err` at each control step (one fewer than `states`).
     pub errors: Vec<Twist>,
@@ -257,6 +280,18 @@ impl Capstone {
         }
     }
 
+    /// [`Capstone::youbot`] with joints 3 and 4 kept below −0.2 rad (away from the stretched
+    /// arm's singularity, as the capstone suggests), the arm starting at `(0, 0, −0.3, −1.6, 0)`
+    /// inside that range.
+    #[must_use]
+    pub fn youbot_with_limits() -> Self {
+        let mut c = Self::youbot();
+        let free = (-3.2, 3.2);
+        c.feedback.limits = vec![free, free, (-3.2, -0.2), (-3.2, -0.2), free];
+        c.start.arm = vec![0.0, 0.0, -0.3, -1.6, 0.0];
+        c
+    }
+
     /// Runs the task: at each step `X = forward(state)`, the feedback's speeds toward the
     /// reference's next point, [`MobileManipulator::next_state`].
     ///
@@ -275,7 +310,7 @@ impl Capstone {
             state = self
                 .robot
                 .next_state(&state, &c.speeds, self.dt, self.max_speed)?;
-            states.push((state.clone(), w[0].closed));
+            states.push((state.clone(), w[1].closed));
             errors.push(c.X_err);
         }
         Ok(CapstoneRun {

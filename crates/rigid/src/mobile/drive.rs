@@ -209,13 +209,128 @@ pub fn wheel_simulator(
 
 /// The planar motion of a robot whose root is a free flyer: `[x, y, yaw, v, ω]`, the root's
 /// position on the floor, its heading, its speed along the heading and its yaw rate (world
-/// frame), from `q` and the body twist `v = (ω_b, v_b)`.
-#[must_use]
-pub fn chassis_motion(q: &[f64], v: &[f64]) -> [f64; 5] {
+/// frame), from `q` and the body twist `v = (ω_b, v_b)` (their first 7 and 6 entries).
+///
+/// # Errors
+/// [`MobileError::Dimension`] when `q` or `v` is too short for a free flyer.
+pub fn chassis_motion(q: &[f64], v: &[f64]) -> Result<[f64; 5], MobileError> {
+    if q.len() < 7 || v.len() < 6 {
+        return Err(MobileError::Dimension(crate::error::DimensionError {
+            what: "free-flyer q and v (7 and 6 numbers at least)",
+            expected: 7,
+            got: q.len().min(v.len() + 1),
+        }));
+    }
     let r = crate::spatial::quat_to_rot(q[3], q[4], q[5], q[6]);
     let yaw = r[(1, 0)].atan2(r[(0, 0)]);
     let v_world = r * crate::spatial::Vec3::new(v[3], v[4], v[5]);
     let w_world = r * crate::spatial::Vec3::new(v[0], v[1], v[2]);
     let forward = v_world.x * yaw.cos() + v_world.y * yaw.sin();
-    [q[0], q[1], yaw, forward, w_world.z]
+    Ok([q[0], q[1], yaw, forward, w_world.z])
+}
+
+/// What [`drive`] recorded, one row at `t = 0` and one after each step.
+#[cfg(feature = "collision")]
+#[derive(Clone, Debug, PartialEq)]
+pub struct DriveRecord {
+    /// The time step (s).
+    pub dt: f64,
+    /// `[x, y, yaw, v, ω]` of the root ([`chassis_motion`]).
+    pub motion: Vec<[f64; 5]>,
+    /// The wheel joints' speeds (rad/s), in the order of [`DriveOptions::wheels`].
+    pub wheel_speeds: Vec<Vec<f64>>,
+    /// The configurations.
+    pub q: Vec<Vec<f64>>,
+}
+
+#[cfg(feature = "collision")]
+impl DriveRecord {
+    /// How far the simulated motion is from the kinematic model of `base` (its wheels in the
+    /// order of the record's): the largest relative differences of the forward speed `v` and the
+    /// yaw rate `ω` from `F u` of the simulated wheel speeds `u`, from `after` seconds on. `v` is
+    /// relative to `max(|v_model|, rim speed)`, `ω` to `max(|ω_model|, rim speed / reach)` (the
+    /// wheels' largest distance from the chassis origin), so that a turn in place or a straight
+    /// line is measured against the motion's own speed.
+    ///
+    /// # Errors
+    /// [`MobileError::Dimension`] when `base` has another number of wheels.
+    pub fn agreement(&self, base: &super::Base, after: f64) -> Result<(f64, f64), MobileError> {
+        let reach = base
+            .wheels()
+            .iter()
+            .map(|w| w.position[0].hypot(w.position[1]))
+            .fold(0.0, f64::max);
+        let (mut worst_v, mut worst_w) = (0.0f64, 0.0f64);
+        for (k, (m, u)) in self.motion.iter().zip(&self.wheel_speeds).enumerate() {
+            if (k as f64) * self.dt < after {
+                continue;
+            }
+            let [wm, vm, _] = base.body_twist(u)?;
+            let rim = base
+                .wheels()
+                .iter()
+                .zip(u)
+                .map(|(w, x)| w.radius * x.abs())
+                .sum::<f64>()
+                / u.len() as f64;
+            worst_v = worst_v.max((m[3] - vm).abs() / vm.abs().max(rim).max(1e-12));
+            worst_w = worst_w.max((m[4] - wm).abs() / wm.abs().max(rim / reach).max(1e-12));
+        }
+        Ok((worst_v, worst_w))
+    }
+}
+
+/// Runs [`wheel_simulator`] for `time` seconds, calling `observe(t, simulator)` at `t = 0` and
+/// after each step (a replay, a plot), and records the motion, the wheel speeds and `q`.
+///
+/// # Errors
+/// As [`wheel_simulator`]; a time that is not positive; a step that fails; more than 10⁸ numbers
+/// to record ([`MobileError::Simulation`]); `observe`'s error.
+#[cfg(feature = "collision")]
+pub fn drive(
+    model: &Model,
+    collision: crate::collision::CollisionModel,
+    options: &DriveOptions,
+    time: f64,
+    mut observe: impl FnMut(
+        f64,
+        &crate::simulation::Simulator<WheelDrive<crate::simulation::Controller>>,
+    ) -> Result<(), String>,
+) -> Result<DriveRecord, MobileError> {
+    if !(time.is_finite() && time > 0.0) {
+        return Err(MobileError::NotPositive {
+            what: "time",
+            value: time,
+        });
+    }
+    let mut sim = wheel_simulator(model, collision, options)?;
+    let steps = (time / options.dt).round() as usize;
+    if (steps + 1).saturating_mul(model.nq() + 5 + options.wheels.len()) > 100_000_000 {
+        return Err(MobileError::Simulation(format!(
+            "{steps} steps of {} s: more than 10^8 numbers to record; a larger dt or a shorter time",
+            options.dt
+        )));
+    }
+    let wheels = sim.control().wheels().to_vec();
+    let mut record = DriveRecord {
+        dt: options.dt,
+        motion: Vec::with_capacity(steps + 1),
+        wheel_speeds: Vec::with_capacity(steps + 1),
+        q: Vec::with_capacity(steps + 1),
+    };
+    for k in 0..=steps {
+        let t = k as f64 * options.dt;
+        if k > 0 {
+            sim.step()
+                .map_err(|e| MobileError::Simulation(format!("t = {t:.3} s: {e}")))?;
+        }
+        let (q, v) = (sim.q(), sim.v());
+        record.motion.push(chassis_motion(q, v)?);
+        record
+            .wheel_speeds
+            .push(wheels.iter().map(|&i| v[i]).collect());
+        record.q.push(q.to_vec());
+        observe(t, &sim).map_err(MobileError::Simulation)?;
+    }
+    Ok(record)
 }

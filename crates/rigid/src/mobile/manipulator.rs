@@ -34,25 +34,39 @@ pub struct MobileManipulator {
 
 impl MobileManipulator {
     /// The arm on the base, the chassis frame on the floor (`height = 0`).
-    #[must_use]
-    pub fn new(base: Base, T_b0: Transform, M_0e: Transform, Blist: Vec<Twist>) -> Self {
-        Self {
+    ///
+    /// # Errors
+    /// [`MobileError::NotFinite`] for a non-finite pose or screw axis.
+    pub fn new(
+        base: Base,
+        T_b0: Transform,
+        M_0e: Transform,
+        Blist: Vec<Twist>,
+    ) -> Result<Self, MobileError> {
+        for (what, t) in [("T_b0", &T_b0), ("M_0e", &M_0e)] {
+            finite(what, t.rotation.as_slice())?;
+            finite(what, t.translation.as_slice())?;
+        }
+        for b in &Blist {
+            finite("Blist", b.to_vector().as_slice())?;
+        }
+        Ok(Self {
             base,
             T_b0,
             M_0e,
             Blist,
             height: 0.0,
-        }
+        })
     }
 
-    /// The KUKA youBot of the capstone project: mecanum base `r = 0.0475`, `l = 0.235`,
-    /// `w = 0.15`, chassis frame 0.0963 m up, `T_b0 = (I, (0.1662, 0, 0.0026))`,
+    /// The KUKA youBot of the capstone project: its mecanum base ([`Base::youbot`]), the
+    /// chassis frame 0.0963 m up, `T_b0 = (I, (0.1662, 0, 0.0026))`,
     /// `M_0e = (I, (0.033, 0, 0.6546))` and the 5R arm's `B_i`.
     #[must_use]
     pub fn youbot() -> Self {
         let b = |w: [f64; 3], v: [f64; 3]| Twist::new(Vec3::from(w), Vec3::from(v));
         Self {
-            base: Base::mecanum(0.0475, 0.235, 0.15).expect("the youBot's base is valid"),
+            base: Base::youbot(),
             T_b0: Transform::from_translation(Vec3::new(0.1662, 0.0, 0.0026)),
             M_0e: Transform::from_translation(Vec3::new(0.033, 0.0, 0.6546)),
             Blist: vec![
@@ -156,8 +170,9 @@ pub struct Feedback {
     /// against huge speeds near singularities). Default 1e-4.
     pub tolerance: f64,
     /// Arm joint limits `(low, high)` (rad), one per arm joint: a joint whose next position
-    /// `θ + θ̇ Δt` would leave its range gets its column of `J_e` zeroed, and the speeds are
-    /// solved again (the capstone's `testJointLimits`). Empty: no limits.
+    /// `θ + θ̇ Δt` would leave its range (or, outside it, move further out) gets its column of
+    /// `J_e` zeroed, and the speeds are solved again (the capstone's `testJointLimits`); a joint
+    /// outside its range may move back in. Empty: no limits.
     pub limits: Vec<(f64, f64)>,
 }
 
@@ -182,8 +197,9 @@ impl Feedback {
     /// `X_d,next` one step `dt` later, the arm at `theta`; adds `X_err dt` to the integral first.
     ///
     /// # Errors
-    /// [`MobileError::NotPositive`] for `dt`; wrong lengths of `theta` or `limits`; non-finite
-    /// input.
+    /// [`MobileError::NotPositive`] for `dt` or a negative tolerance; wrong lengths of `theta` or
+    /// `limits`; limits with `low > high` or NaN ([`MobileError::Limits`]); non-finite input or
+    /// gains. Nothing changes (the integral neither) when it fails.
     pub fn command(
         &mut self,
         robot: &MobileManipulator,
@@ -203,13 +219,24 @@ impl Feedback {
             finite(what, t.rotation.as_slice())?;
             finite(what, t.translation.as_slice())?;
         }
-        if !self.limits.is_empty() && self.limits.len() != robot.n_arm() {
-            return Err(MobileError::Dimension(crate::error::DimensionError {
-                what: "joint limits",
-                expected: robot.n_arm(),
-                got: self.limits.len(),
-            }));
+        finite("Kp", self.Kp.as_slice())?;
+        finite("Ki", self.Ki.as_slice())?;
+        if !(self.tolerance >= 0.0 && self.tolerance.is_finite()) {
+            return Err(MobileError::NotPositive {
+                what: "pseudo-inverse tolerance",
+                value: self.tolerance,
+            });
         }
+        if !self.limits.is_empty() {
+            crate::error::DimensionError::check("joint limits", robot.n_arm(), self.limits.len())?;
+        }
+        for (joint, &(low, high)) in self.limits.iter().enumerate() {
+            if low.is_nan() || high.is_nan() || low > high {
+                return Err(MobileError::Limits { joint, low, high });
+            }
+        }
+        // everything checked (J_e checks theta) before the integral moves
+        let mut je = robot.jacobian(theta)?;
         let X_err = (X.inverse() * *Xd).log();
         let Vd = (Xd.inverse() * *Xd_next).log() * (1.0 / dt);
         self.integral += X_err * dt;
@@ -217,15 +244,18 @@ impl Feedback {
             + Twist::from_vector(
                 &(self.Kp * X_err.to_vector() + self.Ki * self.integral.to_vector()),
             );
-        let mut je = robot.jacobian(theta)?;
         let m = robot.n_wheels();
+        // a joint whose step would take it out of its range, or further out, stops; at most one
+        // pass per joint
         let speeds = loop {
             let speeds =
                 pinv(&je, self.tolerance) * DVector::from_column_slice(V.to_vector().as_slice());
             let mut blocked = false;
             for (j, &(lo, hi)) in self.limits.iter().enumerate() {
-                let next = theta[j] + speeds[m + j] * dt;
-                if (next < lo || next > hi) && je.column(m + j).iter().any(|&x| x != 0.0) {
+                let s = speeds[m + j];
+                let next = theta[j] + s * dt;
+                let leaving = (next < lo && s < 0.0) || (next > hi && s > 0.0);
+                if leaving && je.column(m + j).iter().any(|&x| x != 0.0) {
                     je.column_mut(m + j).fill(0.0);
                     blocked = true;
                 }

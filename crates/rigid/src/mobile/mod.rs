@@ -36,7 +36,7 @@ pub use base::{chassis_velocity, planar_rotation, Base, Kind, Wheel};
 pub use capstone::{Capstone, CapstoneRun, MobileState, PickAndPlace, ReferencePoint};
 pub use drive::{chassis_motion, WheelDrive};
 #[cfg(feature = "collision")]
-pub use drive::{wheel_simulator, DriveOptions};
+pub use drive::{drive, wheel_simulator, DriveOptions, DriveRecord};
 pub use manipulator::{Command, Feedback, MobileManipulator};
 
 use crate::error::DimensionError;
@@ -84,6 +84,16 @@ pub enum MobileError {
         rank: usize,
         /// The rank needed (3 omnidirectional, 2 nonholonomic).
         needed: usize,
+    },
+    /// A joint's limits with `low > high` or NaN.
+    #[error("arm joint {joint}: limits ({low}, {high}) are not a range")]
+    Limits {
+        /// The arm joint's index (from 0).
+        joint: usize,
+        /// The lower limit given.
+        low: f64,
+        /// The upper limit given.
+        high: f64,
     },
     /// A wheel joint of a robot model that cannot be driven.
     #[error("wheel joint {name:?}: {reason}")]

@@ -81,6 +81,23 @@ impl TimeScaling {
     }
 }
 
+/// A duration that is positive and finite, a trapezoid's `accel_fraction` in `(0, ½]`.
+fn check_timing(duration: f64, scaling: TimeScaling) -> Result<(), SimulationError> {
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(SimulationError::Invalid(format!(
+            "trajectory duration must be positive and finite, got {duration}"
+        )));
+    }
+    if let TimeScaling::Trapezoidal { accel_fraction: f } = scaling {
+        if !(f > 0.0 && f <= 0.5) {
+            return Err(SimulationError::Invalid(format!(
+                "trapezoid accel_fraction must be in (0, 0.5], got {f}"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// A straight-line joint trajectory from `start` to `end` in `duration` seconds.
 ///
 /// ```
@@ -116,18 +133,7 @@ impl JointTrajectory {
     ) -> Result<Self, SimulationError> {
         check_q(model, start)?;
         check_q(model, end)?;
-        if !(duration.is_finite() && duration > 0.0) {
-            return Err(SimulationError::Invalid(format!(
-                "trajectory duration must be positive and finite, got {duration}"
-            )));
-        }
-        if let TimeScaling::Trapezoidal { accel_fraction: f } = scaling {
-            if !(f > 0.0 && f <= 0.5) {
-                return Err(SimulationError::Invalid(format!(
-                    "trapezoid accel_fraction must be in (0, 0.5], got {f}"
-                )));
-            }
-        }
+        check_timing(duration, scaling)?;
         let mut delta = vec![0.0; model.nv];
         difference(model, start, end, &mut delta)?;
         Ok(Self {
@@ -197,25 +203,59 @@ pub enum PosePath {
 /// use rigid::simulation::{PosePath, PoseTrajectory, TimeScaling};
 /// use rigid::spatial::{Transform, Vec3};
 /// let end = Transform::from_translation(Vec3::new(1.0, 2.0, 0.0));
-/// let traj = PoseTrajectory { start: Transform::identity(), end, duration: 2.0,
-///     scaling: TimeScaling::Quintic, path: PosePath::Cartesian };
+/// let traj = PoseTrajectory::new(Transform::identity(), end, 2.0, TimeScaling::Quintic, PosePath::Cartesian)?;
 /// assert!((traj.sample(1.0).translation - Vec3::new(0.5, 1.0, 0.0)).norm() < 1e-15);
+/// # Ok::<(), rigid::simulation::SimulationError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PoseTrajectory {
-    /// `X_start`.
-    pub start: Transform,
-    /// `X_end`.
-    pub end: Transform,
-    /// `T` (s), positive.
-    pub duration: f64,
-    /// `s(t)`.
-    pub scaling: TimeScaling,
-    /// Screw or Cartesian.
-    pub path: PosePath,
+    start: Transform,
+    end: Transform,
+    duration: f64,
+    scaling: TimeScaling,
+    path: PosePath,
 }
 
 impl PoseTrajectory {
+    /// The trajectory from `start` to `end` in `duration` s.
+    ///
+    /// # Errors
+    /// A non-finite pose, a duration that is not positive and finite, or a trapezoid's
+    /// `accel_fraction` outside `(0, ½]`.
+    pub fn new(
+        start: Transform,
+        end: Transform,
+        duration: f64,
+        scaling: TimeScaling,
+        path: PosePath,
+    ) -> Result<Self, SimulationError> {
+        let finite = |t: &Transform| {
+            t.rotation
+                .iter()
+                .chain(t.translation.iter())
+                .all(|x| x.is_finite())
+        };
+        if !(finite(&start) && finite(&end)) {
+            return Err(SimulationError::Invalid(
+                "trajectory poses must be finite".into(),
+            ));
+        }
+        check_timing(duration, scaling)?;
+        Ok(Self {
+            start,
+            end,
+            duration,
+            scaling,
+            path,
+        })
+    }
+
+    /// The duration `T` (s).
+    #[must_use]
+    pub fn duration(&self) -> f64 {
+        self.duration
+    }
+
     /// `X(s(t))`; `start` before 0 and `end` after `duration`.
     #[must_use]
     pub fn sample(&self, t: f64) -> Transform {

@@ -13,7 +13,7 @@
 
 use crate::common::json::{mat_of, vec_of};
 use crate::common::reference;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use rigid::kinematics::poe;
 use rigid::mobile::{
     chassis_velocity, Base, Capstone, Feedback, Kind, MobileError, MobileManipulator, MobileState,
@@ -255,15 +255,33 @@ fn capstone_feedback_equals_the_code_library() {
         );
         close(&cmd.speeds, &vec_of(&c["speeds"]), "speeds");
     }
-    // the published rounding of the first case
-    let c0 = &cases[0];
-    let rounded: Vec<f64> = vec_of(&c0["speeds"])
-        .iter()
-        .map(|s| (s * 10.0).round() / 10.0)
-        .collect();
+    // the course's published (rounded) answers, from rigid's own output
+    let theta = [0.0, 0.0, 0.2, -1.6, 0.0];
+    let x = youbot.forward([0.0; 3], &theta).unwrap();
+    let mut fb = Feedback::new(Mat6::zeros(), Mat6::zeros()).unwrap();
+    let cmd = fb
+        .command(
+            &youbot,
+            &x,
+            &transform_of(&cases[0]["Xd"]),
+            &transform_of(&cases[0]["Xd_next"]),
+            0.01,
+            &theta,
+        )
+        .unwrap();
+    let round =
+        |x: &[f64], k: f64| -> Vec<f64> { x.iter().map(|s| (s * k).round() / k + 0.0).collect() };
     assert_eq!(
-        rounded,
+        round(&cmd.speeds, 10.0),
         [157.2, 157.2, 157.2, 157.2, 0.0, -652.9, 1398.6, -745.7, 0.0]
+    );
+    assert_eq!(
+        round(cmd.V.to_vector().as_slice(), 1e3),
+        [0.0, 0.0, 0.0, 21.409, 0.0, 6.455]
+    );
+    assert_eq!(
+        round(cmd.X_err.to_vector().as_slice(), 1e3),
+        [0.0, 0.171, 0.0, 0.08, 0.0, 0.107]
     );
 }
 
@@ -308,13 +326,14 @@ fn pose_trajectories_equal_the_code_library() {
             ("screw", PosePath::Screw),
             ("cartesian", PosePath::Cartesian),
         ] {
-            let traj = PoseTrajectory {
-                start: transform_of(&c["Xstart"]),
-                end: transform_of(&c["Xend"]),
-                duration: c["Tf"].as_f64().unwrap(),
-                scaling: TimeScaling::Quintic,
+            let traj = PoseTrajectory::new(
+                transform_of(&c["Xstart"]),
+                transform_of(&c["Xend"]),
+                c["Tf"].as_f64().unwrap(),
+                TimeScaling::Quintic,
                 path,
-            };
+            )
+            .unwrap();
             let n = c["N"].as_u64().unwrap() as usize;
             for (k, (got, want)) in traj
                 .samples(n)
@@ -368,27 +387,50 @@ fn the_capstone_run_converges_onto_the_reference() {
 }
 
 /// Joint limits as the capstone suggests: a joint about to leave its range stops (its column of
-/// J_e zeroed), the others take over.
+/// J_e zeroed), the others take over. Without limits joints 3 and 4 cross -0.2 rad (toward the
+/// stretched arm); with them they never do, and the end effector still follows the reference.
+/// A joint that starts outside its range may come back in; limits that are not a range are
+/// refused.
 #[test]
 fn feedback_respects_joint_limits() {
-    let mut c = Capstone::youbot();
-    // joints 3 and 4 must stay below -0.2 rad, keeping the arm away from its straight singularity
-    c.feedback.limits = vec![
-        (-3.0, 3.0),
-        (-3.0, 3.0),
-        (-3.0, -0.2),
-        (-3.0, -0.2),
-        (-3.0, 3.0),
-    ];
-    c.start.arm = vec![0.0, 0.0, -0.3, -1.6, 0.0];
+    let free = Capstone {
+        feedback: Capstone::youbot().feedback,
+        ..Capstone::youbot_with_limits()
+    };
+    let highest = |run: &rigid::mobile::CapstoneRun| {
+        run.states
+            .iter()
+            .map(|(s, _)| s.arm[2].max(s.arm[3]))
+            .fold(f64::MIN, f64::max)
+    };
+    let unlimited = free.run().unwrap();
+    assert!(highest(&unlimited) > -0.2, "{}", highest(&unlimited));
+    let c = Capstone::youbot_with_limits();
     let run = c.run().unwrap();
-    for (s, _) in &run.states {
-        assert!(
-            s.arm[2] <= -0.2 + 1e-12 && s.arm[3] <= -0.2 + 1e-12,
-            "{:?}",
-            s.arm
-        );
-    }
+    assert!(highest(&run) <= -0.2 + 1e-12, "{}", highest(&run));
+    let late = run.errors[(5.0 / c.dt) as usize..]
+        .iter()
+        .map(Twist::norm)
+        .fold(0.0, f64::max);
+    eprintln!("with joints 3 and 4 below -0.2 rad: |X_err| after 5 s at most {late:.2e}");
+    assert!(late < 1e-2, "{late}");
+    // joint 3 starts at 0.2 rad, above its range: it may move back in, never further out
+    let mut outside = Capstone::youbot_with_limits();
+    outside.start.arm[2] = 0.2;
+    let run = outside.run().unwrap();
+    let third: Vec<f64> = run.states.iter().map(|(s, _)| s.arm[2]).collect();
+    assert!(third.windows(2).all(|w| w[1] <= w[0].max(-0.2) + 1e-12));
+    assert!(
+        *third.last().unwrap() < 0.2 - 1e-3,
+        "joint 3 stayed frozen at {}",
+        third.last().unwrap()
+    );
+    let mut bad = Capstone::youbot_with_limits();
+    bad.feedback.limits[1] = (1.0, -1.0);
+    assert!(matches!(
+        bad.run(),
+        Err(MobileError::Limits { joint: 1, .. })
+    ));
 }
 
 /// `next_state`: speeds clipped, wheels and joints advanced by `speed dt`, the chassis by
@@ -472,9 +514,29 @@ fn bad_geometry_is_refused_by_name() {
     let youbot = MobileManipulator::youbot();
     assert!(youbot.jacobian(&[0.0; 4]).is_err());
     let x = Transform::identity();
-    let mut fb = Feedback::new(Mat6::identity(), Mat6::zeros()).unwrap();
+    let mut fb = Feedback::new(Mat6::identity(), Mat6::identity()).unwrap();
     assert!(fb.command(&youbot, &x, &x, &x, 0.0, &[0.0; 5]).is_err());
-    let _ = DVector::<f64>::zeros(1);
+    let xd = Transform::from_translation(Vec3::new(0.1, 0.0, 0.0));
+    assert!(fb
+        .command(&youbot, &x, &xd, &xd, 0.01, &[0.0, f64::NAN, 0.0, 0.0, 0.0])
+        .is_err());
+    assert!(fb.command(&youbot, &x, &xd, &xd, 0.01, &[0.0; 4]).is_err());
+    assert_eq!(
+        fb.integral,
+        Twist::zero(),
+        "a refused call leaves the integral alone"
+    );
+    fb.Kp[(0, 0)] = f64::NAN;
+    assert!(matches!(
+        fb.command(&youbot, &x, &xd, &xd, 0.01, &[0.0; 5]),
+        Err(MobileError::NotFinite { what: "Kp" })
+    ));
+    assert!(matches!(
+        Base::new("none", Kind::Omnidirectional, Vec::new()),
+        Err(MobileError::RankDeficient { rank: 0, .. })
+    ));
+    assert!(PoseTrajectory::new(x, x, 0.0, TimeScaling::Quintic, PosePath::Screw).is_err());
+    assert!(rigid::mobile::chassis_motion(&[0.0; 3], &[0.0; 6]).is_err());
 }
 
 /// `examples/youbot.urdf` (the replay's model, its joints placed from the screw axes) has the

@@ -117,7 +117,7 @@ fn tiago_drives_a_circle() {
     for k in 0..6000 {
         sim.step().unwrap();
         let (q, v) = (sim.q(), sim.v());
-        let [x, y, _, forward, _] = chassis_motion(q, v);
+        let [x, y, _, forward, _] = chassis_motion(q, v).unwrap();
         if k >= 500 {
             worst_radius = worst_radius.max((x.hypot(y - radius) - radius).abs() / radius);
             worst_speed = worst_speed.max((forward - speed).abs() / speed);
