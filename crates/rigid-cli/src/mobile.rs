@@ -42,7 +42,7 @@ pub struct BaseArgs {
     /// `diff-drive` (--radius, --track), `car` (--radius, --track, --wheelbase), or `youbot`
     /// (the capstone's mecanum base: r = 0.0475, l = 0.235, w = 0.15).
     #[arg(long)]
-    pub base: String,
+    pub base: Option<String>,
     /// Wheel radius r (m).
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f64>,
@@ -64,12 +64,22 @@ pub struct BaseArgs {
 }
 
 impl BaseArgs {
+    /// The base `--base` names.
     fn base(&self) -> Result<Base, String> {
-        let need = |x: Option<f64>, flag: &str| {
-            x.ok_or_else(|| format!("--base {} needs --{flag}", self.base))
+        self.optional()?.ok_or_else(|| {
+            "--base is required: mecanum, omni3, diff-drive, car or youbot".to_string()
+        })
+    }
+
+    /// The base `--base` names, if it is given.
+    pub fn optional(&self) -> Result<Option<Base>, String> {
+        let Some(kind) = &self.base else {
+            return Ok(None);
         };
+        let need =
+            |x: Option<f64>, flag: &str| x.ok_or_else(|| format!("--base {kind} needs --{flag}"));
         let r = || need(self.radius, "radius");
-        match self.base.as_str() {
+        match kind.as_str() {
             "youbot" => Ok(Base::youbot()),
             "mecanum" => Base::mecanum(
                 r()?,
@@ -89,6 +99,7 @@ impl BaseArgs {
                 ))
             }
         }
+        .map(Some)
         .map_err(|e| e.to_string())
     }
 }
@@ -137,7 +148,7 @@ pub struct DriveArgs {
     /// The kinematic model to compare with (its wheels in the order of --wheels): v and ω it
     /// predicts, `F u`, beside the simulated ones.
     #[command(flatten)]
-    pub base: OptionalBase,
+    pub base: BaseArgs,
     /// Simulated time (s).
     #[arg(long, default_value_t = 3.0)]
     pub time: f64,
@@ -165,51 +176,6 @@ pub struct DriveArgs {
     /// A 3D replay in the browser (self-contained HTML).
     #[arg(long)]
     pub html: Option<PathBuf>,
-}
-
-/// `--base` and its geometry, optional.
-#[derive(Args, Debug)]
-pub struct OptionalBase {
-    /// `diff-drive` (--radius, --track), `mecanum`, `omni3`, `car` or `youbot`: see `rigid mobile h`.
-    #[arg(long = "base")]
-    pub kind: Option<String>,
-    /// Wheel radius r (m).
-    #[arg(long, allow_hyphen_values = true)]
-    pub radius: Option<f64>,
-    /// Mecanum: l (m).
-    #[arg(long, allow_hyphen_values = true)]
-    pub half_length: Option<f64>,
-    /// Mecanum: w (m).
-    #[arg(long, allow_hyphen_values = true)]
-    pub half_width: Option<f64>,
-    /// Omni3: d (m).
-    #[arg(long, allow_hyphen_values = true)]
-    pub distance: Option<f64>,
-    /// Differential drive, car: distance between the driven wheels (m).
-    #[arg(long, allow_hyphen_values = true)]
-    pub track: Option<f64>,
-    /// Car: wheelbase (m).
-    #[arg(long, allow_hyphen_values = true)]
-    pub wheelbase: Option<f64>,
-}
-
-impl OptionalBase {
-    pub fn base(&self) -> Result<Option<Base>, String> {
-        let Some(kind) = &self.kind else {
-            return Ok(None);
-        };
-        BaseArgs {
-            base: kind.clone(),
-            radius: self.radius,
-            half_length: self.half_length,
-            half_width: self.half_width,
-            distance: self.distance,
-            track: self.track,
-            wheelbase: self.wheelbase,
-        }
-        .base()
-        .map(Some)
-    }
 }
 
 /// Options of `rigid mobile capstone`.

@@ -27,7 +27,7 @@ pub fn run(args: &DriveArgs) -> Result<(), String> {
             return Err(format!("{what} must be positive, got {x}"));
         }
     }
-    let base = args.base.base()?;
+    let base = args.base.optional()?;
     if let Some(b) = &base {
         if b.wheels().len() != args.wheels.len() {
             return Err(format!(
