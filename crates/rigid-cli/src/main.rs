@@ -16,6 +16,7 @@ mod ik;
 mod load;
 mod mass;
 mod mobile;
+mod mobile_capstone;
 mod mobile_drive;
 mod model;
 mod plotting;

@@ -12,18 +12,7 @@ use rigid::kinematics::poe;
 use rigid::mobile as mb;
 
 fn reference_rows(points: &[mb::ReferencePoint]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len() * 13);
-    for p in points {
-        let (r, t) = (p.X.rotation, p.X.translation);
-        for i in 0..3 {
-            for j in 0..3 {
-                out.push(r[(i, j)]);
-            }
-        }
-        out.extend_from_slice(t.as_slice());
-        out.push(if p.closed { 1.0 } else { 0.0 });
-    }
-    out
+    points.iter().flat_map(mb::ReferencePoint::row).collect()
 }
 
 fn task(

@@ -89,6 +89,24 @@ pub struct ReferencePoint {
     pub closed: bool,
 }
 
+impl ReferencePoint {
+    /// The course's reference row (milestone 2, 13 columns): `r11, r12, r13, r21, …, r33, px, py,
+    /// pz, gripper` (0 open, 1 closed).
+    #[must_use]
+    pub fn row(&self) -> [f64; 13] {
+        let (r, p) = (self.X.rotation, self.X.translation);
+        let mut out = [0.0; 13];
+        for i in 0..3 {
+            for j in 0..3 {
+                out[3 * i + j] = r[(i, j)];
+            }
+            out[9 + i] = p[i];
+        }
+        out[12] = if self.closed { 1.0 } else { 0.0 };
+        out
+    }
+}
+
 /// A pick-and-place task: the cube's initial and final poses, the gripper's pose relative to the
 /// cube when grasping and at standoff above it, and how fast the reference moves.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -253,6 +271,29 @@ impl CapstoneRun {
 }
 
 impl Capstone {
+    /// Where the cube is at each state of `run`: at its initial pose until the gripper first
+    /// closes, then carried by the gripper while it is closed (`T_sc = X T_ce,grasp⁻¹`), then at
+    /// its final pose.
+    ///
+    /// # Errors
+    /// A state the robot's forward kinematics refuses.
+    pub fn cube_poses(&self, run: &CapstoneRun) -> Result<Vec<Transform>, MobileError> {
+        let mut pose = self.task.cube_initial;
+        let mut carried = false;
+        run.states
+            .iter()
+            .map(|(s, closed)| {
+                if *closed {
+                    pose = self.robot.forward(s.chassis, &s.arm)? * self.task.grasp.inverse();
+                    carried = true;
+                } else if carried {
+                    pose = self.task.cube_final;
+                }
+                Ok(pose)
+            })
+            .collect()
+    }
+
     /// The youBot on the course's task: the reference starts at `(R, (0, 0, 0.5))` with the
     /// gripper pointing forward-down (`R = Rot(y, π/2)`), the robot at chassis
     /// `(0.5, -0.2, 0.2)`, arm `(0, 0, 0.2, -1.6, 0)` (0.42 m and 30° off), feedforward plus

@@ -574,3 +574,37 @@ fn the_youbot_urdf_has_the_capstones_kinematics() {
         assert!(e < 1e-12, "{e:e}");
     }
 }
+
+/// The cube of a capstone run: at its initial pose before the grasp, in the gripper
+/// (`T_sc = X T_ce,grasp⁻¹`) while it is closed, at its final pose after; the reference rows in
+/// the course's 13-column format.
+#[test]
+fn the_cube_follows_the_gripper() {
+    let c = Capstone::youbot();
+    let run = c.run().unwrap();
+    let cubes = c.cube_poses(&run).unwrap();
+    assert_eq!(cubes.len(), run.states.len());
+    let first_closed = run.states.iter().position(|(_, g)| *g).unwrap();
+    assert_eq!(cubes[first_closed - 1], c.task.cube_initial);
+    assert_eq!(*cubes.last().unwrap(), c.task.cube_final);
+    // while carried the cube stays within 1 mm of where the task grasps and releases it
+    let last_closed = run.states.iter().rposition(|(_, g)| *g).unwrap();
+    for (k, want) in [
+        (first_closed, c.task.cube_initial),
+        (last_closed, c.task.cube_final),
+    ] {
+        let e = (cubes[k].translation - want.translation).norm();
+        assert!(e < 1e-3, "state {k}: {e}");
+    }
+    let row = run.reference[0].row();
+    let x = run.reference[0].X;
+    assert_eq!(
+        row[..3],
+        [x.rotation[(0, 0)], x.rotation[(0, 1)], x.rotation[(0, 2)]]
+    );
+    assert_eq!(
+        row[9..12],
+        [x.translation.x, x.translation.y, x.translation.z]
+    );
+    assert_eq!(row[12], 0.0);
+}
