@@ -1,6 +1,6 @@
 //! The workspace of a collision model and the contact points at a configuration.
 
-use super::shape::{from_parry, pose, Parry};
+use super::shape::{from_parry, pose, Parry, Walk};
 use super::ContactPoint;
 use super::{CollisionError, CollisionModel};
 use crate::multibody::{JointId, Model};
@@ -18,6 +18,13 @@ pub struct CollisionData {
     /// Each geometry's world pose, at the last [`contacts`](Self::contacts).
     pub poses: Vec<Transform>,
     near: Vec<(Vec3, f64)>,
+    /// The points of one body near the ground, each with its geometry.
+    gathered: Vec<(Vec3, f64, usize)>,
+    /// Each moving body and its geometries: a body meets the ground on at most four points
+    /// over all its geometries.
+    bodies: Vec<(JointId, Vec<usize>)>,
+    /// Per geometry, its walk on its hull against the ground.
+    walks: Vec<Walk>,
     njoints: usize,
 }
 
@@ -58,12 +65,23 @@ impl CollisionData {
                 }
             }
         }
+        let mut bodies: Vec<(JointId, Vec<usize>)> = Vec::new();
+        for (k, g) in cm.geometries.iter().enumerate() {
+            let Some(body) = g.body else { continue };
+            match bodies.iter_mut().find(|(b, _)| *b == body) {
+                Some((_, group)) => group.push(k),
+                None => bodies.push((body, vec![k])),
+            }
+        }
         Ok(Self {
+            gathered: Vec::new(),
+            bodies,
             manifolds: vec![Vec::new(); pairs.len()],
             poses: vec![Transform::identity(); shapes.len()],
             shapes,
             pairs,
             near: Vec::new(),
+            walks: vec![Walk::default(); cm.geometries.len()],
             njoints: model.njoints(),
         })
     }
@@ -97,18 +115,41 @@ impl CollisionData {
         let margin = cm.margin;
         if let Some(ground) = &cm.ground {
             let n = ground.normal;
-            for (k, g) in cm.geometries.iter().enumerate() {
-                let Some(body) = g.body else { continue };
-                let s = &self.shapes[k];
-                let c = self.poses[k].act_point(&s.center);
-                if n.dot(&c) - ground.height - s.radius > margin {
-                    continue;
+            for (body, group) in &self.bodies {
+                // the resting face first: `reduce` takes points beyond it only when the face
+                // has fewer than four that spread
+                let mut face = Some(RESTING_FACE);
+                loop {
+                    self.gathered.clear();
+                    let mut cut = false;
+                    for &k in group {
+                        let s = &self.shapes[k];
+                        let c = self.poses[k].act_point(&s.center);
+                        if n.dot(&c) - ground.height - s.radius > margin {
+                            continue;
+                        }
+                        cut |= s.near_plane(
+                            &self.poses[k],
+                            &n,
+                            ground.height,
+                            margin,
+                            face,
+                            &mut self.walks[k],
+                            &mut self.near,
+                        );
+                        self.gathered
+                            .extend(self.near.iter().map(|&(x, d)| (x, d, k)));
+                    }
+                    let beyond = reduce(&mut self.gathered, &n);
+                    if !(cut && beyond && face.is_some()) {
+                        break;
+                    }
+                    face = None;
                 }
-                s.near_plane(&self.poses[k], &n, ground.height, margin, &mut self.near);
-                reduce(&mut self.near, &n);
-                for &(x, d) in &self.near {
+                for &(x, d, k) in &self.gathered {
+                    let g = &cm.geometries[k];
                     out.push(ContactPoint {
-                        body1: Some(body),
+                        body1: Some(*body),
                         body2: None,
                         point: x - n * (0.5 * d),
                         normal: n,
@@ -124,6 +165,9 @@ impl CollisionData {
                 }
             }
         }
+        // in the order of the geometries, whichever body they are on (the Gauss–Seidel sweeps
+        // take the contacts in this order)
+        out.sort_by_key(|c| c.geometries.0);
         let dispatcher = DefaultQueryDispatcher;
         for (p, &(i, j)) in self.pairs.iter().enumerate() {
             let (si, sj) = (&self.shapes[i], &self.shapes[j]);
@@ -206,27 +250,21 @@ pub(crate) const RESTING_FACE: f64 = 1e-3;
 /// only when the face has no point that spreads the set: a flat sole rests on its four widest
 /// points, not on its deepest one and three corners raised by its rounded edges; a box landing
 /// on one corner keeps the other corners as speculative contacts.
-fn reduce(pts: &mut Vec<(Vec3, f64)>, n: &Vec3) {
-    // drop duplicates (a support point that is also a feature vertex)
-    let mut k = 0;
-    while k < pts.len() {
-        if pts[..k].iter().any(|q| (q.0 - pts[k].0).norm() < 1e-9) {
-            pts.swap_remove(k);
-        } else {
-            k += 1;
-        }
-    }
+///
+/// Returns whether the resting face alone did not fill the set (points beyond it were wanted).
+fn reduce(pts: &mut Vec<(Vec3, f64, usize)>, n: &Vec3) -> bool {
     if pts.len() <= 4 {
-        return;
+        return pts.len() < 4;
     }
+    let mut beyond = false;
     let deepest = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
-    let on_face = |p: &(Vec3, f64)| p.1 <= deepest + RESTING_FACE;
+    let on_face = |p: &(Vec3, f64, usize)| p.1 <= deepest + RESTING_FACE;
     let area = |a: &Vec3, b: &Vec3, c: &Vec3| n.dot(&(b - a).cross(&(c - a)));
-    let mut keep: Vec<(Vec3, f64)> = Vec::with_capacity(4);
+    let mut keep: Vec<(Vec3, f64, usize)> = Vec::with_capacity(4);
     let mut side = 0.0;
     while keep.len() < 4 {
         // how much a point spreads the kept set (slot 0: its depth)
-        let score = |p: &(Vec3, f64)| match keep.len() {
+        let score = |p: &(Vec3, f64, usize)| match keep.len() {
             0 => -p.1,
             1 => (p.0 - keep[0].0).norm(),
             2 => area(&keep[0].0, &keep[1].0, &p.0).abs(),
@@ -240,10 +278,9 @@ fn reduce(pts: &mut Vec<(Vec3, f64)>, n: &Vec3) {
         };
         // a point spreads the set if it is 0.1 mm away from it (or 1e-8 m² of triangle)
         let spreads = |s: f64| keep.is_empty() || s > if keep.len() == 1 { 1e-4 } else { 1e-8 };
-        let Some((_, p)) = best(true)
-            .filter(|b| spreads(b.0))
-            .or_else(|| best(false).filter(|b| spreads(b.0)))
-        else {
+        let on = best(true).filter(|b| spreads(b.0));
+        beyond |= on.is_none();
+        let Some((_, p)) = on.or_else(|| best(false).filter(|b| spreads(b.0))) else {
             break;
         };
         if keep.len() == 2 {
@@ -253,4 +290,5 @@ fn reduce(pts: &mut Vec<(Vec3, f64)>, n: &Vec3) {
     }
     pts.clear();
     pts.extend(keep);
+    beyond
 }

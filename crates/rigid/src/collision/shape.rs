@@ -125,10 +125,139 @@ pub(crate) struct Parry {
 pub(crate) enum PlaneTest {
     /// Balls of this radius at these centres (a sphere, a capsule's two ends), shape frame.
     Balls(f64, [Vec3; 2], usize),
-    /// These vertices (a box's corners, a hull's vertices), shape frame.
+    /// These vertices (a box's corners), shape frame.
     Vertices(Vec<Vec3>),
+    /// A convex hull's vertices, walked along its edges.
+    Hull(HullGraph),
     /// parry's support feature and point (cylinder, cone), in the parry shape's frame.
     Feature,
+}
+
+/// A convex hull's vertices and, for each, its neighbours along the hull's edges (compressed
+/// rows): the graph on which a linear function is minimised by descent, as MuJoCo's mesh
+/// support (`mjc_support` with `graphadr`) and libccd's hill-climbing do. On a convex polytope
+/// every local minimum of a linear function over the vertices is global, and the vertices under
+/// any level are connected on the edges (from each, an edge path descends to the minimum), so
+/// [`lowest`](Self::lowest) and [`below`](Self::below) visit only the vertices they return and
+/// their neighbours, never every vertex.
+#[derive(Clone, Debug)]
+pub(crate) struct HullGraph {
+    /// The vertices (shape frame).
+    pub points: Vec<Vec3>,
+    /// `adjacent[first[i]..first[i + 1]]`: the neighbours of vertex i.
+    first: Vec<u32>,
+    adjacent: Vec<u32>,
+}
+
+/// The state of walks on one hull: where the last descent ended (the next one starts there: a
+/// body moves little in a step), and the marks of the vertices seen.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Walk {
+    start: usize,
+    seen: Marks,
+}
+
+/// Marks of visited vertices, cleared in O(1) by a new epoch.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Marks {
+    epoch: u32,
+    mark: Vec<u32>,
+    stack: Vec<u32>,
+}
+
+impl HullGraph {
+    /// The graph of parry's hull: its points, and the two ends of each of its edges (the edges
+    /// parry merged inside a flat face included: chords of a face keep the properties above).
+    fn new(poly: &parry3d_f64::shape::ConvexPolyhedron) -> Self {
+        let points: Vec<Vec3> = poly.points().iter().map(|&x| from_parry(x)).collect();
+        let n = points.len();
+        let mut count = vec![0u32; n + 1];
+        for e in poly.edges() {
+            count[e.vertices[0] as usize + 1] += 1;
+            count[e.vertices[1] as usize + 1] += 1;
+        }
+        for i in 0..n {
+            count[i + 1] += count[i];
+        }
+        let mut fill = count.clone();
+        let mut adjacent = vec![0u32; count[n] as usize];
+        for e in poly.edges() {
+            let [a, b] = e.vertices;
+            adjacent[fill[a as usize] as usize] = b;
+            fill[a as usize] += 1;
+            adjacent[fill[b as usize] as usize] = a;
+            fill[b as usize] += 1;
+        }
+        Self {
+            points,
+            first: count,
+            adjacent,
+        }
+    }
+
+    fn neighbours(&self, i: usize) -> &[u32] {
+        &self.adjacent[self.first[i] as usize..self.first[i + 1] as usize]
+    }
+
+    /// The vertex minimising `dir · p`, by steepest descent along the edges from `start`.
+    pub(crate) fn lowest(&self, dir: &Vec3, start: usize) -> usize {
+        let mut at = start.min(self.points.len() - 1);
+        let mut value = dir.dot(&self.points[at]);
+        loop {
+            let mut next = at;
+            for &j in self.neighbours(at) {
+                let v = dir.dot(&self.points[j as usize]);
+                if v < value {
+                    (value, next) = (v, j as usize);
+                }
+            }
+            if next == at {
+                return at;
+            }
+            at = next;
+        }
+    }
+
+    /// Calls `f` on every vertex `p` with `dir · p ≤ level`, walking the edges from `lowest`
+    /// (the minimiser); nothing if it is above the level.
+    pub(crate) fn below(
+        &self,
+        dir: &Vec3,
+        level: f64,
+        lowest: usize,
+        marks: &mut Marks,
+        mut f: impl FnMut(&Vec3),
+    ) {
+        if dir.dot(&self.points[lowest]) > level {
+            return;
+        }
+        if marks.mark.len() != self.points.len() {
+            marks.mark = vec![0; self.points.len()];
+            marks.epoch = 0;
+        }
+        marks.epoch = marks.epoch.wrapping_add(1);
+        if marks.epoch == 0 {
+            marks.mark.fill(0);
+            marks.epoch = 1;
+        }
+        let epoch = marks.epoch;
+        marks.stack.clear();
+        marks.stack.push(lowest as u32);
+        marks.mark[lowest] = epoch;
+        while let Some(i) = marks.stack.pop() {
+            let i = i as usize;
+            f(&self.points[i]);
+            for &j in self.neighbours(i) {
+                let j = j as usize;
+                if marks.mark[j] != epoch {
+                    marks.mark[j] = epoch;
+                    if dir.dot(&self.points[j]) <= level {
+                        marks.stack.push(j as u32);
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl std::fmt::Debug for Parry {
@@ -240,15 +369,15 @@ impl Parry {
     pub(crate) fn of(shape: &Shape) -> Result<Self, String> {
         let zero = Vec3::zeros();
         let id = Transform::identity();
-        let hull = |points: &[Vec3]| -> Result<(SharedShape, Vec<Vec3>), String> {
+        let hull = |points: &[Vec3]| -> Result<(SharedShape, HullGraph), String> {
             let pts: Vec<Vector> = points.iter().map(to_parry).collect();
             let s = SharedShape::convex_hull(&pts)
                 .ok_or("the convex hull of its points is flat or degenerate")?;
-            let verts = s
+            let graph = s
                 .as_convex_polyhedron()
-                .map(|p| p.points().iter().map(|&x| from_parry(x)).collect())
-                .unwrap_or_default();
-            Ok((s, verts))
+                .map(HullGraph::new)
+                .ok_or("the convex hull of its points is flat or degenerate")?;
+            Ok((s, graph))
         };
         let bound = |pts: &[Vec3]| pts.iter().map(|p| p.norm()).fold(0.0, f64::max);
         Ok(match shape {
@@ -304,17 +433,18 @@ impl Parry {
                     .iter()
                     .map(|u| u.component_mul(semi_axes))
                     .collect();
-                let (s, verts) = hull(&pts)?;
+                let (s, graph) = hull(&pts)?;
                 Self {
                     shape: s,
                     offset: id,
-                    radius: bound(&verts),
-                    kind: PlaneTest::Vertices(verts),
+                    radius: bound(&graph.points),
+                    kind: PlaneTest::Hull(graph),
                     center: zero,
                 }
             }
             Shape::ConvexHull { points } => {
-                let (s, verts) = hull(points)?;
+                let (s, graph) = hull(points)?;
+                let verts = &graph.points;
                 let lo = verts
                     .iter()
                     .fold(Vec3::repeat(f64::INFINITY), |a, p| a.inf(p));
@@ -329,7 +459,7 @@ impl Parry {
                 Self {
                     shape: s,
                     offset: id,
-                    kind: PlaneTest::Vertices(verts),
+                    kind: PlaneTest::Hull(graph),
                     center,
                     radius,
                 }
@@ -339,15 +469,21 @@ impl Parry {
 
     /// The shape's points within `margin` of the plane `nᵀ x = height` (or below it), with the
     /// shape at the world pose `pose` (of the shape frame): each the point of the shape and its
-    /// signed distance to the plane, into `out`.
+    /// signed distance to the plane, into `out`. With `face = Some(f)`, a hull gives only its
+    /// vertices within `f` of its deepest one, and the result says whether it left others
+    /// within the margin out.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn near_plane(
         &self,
         pose: &Transform,
         n: &Vec3,
         height: f64,
         margin: f64,
+        face: Option<f64>,
+        walk: &mut Walk,
         out: &mut Vec<(Vec3, f64)>,
-    ) {
+    ) -> bool {
+        let mut cut = false;
         out.clear();
         let mut test = |x: Vec3, r: f64| {
             let d = n.dot(&x) - height - r;
@@ -366,11 +502,26 @@ impl Parry {
                     test(pose.act_point(p), 0.0);
                 }
             }
+            PlaneTest::Hull(g) => {
+                // d(p) = (Rᵀn)·p + n·t − height over the hull's vertices p
+                let dir = pose.rotation.tr_mul(n);
+                let mut level = height - n.dot(&pose.translation) + margin;
+                let lowest = g.lowest(&dir, walk.start);
+                walk.start = lowest;
+                if let Some(f) = face {
+                    let top = dir.dot(&g.points[lowest]) + f;
+                    cut = top < level;
+                    level = level.min(top);
+                }
+                g.below(&dir, level, lowest, &mut walk.seen, |p| {
+                    test(pose.act_point(p), 0.0)
+                });
+            }
             PlaneTest::Feature => {
                 let world = *pose * self.offset;
                 let dir = to_parry(&world.rotation.tr_mul(&(-n)));
                 let Some((pfm, _)) = self.shape.as_polygonal_feature_map() else {
-                    return;
+                    return false;
                 };
                 let support = self
                     .shape
@@ -379,9 +530,91 @@ impl Parry {
                 let mut f = PolygonalFeature::default();
                 let hint = support.unwrap_or(Vector::ZERO);
                 pfm.local_support_feature_toward(dir, hint, &mut f);
-                for v in f.vertices[..f.num_vertices].iter().chain(support.iter()) {
+                for v in &f.vertices[..f.num_vertices] {
                     test(world.act_point(&from_parry(*v)), 0.0);
                 }
+                // the support point, unless it is one of the feature's vertices
+                if let Some(s) = support {
+                    if f.vertices[..f.num_vertices]
+                        .iter()
+                        .all(|v| (*v - s).length() >= 1e-9)
+                    {
+                        test(world.act_point(&from_parry(s)), 0.0);
+                    }
+                }
+            }
+        }
+        cut
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Parry, PlaneTest, Shape, Walk};
+    use crate::multibody::configuration::Rng;
+    use crate::spatial::Vec3;
+
+    /// Descent and flood on the hull's edges give what a loop over every vertex gives: random
+    /// clouds (a ball's, a flat box's with coplanar faces, a sole's uneven by 0.5 mm), random
+    /// directions and levels, walks started where the last one ended.
+    #[test]
+    fn hull_walks_find_what_every_vertex_finds() {
+        let mut rng = Rng::new(7);
+        let dir =
+            |rng: &mut Rng| Vec3::new(rng.normal(), rng.normal(), rng.normal()).normalize();
+        let clouds: Vec<Vec<Vec3>> = vec![
+            (0..300).map(|_| dir(&mut rng)).collect(),
+            (0..200)
+                .map(|_| {
+                    let c = |rng: &mut Rng| if rng.next_f64() < 0.5 { -1.0 } else { 1.0 };
+                    let mut p = Vec3::new(
+                        rng.uniform(-1.0, 1.0),
+                        rng.uniform(-1.0, 1.0),
+                        c(&mut rng) * 0.1,
+                    );
+                    let k = (rng.next_u64() % 3) as usize;
+                    p[k] = c(&mut rng) * if k == 2 { 0.1 } else { 1.0 };
+                    p
+                })
+                .collect(),
+            (0..400)
+                .map(|_| {
+                    let (x, y) = (rng.uniform(-0.1, 0.1), rng.uniform(-0.05, 0.05));
+                    let z = if rng.next_f64() < 0.5 {
+                        rng.uniform(0.0, 5e-4)
+                    } else {
+                        0.02
+                    };
+                    Vec3::new(x, y, z)
+                })
+                .collect(),
+        ];
+        for points in clouds {
+            let parry = Parry::of(&Shape::ConvexHull { points }).unwrap();
+            let PlaneTest::Hull(g) = &parry.kind else {
+                panic!("a hull walks its graph")
+            };
+            let mut walk = Walk::default();
+            for _ in 0..200 {
+                let d = dir(&mut rng);
+                let values: Vec<f64> = g.points.iter().map(|p| d.dot(p)).collect();
+                let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+                let lowest = g.lowest(&d, walk.start);
+                walk.start = lowest;
+                assert_eq!(values[lowest], min);
+                let level = min + rng.uniform(0.0, 0.3);
+                let mut found = Vec::new();
+                g.below(&d, level, lowest, &mut walk.seen, |p| found.push(*p));
+                let mut all: Vec<Vec3> = g
+                    .points
+                    .iter()
+                    .filter(|p| d.dot(p) <= level)
+                    .copied()
+                    .collect();
+                let key = |p: &Vec3| (p.x, p.y, p.z);
+                found.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap());
+                all.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap());
+                assert_eq!(found, all);
             }
         }
     }

@@ -749,7 +749,7 @@ fn factor_bilateral(K: &[f64], m: usize, factor: &mut DMatrix<f64>, idle: &mut [
 /// I)⁻¹ b` on the circle, `κ > 0` by Newton's method on `1/‖x(κ)‖ − 1/R` (the trust-region
 /// subproblem, Moré & Sorensen 1983).
 fn disc_qp(a: f64, c: f64, e: f64, b1: f64, b2: f64, R: f64) -> (f64, f64) {
-    let nb = b1.hypot(b2);
+    let nb = len(b1, b2);
     if R <= 0.0 || nb == 0.0 {
         return (0.0, 0.0);
     }
@@ -758,16 +758,28 @@ fn disc_qp(a: f64, c: f64, e: f64, b1: f64, b2: f64, R: f64) -> (f64, f64) {
         return (-R * b1 / nb, -R * b2 / nb);
     }
     // eigen-decomposition of A: l1 ≥ l2 ≥ 0, unit eigenvector u of l1, w ⊥ u
-    let (mean, half) = (0.5 * (a + e), (0.5 * (a - e)).hypot(c));
+    let (mean, half) = (0.5 * (a + e), len(0.5 * (a - e), c));
     let (l1, l2) = (mean + half, (mean - half).max(0.0));
-    let angle = 0.5 * c.atan2(0.5 * (a - e));
-    let u = (angle.cos(), angle.sin());
+    // (d + half, c) and (c, half − d) are eigenvectors of l1 (d = (a − e)/2); the one of the
+    // larger norm, which is zero only when A = mean I (then any unit vector is)
+    let d = 0.5 * (a - e);
+    let u = if d >= 0.0 {
+        (d + half, c)
+    } else {
+        (c, half - d)
+    };
+    let nu = len(u.0, u.1);
+    let u = if nu > 0.0 {
+        (u.0 / nu, u.1 / nu)
+    } else {
+        (1.0, 0.0)
+    };
     let (p, q) = (u.0 * b1 + u.1 * b2, -u.1 * b1 + u.0 * b2);
     let at = |k: f64| {
         let (x, y) = (-p / (l1 + k), -q / (l2 + k));
         (u.0 * x - u.1 * y, u.1 * x + u.0 * y)
     };
-    let norm = |k: f64| (p / (l1 + k)).hypot(q / (l2 + k));
+    let norm = |k: f64| len(p / (l1 + k), q / (l2 + k));
     if l2 > 1e-14 * l1 && norm(0.0) <= R {
         return at(0.0);
     }
@@ -785,8 +797,14 @@ fn disc_qp(a: f64, c: f64, e: f64, b1: f64, b2: f64, R: f64) -> (f64, f64) {
     }
     let (x, y) = at(k);
     // on the circle to round-off
-    let s = R / x.hypot(y).max(R);
+    let s = R / len(x, y).max(R);
     (x * s, y * s)
+}
+
+/// `√(x² + y²)` (the impulses here are far from overflow: no need of `hypot`'s care, which
+/// costs a tenth of a contact step).
+fn len(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
 }
 
 /// A unit vector orthogonal to the unit vector `n`.
