@@ -560,8 +560,7 @@ mod tests {
     #[test]
     fn hull_walks_find_what_every_vertex_finds() {
         let mut rng = Rng::new(7);
-        let dir =
-            |rng: &mut Rng| Vec3::new(rng.normal(), rng.normal(), rng.normal()).normalize();
+        let dir = |rng: &mut Rng| Vec3::new(rng.normal(), rng.normal(), rng.normal()).normalize();
         let clouds: Vec<Vec<Vec3>> = vec![
             (0..300).map(|_| dir(&mut rng)).collect(),
             (0..200)

@@ -25,6 +25,7 @@
 //! ([`JointType::integrate_world_aligned`](crate::multibody::JointType)).
 
 use super::control::Control;
+use super::free_body::FreeBodies;
 use super::simulator::Dynamics;
 use super::{JointLimits, SimulationError};
 #[cfg(feature = "collision")]
@@ -55,7 +56,10 @@ pub(crate) struct ContactStepper {
     v_step: Vec<f64>,
     dq: Vec<f64>,
     zeros: Vec<f64>,
-    /// The kinetic energy the contact impulses took since the start (J, ≥ 0).
+    /// The lone free bodies, stepped by the implicit midpoint ([`free_body`](super::free_body)).
+    free: FreeBodies,
+    /// The energy the contact impulses took since the start (J): minus the sum of their work
+    /// ([`ContactStats::work`]).
     pub(crate) dissipated: f64,
 }
 
@@ -73,6 +77,7 @@ impl ContactStepper {
             v_step: vec![0.0; nv],
             dq: vec![0.0; nv],
             zeros: vec![0.0; nv],
+            free: FreeBodies::new(model),
             dissipated: 0.0,
         }
     }
@@ -123,12 +128,14 @@ pub(crate) fn contact_step<C: Control>(
         }
     }
     crba(model, data, q)?;
+    cs.free.prepare(&data.mass_matrix, v);
     if let Some((kp, kd)) = d.control.pd_gains() {
         for k in 0..nv {
             data.mass_matrix[(k, k)] += h * kd[k] + h * h * kp[k];
             cs.a[k] -= h * kp[k] * v[k];
         }
     }
+    cs.free.forces(&cs.a);
     ltl_factor(model, data)?;
     ltl_solve_transposed(data.chol.as_slice(), &data.dof_parent, &mut cs.a);
     ltl_solve_lower(data.chol.as_slice(), &data.dof_parent, &mut cs.a);
@@ -138,6 +145,7 @@ pub(crate) fn contact_step<C: Control>(
     // free-flyers in world-aligned axes over the step: the frame's turning `−ω × v_b`, which
     // `a` holds, is not a force
     world_aligned_turn(model, v, h, v_new);
+    cs.free.free_velocity(&data.mass_matrix, v, h, v_new);
     compute_joint_jacobians(model, data, q)?;
     cs.solver.clear();
     if let Some(l) = &mut d.loops {
@@ -174,7 +182,7 @@ pub(crate) fn contact_step<C: Control>(
         cs.v_step.copy_from_slice(v_new);
     } else {
         cs.solver.solve(data, v, v_new, h, &cs.settings);
-        cs.dissipated -= cs.solver.stats.kinetic_change;
+        cs.dissipated -= cs.solver.stats.work;
         cs.solver.correction(data, h, &cs.settings, &mut cs.dq);
         for k in 0..nv {
             cs.v_step[k] = v_new[k] + cs.dq[k] / h;

@@ -37,6 +37,7 @@ mod batch;
 pub mod contact;
 mod contact_step;
 mod control;
+mod free_body;
 mod integrators;
 pub mod loops;
 mod momentum;

@@ -438,8 +438,10 @@ impl<C: Control> Simulator<C> {
         self.contact.as_ref().map(|c| c.stats()).unwrap_or_default()
     }
 
-    /// The kinetic energy the contact impulses have taken since the start (J, never negative):
-    /// `K + U` plus this is the energy the system would have without them.
+    /// The energy the contact impulses have taken since the start (J): minus the sum of their
+    /// work over each step, `λᵀ J (v + v⁺)/2` ([`ContactStats::work`](crate::simulation::contact::ContactStats::work));
+    /// `K + U` plus this is the energy the system would have without them (to first order in
+    /// `h`). Zero for a body at rest on the ground; `½ m u² (1 − e²)` for an impact at the speed `u`.
     #[must_use]
     pub fn contact_dissipation(&self) -> f64 {
         self.contact.as_ref().map_or(0.0, |c| c.dissipated)

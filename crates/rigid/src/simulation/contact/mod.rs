@@ -110,6 +110,11 @@ pub struct ContactStats {
     /// (negative: taken); positive only at a rebound, by at most `e²` times what the same
     /// contact took when its gap closed in the step before.
     pub kinetic_change: f64,
+    /// The work of the step's impulses, `λᵀ J (v + v⁺)/2` (J; negative: taken): with the work
+    /// of the smooth forces at the mean velocity, the step's change of kinetic energy (for `M`
+    /// constant over the step). Zero for a body at rest, where `kinetic_change` is the
+    /// `½ h² gᵀ M g` that gravity's kick in the free velocity gave and the contacts took back.
+    pub work: f64,
     /// The sum of the normal impulses of the contacts, `Σ λ_n` (N·s; divide by `h` for the force).
     pub normal_impulse: f64,
     /// The deepest penetration among the candidates before the step's position correction (m,

@@ -541,6 +541,12 @@ impl ContactSolver {
         for (v, dv) in v_free.iter_mut().zip(&self.x) {
             *v += dv;
         }
+        // the impulses' work over the step, λᵀ J (v + v⁺)/2: with `M` constant over the step,
+        // K(v⁺) − K(v) = (v + v⁺)ᵀ M (v⁺ − v)/2 is the smooth forces' work at the mean velocity
+        // plus this; zero for a body at rest
+        let work: f64 = (0..m)
+            .map(|r| 0.5 * self.lambda[r] * (self.sigma_before[r] + self.sigma[r]))
+            .sum();
         let (mut active, mut normal) = (0, 0.0);
         let unilateral = self.blocks.iter().filter(|b| !b.bilateral).count();
         for b in self.blocks.iter().filter(|b| !b.bilateral) {
@@ -561,6 +567,7 @@ impl ContactSolver {
             converged,
             scaled,
             kinetic_change: dk,
+            work,
             normal_impulse: normal,
             penetration,
         };
