@@ -36,7 +36,7 @@ import time
 
 import mujoco
 
-MODELS = ["humanoid.xml", "ant.xml"]
+MODELS = ["humanoid.xml", "ant.xml", "walker.xml", "heap.xml"]
 SECONDS, DT = 3.0, 1e-3
 
 
@@ -44,6 +44,60 @@ def assets():
     import gymnasium
 
     return pathlib.Path(gymnasium.__file__).parent / "envs/mujoco/assets"
+
+
+def walker(tmp):
+    """dm_control's walker.xml with the files it includes: from an installed dm_control, else
+    from its wheel (`pip download dm_control --no-deps`, unpacked into `tmp`)."""
+    try:
+        import dm_control
+
+        return pathlib.Path(dm_control.__file__).parent / "suite/walker.xml"
+    except ImportError:
+        import sys
+        import zipfile
+
+        subprocess.run([sys.executable, "-m", "pip", "download", "-q", "--no-deps", "-d",
+                        str(tmp), "dm_control==1.0.50"], check=True)
+        with zipfile.ZipFile(next(tmp.glob("dm_control-*.whl"))) as z:
+            for name in z.namelist():
+                if name.startswith("dm_control/suite/walker.xml") or \
+                        name.startswith("dm_control/suite/common/"):
+                    z.extract(name, tmp)
+        return tmp / "dm_control/suite/walker.xml"
+
+
+def heap(tmp):
+    """27 free primitives (boxes, spheres, capsules, cylinders in turn), a 3 x 3 x 3 grid 16 cm
+    apart at random orientations, dropped onto a floor into a heap: every geom pair collides."""
+    import random
+
+    rng = random.Random(48)
+    sizes = {"box": "0.06 0.05 0.04", "sphere": "0.05", "capsule": "0.03 0.05",
+             "cylinder": "0.04 0.04"}
+    kinds = list(sizes)
+    bodies = []
+    for n in range(27):
+        i, j, k = n // 9, n // 3 % 3, n % 3
+        x, y = [(c - 1) * 0.16 + rng.uniform(-0.02, 0.02) for c in (i, j)]
+        euler = " ".join(f"{rng.uniform(-40, 40):.1f}" for _ in range(3))
+        kind = kinds[n % 4]
+        bodies.append(f'<body name="b{n}" pos="{x:.3f} {y:.3f} {0.12 + 0.16 * k:.3f}" '
+                      f'euler="{euler}"><freejoint/><geom type="{kind}" size="{sizes[kind]}"/>'
+                      f'</body>')
+    path = tmp / "heap.xml"
+    path.write_text('<mujoco model="heap of 27 primitives"><worldbody>'
+                    '<geom name="floor" type="plane" size="0 0 1"/>'
+                    + "".join(bodies) + "</worldbody></mujoco>\n")
+    return path
+
+
+def mjcf_path(name, tmp):
+    if name == "walker.xml":
+        return walker(tmp)
+    if name == "heap.xml":
+        return heap(tmp)
+    return assets() / name
 
 
 def mujoco_rate(path):
@@ -107,7 +161,7 @@ def robots_dir():
     raise SystemExit("no example-robot-data: pip install example-robot-data")
 
 
-def solo_model(tmp):
+def solo_model(tmp, servos=True):
     robots = robots_dir()
     text = (robots / "solo_description/robots/solo12.urdf").read_text()
     text = text.replace("package://example-robot-data/robots/", str(robots) + "/")
@@ -121,7 +175,7 @@ def solo_model(tmp):
         g.contype, g.conaffinity = 1, 0  # the robot touches the floor, not itself (as rigid)
     spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1], contype=0,
                             conaffinity=1)
-    for j in spec.joints:
+    for j in spec.joints if servos else []:
         if j.type == mujoco.mjtJoint.mjJNT_HINGE:
             a = spec.add_actuator(name=j.name, target=j.name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
             a.set_to_position(kp=20.0, kv=0.5)
@@ -133,7 +187,8 @@ def solo_mujoco_rate(m, start):
     d = mujoco.MjData(m)
     x, y, z, qx, qy, qz, qw = start[:7]
     d.qpos[:] = [x, y, z, qw, qx, qy, qz, *start[7:]]
-    d.ctrl[:] = start[7:]
+    if m.nu:
+        d.ctrl[:] = start[7:]
     mujoco.mj_forward(m, d)
     n = round(SECONDS / DT)
     t0 = time.perf_counter()
@@ -142,8 +197,15 @@ def solo_mujoco_rate(m, start):
     return n / (time.perf_counter() - t0), d.ncon, d.qpos[2]
 
 
-def solo_rigid_rate(rigid):
-    out = subprocess.run([rigid, "simulate", *solo_args(SECONDS)], capture_output=True,
+# dropped from 40 cm with straight legs, no control on either side
+DROP = [0, 0, 0.4, 0, 0, 0, 1] + [0] * 12
+
+
+def solo_rigid_rate(rigid, dropped=False):
+    args = solo_args(SECONDS) if not dropped else [
+        "solo12", "--floating", "--ground", "--q0", ",".join(map(str, DROP)),
+        "--duration", str(SECONDS), "--dt", str(DT)]
+    out = subprocess.run([rigid, "simulate", *args], capture_output=True,
                          text=True, check=True).stdout
     rate = float(re.search(r"\(([0-9.]+) steps/s\)", out).group(1))
     active = int(re.search(r"contacts at the end: (\d+) active", out).group(1))
@@ -157,20 +219,24 @@ def solo(args):
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
         start = solo_start(args.rigid, tmp)
-        m = solo_model(tmp)
-        r, mj = [], []
-        for k in range(args.rounds):
-            pair = [lambda: solo_rigid_rate(args.rigid), lambda: solo_mujoco_rate(m, start)]
-            res = [f() for f in (pair if k % 2 == 0 else pair[::-1])]
-            rr, mm = res if k % 2 == 0 else res[::-1]
-            r.append(rr)
-            mj.append(mm)
-    rr = statistics.median(x[0] for x in r)
-    mm = statistics.median(x[0] for x in mj)
-    print(f"| solo12.urdf standing (nv 18) | {rr:.0f} | {mm:.0f} | {mm / rr:.2f} | "
-          f"{r[-1][1]}, {mj[-1][1]} |")
-    print(f"base height: start {start[2]:.4f} m, end rigid {r[-1][2]:.4f} m, "
-          f"MuJoCo {mj[-1][2]:.4f} m")
+        cases = [("solo12.urdf standing (nv 18)", False, solo_model(tmp), start),
+                 ("solo12.urdf dropped, straight legs (nv 18)", True,
+                  solo_model(tmp, servos=False), DROP)]
+        for label, dropped, m, q0 in cases:
+            r, mj = [], []
+            for k in range(args.rounds):
+                pair = [lambda: solo_rigid_rate(args.rigid, dropped),
+                        lambda: solo_mujoco_rate(m, q0)]
+                res = [f() for f in (pair if k % 2 == 0 else pair[::-1])]
+                rr, mm = res if k % 2 == 0 else res[::-1]
+                r.append(rr)
+                mj.append(mm)
+            rr = statistics.median(x[0] for x in r)
+            mm = statistics.median(x[0] for x in mj)
+            print(f"| {label} | {rr:.0f} | {mm:.0f} | {mm / rr:.2f} | "
+                  f"{r[-1][1]}, {mj[-1][1]} |")
+            print(f"  base height: start {q0[2]:.4f} m, end rigid {r[-1][2]:.4f} m, "
+                  f"MuJoCo {mj[-1][2]:.4f} m")
 
 
 def main():
@@ -186,8 +252,11 @@ def main():
     print(f"mujoco {mujoco.__version__}; {SECONDS} s at dt = {DT} s; median of {args.rounds}")
     print("| model | rigid steps/s | MuJoCo steps/s | rigid / MuJoCo time | contacts at the end (rigid, MuJoCo) |")
     print("| --- | --- | --- | --- | --- |")
+    import tempfile
+
+    tmp = pathlib.Path(tempfile.mkdtemp())
     for name in MODELS if args.only != "solo" else []:
-        path = assets() / name
+        path = mjcf_path(name, tmp)
         r, mj = [], []
         for k in range(args.rounds):
             # alternate which side goes first, so that noise hits both alike

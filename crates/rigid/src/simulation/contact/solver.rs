@@ -103,6 +103,13 @@ pub(crate) struct ContactSolver {
     /// The bilateral rows that move nothing (`K_rr` ≤ 1e-9 of the largest: a planar loop's
     /// out-of-plane row); their impulse stays 0.
     bilateral_idle: Vec<bool>,
+    /// Per block, the row ranges of the blocks it shares a dof with (its own included): the
+    /// nonzero columns of its rows of `K`; `coupled[first[b]..first[b + 1]]`.
+    coupled: Vec<(usize, usize)>,
+    coupled_first: Vec<usize>,
+    /// Per dof, the blocks whose support holds it (scratch of `couple`), and marks.
+    dof_blocks: Vec<Vec<usize>>,
+    marks: Vec<usize>,
     /// The contacts of the last step, and of this one (for the next).
     memory: Vec<Memory>,
     next_memory: Vec<Memory>,
@@ -152,6 +159,10 @@ impl ContactSolver {
             bilateral_error: 0.0,
             bilateral_step: Vec::new(),
             bilateral_idle: Vec::new(),
+            coupled: Vec::new(),
+            coupled_first: Vec::new(),
+            dof_blocks: vec![Vec::new(); nv],
+            marks: Vec::new(),
             memory: Vec::new(),
             next_memory: Vec::new(),
             keys: Vec::new(),
@@ -379,6 +390,47 @@ impl ContactSolver {
         }
     }
 
+    /// The row ranges each block's rows of `K` may be nonzero on (`coupled`): the blocks whose
+    /// supports share a dof with it (two contacts on bodies of different trees never couple).
+    fn couple(&mut self) {
+        let n = self.blocks.len();
+        for list in &mut self.dof_blocks {
+            list.clear();
+        }
+        for (b, s) in self.support[..n].iter().enumerate() {
+            for &(k, _, _) in &s.cols {
+                self.dof_blocks[k].push(b);
+            }
+        }
+        self.marks.clear();
+        self.marks.resize(n, usize::MAX);
+        self.coupled.clear();
+        self.coupled_first.clear();
+        let mut near: Vec<usize> = Vec::new();
+        for b in 0..n {
+            self.coupled_first.push(self.coupled.len());
+            near.clear();
+            for &(k, _, _) in &self.support[b].cols {
+                for &c in &self.dof_blocks[k] {
+                    if self.marks[c] != b {
+                        self.marks[c] = b;
+                        near.push(c);
+                    }
+                }
+            }
+            near.sort_unstable();
+            let start = self.coupled.len();
+            for &c in &near {
+                let (lo, hi) = (self.rows[c], self.rows[c + 1]);
+                match self.coupled[start..].last_mut() {
+                    Some(last) if last.1 == lo => last.1 = hi,
+                    _ => self.coupled.push((lo, hi)),
+                }
+            }
+        }
+        self.coupled_first.push(self.coupled.len());
+    }
+
     /// Solves the step's contact problem: `v` the velocity at the start of the step, `v_free`
     /// the free velocity, overwritten with `v⁺`; `data` holds the factor `M = LᵀL`
     /// (`ltl_factor`). Fills [`stats`](Self::stats).
@@ -404,6 +456,7 @@ impl ContactSolver {
             &mut self.z,
             &mut self.delassus,
         );
+        self.couple();
         let mut sigma_free = std::mem::take(&mut self.sigma_free);
         let mut sigma_before = std::mem::take(&mut self.sigma_before);
         self.times(v_free, &mut sigma_free);
@@ -477,6 +530,7 @@ impl ContactSolver {
         }
         let (iterations, converged) = pgs(
             &self.blocks,
+            (&self.coupled, &self.coupled_first),
             K,
             (&self.bilateral_factor, &mut self.bilateral_step[..mb], idle),
             &self.target[..m],
@@ -607,6 +661,7 @@ impl ContactSolver {
         sigma.fill(0.0);
         pgs(
             &self.blocks,
+            (&self.coupled, &self.coupled_first),
             &self.delassus[..m * m],
             (
                 &self.bilateral_factor,
@@ -643,6 +698,7 @@ impl ContactSolver {
 #[allow(clippy::too_many_arguments)]
 fn pgs(
     blocks: &[Block],
+    (coupled, first): (&[(usize, usize)], &[usize]),
     K: &[f64],
     (factor, step, idle): (&DMatrix<f64>, &mut [f64], &[bool]),
     target: &[f64],
@@ -652,12 +708,17 @@ fn pgs(
     friction: bool,
 ) -> (usize, bool) {
     let m = lambda.len();
-    let update = |sigma: &mut [f64], r: usize, d: f64| {
+    // σ += K e_r d over the rows coupled to row r's block (K is zero elsewhere)
+    let update = |sigma: &mut [f64], b: usize, r: usize, d: f64| {
         let col = &K[r * m..(r + 1) * m];
-        for (s, k) in sigma.iter_mut().zip(col) {
-            *s += k * d;
+        for &(lo, hi) in &coupled[first[b]..first[b + 1]] {
+            for (s, k) in sigma[lo..hi].iter_mut().zip(&col[lo..hi]) {
+                *s += k * d;
+            }
         }
     };
+    // the block of each bilateral row
+    let block_of = |r: usize| blocks.partition_point(|b| b.row + b.dim <= r);
     let mb = step.len();
     for it in 1..=settings.max_iterations {
         let (mut change, mut largest): (f64, f64) = (0.0, 0.0);
@@ -670,13 +731,13 @@ fn pgs(
             for r in 0..mb {
                 if d[r] != 0.0 {
                     lambda[r] += d[r];
-                    update(sigma, r, d[r]);
+                    update(sigma, block_of(r), r, d[r]);
                     change = change.max(d[r].abs());
                 }
                 largest = largest.max(lambda[r].abs());
             }
         }
-        for b in blocks.iter().filter(|b| !b.bilateral) {
+        for (i, b) in blocks.iter().enumerate().filter(|(_, b)| !b.bilateral) {
             let r = b.row;
             let g = K[r * m + r];
             if g > 0.0 {
@@ -684,7 +745,7 @@ fn pgs(
                 let d = new - lambda[r];
                 if d != 0.0 {
                     lambda[r] = new;
-                    update(sigma, r, d);
+                    update(sigma, i, r, d);
                     change = change.max(d.abs());
                 }
             }
@@ -703,11 +764,11 @@ fn pgs(
             let (d1, d2) = (t1 - lambda[r1], t2 - lambda[r2]);
             if d1 != 0.0 {
                 lambda[r1] = t1;
-                update(sigma, r1, d1);
+                update(sigma, i, r1, d1);
             }
             if d2 != 0.0 {
                 lambda[r2] = t2;
-                update(sigma, r2, d2);
+                update(sigma, i, r2, d2);
             }
             change = change.max(d1.abs()).max(d2.abs());
             largest = largest.max(t1.abs()).max(t2.abs());
