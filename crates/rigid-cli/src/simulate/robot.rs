@@ -154,6 +154,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     }
     let mut max_speed = (0.0f64, 0usize);
     let mut max_penetration = 0.0f64;
+    // the contact solves: (steps with one, their sweeps, those that met the tolerance)
+    let mut solves = (0usize, 0usize, 0usize);
     let mut progress = super::Progress::new(steps)?;
     let mut failure = None;
     for k in 1..=steps {
@@ -162,7 +164,13 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             break;
         }
         let t = sim.time();
-        max_penetration = max_penetration.max(sim.contact_stats().penetration);
+        let stats = sim.contact_stats();
+        max_penetration = max_penetration.max(stats.penetration);
+        if stats.iterations > 0 {
+            solves.0 += 1;
+            solves.1 += stats.iterations;
+            solves.2 += usize::from(stats.converged);
+        }
         for (i, x) in sim.v().iter().enumerate() {
             if x.abs() > max_speed.0 {
                 max_speed = (x.abs(), i);
@@ -291,6 +299,14 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             s.active,
             s.normal_impulse / dt
         );
+        if solves.0 > 0 {
+            println!(
+                "contact solves: {} steps, {:.1} Gauss-Seidel sweeps on average, {:.1} % converged",
+                solves.0,
+                solves.1 as f64 / solves.0 as f64,
+                100.0 * solves.2 as f64 / solves.0 as f64
+            );
+        }
     }
     if loops {
         println!(

@@ -71,6 +71,17 @@ fn a_urdf_box_falls_onto_the_ground_and_rests_on_it() {
         "{stdout}"
     );
     assert!(stdout.contains("integrator: semi-implicit"), "{stdout}");
+    // the solver's record: every step after the landing solved to its tolerance
+    let solves = stdout
+        .lines()
+        .find(|l| l.starts_with("contact solves: "))
+        .unwrap_or_else(|| panic!("no record of the contact solves: {stdout}"));
+    assert!(solves.ends_with(" % converged"), "{solves}");
+    let converged: f64 = solves.rsplit(", ").next().unwrap()[..5]
+        .trim()
+        .parse()
+        .unwrap();
+    assert!(converged > 90.0, "{solves}");
     let row = last_row(&csv);
     // resting on its largest face: the centre half the height above the ground
     assert!((row["q_root_joint_z"] - 0.05).abs() < 1e-4, "{row:?}");

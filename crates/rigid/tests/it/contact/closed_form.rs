@@ -204,3 +204,38 @@ fn a_tower_of_three_boxes_stands() {
         "the tower moved {worst} m, turned {turn}"
     );
 }
+
+/// A box on a slope (level ground, gravity tilted by θ) with μ = 0.5: it sticks at
+/// tan θ = 0.45 (less than 1 mm in 2 s) and slides at tan θ = 0.55 with
+/// `a = g (sin θ − μ cos θ)` (within 1 %), resting on its four corners (issue 48).
+#[test]
+fn a_box_on_a_slope_sticks_below_the_friction_angle_and_slides_above_it() {
+    let mu = 0.5;
+    for (slope, sticks) in [(0.45f64, true), (0.55, false)] {
+        let theta = slope.atan();
+        let gravity = Vec3::new(G * theta.sin(), 0.0, -G * theta.cos());
+        let (model, cm) = scene(
+            &[Free::cube(2.0, Vec3::new(0.2, 0.16, 0.1))],
+            gravity,
+            Some(Ground::horizontal(0.0, mu)),
+        );
+        let q0 = q_of(Vec3::new(0.0, 0.0, 0.05), &Mat3::identity());
+        let mut sim = simulator(&model, cm, &q0, &[0.0; 6], 1e-3);
+        sim.run(2000, |_| {}).unwrap();
+        let (p, v) = com(&sim, 0);
+        let expected = G * (theta.sin() - mu * theta.cos());
+        let a = v.x / sim.time();
+        println!(
+            "tan θ = {slope}: moved {:.2e} m in 2 s, a = {a:.5} m/s² (g (sin θ − μ cos θ) = {expected:.5}), {} contacts",
+            p.x,
+            sim.contact_stats().active
+        );
+        if sticks {
+            assert!(p.x.abs() < 1e-3 && v.norm() < 1e-6, "{p} {v}");
+        } else {
+            assert!((a - expected).abs() < 0.01 * expected, "{a} vs {expected}");
+        }
+        assert_eq!(sim.contact_stats().active, 4);
+        assert!((p.z - 0.05).abs() < 1e-5, "{p}");
+    }
+}
