@@ -254,7 +254,10 @@ pub(crate) const RESTING_FACE: f64 = 1e-3;
 /// Returns whether the resting face alone did not fill the set (points beyond it were wanted).
 fn reduce(pts: &mut Vec<(Vec3, f64, usize)>, n: &Vec3) -> bool {
     if pts.len() <= 4 {
-        return pts.len() < 4;
+        // all kept: beyond the face only if they are fewer than four, or two coincide (within
+        // 0.1 mm: overlapping geometries of one body)
+        let close = (0..pts.len()).any(|i| (0..i).any(|j| (pts[i].0 - pts[j].0).norm() <= 1e-4));
+        return pts.len() < 4 || close;
     }
     let mut beyond = false;
     let deepest = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);

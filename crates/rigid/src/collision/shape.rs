@@ -470,8 +470,8 @@ impl Parry {
     /// The shape's points within `margin` of the plane `nᵀ x = height` (or below it), with the
     /// shape at the world pose `pose` (of the shape frame): each the point of the shape and its
     /// signed distance to the plane, into `out`. With `face = Some(f)`, a hull gives only its
-    /// vertices within `f` of its deepest one, and the result says whether it left others
-    /// within the margin out.
+    /// vertices within `f` of its deepest one, and the result says whether it may have left
+    /// others within the margin out (the face's level is below the margin's).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn near_plane(
         &self,

@@ -20,6 +20,10 @@
 //! those of the other integrators (control, joint damping and friction, limit springs, external
 //! wrenches).
 //!
+//! A lone free body (a free-flyer root with no child) takes its free velocity of step 1 from
+//! [`free_body`](super::free_body) instead: the implicit midpoint on its gyroscopic term, which
+//! keeps a passive body's energy.
+//!
 //! A free-flyer joint is stepped on SO(3) × R³ with its velocity in world-aligned axes over the
 //! step (as MuJoCo's free joint), by the joint module
 //! ([`JointType::integrate_world_aligned`](crate::multibody::JointType)).
@@ -128,7 +132,7 @@ pub(crate) fn contact_step<C: Control>(
         }
     }
     crba(model, data, q)?;
-    cs.free.prepare(&data.mass_matrix, v);
+    cs.free.prepare(model, &data.mass_matrix, v);
     if let Some((kp, kd)) = d.control.pd_gains() {
         for k in 0..nv {
             data.mass_matrix[(k, k)] += h * kd[k] + h * h * kp[k];

@@ -2,7 +2,9 @@
 //! velocity-level time-stepping form (Moreau 1988; Stewart & Trinkle 1996; Anitescu & Potra
 //! 1997): over a step `h` the forces are impulses, and one problem per step decides them.
 //!
-//! With `M = M(q_k)`, the free velocity `v_f = v_k + h M⁻¹ (τ − c − g)`, the contact Jacobian
+//! With `M = M(q_k)`, the free velocity `v_f = v_k + h M⁻¹ (τ − c − g)` (a lone free body, a
+//! free-flyer root with no child, takes its gyroscopic term by the implicit midpoint, which keeps
+//! its energy), the contact Jacobian
 //! `J` (three rows per contact: the normal `n` and two tangents, the relative velocity of the
 //! two bodies at the contact point; one row per joint limit) and the Delassus operator
 //! `G = J M⁻¹ Jᵀ`, the velocity after the step is `v⁺ = v_f + M⁻¹ Jᵀ λ` and the contact

@@ -110,6 +110,7 @@ pub(crate) struct ContactSolver {
     /// Per dof, the blocks whose support holds it (scratch of `couple`), and marks.
     dof_blocks: Vec<Vec<usize>>,
     marks: Vec<usize>,
+    near: Vec<usize>,
     /// The contacts of the last step, and of this one (for the next).
     memory: Vec<Memory>,
     next_memory: Vec<Memory>,
@@ -163,6 +164,7 @@ impl ContactSolver {
             coupled_first: Vec::new(),
             dof_blocks: vec![Vec::new(); nv],
             marks: Vec::new(),
+            near: Vec::new(),
             memory: Vec::new(),
             next_memory: Vec::new(),
             keys: Vec::new(),
@@ -406,7 +408,7 @@ impl ContactSolver {
         self.marks.resize(n, usize::MAX);
         self.coupled.clear();
         self.coupled_first.clear();
-        let mut near: Vec<usize> = Vec::new();
+        let mut near = std::mem::take(&mut self.near);
         for b in 0..n {
             self.coupled_first.push(self.coupled.len());
             near.clear();
@@ -429,6 +431,7 @@ impl ContactSolver {
             }
         }
         self.coupled_first.push(self.coupled.len());
+        self.near = near;
     }
 
     /// Solves the step's contact problem: `v` the velocity at the start of the step, `v_free`
