@@ -48,6 +48,17 @@ fn stands(urdf: &str, stance: &[f64], contacts: usize) -> f64 {
     // the impulses of the last 1000 steps of 1 ms: the mean force over that second
     let (normal, weight) = (impulse / 1.0, model.total_mass() * 9.81);
     let active = sim.contact_stats().active;
+    // the points that push, per body
+    // the candidate points and those that push, per body
+    let mut per_body = std::collections::BTreeMap::new();
+    for (c, p) in sim.contacts().iter().zip(sim.contact_impulses()) {
+        let e = per_body
+            .entry(c.body1.map(|j| j.0))
+            .or_insert((0usize, 0usize));
+        e.0 += 1;
+        e.1 += usize::from(p.dot(&c.normal) > 0.0);
+    }
+    println!("{urdf}: {active} active contacts; per body (candidates, pushing) {per_body:?}");
     assert!(drift < 1e-2, "{urdf}: the base height moved {drift} m");
     assert!(penetration < 2e-3, "{urdf}: penetration {penetration} m");
     assert!(active >= contacts, "{urdf}: {active} active contacts");
