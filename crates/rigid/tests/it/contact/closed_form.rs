@@ -239,3 +239,62 @@ fn a_box_on_a_slope_sticks_below_the_friction_angle_and_slides_above_it() {
         assert!((p.z - 0.05).abs() < 1e-5, "{p}");
     }
 }
+
+/// A 1 kg plate whose mesh bottom is uneven by 0.5 mm (a 5 x 5 grid of points at random
+/// heights, as real sole meshes are), set down spinning at 2 rad/s about the vertical (issue
+/// 48): it stops spinning and rests, on the points of its resting face, its normal force the
+/// weight. Not met yet: it rocks (the reproducer of the open part of issue 48; run it with
+/// `--ignored`).
+#[test]
+#[ignore = "issue 48, not met: |ω| 0.11 rad/s and |v| 8.6e-3 m/s after 1 s, the normal force off the weight by 33 % (bars: 1e-3, 1e-4, 2 %)"]
+fn a_plate_with_an_uneven_mesh_bottom_set_down_spinning_comes_to_rest() {
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (a, b, t) = (0.1, 0.08, 0.01);
+    let mut points = Vec::new();
+    for i in 0..5 {
+        for j in 0..5 {
+            let (x, y) = (-a + 0.5 * a * i as f64, -b + 0.5 * b * j as f64);
+            points.push(Vec3::new(x, y, -0.5 * t + 5e-4 * next()));
+        }
+    }
+    for (x, y) in [(-a, -b), (a, -b), (a, b), (-a, b)] {
+        points.push(Vec3::new(x, y, 0.5 * t));
+    }
+    let mut plate = Free::cube(1.0, Vec3::new(2.0 * a, 2.0 * b, t));
+    plate.shape = rigid::collision::Shape::ConvexHull { points };
+    let (model, cm) = scene(
+        &[plate],
+        Vec3::new(0.0, 0.0, -G),
+        Some(Ground::horizontal(0.0, 0.5)),
+    );
+    let q0 = q_of(Vec3::new(0.0, 0.0, 0.5 * t), &Mat3::identity());
+    let mut sim = simulator(&model, cm, &q0, &[0.0, 0.0, 2.0, 0.0, 0.0, 0.0], 1e-3);
+    let (mut worst_force, mut steps): (f64, usize) = (0.0, 0);
+    let mut pushing = usize::MAX;
+    for k in 0..1000 {
+        sim.step().unwrap();
+        if k >= 500 {
+            let force = sim.contact_stats().normal_impulse / 1e-3;
+            worst_force = worst_force.max((force - G).abs() / G);
+            pushing = pushing.min(sim.contact_stats().active);
+            steps += 1;
+        }
+    }
+    let v = sim.v();
+    let (w, lin) = (
+        Vec3::new(v[0], v[1], v[2]).norm(),
+        Vec3::new(v[3], v[4], v[5]).norm(),
+    );
+    println!(
+        "plate: after 1 s |ω| = {w:.1e} rad/s, |v| = {lin:.1e} m/s; over the last {steps} steps the normal force within {:.2} % of the weight, at least {pushing} points pushing",
+        100.0 * worst_force
+    );
+    assert!(w <= 1e-3 && lin <= 1e-4, "{w} {lin}");
+    assert!(worst_force <= 0.02, "{worst_force}");
+}
