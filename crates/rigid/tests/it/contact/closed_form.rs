@@ -244,7 +244,7 @@ fn a_box_on_a_slope_sticks_below_the_friction_angle_and_slides_above_it() {
 /// heights, as real sole meshes are), set down spinning at 2 rad/s about the vertical (issue
 /// 48): it stops spinning and rests, on the points of its resting face, its normal force the
 /// weight. Not met yet (the reproducer of the open part of issue 48; run it with `--ignored`):
-/// the pose stops (the quaternion constant to 1e-5 over the last 0.5 s), but every step's
+/// the pose stops (the quaternion constant to 3e-5 over the last 0.5 s), but every step's
 /// `v⁺` holds ω_x = 0.134 rad/s and v_z = −5.3 mm/s, a fixed point where the velocity solve
 /// lets the speculative contacts approach at `−φ/h` and the position correction undoes the
 /// motion; the normal force is off the weight by 33 %. The same without spin; a flat bottom
