@@ -1,6 +1,7 @@
-"""Simulation speed with ground contact: `rigid simulate MODEL.xml --ground` against MuJoCo's
-`mj_step` on the same MJCF file (gymnasium's humanoid and ant, falling from their qpos0 onto the
-ground and coming to rest).
+"""Simulation speed with ground contact: `rigid simulate MODEL.xml` against MuJoCo's `mj_step` on
+the same MJCF file (gymnasium's humanoid and ant, dm_control's walker, falling from their qpos0
+onto their floor and coming to rest; a heap of 27 free primitives the script writes, dropped onto
+a floor), and Solo-12 from its URDF, standing and dropped with straight legs.
 
 Both step 3 s at dt = 1 ms with no control: MuJoCo with the file's own options (Euler, its
 default solver and pyramidal cones, the file's floor plane and every geom pair it collides, the
