@@ -120,36 +120,24 @@ fn odometry_follows_an_arc() {
         (last[2] - x).abs() < 1e-12 && (last[3] - y).abs() < 1e-12,
         "{last:?} vs ({x}, {y})"
     );
-    // a first row that is not numbers and not a header of the right width is refused
-    std::fs::write(&path, "0,x\n1,1\n").unwrap();
-    let o = rigid(&[
-        "mobile",
-        "odometry",
-        "--base",
-        "diff-drive",
-        "--radius",
-        "0.1",
-        "--track",
-        "0.5",
-        path.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("line 1"), "{}", stderr(&o));
-    // a row with the wrong number of wheels is named by its line
-    std::fs::write(&path, "0,0\n1,1,1\n").unwrap();
-    let o = rigid(&[
-        "mobile",
-        "odometry",
-        "--base",
-        "diff-drive",
-        "--radius",
-        "0.1",
-        "--track",
-        "0.5",
-        path.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("line 2"), "{}", stderr(&o));
+    // a first row that is not numbers and not a header of the right width is refused, and a
+    // row with the wrong number of wheels is named by its line
+    for (text, line) in [("0,x\n1,1\n", "line 1"), ("0,0\n1,1,1\n", "line 2")] {
+        std::fs::write(&path, text).unwrap();
+        let o = rigid(&[
+            "mobile",
+            "odometry",
+            "--base",
+            "diff-drive",
+            "--radius",
+            "0.1",
+            "--track",
+            "0.5",
+            path.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2));
+        assert!(stderr(&o).contains(line), "{}", stderr(&o));
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 

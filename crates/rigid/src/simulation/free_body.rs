@@ -133,6 +133,7 @@ impl FreeBodies {
             // applied wrench there, h G̃⁻¹ F
             let turn = so3::exp(&(x.fixed_rows::<3>(0) * h));
             let gt: Mat6 = m_tilde.fixed_view::<6, 6>(d, d).into();
+            // a principal block of M̃, which `ltl_factor` has factored: positive definite
             let kick = gt.cholesky().map_or(Vec6::zeros(), |c| c.solve(f) * h);
             let w = turn * x.fixed_rows::<3>(0) + kick.fixed_rows::<3>(0);
             let l = turn * x.fixed_rows::<3>(3) + kick.fixed_rows::<3>(3);
