@@ -131,7 +131,7 @@ pub(crate) fn constraint_rows(
 }
 
 /// The coordinates a joint-coordinate constraint reads (`None` for the others).
-fn joint_coords(
+pub(crate) fn joint_coords(
     model: &Model,
     c: &super::ConstraintModel,
     q: &[f64],

@@ -65,13 +65,19 @@
 // loops over several per-row and per-dof arrays at once read better indexed
 #![allow(clippy::needless_range_loop)]
 
+mod derivatives;
 mod dynamics;
 mod impulse;
 mod inverse;
 mod kinematics;
+mod partials;
 pub(crate) mod solver;
 pub(crate) mod workspace;
 
+pub use derivatives::{
+    constraint_dynamics_derivatives, impulse_dynamics_derivatives, ConstraintDynamicsDerivatives,
+    ImpulseDynamicsDerivatives,
+};
 pub use dynamics::constraint_dynamics;
 pub(crate) use dynamics::constraint_rows;
 pub use impulse::impulse_dynamics;

@@ -5,6 +5,7 @@
 
 #![allow(non_snake_case)]
 
+mod derivatives;
 mod identities;
 mod mechanics;
 mod mjcf;
