@@ -41,7 +41,10 @@ pub struct EvalArgs {
     pub layout: Layout,
     /// Add the analytical derivatives to each result: `rnea_derivatives` (`dtau_dq`, `dtau_dv` at
     /// `(q, v, a)`) and `aba_derivatives` (`dqdd_dq`, `dqdd_dv`, `dqdd_dtau` at `(q, v, tau)`),
-    /// nv x nv row-major, derivatives in `q` along the tangent `q ⊕ δ`.
+    /// nv x nv row-major, derivatives in `q` along the tangent `q ⊕ δ`. With `--constraints`,
+    /// also `constraint_dynamics_derivatives` (`ddq_dq`, `ddq_dv`, `ddq_dtau`, `dlambda_dq`,
+    /// `dlambda_dv`, `dlambda_dtau`) and `impulse_dynamics_derivatives` (`dvplus_dq`,
+    /// `dvplus_dv`, `dimpulse_dq`, `dimpulse_dv`: the full derivatives of v⁺ and of the impulse).
     #[arg(long)]
     pub derivatives: bool,
     /// A constraint file (closed loops, contacts: `{"constraints": [{"type": "point" | "frame",
@@ -120,6 +123,10 @@ struct CaseResult {
     constraint_dynamics: Option<crate::eval_constraints::ConstraintDynamics>,
     #[serde(skip_serializing_if = "Option::is_none")]
     impulse_dynamics: Option<crate::eval_constraints::ImpulseDynamics>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    constraint_dynamics_derivatives: Option<crate::eval_constraints::ConstraintDerivatives>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    impulse_dynamics_derivatives: Option<crate::eval_constraints::ImpulseDerivatives>,
 }
 
 /// `∂τ/∂q`, `∂τ/∂v` (row-major).
@@ -221,9 +228,12 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             layout.as_ref(),
             loaded.mjcf.as_ref(),
             mujoco.is_some(),
+            args.derivatives,
         )?;
-        for (r, (c, i)) in results.iter_mut().zip(more) {
-            (r.constraint_dynamics, r.impulse_dynamics) = (Some(c), Some(i));
+        for (r, c) in results.iter_mut().zip(more) {
+            (r.constraint_dynamics, r.impulse_dynamics) = (Some(c.dynamics), Some(c.impulse));
+            r.constraint_dynamics_derivatives = c.dynamics_derivatives;
+            r.impulse_dynamics_derivatives = c.impulse_derivatives;
         }
     }
     if let Some(l) = &layout {
@@ -467,6 +477,8 @@ fn evaluate(
         aba_derivatives,
         constraint_dynamics: None,
         impulse_dynamics: None,
+        constraint_dynamics_derivatives: None,
+        impulse_dynamics_derivatives: None,
     })
 }
 

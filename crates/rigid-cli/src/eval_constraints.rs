@@ -9,7 +9,11 @@ use rigid::io::cases::Case;
 use rigid::io::constraints::{parse_constraints, ConstraintFile};
 use rigid::io::mjcf::MjcfModel;
 use rigid::multibody::constraints::ProximalSettings;
-use rigid::multibody::constraints::{constraint_dynamics, impulse_dynamics, ConstraintData};
+use rigid::multibody::constraints::{
+    constraint_dynamics, constraint_dynamics_derivatives, impulse_dynamics,
+    impulse_dynamics_derivatives, ConstraintData, ConstraintDynamicsDerivatives,
+    ImpulseDynamicsDerivatives,
+};
 use rigid::multibody::{Data, Model};
 use serde::Serialize;
 use std::path::Path;
@@ -41,6 +45,35 @@ impl ImpulseDynamics {
     pub fn convert_to_mujoco(&mut self, l: &MujocoLayout, q: &[f64]) {
         l.v_to_mujoco(q, &mut self.dq_plus);
     }
+}
+
+/// `constraint_dynamics_derivatives`: `∂q̈` and `∂λ` with respect to `q` (along `q ⊕ δ`), `v`
+/// and `τ`, row-major (`nv x nv`, `m x nv`).
+#[derive(Serialize)]
+pub struct ConstraintDerivatives {
+    ddq_dq: Vec<Vec<f64>>,
+    ddq_dv: Vec<Vec<f64>>,
+    ddq_dtau: Vec<Vec<f64>>,
+    dlambda_dq: Vec<Vec<f64>>,
+    dlambda_dv: Vec<Vec<f64>>,
+    dlambda_dtau: Vec<Vec<f64>>,
+}
+
+/// `impulse_dynamics_derivatives`: `∂q̇⁺` and `∂Λ` with respect to `q` and `q̇⁻`, row-major.
+#[derive(Serialize)]
+pub struct ImpulseDerivatives {
+    dvplus_dq: Vec<Vec<f64>>,
+    dvplus_dv: Vec<Vec<f64>>,
+    dimpulse_dq: Vec<Vec<f64>>,
+    dimpulse_dv: Vec<Vec<f64>>,
+}
+
+/// One case's constrained results.
+pub struct Constrained {
+    pub dynamics: ConstraintDynamics,
+    pub impulse: ImpulseDynamics,
+    pub dynamics_derivatives: Option<ConstraintDerivatives>,
+    pub impulse_derivatives: Option<ImpulseDerivatives>,
 }
 
 /// The constraints of `path`: a constraint file, or the `<equality>` elements of the MJCF file
@@ -80,9 +113,10 @@ pub(crate) fn read(
     parse_constraints(&text, model).map_err(|e| format!("{name}: {e}"))
 }
 
-/// Every case's constrained and impulse dynamics, in `layout` when given (velocities permuted,
-/// wrenches force first); wrenches force first too when `force_first` (MuJoCo's layout, whose
-/// velocities the caller converts).
+/// Every case's constrained and impulse dynamics (and their derivatives when `derivatives`), in
+/// `layout` when given (velocities permuted, wrenches force first); wrenches force first too when
+/// `force_first` (MuJoCo's layout, whose velocities the caller converts; the derivatives are
+/// asked there only without a free joint, where MuJoCo's velocities are rigid's).
 ///
 /// # Errors
 /// A message naming the file and the constraint, or the case.
@@ -93,7 +127,8 @@ pub fn evaluate(
     layout: Option<&PinocchioLayout>,
     mjcf: Option<&MjcfModel>,
     force_first: bool,
-) -> Result<Vec<(ConstraintDynamics, ImpulseDynamics)>, String> {
+    derivatives: bool,
+) -> Result<Vec<Constrained>, String> {
     let name = path.display().to_string();
     let name = name.as_str();
     let file = read(model, path, mjcf)?;
@@ -116,6 +151,25 @@ pub fn evaluate(
         }
         y
     };
+    // a matrix with nv columns, permuted as velocities; its rows are velocities (`rows_v`) or
+    // constraint rows
+    let m_out = |cd: &ConstraintData, x: &nalgebra::DMatrix<f64>, rows_v: bool| {
+        let cols: Vec<Vec<f64>> = (0..x.ncols())
+            .map(|k| {
+                let c = x.column(k).as_slice().to_vec();
+                if rows_v {
+                    v_out(&c)
+                } else {
+                    w_out(cd, &c)
+                }
+            })
+            .collect();
+        (0..x.nrows())
+            .map(|r| v_out(&cols.iter().map(|c| c[r]).collect::<Vec<f64>>()))
+            .collect::<Vec<Vec<f64>>>()
+    };
+    let mut dd = derivatives.then(|| ConstraintDynamicsDerivatives::new(model, &cd));
+    let mut id = derivatives.then(|| ImpulseDynamicsDerivatives::new(model, &cd));
     let finite = |what: &str, x: &[f64]| {
         if x.iter().all(|v| v.is_finite()) {
             Ok(())
@@ -160,16 +214,73 @@ pub fn evaluate(
             ] {
                 finite(what, x).map_err(|m| format!("{name}: case {i}: {m}"))?;
             }
-            Ok((
-                ConstraintDynamics {
+            let dynamics_derivatives = match &mut dd {
+                Some(d) => {
+                    constraint_dynamics_derivatives(
+                        model, &mut data, &mut cd, &c.q, &c.v, &c.tau, s, d,
+                    )
+                    .map_err(e("constraint_dynamics_derivatives"))?;
+                    for (what, x) in [
+                        ("ddq_dq", &d.ddq_dq),
+                        ("ddq_dv", &d.ddq_dv),
+                        ("dlambda_dq", &d.dlambda_dq),
+                        ("dlambda_dv", &d.dlambda_dv),
+                    ] {
+                        finite(what, x.as_slice()).map_err(|m| format!("{name}: case {i}: {m}"))?;
+                    }
+                    Some(ConstraintDerivatives {
+                        ddq_dq: m_out(&cd, &d.ddq_dq, true),
+                        ddq_dv: m_out(&cd, &d.ddq_dv, true),
+                        ddq_dtau: m_out(&cd, &d.ddq_dtau, true),
+                        dlambda_dq: m_out(&cd, &d.dlambda_dq, false),
+                        dlambda_dv: m_out(&cd, &d.dlambda_dv, false),
+                        dlambda_dtau: m_out(&cd, &d.dlambda_dtau, false),
+                    })
+                }
+                None => None,
+            };
+            let impulse_derivatives = match &mut id {
+                Some(d) => {
+                    impulse_dynamics_derivatives(
+                        model,
+                        &mut data,
+                        &mut cd,
+                        &c.q,
+                        &c.v,
+                        file.restitution,
+                        s,
+                        d,
+                    )
+                    .map_err(e("impulse_dynamics_derivatives"))?;
+                    for (what, x) in [
+                        ("dvplus_dq", &d.dvplus_dq),
+                        ("dvplus_dv", &d.dvplus_dv),
+                        ("dimpulse_dq", &d.dimpulse_dq),
+                        ("dimpulse_dv", &d.dimpulse_dv),
+                    ] {
+                        finite(what, x.as_slice()).map_err(|m| format!("{name}: case {i}: {m}"))?;
+                    }
+                    Some(ImpulseDerivatives {
+                        dvplus_dq: m_out(&cd, &d.dvplus_dq, true),
+                        dvplus_dv: m_out(&cd, &d.dvplus_dv, true),
+                        dimpulse_dq: m_out(&cd, &d.dimpulse_dq, false),
+                        dimpulse_dv: m_out(&cd, &d.dimpulse_dv, false),
+                    })
+                }
+                None => None,
+            };
+            Ok(Constrained {
+                dynamics: ConstraintDynamics {
                     ddq: v_out(&ddq),
                     lambda: w_out(&cd, &lambda),
                 },
-                ImpulseDynamics {
+                impulse: ImpulseDynamics {
                     dq_plus: v_out(&dq_plus),
                     impulse: w_out(&cd, &impulse),
                 },
-            ))
+                dynamics_derivatives,
+                impulse_derivatives,
+            })
         })
         .collect()
 }

@@ -10,6 +10,7 @@ mod identities;
 mod mechanics;
 mod mjcf;
 mod pinocchio;
+mod pinocchio_derivatives;
 
 use rigid::io::urdf::{load_urdf_with, SiblingOrder, UrdfOptions};
 use rigid::multibody::Model;
