@@ -678,6 +678,23 @@ def contact_inverse_dynamics(model: Model, data: Data, q: ArrayLike, v: ArrayLik
     with ``c_ref = (J (v + dt a) + correction) / dt`` (no mass matrix), and returns
     ``rnea(q, v, a) − Jᵀ λ``."""
 
+def constraint_dynamics_derivatives(model: Model, data: Data, q: ArrayLike, v: ArrayLike,
+                                    tau: ArrayLike, constraint_data: ConstraintData,
+                                    mu: float = 0.0, max_iter: int = 100,
+                                    accuracy: float = 1e-12) -> dict[str, Matrix]:
+    """Runs ``constraint_dynamics`` and returns its derivatives: ``ddq_dq``, ``ddq_dv``,
+    ``ddq_dtau`` (nv × nv) and ``dlambda_dq``, ``dlambda_dv``, ``dlambda_dtau`` (dim × nv), by
+    differentiating the KKT system at its solution; q along ``q ⊕ δ``. Pinocchio:
+    ``computeConstraintDynamicsDerivatives``."""
+
+def impulse_dynamics_derivatives(model: Model, data: Data, q: ArrayLike, v: ArrayLike,
+                                 constraint_data: ConstraintData, r_coeff: float = 0.0,
+                                 mu: float = 0.0, max_iter: int = 100,
+                                 accuracy: float = 1e-12) -> dict[str, Matrix]:
+    """Runs ``impulse_dynamics`` and returns ``dvplus_dq``, ``dvplus_dv`` (the full
+    ``∂q̇⁺/∂q̇⁻``; Pinocchio's ``ddq_dv`` is this minus the identity), ``dimpulse_dq``,
+    ``dimpulse_dv``. Pinocchio: ``computeImpulseDynamicsDerivatives``."""
+
 constraintDynamics = constraint_dynamics
 impulseDynamics = impulse_dynamics
 contactInverseDynamics = contact_inverse_dynamics

@@ -261,6 +261,29 @@ pub struct ConstraintData {
 }
 
 impl ConstraintData {
+    /// An `m × nv` matrix of constraint rows (`J`, `∂λ/∂q`, …) as a fresh array in the model's
+    /// layout: columns permuted as velocities, and in Pinocchio's layout each frame
+    /// constraint's rows force first.
+    fn rows_out<'py>(
+        &self,
+        py: Python<'py>,
+        j: &nalgebra::DMatrix<f64>,
+    ) -> Bound<'py, PyArray2<f64>> {
+        let mut row = Vec::with_capacity(j.nrows());
+        for (i, c) in self.inner.constraints().iter().enumerate() {
+            let r = self.inner.rows_of(i);
+            match (c.kind, self.model.layout.is_some()) {
+                (ConstraintKind::Frame, true) => {
+                    row.extend((3..6).chain(0..3).map(|k| r.start + k))
+                }
+                _ => row.extend(r),
+            }
+        }
+        array2(py, j.nrows(), j.ncols(), |r, c| {
+            j[(row[r], self.model.v_index(c))]
+        })
+    }
+
     /// `λ`-like numbers in the model's layout: each frame's wrench force first in Pinocchio's.
     fn out<'py>(&self, py: Python<'py>, x: &[f64]) -> Bound<'py, PyArray1<f64>> {
         if self.model.layout.is_none() {
@@ -350,21 +373,7 @@ impl ConstraintData {
     /// The constraint Jacobian `J` (dim × nv) at the last `q`, in the model's layout.
     #[getter]
     fn jacobian<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let j = &self.inner.jacobian;
-        // rows of a frame constraint force first, columns permuted, in Pinocchio's layout
-        let mut row = Vec::with_capacity(j.nrows());
-        for (i, c) in self.inner.constraints().iter().enumerate() {
-            let r = self.inner.rows_of(i);
-            match (c.kind, self.model.layout.is_some()) {
-                (ConstraintKind::Frame, true) => {
-                    row.extend((3..6).chain(0..3).map(|k| r.start + k))
-                }
-                _ => row.extend(r),
-            }
-        }
-        array2(py, j.nrows(), j.ncols(), |r, c| {
-            j[(row[r], self.model.v_index(c))]
-        })
+        self.rows_out(py, &self.inner.jacobian)
     }
 
     /// The largest constraint error `‖e‖∞` at the last `q` (m, rad).
@@ -457,6 +466,93 @@ pub fn impulse_dynamics<'py>(
     Ok(model.inner.v_out(py, dq.as_slice()))
 }
 
+/// The derivatives of `constraint_dynamics` at `(q, v, tau)` (which it runs): a dict of
+/// `ddq_dq`, `ddq_dv`, `ddq_dtau` (nv × nv) and `dlambda_dq`, `dlambda_dv`, `dlambda_dtau`
+/// (dim × nv), derivatives in `q` along `q ⊕ δ`, in the model's layout. Pinocchio:
+/// `computeConstraintDynamicsDerivatives`.
+#[pyfunction]
+#[pyo3(signature = (model, data, q, v, tau, constraint_data, mu = 0.0, max_iter = 100, accuracy = 1e-12))]
+#[allow(clippy::too_many_arguments)]
+pub fn constraint_dynamics_derivatives<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    tau: &Bound<'py, PyAny>,
+    mut constraint_data: PyRefMut<'py, ConstraintData>,
+    mu: f64,
+    max_iter: usize,
+    accuracy: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let f = "constraint_dynamics_derivatives";
+    constraint_data.check(f, &model)?;
+    let s = settings(f, mu, max_iter, accuracy)?;
+    let d = &mut *data;
+    load(f, &model, d, q, &[("v", v), ("tau", tau)])?;
+    let m = &model.inner.model;
+    let mut out = cs::ConstraintDynamicsDerivatives::new(m, &constraint_data.inner);
+    let cd = &mut constraint_data.inner;
+    cs::constraint_dynamics_derivatives(m, &mut d.inner, cd, &d.q, &d.v, &d.a, &s, &mut out)
+        .map_err(|e| value_error(f, e))?;
+    let dict = PyDict::new(py);
+    let core = &model.inner;
+    dict.set_item("ddq_dq", core.matrix_out(py, &out.ddq_dq))?;
+    dict.set_item("ddq_dv", core.matrix_out(py, &out.ddq_dv))?;
+    dict.set_item("ddq_dtau", core.matrix_out(py, &out.ddq_dtau))?;
+    dict.set_item("dlambda_dq", constraint_data.rows_out(py, &out.dlambda_dq))?;
+    dict.set_item("dlambda_dv", constraint_data.rows_out(py, &out.dlambda_dv))?;
+    dict.set_item(
+        "dlambda_dtau",
+        constraint_data.rows_out(py, &out.dlambda_dtau),
+    )?;
+    Ok(dict)
+}
+
+/// The derivatives of `impulse_dynamics` at `(q, v)` (which it runs): a dict of `dvplus_dq`,
+/// `dvplus_dv` (the full `∂q̇⁺/∂q̇⁻`; Pinocchio's `ddq_dv` is this minus the identity) and
+/// `dimpulse_dq`, `dimpulse_dv`, in the model's layout. Pinocchio:
+/// `computeImpulseDynamicsDerivatives`.
+#[pyfunction]
+#[pyo3(signature = (model, data, q, v, constraint_data, r_coeff = 0.0, mu = 0.0, max_iter = 100, accuracy = 1e-12))]
+#[allow(clippy::too_many_arguments)]
+pub fn impulse_dynamics_derivatives<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    mut constraint_data: PyRefMut<'py, ConstraintData>,
+    r_coeff: f64,
+    mu: f64,
+    max_iter: usize,
+    accuracy: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let f = "impulse_dynamics_derivatives";
+    constraint_data.check(f, &model)?;
+    let s = settings(f, mu, max_iter, accuracy)?;
+    let d = &mut *data;
+    load(f, &model, d, q, &[("v", v)])?;
+    let m = &model.inner.model;
+    let mut out = cs::ImpulseDynamicsDerivatives::new(m, &constraint_data.inner);
+    let cd = &mut constraint_data.inner;
+    cs::impulse_dynamics_derivatives(m, &mut d.inner, cd, &d.q, &d.v, r_coeff, &s, &mut out)
+        .map_err(|e| value_error(f, e))?;
+    let dict = PyDict::new(py);
+    let core = &model.inner;
+    dict.set_item("dvplus_dq", core.matrix_out(py, &out.dvplus_dq))?;
+    dict.set_item("dvplus_dv", core.matrix_out(py, &out.dvplus_dv))?;
+    dict.set_item(
+        "dimpulse_dq",
+        constraint_data.rows_out(py, &out.dimpulse_dq),
+    )?;
+    dict.set_item(
+        "dimpulse_dv",
+        constraint_data.rows_out(py, &out.dimpulse_dv),
+    )?;
+    Ok(dict)
+}
+
 /// Inverse dynamics with constraints: the least-norm `(τ, λ)` (τ zero on a free-flyer) with
 /// `M a + c + g = τ + Jᵀ λ`; returns `τ`, `λ` in `constraint_data.lambda_c`. Not Pinocchio 4.1's
 /// `contactInverseDynamics`, which takes λ from a compliant contact law (see the stubs).
@@ -488,6 +584,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(constraint_dynamics, m)?)?;
     m.add_function(wrap_pyfunction!(impulse_dynamics, m)?)?;
     m.add_function(wrap_pyfunction!(contact_inverse_dynamics, m)?)?;
+    m.add_function(wrap_pyfunction!(constraint_dynamics_derivatives, m)?)?;
+    m.add_function(wrap_pyfunction!(impulse_dynamics_derivatives, m)?)?;
     for (alias, name) in [
         ("constraintDynamics", "constraint_dynamics"),
         ("impulseDynamics", "impulse_dynamics"),

@@ -29,7 +29,11 @@ interpolate = _r.interpolate
 neutral = _r.neutral
 normalize = _r.normalize
 computeRNEADerivatives = _r.rnea_derivatives
-computeABADerivatives = _r.aba_derivatives
+def computeABADerivatives(model, data, *args):
+    """``∂q̈/∂q``, ``∂q̈/∂v``, ``∂q̈/∂τ`` of ABA (``data.ddq_dq``, ``ddq_dv``, ``ddq_dtau``,
+    replacing those of a constrained dynamics)."""
+    data.__dict__.pop("_constrained", None)
+    return _r.aba_derivatives(model, data, *args)
 computeGeneralizedGravityDerivatives = _r.gravity_derivatives
 computeJointTorqueRegressor = _r.regressor
 

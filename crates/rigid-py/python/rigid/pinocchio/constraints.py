@@ -12,7 +12,8 @@ from .joints import ReferenceFrame
 from .spatial import SE3
 
 __all__ = ["ContactType", "RigidConstraintModel", "RigidConstraintData", "ProximalSettings",
-           "initConstraintDynamics", "constraintDynamics", "impulseDynamics"]
+           "initConstraintDynamics", "constraintDynamics", "impulseDynamics",
+           "computeConstraintDynamicsDerivatives", "computeImpulseDynamicsDerivatives"]
 
 AVAILABLE = all(hasattr(_r, n) for n in ("ConstraintModel", "ConstraintData",
                                          "constraint_dynamics", "impulse_dynamics"))
@@ -107,6 +108,7 @@ def constraintDynamics(model, data, q, v, tau, contact_models, contact_datas=Non
     ddq = _r.constraint_dynamics(model, data, q, v, tau, cd, mu=s.mu, max_iter=max(1, s.max_iter),
                                  accuracy=s.accuracy)
     data.lambda_c = cd.lambda_c
+    data._constraint_state = (q, v, tau, s)
     return ddq
 
 
@@ -120,4 +122,44 @@ def impulseDynamics(model, data, q, v_before, contact_models, contact_datas=None
     dq = _r.impulse_dynamics(model, data, q, v_before, cd, r_coeff=r_coeff, mu=s.mu,
                              max_iter=max(1, s.max_iter), accuracy=s.accuracy)
     data.impulse_c, data.dq_after = cd.impulse_c, np.asarray(dq)
+    data._impulse_state = (q, v_before, r_coeff, s)
     return dq
+
+
+def _last(data, key, func, before):
+    state = data.__dict__.get(key)
+    if state is None:
+        raise RuntimeError(f"{func}: call {before} first (the derivatives are taken at its state)")
+    return state
+
+
+def computeConstraintDynamicsDerivatives(model, data, contact_models, contact_datas=None,
+                                         prox_settings=None):
+    """The derivatives of the last ``constraintDynamics`` into ``data.ddq_dq``, ``ddq_dv``,
+    ``ddq_dtau``, ``dlambda_dq``, ``dlambda_dv``, ``dlambda_dtau``."""
+    _need("computeConstraintDynamicsDerivatives")
+    q, v, tau, s = _last(data, "_constraint_state", "computeConstraintDynamicsDerivatives",
+                         "constraintDynamics")
+    s = prox_settings or s
+    cd = _constraint_data(model, data, contact_models)
+    d = _r.constraint_dynamics_derivatives(model, data, q, v, tau, cd, mu=s.mu,
+                                           max_iter=max(1, s.max_iter), accuracy=s.accuracy)
+    data._constrained = {k: d[k] for k in ("ddq_dq", "ddq_dv", "ddq_dtau")}
+    data.dlambda_dq, data.dlambda_dv, data.dlambda_dtau = (
+        d["dlambda_dq"], d["dlambda_dv"], d["dlambda_dtau"])
+
+
+def computeImpulseDynamicsDerivatives(model, data, contact_models, contact_datas=None,
+                                      r_coeff=0.0, prox_settings=None):
+    """The derivatives of the last ``impulseDynamics``: ``data.ddq_dq`` (∂v⁺/∂q),
+    ``data.ddq_dv`` (∂(v⁺ − v⁻)/∂v⁻, Pinocchio's convention), ``data.dlambda_dq``,
+    ``data.dlambda_dv`` (of the impulse)."""
+    _need("computeImpulseDynamicsDerivatives")
+    q, v, _, s = _last(data, "_impulse_state", "computeImpulseDynamicsDerivatives",
+                       "impulseDynamics")
+    s = prox_settings or s
+    cd = _constraint_data(model, data, contact_models)
+    d = _r.impulse_dynamics_derivatives(model, data, q, v, cd, r_coeff=r_coeff, mu=s.mu,
+                                        max_iter=max(1, s.max_iter), accuracy=s.accuracy)
+    data._constrained = {"ddq_dq": d["dvplus_dq"], "ddq_dv": d["dvplus_dv"] - np.eye(model.nv)}
+    data.dlambda_dq, data.dlambda_dv = d["dimpulse_dq"], d["dimpulse_dv"]

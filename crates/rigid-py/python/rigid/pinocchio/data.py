@@ -17,7 +17,7 @@ _DATA_UNSUPPORTED = {
     "oK", "oL", "iMf", "lambda_c", "lambda_c_prox", "impulse_c", "dq_after", "contact_chol",
     "constraint_chol", "jointTorqueRegressor", "kineticEnergyRegressor",
     "potentialEnergyRegressor", "staticRegressor", "dac_da", "dac_dq", "dac_dv", "dvc_dq",
-    "dlambda_dq", "dlambda_dv", "dlambda_dtau", "osim", "primal_dual_contact_solution",
+    "osim", "primal_dual_contact_solution",
     "primal_rhs_contact", "lastChild", "nvSubtree", "parents_fromRow", "supports_fromRow",
     "start_idx_v_fromRow", "end_idx_v_fromRow", "nvSubtree_fromRow", "q_in", "v_in", "a_in",
     "tau_in", "of_augmented", "oYaba_augmented", "mimic_subtree_joint",
@@ -130,9 +130,14 @@ class Data(_r.Data):
     Ag = property(lambda s: s._a("Ag"))
     dtau_dq = property(lambda s: s._a("dtau_dq"))
     dtau_dv = property(lambda s: s._a("dtau_dv"))
-    ddq_dq = property(lambda s: s._a("ddq_dq"))
-    ddq_dv = property(lambda s: s._a("ddq_dv"))
-    ddq_dtau = property(lambda s: s._a("Minv"))
+    # the constrained or impulse dynamics' derivatives when they were the last computed
+    ddq_dq = property(lambda s: s._derivative("ddq_dq", "ddq_dq"))
+    ddq_dv = property(lambda s: s._derivative("ddq_dv", "ddq_dv"))
+    ddq_dtau = property(lambda s: s._derivative("ddq_dtau", "Minv"))
+
+    def _derivative(self, name, unconstrained):
+        c = self.__dict__.get("_constrained")
+        return c[name] if c is not None and name in c else self._a(unconstrained)
 
     @property
     def hg(self):

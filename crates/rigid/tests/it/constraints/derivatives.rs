@@ -225,7 +225,7 @@ fn constraint_dynamics_derivatives_equal_finite_differences() {
             )
             .unwrap_or_else(|e| panic!("{name}: {e}"));
             let m = cd.dim();
-            let mut eval = |q: &[f64], v: &[f64], tau: &[f64]| {
+            let eval = |q: &[f64], v: &[f64], tau: &[f64]| {
                 let mut data = Data::new(&model);
                 let mut cd = ConstraintData::new(&model, &set).unwrap();
                 constraint_dynamics(&model, &mut data, &mut cd, q, v, tau, &settings).unwrap();
@@ -273,7 +273,7 @@ fn impulse_dynamics_derivatives_equal_finite_differences() {
             impulse_dynamics_derivatives(&model, &mut data, &mut cd, &q, &v, e, &settings, &mut d)
                 .unwrap_or_else(|err| panic!("{name}: {err}"));
             let m = cd.dim();
-            let mut eval = |q: &[f64], v: &[f64]| {
+            let eval = |q: &[f64], v: &[f64]| {
                 let mut data = Data::new(&model);
                 let mut cd = ConstraintData::new(&model, &set).unwrap();
                 impulse_dynamics(&model, &mut data, &mut cd, q, v, e, &settings).unwrap();

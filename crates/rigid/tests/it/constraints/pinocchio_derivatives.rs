@@ -116,7 +116,7 @@ fn check_case(case: &Value) -> (f64, f64) {
     let pin = &case["pinocchio"];
     let pinocchio_right = case["pinocchio_fd_error"].as_f64().expect("error") < 1e-6;
     let (mut worst, mut worst_fd) = (0.0f64, 0.0f64);
-    let mut check = |what: &str, ours: DMatrix<f64>, theirs: DMatrix<f64>, tol: f64| {
+    let check = |what: &str, ours: DMatrix<f64>, theirs: DMatrix<f64>, tol: f64| {
         let e = rel(&ours, &theirs);
         eprintln!("  {name} {what}: {e:.1e}");
         assert!(e <= tol, "{name}: {what} differs by {e:.1e}");
