@@ -419,3 +419,69 @@ fn simulate_closes_the_loop() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--constraints applies to a robot"));
 }
+
+/// `--derivatives` with `--constraints` in Pinocchio's layout: TALOS's two 6D soles (local frame,
+/// Baumgarte gains) of `pinocchio_derivatives.json` give Pinocchio 4.1's
+/// `computeConstraintDynamicsDerivatives` and `computeImpulseDynamicsDerivatives` (its `ddq_dv`
+/// plus the identity) to 1e-9.
+#[test]
+fn derivatives_with_constraints_equal_pinocchio() {
+    let text = std::fs::read_to_string(fixtures().join("pinocchio_derivatives.json")).unwrap();
+    let doc: Value = serde_json::from_str(&text).unwrap();
+    let case = doc["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["name"] == "talos_2_frames_local_baumgarte")
+        .unwrap();
+    let urdf = fixtures().join(case["urdf"].as_str().unwrap());
+    let cases = temp_file(
+        "derivatives-cases.json",
+        &serde_json::json!({"cases": [{"q": case["q"], "v": case["v"], "tau": case["tau"]}]})
+            .to_string(),
+    );
+    let file = temp_file("derivatives-constraints.json", &case.to_string());
+    let out = rigid(&[
+        "eval",
+        urdf.to_str().unwrap(),
+        "--floating",
+        "--cases",
+        &cases,
+        "--constraints",
+        &file,
+        "--derivatives",
+        "--layout",
+        "pinocchio",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let r = &r["results"][0];
+    let flat = |v: &Value| -> Vec<f64> { v.as_array().unwrap().iter().flat_map(numbers).collect() };
+    for (group, keys) in [
+        (
+            "constraint_dynamics_derivatives",
+            &[
+                "ddq_dq",
+                "ddq_dv",
+                "ddq_dtau",
+                "dlambda_dq",
+                "dlambda_dv",
+                "dlambda_dtau",
+            ][..],
+        ),
+        (
+            "impulse_dynamics_derivatives",
+            &["dvplus_dq", "dvplus_dv", "dimpulse_dq", "dimpulse_dv"][..],
+        ),
+    ] {
+        for k in keys {
+            let e = rel_err(&flat(&r[group][k]), &flat(&case["pinocchio"][k]));
+            assert!(e < 1e-9, "{group}.{k}: {e:.1e}");
+        }
+    }
+}
