@@ -152,20 +152,19 @@ pub fn evaluate(
         y
     };
     // a matrix with nv columns, permuted as velocities; its rows are velocities (`rows_v`) or
-    // constraint rows
+    // constraint rows (force first as `w_out`)
+    let vi = |k: usize| layout.map_or(k, |l| l.v_index(k));
+    let force = layout.is_some() || force_first;
     let m_out = |cd: &ConstraintData, x: &nalgebra::DMatrix<f64>, rows_v: bool| {
-        let cols: Vec<Vec<f64>> = (0..x.ncols())
-            .map(|k| {
-                let c = x.column(k).as_slice().to_vec();
-                if rows_v {
-                    v_out(&c)
-                } else {
-                    w_out(cd, &c)
-                }
-            })
-            .collect();
         (0..x.nrows())
-            .map(|r| v_out(&cols.iter().map(|c| c[r]).collect::<Vec<f64>>()))
+            .map(|r| {
+                let src = if rows_v {
+                    vi(r)
+                } else {
+                    cd.source_row(r, force)
+                };
+                (0..x.ncols()).map(|c| x[(src, vi(c))]).collect()
+            })
             .collect::<Vec<Vec<f64>>>()
     };
     let mut dd = derivatives.then(|| ConstraintDynamicsDerivatives::new(model, &cd));
@@ -223,8 +222,10 @@ pub fn evaluate(
                     for (what, x) in [
                         ("ddq_dq", &d.ddq_dq),
                         ("ddq_dv", &d.ddq_dv),
+                        ("ddq_dtau", &d.ddq_dtau),
                         ("dlambda_dq", &d.dlambda_dq),
                         ("dlambda_dv", &d.dlambda_dv),
+                        ("dlambda_dtau", &d.dlambda_dtau),
                     ] {
                         finite(what, x.as_slice()).map_err(|m| format!("{name}: case {i}: {m}"))?;
                     }

@@ -269,18 +269,9 @@ impl ConstraintData {
         py: Python<'py>,
         j: &nalgebra::DMatrix<f64>,
     ) -> Bound<'py, PyArray2<f64>> {
-        let mut row = Vec::with_capacity(j.nrows());
-        for (i, c) in self.inner.constraints().iter().enumerate() {
-            let r = self.inner.rows_of(i);
-            match (c.kind, self.model.layout.is_some()) {
-                (ConstraintKind::Frame, true) => {
-                    row.extend((3..6).chain(0..3).map(|k| r.start + k))
-                }
-                _ => row.extend(r),
-            }
-        }
+        let force_first = self.model.layout.is_some();
         array2(py, j.nrows(), j.ncols(), |r, c| {
-            j[(row[r], self.model.v_index(c))]
+            j[(self.inner.source_row(r, force_first), self.model.v_index(c))]
         })
     }
 

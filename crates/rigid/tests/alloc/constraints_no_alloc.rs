@@ -1,13 +1,14 @@
 //! After `Data::new` and `ConstraintData::new`, the constrained algorithms allocate nothing:
 //! `constraint_dynamics` (exact and proximal), `impulse_dynamics`, `contact_inverse_dynamics`,
-//! and a step of the simulator with a closed loop, smooth or with a ground contact (counted by
+//! their derivatives (after their workspaces are made), and a step of the simulator with a closed loop, smooth or with a ground contact (counted by
 //! this binary's allocator, per thread).
 
 use super::allocations_in as allocations;
 use rigid::io::urdf::{load_urdf_with, SiblingOrder, UrdfOptions};
 use rigid::multibody::constraints::{
-    constraint_dynamics, contact_inverse_dynamics, impulse_dynamics, ConstraintData,
-    ConstraintKind, ConstraintModel, ProximalSettings,
+    constraint_dynamics, constraint_dynamics_derivatives, contact_inverse_dynamics,
+    impulse_dynamics, impulse_dynamics_derivatives, ConstraintData, ConstraintDynamicsDerivatives,
+    ConstraintKind, ConstraintModel, ImpulseDynamicsDerivatives, ProximalSettings,
 };
 use rigid::multibody::{neutral, Data};
 use rigid::simulation::{
@@ -56,6 +57,17 @@ fn constrained_algorithms_allocate_nothing() {
     let n = allocations(|| {
         contact_inverse_dynamics(&talos, &mut data, &mut cd, &q, &v, a.as_slice()).unwrap();
         impulse_dynamics(&talos, &mut data, &mut cd, &q, &v, 0.5, &exact).unwrap();
+    });
+    assert_eq!(n, 0);
+    let mut dd = ConstraintDynamicsDerivatives::new(&talos, &cd);
+    let mut di = ImpulseDynamicsDerivatives::new(&talos, &cd);
+    let n = allocations(|| {
+        for s in [&exact, &prox] {
+            constraint_dynamics_derivatives(&talos, &mut data, &mut cd, &q, &v, &tau, s, &mut dd)
+                .unwrap();
+            impulse_dynamics_derivatives(&talos, &mut data, &mut cd, &q, &v, 0.5, s, &mut di)
+                .unwrap();
+        }
     });
     assert_eq!(n, 0);
 

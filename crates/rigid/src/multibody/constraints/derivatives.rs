@@ -22,7 +22,7 @@
 
 use super::dynamics::joint_coords;
 use super::partials::{force_partials, residual_rows, BodyMotion, Level};
-use super::solver::{cholesky_solve, primal_rows};
+use super::solver::{primal_rows, proximal_iterations, z_transpose_times};
 use super::ProximalSettings;
 use super::{constraint_dynamics, impulse_dynamics, ConstraintData, ConstraintError};
 use crate::multibody::algorithms::ltl_solve_transposed;
@@ -78,8 +78,12 @@ struct Work {
     /// The point of linearisation: `q̈` (or `q̇⁺ − q̇⁻`), and `q̇` (or `q̇⁺ + e q̇⁻`).
     a: Vec<f64>,
     v: Vec<f64>,
+    /// Zero (nv): the acceleration of the velocity level.
+    zero: Vec<f64>,
+    /// One KKT column (nv, m), and scratch (m, m).
     x: Vec<f64>,
     y: Vec<f64>,
+    b: Vec<f64>,
     prev: Vec<f64>,
 }
 
@@ -92,8 +96,10 @@ impl Work {
             dQ: DMatrix::zeros(nv, nv),
             a: vec![0.0; nv],
             v: vec![0.0; nv],
+            zero: vec![0.0; nv],
             x: vec![0.0; nv],
             y: vec![0.0; m],
+            b: vec![0.0; m],
             prev: vec![0.0; m],
         }
     }
@@ -119,11 +125,10 @@ impl Work {
         self.dr_dq.fill(0.0);
         self.dr_dv.fill(0.0);
         self.dQ.fill(0.0);
-        let zero = vec![0.0; model.nv()];
         let a = if level == Level::Acceleration {
             &self.a
         } else {
-            &zero
+            &self.zero
         };
         for (i, c) in cdata.constraints.iter().enumerate() {
             let [b1, b2] = &mut self.bodies;
@@ -163,34 +168,19 @@ impl Work {
     /// (nv), `self.y = r̃_2` (m); on return `self.x = ∂q̈` and `self.y = ∂λ`.
     fn solve(&mut self, data: &Data, cd: &ConstraintData, settings: &ProximalSettings) {
         ltl_solve_transposed(data.chol.as_slice(), &data.dof_parent, &mut self.x);
-        let m = cd.dim();
-        for c in 0..cd.constraints.len() {
-            for r in cd.rows_of(c) {
-                let zx: f64 = cd.support[c]
-                    .cols
-                    .iter()
-                    .map(|&(k, _, _)| cd.z[(k, r)] * self.x[k])
-                    .sum();
-                self.y[r] -= zx;
-            }
+        // K y = r̃_2 − Zᵀ L⁻ᵀ r̃_1, by the forward solve's iterations on its factor of K + μ I
+        z_transpose_times(cd, &self.x, &mut self.b);
+        for (b, y) in self.b.iter_mut().zip(&self.y) {
+            *b = y - *b;
         }
-        // K y = b by the proximal iterations on the factor of K + μ I
-        let mu = settings.mu;
-        let b = self.y.clone();
-        self.prev.fill(0.0);
-        let iters = if mu == 0.0 { 1 } else { settings.max_iter };
-        for _ in 0..iters {
-            for i in 0..m {
-                self.y[i] = b[i] + mu * self.prev[i];
-            }
-            cholesky_solve(&cd.chol, m, &mut self.y);
-            let rel = (0..m).fold(0.0f64, |s, i| s.max((self.y[i] - self.prev[i]).abs()));
-            self.prev.copy_from_slice(&self.y);
-            let scale = b.iter().fold(1.0f64, |s, x| s.max(x.abs()));
-            if rel <= settings.relative_accuracy * scale {
-                break;
-            }
-        }
+        proximal_iterations(
+            &cd.delassus,
+            &cd.chol,
+            &self.b,
+            &mut self.y,
+            &mut self.prev,
+            settings,
+        );
         let n = cd.constraints.len();
         primal_rows(
             data,
@@ -278,10 +268,11 @@ pub fn constraint_dynamics_derivatives(
     let w = &mut out.work;
     w.a.copy_from_slice(cdata.ddq.as_slice());
     w.v.copy_from_slice(v);
-    let lambda = cdata.lambda.as_slice()[..cdata.dim()].to_vec();
-    w.partials(model, data, cdata, q, &lambda, Level::Acceleration)?;
-    let d = rnea_derivatives(model, data, q, v, &w.a)?;
-    let (dtau_dq, dtau_dv) = (d.dtau_dq.clone(), d.dtau_dv.clone());
+    let lambda = &cdata.lambda.as_slice()[..cdata.dim()];
+    w.partials(model, data, cdata, q, lambda, Level::Acceleration)?;
+    rnea_derivatives(model, data, q, v, &w.a)?;
+    let data = &*data;
+    let (dtau_dq, dtau_dv) = (&data.derivatives.dtau_dq, &data.derivatives.dtau_dv);
     let nv = model.nv();
     for k in 0..nv {
         // q
@@ -358,17 +349,20 @@ pub fn impulse_dynamics_derivatives(
         w.a[k] = cdata.dq_plus[k] - v_before[k];
         w.v[k] = cdata.dq_plus[k] + restitution * v_before[k];
     }
-    let impulse = cdata.impulse.as_slice()[..cdata.dim()].to_vec();
-    w.partials(model, data, cdata, q, &impulse, Level::Velocity)?;
-    // ∂(M x)/∂q = ∂RNEA(q, 0, x)/∂q − ∂g/∂q, x = q̇⁺ − q̇⁻
-    let dg = gravity_derivatives(model, data, q)?.clone();
-    let zero = vec![0.0; nv];
-    let d = rnea_derivatives(model, data, q, &zero, &w.a)?;
-    let dMx = d.dtau_dq - dg;
-    let M = d.dtau_da.clone();
+    let impulse = &cdata.impulse.as_slice()[..cdata.dim()];
+    w.partials(model, data, cdata, q, impulse, Level::Velocity)?;
+    // ∂(M x)/∂q = ∂RNEA(q, 0, x)/∂q − ∂g/∂q, x = q̇⁺ − q̇⁻ (RNEA's pass leaves `dg_dq` as it is)
+    gravity_derivatives(model, data, q)?;
+    rnea_derivatives(model, data, q, &w.zero, &w.a)?;
+    let data = &*data;
+    let (drnea, dg, M) = (
+        &data.derivatives.dtau_dq,
+        &data.derivatives.dg_dq,
+        &data.mass_matrix,
+    );
     for k in 0..nv {
         for i in 0..nv {
-            w.x[i] = w.dQ[(i, k)] - dMx[(i, k)];
+            w.x[i] = w.dQ[(i, k)] - (drnea[(i, k)] - dg[(i, k)]);
         }
         for r in 0..cdata.dim() {
             w.y[r] = -w.dr_dq[(r, k)];

@@ -62,7 +62,7 @@ pub fn constraint_dynamics<'a>(
     );
     let m = cdata.dim();
     let mut b = std::mem::take(&mut cdata.b);
-    z_transpose_times(cdata, &cdata.w, &mut b.as_mut_slice()[..m]);
+    z_transpose_times(cdata, cdata.w.as_slice(), &mut b.as_mut_slice()[..m]);
     for r in 0..m {
         b[r] = -cdata.gamma[r] - b[r];
     }

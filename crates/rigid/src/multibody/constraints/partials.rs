@@ -82,8 +82,9 @@ impl BodyMotion {
         (pd, self.A.v + self.A.w.cross(p) + self.V.w.cross(&pd))
     }
 
-    /// Column k of the point's derivatives: `(u_k, ∂ṗ/∂q_k, ∂p̈/∂q_k, ∂p̈/∂q̇_k)` (`∂ṗ/∂q̇_k = u_k`).
-    fn point_col(&self, p: &Vec3, k: usize) -> [Vec3; 4] {
+    /// Column k of the derivatives of the point `p` whose velocity is `pd`:
+    /// `(u_k, ∂ṗ/∂q_k, ∂p̈/∂q_k, ∂p̈/∂q̇_k)` (`∂ṗ/∂q̇_k = u_k`).
+    fn point_col(&self, p: &Vec3, pd: &Vec3, k: usize) -> [Vec3; 4] {
         let (S, dV, dAq, dAv) = (
             col(&self.S, k),
             col(&self.dV, k),
@@ -91,11 +92,10 @@ impl BodyMotion {
             col(&self.dA_dv, k),
         );
         let (w, alpha) = (self.V.w, self.A.w);
-        let (pd, _) = self.point(p);
         let u = S.v + S.w.cross(p);
         let dpd_q = dV.v + dV.w.cross(p) + w.cross(&u);
-        let dpdd_q = dAq.v + dAq.w.cross(p) + alpha.cross(&u) + dV.w.cross(&pd) + w.cross(&dpd_q);
-        let dpdd_v = dAv.v + dAv.w.cross(p) + S.w.cross(&pd) + w.cross(&u);
+        let dpdd_q = dAq.v + dAq.w.cross(p) + alpha.cross(&u) + dV.w.cross(pd) + w.cross(&dpd_q);
+        let dpdd_v = dAv.v + dAv.w.cross(p) + S.w.cross(pd) + w.cross(&u);
         [u, dpd_q, dpdd_q, dpdd_v]
     }
 }
@@ -154,7 +154,7 @@ pub(crate) fn residual_rows(
             };
             for &(k, _, _) in cols {
                 let ([u1, dpd1, dpdd1, dv1], [u2, dpd2, dpdd2, dv2]) =
-                    (b1.point_col(&p1, k), b2.point_col(&p2, k));
+                    (b1.point_col(&p1, &pd1, k), b2.point_col(&p2, &pd2, k));
                 let (mut xq, xv) = if accel {
                     (
                         (dpdd1 - dpdd2) + (dpd1 - dpd2) * kd + (u1 - u2) * kp,
@@ -222,15 +222,10 @@ pub(crate) fn residual_rows(
             }
         }
         ConstraintKind::JointCoordinate { polycoef } => {
+            // the other columns of the row stay zero
             let Some(((_, _, k1), j2)) = joints else {
                 return;
             };
-            for &(k, _, _) in cols {
-                dq[(row, k)] = 0.0;
-                if accel {
-                    dv[(row, k)] = 0.0;
-                }
-            }
             if accel {
                 dq[(row, k1)] = kp;
                 dv[(row, k1)] = kd;
@@ -274,21 +269,22 @@ pub(crate) fn force_partials(
 ) {
     let local = c.reference == ReferenceFrame::Body;
     let (p1, p2, R1) = (pl.oMc1.translation, pl.oMc2.translation, pl.oMc1.rotation);
-    // F_b and ∂F_b/∂q_j (b = 0, 1) from the columns of S_1 and S_b at j
-    let (F1, point_force) = match c.kind {
+    // F_1, F_2, and the point force f of a point constraint
+    let (F1, F2, point) = match c.kind {
         ConstraintKind::Point => {
             let l = Vec3::new(lambda[0], lambda[1], lambda[2]);
             let f = if local { R1 * l } else { l };
-            (Wrench::new(p1.cross(&f), f), Some(f))
+            let F1 = Wrench::new(p1.cross(&f), f);
+            (F1, -Wrench::new(p2.cross(&f), f), Some(f))
         }
         ConstraintKind::Frame => {
             let w = Wrench::from_slice(lambda);
-            let F = if local {
+            let F1 = if local {
                 pl.oMc1.act_wrench(&w)
             } else {
                 Wrench::new(w.m + p1.cross(&w.f), w.f)
             };
-            (F, None)
+            (F1, -F1, None)
         }
         ConstraintKind::JointCoordinate { polycoef } => {
             if let Some((_, Some((q2, _, k2)))) = joints {
@@ -297,33 +293,29 @@ pub(crate) fn force_partials(
             return;
         }
     };
-    let F = |b: usize| match point_force {
-        Some(f) if b == 1 => -Wrench::new(p2.cross(&f), f),
-        _ if b == 1 => -F1,
-        _ => F1,
-    };
-    let dF = |b: usize, S1: &Twist, Sb: &Twist| match point_force {
-        Some(f) => {
-            let (p, s) = if b == 0 { (p1, 1.0) } else { (p2, -1.0) };
-            let u = Sb.v + Sb.w.cross(&p);
-            let df = if local { S1.w.cross(&f) } else { Vec3::zeros() };
-            Wrench::new(u.cross(&f) + p.cross(&df), df) * s
-        }
-        None => {
-            let s = if b == 0 { 1.0 } else { -1.0 };
-            let G = if local {
-                -S1.ad_transpose(&F1)
-            } else {
-                Wrench::new((S1.v + S1.w.cross(&p1)).cross(&F1.f), Vec3::zeros())
-            };
-            G * s
-        }
-    };
+    let ends = [(b1, F1, p1, 1.0), (b2, F2, p2, -1.0)];
     for &(j, _, _) in cols {
         let S1j = col(&b1.S, j);
-        for (b, body) in [b1, b2].into_iter().enumerate() {
+        // ∂F_1/∂q_j of a frame constraint (∂F_2 = −∂F_1); zero off body 1's chain
+        let G = if local {
+            -S1j.ad_transpose(&F1)
+        } else {
+            Wrench::new((S1j.v + S1j.w.cross(&p1)).cross(&F1.f), Vec3::zeros())
+        };
+        for (b, (body, Fb, p, s)) in ends.iter().enumerate() {
             let Sbj = col(&body.S, j);
-            let (Fb, Gb) = (F(b), dF(b, &S1j, &Sbj));
+            let Gb = match point {
+                Some(f) => {
+                    let u = Sbj.v + Sbj.w.cross(p);
+                    let df = if local {
+                        S1j.w.cross(&f)
+                    } else {
+                        Vec3::zeros()
+                    };
+                    Wrench::new(u.cross(&f) + p.cross(&df), df) * *s
+                }
+                None => G * *s,
+            };
             for &(k, on1, on2) in cols {
                 if !(if b == 0 { on1 } else { on2 }) {
                     continue;
@@ -331,7 +323,7 @@ pub(crate) fn force_partials(
                 let Sk = col(&body.S, k);
                 let mut t = Sk.dot(&Gb);
                 if j <= k || model.dof_joint(j) == model.dof_joint(k) {
-                    t += Sbj.cross(&Sk).dot(&Fb);
+                    t += Sbj.cross(&Sk).dot(Fb);
                 }
                 dQ[(k, j)] += t;
             }

@@ -113,7 +113,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// `y = Zᵀ x` over the supports (`y` of length m).
-pub(crate) fn z_transpose_times(cd: &ConstraintData, x: &DVector<f64>, y: &mut [f64]) {
+pub(crate) fn z_transpose_times(cd: &ConstraintData, x: &[f64], y: &mut [f64]) {
     for c in 0..cd.placements.len() {
         for r in cd.rows[c]..cd.rows[c + 1] {
             y[r] = cd.support[c]
@@ -247,14 +247,28 @@ pub(crate) fn proximal_solve(
     settings: &ProximalSettings,
 ) -> Result<SolverStats, ConstraintError> {
     let n = b.len();
-    let mu = settings.mu;
     for i in 0..n {
         for k in 0..=i {
             chol[(i, k)] = K[(i, k)];
         }
-        chol[(i, i)] += mu;
+        chol[(i, i)] += settings.mu;
     }
     cholesky(chol, n)?;
+    Ok(proximal_iterations(K, chol, b, x, prev, settings))
+}
+
+/// The iterations of [`proximal_solve`] on the factor `chol` of `K + μ I` it made (and kept:
+/// the derivatives of the constrained dynamics run them on each column).
+pub(crate) fn proximal_iterations(
+    K: &DMatrix<f64>,
+    chol: &DMatrix<f64>,
+    b: &[f64],
+    x: &mut [f64],
+    prev: &mut [f64],
+    settings: &ProximalSettings,
+) -> SolverStats {
+    let n = b.len();
+    let mu = settings.mu;
     prev.fill(0.0);
     let mut stats = SolverStats::default();
     let max_iter = if mu == 0.0 { 1 } else { settings.max_iter };
@@ -287,7 +301,7 @@ pub(crate) fn proximal_solve(
             break;
         }
     }
-    Ok(stats)
+    stats
 }
 
 /// The minimum-norm least-squares solution `y = G⁺ b` of a symmetric positive semi-definite

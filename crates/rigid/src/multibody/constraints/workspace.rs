@@ -147,20 +147,33 @@ impl ConstraintData {
     }
 
     /// Per-constraint numbers (`λ`, an impulse, `γ`; `dim()` of them) in Pinocchio's order: each
-    /// frame constraint's `(m, f)` written `(f, m)`, linear first; the others as they are.
+    /// frame constraint's `(m, f)` written `(f, m)`, linear first; the others as they are
+    /// (`out[r] = x[source_row(r, true)]`).
     ///
     /// # Panics
     /// If `x` or `out` is shorter than [`dim`](Self::dim).
     pub fn force_first(&self, x: &[f64], out: &mut [f64]) {
-        for (i, c) in self.constraints.iter().enumerate() {
-            let r = self.rows_of(i);
-            match c.kind {
-                super::ConstraintKind::Frame => {
-                    out[r.start..r.start + 3].copy_from_slice(&x[r.start + 3..r.end]);
-                    out[r.start + 3..r.end].copy_from_slice(&x[r.start..r.start + 3]);
-                }
-                _ => out[r.clone()].copy_from_slice(&x[r]),
+        for (r, o) in out[..self.dim()].iter_mut().enumerate() {
+            *o = x[self.source_row(r, true)];
+        }
+    }
+
+    /// The row of rigid's order (a wrench moment first) that row `r` of the output takes: `r`
+    /// itself, or with `force_first` (Pinocchio's order) the other half of a frame constraint's
+    /// six rows. The one home of that order for vectors ([`force_first`](Self::force_first))
+    /// and for matrices of constraint rows (`J`, `∂λ/∂q`, …).
+    ///
+    /// # Panics
+    /// If `r >= dim()`.
+    #[must_use]
+    pub fn source_row(&self, r: usize, force_first: bool) -> usize {
+        let c = self.rows.partition_point(|&start| start <= r) - 1;
+        match self.constraints[c].kind {
+            super::ConstraintKind::Frame if force_first => {
+                let start = self.rows[c];
+                start + (r - start + 3) % 6
             }
+            _ => r,
         }
     }
 
