@@ -234,6 +234,16 @@ impl CollisionData {
             }
         }
     }
+
+    /// The radius of the balls geometry `k` meets the ground with (a sphere, a capsule's ends:
+    /// its points nearest the plane are `c − ρ n`, `c` fixed in the body); 0 for the shapes
+    /// that meet it at vertices.
+    pub(crate) fn ball_radius(&self, k: usize) -> f64 {
+        match self.shapes[k].kind {
+            super::shape::PlaneTest::Balls(r, _, _) => r,
+            _ => 0.0,
+        }
+    }
 }
 
 /// Two contact points of one pair of geometries closer than this (m) are one.

@@ -57,11 +57,14 @@ pub(crate) struct ContactStepper {
     #[cfg(feature = "collision")]
     points: Vec<ContactPoint>,
     a: Vec<f64>,
-    v_step: Vec<f64>,
-    dq: Vec<f64>,
+    pub(crate) v_step: Vec<f64>,
+    /// The velocity after the contact impulses, before the world-aligned update turns the
+    /// free-flyers' part to their new axes.
+    pub(crate) v_plus: Vec<f64>,
+    pub(crate) dq: Vec<f64>,
     zeros: Vec<f64>,
     /// The lone free bodies, stepped by the implicit midpoint ([`free_body`](super::free_body)).
-    free: FreeBodies,
+    pub(crate) free: FreeBodies,
     /// The energy the contact impulses took since the start (J): minus the sum of their work
     /// ([`ContactStats::work`]).
     pub(crate) dissipated: f64,
@@ -79,6 +82,7 @@ impl ContactStepper {
             points: Vec::new(),
             a: vec![0.0; nv],
             v_step: vec![0.0; nv],
+            v_plus: vec![0.0; nv],
             dq: vec![0.0; nv],
             zeros: vec![0.0; nv],
             free: FreeBodies::new(model),
@@ -192,6 +196,7 @@ pub(crate) fn contact_step<C: Control>(
             cs.v_step[k] = v_new[k] + cs.dq[k] / h;
         }
     }
+    cs.v_plus.copy_from_slice(v_new);
     integrate_world_aligned(model, q, &cs.v_step, h, q_new, v_new);
     Ok(())
 }

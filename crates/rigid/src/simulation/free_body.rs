@@ -109,24 +109,9 @@ impl FreeBodies {
         v_free: &mut [f64],
     ) {
         for (n, &(_, d)) in self.joints.iter().enumerate() {
-            let (g, i, f) = (&self.inertia[n], &self.body[n], &self.rhs[n]);
+            let f = &self.rhs[n];
             let v0 = Vec6::from_column_slice(&v[d..d + 6]);
-            // the torque-free flow: G (W − V)/h = adᵀ_{W_m} I W_m, from W = V
-            let mut x = v0;
-            for _ in 0..MAX_ITERATIONS {
-                let vm = Twist::from_vector(&((v0 + x) * 0.5));
-                let p = Wrench::from_vector(&(i * vm.to_vector()));
-                let residual = g * (x - v0) - vm.ad_transpose(&p).to_vector() * h;
-                // ∂/∂x of adᵀ_{W_m} I W_m = ½ (adᵀ_{W_m} I + C(I W_m)), with adᵀ_u w = C(w) u
-                let jac = g - (vm.ad().transpose() * i + coad(&p)) * (0.5 * h);
-                let Some(step) = jac.lu().solve(&residual) else {
-                    break;
-                };
-                x -= step;
-                if step.norm() <= TOLERANCE * (x.norm() + v0.norm() + 1.0) {
-                    break;
-                }
-            }
+            let x = self.midpoint(n, &v0, h);
             // W is in the body axes after the turn ΔR = exp(h ω_W); turned by ΔR into the axes
             // of the step's start (which the world-aligned configuration update turns back by
             // the same ΔR when nothing else acts: exp(h ΔR ω_W) = ΔR), with the kick of the
@@ -139,6 +124,73 @@ impl FreeBodies {
             let l = turn * x.fixed_rows::<3>(3) + kick.fixed_rows::<3>(3);
             v_free[d..d + 3].copy_from_slice(w.as_slice());
             v_free[d + 3..d + 6].copy_from_slice(l.as_slice());
+        }
+    }
+
+    /// The torque-free flow of body `n` over `h` from `v0`: `G (W − V)/h = adᵀ_{W_m} I W_m`,
+    /// `W_m = (V + W)/2`, by Newton's method from `W = V`.
+    fn midpoint(&self, n: usize, v0: &Vec6, h: f64) -> Vec6 {
+        let (g, i) = (&self.inertia[n], &self.body[n]);
+        let mut x = *v0;
+        for _ in 0..MAX_ITERATIONS {
+            let vm = Twist::from_vector(&((v0 + x) * 0.5));
+            let p = Wrench::from_vector(&(i * vm.to_vector()));
+            let residual = g * (x - v0) - vm.ad_transpose(&p).to_vector() * h;
+            // ∂/∂x of adᵀ_{W_m} I W_m = ½ (adᵀ_{W_m} I + C(I W_m)), with adᵀ_u w = C(w) u
+            let jac = g - (vm.ad().transpose() * i + coad(&p)) * (0.5 * h);
+            let Some(step) = jac.lu().solve(&residual) else {
+                break;
+            };
+            x -= step;
+            if step.norm() <= TOLERANCE * (x.norm() + v0.norm() + 1.0) {
+                break;
+            }
+        }
+        x
+    }
+
+    /// The first dof of each lone body.
+    #[cfg(feature = "collision")]
+    pub(crate) fn first_dofs(&self) -> impl Iterator<Item = usize> + '_ {
+        self.joints.iter().map(|&(_, d)| d)
+    }
+
+    /// `∂(ΔR W)/∂V` of each lone body (6 x 6, written at its dofs of `out`): the derivative of
+    /// its torque-free free velocity with respect to the velocity at the step's start, the
+    /// implicit function theorem on the midpoint rule, `∂W/∂V = (G − ½h D)⁻¹ (G + ½h D)`,
+    /// `D = adᵀ_{W_m} I + C(I W_m)`, then the turn `ΔR = exp(h ω_W)`:
+    /// `∂(ΔR u) = ΔR ∂u − h ΔR [u]× J_r(h ω_W) ∂ω_W` for each half `u` of `W`.
+    #[cfg(feature = "collision")]
+    pub(crate) fn velocity_jacobian(&self, v: &[f64], h: f64, out: &mut nalgebra::DMatrix<f64>) {
+        for (n, &(_, d)) in self.joints.iter().enumerate() {
+            let (g, i) = (&self.inertia[n], &self.body[n]);
+            let v0 = Vec6::from_column_slice(&v[d..d + 6]);
+            let x = self.midpoint(n, &v0, h);
+            let vm = Twist::from_vector(&((v0 + x) * 0.5));
+            let p = Wrench::from_vector(&(i * vm.to_vector()));
+            let dd = (vm.ad().transpose() * i + coad(&p)) * (0.5 * h);
+            let dx = (g - dd)
+                .lu()
+                .solve(&(g + dd))
+                .unwrap_or_else(Mat6::identity);
+            let w = x.fixed_rows::<3>(0).into_owned();
+            let turn = so3::exp(&(w * h));
+            let jr = crate::multibody::se3_right_jacobian(&Twist::new(
+                w * h,
+                crate::spatial::Vec3::zeros(),
+            ))
+            .fixed_view::<3, 3>(0, 0)
+            .into_owned();
+            let mut dy = Mat6::zeros();
+            for half in [0, 3] {
+                let u = x.fixed_rows::<3>(half).into_owned();
+                dy.fixed_view_mut::<3, 3>(half, half).copy_from(&turn);
+                let rot = -(turn * u.cross_matrix() * jr) * h;
+                let mut b = dy.fixed_view_mut::<3, 3>(half, 0);
+                b += rot;
+            }
+            let phi = dy * dx;
+            out.view_mut((d, d), (6, 6)).copy_from(&phi);
         }
     }
 }

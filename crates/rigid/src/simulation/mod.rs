@@ -45,6 +45,8 @@ mod scenario;
 mod simulator;
 #[cfg(feature = "collision")]
 mod stance;
+#[cfg(feature = "collision")]
+mod step_derivatives;
 mod trajectory;
 
 #[cfg(feature = "parallel")]
@@ -53,6 +55,8 @@ pub use control::{Control, ControlKind, ControlLaw, Controller};
 pub use loops::{ConstraintOptions, Violation, MAX_INITIAL_VIOLATION};
 pub use scenario::{Scenario, Start};
 pub use simulator::Simulator;
+#[cfg(feature = "collision")]
+pub use step_derivatives::{ContactMode, StepDerivatives};
 pub use trajectory::{JointTrajectory, PosePath, PoseTrajectory, TimeScaling};
 
 use crate::multibody::MultibodyError;
@@ -105,6 +109,10 @@ pub enum SimulationError {
     /// A bad option or parameter (the message says which).
     #[error("{0}")]
     Invalid(String),
+    /// A simulator whose step [`Simulator::step_derivatives`] does not differentiate (the
+    /// message says why).
+    #[error("step derivatives: {0}")]
+    NotDifferentiable(&'static str),
     /// A controller name that is not one of [`ControlKind`]'s.
     #[error("unknown controller {name:?}: expected none, gravity, pd or track")]
     UnknownController {

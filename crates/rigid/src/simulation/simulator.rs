@@ -75,6 +75,47 @@ impl<C: Control> Dynamics<C> {
         Ok(())
     }
 
+    /// The diagonal partials `∂τ_passive/∂q` and `∂τ_passive/∂v` of [`torques`](Self::torques)'s
+    /// passive part (joint damping and friction, limit springs) into `dq`, `dv`.
+    #[cfg(feature = "collision")]
+    pub(crate) fn passive_partials(&self, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) {
+        let m = &self.model;
+        let opts = &self.options;
+        dq.fill(0.0);
+        dv.fill(0.0);
+        if opts.joint_dynamics {
+            for k in 0..m.nv {
+                let t = (v[k] / opts.friction_speed).tanh();
+                dv[k] = -m.damping[k] - m.friction[k] * (1.0 - t * t) / opts.friction_speed;
+            }
+        }
+        if let JointLimits::Spring {
+            time_constant: tc,
+            damping_ratio: zeta,
+        } = opts.limits
+        {
+            for j in m.joints() {
+                if j.nq != 1 || j.nv != 1 {
+                    continue;
+                }
+                let (x, k) = (q[j.idx_q], j.idx_v);
+                let (lo, hi) = (m.lower[j.idx_q], m.upper[j.idx_q]);
+                let d = self.limit_inertia[k];
+                let pushing = if x > hi {
+                    -d * ((x - hi) / (tc * tc) + 2.0 * zeta * v[k] / tc) < 0.0
+                } else if x < lo {
+                    -d * ((x - lo) / (tc * tc) + 2.0 * zeta * v[k] / tc) > 0.0
+                } else {
+                    false
+                };
+                if pushing {
+                    dq[k] -= d / (tc * tc);
+                    dv[k] -= 2.0 * d * zeta / tc;
+                }
+            }
+        }
+    }
+
     /// `a = q̈(t, q, v)` by ABA with every force, or by the constrained dynamics when there are
     /// bilateral constraints.
     pub(crate) fn acceleration(

@@ -52,9 +52,11 @@
 // loops over several per-row arrays at once read better indexed
 #![allow(clippy::needless_range_loop)]
 
+#[cfg(feature = "collision")]
+mod rows;
 mod solver;
 
-pub(crate) use solver::ContactSolver;
+pub(crate) use solver::{Block, ContactSolver};
 
 /// The solver's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -22,30 +22,35 @@ use nalgebra::DMatrix;
 /// One row block of the problem: a contact (3 rows: normal, two tangents), a joint limit
 /// (1 row) or a bilateral constraint (1, 3 or 6 rows).
 #[derive(Clone, Copy, Debug)]
-struct Block {
+pub(crate) struct Block {
     /// First row.
-    row: usize,
+    pub(crate) row: usize,
     /// 3 (contact), 1 (limit), or the constraint's rows (bilateral).
-    dim: usize,
+    pub(crate) dim: usize,
     /// A bilateral constraint (its rows in the leading bilateral group).
-    bilateral: bool,
+    pub(crate) bilateral: bool,
     /// `μ` (0 for a limit).
-    friction: f64,
+    pub(crate) friction: f64,
     /// `e`.
-    restitution: f64,
+    pub(crate) restitution: f64,
     /// `φ` (m or rad).
-    gap: f64,
+    pub(crate) gap: f64,
     /// The contact frame `(n, t1, t2)` in the world (a limit: unused).
-    frame: [Vec3; 3],
+    pub(crate) frame: [Vec3; 3],
     /// The impulse of the same contact at the last step (the warm start).
-    warm: [f64; 6],
+    pub(crate) warm: [f64; 6],
     /// The approach speed of an impact whose gap closed in the last step (0: none).
-    impact: f64,
+    pub(crate) impact: f64,
     /// The kinetic energy the rebound of that impact may give back (J): `e²` times what the
     /// contact took when its gap closed.
-    credit: f64,
+    pub(crate) credit: f64,
     /// The approach speed if the gap closes in this step (0: it does not).
-    closing: f64,
+    pub(crate) closing: f64,
+    /// The normal target of this step's velocity solve: `−φ/h` (true), or a constant or a
+    /// rebound (false).
+    pub(crate) gap_target: bool,
+    /// The normal target is the rebound `e |σ_n⁻|` of a contact found touching and approaching.
+    pub(crate) rebound_target: bool,
 }
 
 /// What a contact of one step leaves to the next: the same pair of geometries (or the same
@@ -71,25 +76,30 @@ pub(crate) struct ContactSolver {
     nv: usize,
     /// Per joint: the dofs of its chain to the root, ascending.
     chains: Vec<Vec<usize>>,
-    blocks: Vec<Block>,
+    pub(crate) blocks: Vec<Block>,
     /// The contact points given, in block order (limits excluded).
     #[cfg(feature = "collision")]
     pub(crate) points: Vec<ContactPoint>,
     /// The impulse (N·s, world axes) of each of `points` on its body 1, as last solved.
     pub(crate) impulses: Vec<Vec3>,
     /// First row of each block, and the total at the end.
-    rows: Vec<usize>,
+    pub(crate) rows: Vec<usize>,
     /// Per block, its support (a pool: only the first `blocks.len()` are in use).
-    support: Vec<Support>,
+    pub(crate) support: Vec<Support>,
     /// Rows of `J` (capacity x nv); only each block's support columns are written.
-    jacobian: DMatrix<f64>,
+    pub(crate) jacobian: DMatrix<f64>,
     z: Vec<f64>,
     delassus: Vec<f64>,
     sigma_free: Vec<f64>,
     sigma_before: Vec<f64>,
-    target: Vec<f64>,
-    lambda: Vec<f64>,
-    sigma: Vec<f64>,
+    pub(crate) target: Vec<f64>,
+    pub(crate) lambda: Vec<f64>,
+    pub(crate) sigma: Vec<f64>,
+    /// The position correction's impulses and contact velocities (`lambda` keeps the velocity
+    /// solve's).
+    pub(crate) mu: Vec<f64>,
+    sigma_mu: Vec<f64>,
+    target_mu: Vec<f64>,
     x: Vec<f64>,
     /// The rows of the bilateral group (the leading rows), and the Cholesky factor of
     /// `K_BB + ρ I` (`None` until a step has bilateral rows).
@@ -153,6 +163,9 @@ impl ContactSolver {
             target: Vec::new(),
             lambda: Vec::new(),
             sigma: Vec::new(),
+            mu: Vec::new(),
+            sigma_mu: Vec::new(),
+            target_mu: Vec::new(),
             x: vec![0.0; nv],
             bilateral_rows: 0,
             bilateral_factor: DMatrix::zeros(0, 0),
@@ -196,6 +209,9 @@ impl ContactSolver {
             &mut self.target,
             &mut self.lambda,
             &mut self.sigma,
+            &mut self.mu,
+            &mut self.sigma_mu,
+            &mut self.target_mu,
         ] {
             v.resize(cap, 0.0);
         }
@@ -219,7 +235,7 @@ impl ContactSolver {
     }
 
     /// The rows so far.
-    fn m(&self) -> usize {
+    pub(crate) fn m(&self) -> usize {
         self.rows[self.blocks.len()]
     }
 
@@ -280,6 +296,8 @@ impl ContactSolver {
             impact: 0.0,
             credit: 0.0,
             closing: 0.0,
+            gap_target: false,
+            rebound_target: false,
         };
         let key = (c.geometries.0, c.geometries.1.unwrap_or(usize::MAX));
         let row = self.push_block(block, key, c.point);
@@ -319,6 +337,8 @@ impl ContactSolver {
             impact: 0.0,
             credit: 0.0,
             closing: 0.0,
+            gap_target: false,
+            rebound_target: false,
         };
         let key = (usize::MAX - 1, 2 * dof + usize::from(sign > 0.0));
         let row = self.push_block(block, key, Vec3::zeros());
@@ -350,6 +370,8 @@ impl ContactSolver {
                 impact: 0.0,
                 credit: 0.0,
                 closing: 0.0,
+                gap_target: false,
+                rebound_target: false,
             };
             let row = self.push_block(block, (usize::MAX - 2, i), Vec3::zeros());
             let b = self.blocks.len() - 1;
@@ -486,10 +508,14 @@ impl ContactSolver {
                     0.0
                 }
             };
+            b.gap_target = true;
+            b.rebound_target = false;
             let target = if b.impact > 0.0 {
                 // the gap closed in the last step: the impact happens now
                 credit += b.credit;
-                rebound(b.impact).max(-b.gap / h)
+                let r = rebound(b.impact);
+                b.gap_target = -b.gap / h >= r;
+                r.max(-b.gap / h)
             } else if b.gap > 0.0 {
                 let (s0, s1) = (self.sigma_before[r], self.sigma_free[r]);
                 if b.gap + h * s1 < 0.0 && b.restitution > 0.0 {
@@ -500,7 +526,10 @@ impl ContactSolver {
                 }
                 -b.gap / h
             } else {
-                rebound(-self.sigma_before[r])
+                let r = rebound(-self.sigma_before[r]);
+                b.gap_target = false;
+                b.rebound_target = r > 0.0;
+                r
             };
             self.target[r] = target;
             for i in 1..b.dim {
@@ -643,23 +672,24 @@ impl ContactSolver {
     ) {
         dq.fill(0.0);
         let beta = settings.stabilization;
+        let m = self.m();
+        self.mu[..m].fill(0.0);
         if (self.stats.penetration <= 0.0 && self.bilateral_error == 0.0) || beta == 0.0 {
             return;
         }
-        let m = self.m();
         for b in &self.blocks {
             if b.bilateral {
                 continue; // set by `set_bilateral_targets`
             }
-            self.target[b.row] = beta * (-b.gap).max(0.0) / h;
+            self.target_mu[b.row] = beta * (-b.gap).max(0.0) / h;
             for i in 1..b.dim {
-                self.target[b.row + i] = 0.0;
+                self.target_mu[b.row + i] = 0.0;
             }
         }
         for (r, e) in self.bilateral_e.iter().enumerate() {
-            self.target[r] = -beta * e / h;
+            self.target_mu[r] = -beta * e / h;
         }
-        let (lambda, sigma) = (&mut self.lambda[..m], &mut self.sigma[..m]);
+        let (lambda, sigma) = (&mut self.mu[..m], &mut self.sigma_mu[..m]);
         lambda.fill(0.0);
         sigma.fill(0.0);
         pgs(
@@ -671,7 +701,7 @@ impl ContactSolver {
                 &mut self.bilateral_step[..self.bilateral_rows],
                 &self.bilateral_idle[..self.bilateral_rows],
             ),
-            &self.target[..m],
+            &self.target_mu[..m],
             lambda,
             sigma,
             settings,
@@ -682,7 +712,7 @@ impl ContactSolver {
             &self.rows,
             &self.support[..self.blocks.len()],
             &self.z,
-            &self.lambda[..m],
+            &self.mu[..m],
             dq,
         );
         for x in dq.iter_mut() {

@@ -8,6 +8,7 @@
 mod closed_form;
 mod energy;
 mod robots;
+mod step_derivatives;
 mod wheels;
 mod world;
 

@@ -1,0 +1,228 @@
+//! The rows of the contact problem as functions of the configuration, for the derivatives of a
+//! step ([`step_derivatives`](crate::simulation::Simulator::step_derivatives)): the dense `J`,
+//! `∂(J(q) x)/∂q` at a fixed velocity `x` and `∂(J(q)ᵀ λ)/∂q` at fixed impulses, each along
+//! `q ⊕ δ`.
+//!
+//! A contact row is `J_d x = Σ_b s_b d · (v_b + ω_b × p)` over the contact's bodies (`s = +1`
+//! for body 1, `−1` for body 2), `(ω_b, v_b) = S_b x` the spatial twist of body b (world axes,
+//! at the world origin), `p` the contact point and `d` one of the frame's directions `(n, t₁,
+//! t₂)`. With `∂(S_b x)/∂q_k` from [`joint_kinematics_derivatives`] and `u_k = ∂p/∂q_k`:
+//!
+//! `∂(J_d x)/∂q_k = Σ_b s_b (d · ∂v_b/∂q_k + (p × d) · ∂ω_b/∂q_k + d · (ω_b × u_k))`.
+//!
+//! The generalised force of the world force `f = Σ_d λ_d d` at `p` is `Q_k = Σ_b s_b S_kᵀ F`,
+//! `F = (p × f, f)`, and (Carpentier & Mansard 2018, §III: `∂S_k/∂q_j = S_j × S_k` for `j` on
+//! `k`'s chain up to `k`'s own joint)
+//!
+//! `∂Q_k/∂q_j = Σ_b s_b (S_kᵀ (u_j × f, 0) + [j ⪯ k] (S_j × S_k)ᵀ F)`.
+//!
+//! How the point moves, `u_k`: a ground contact's point is `p = x − (φ/2) n`, `x` the shape's
+//! point nearest the plane and `φ = n·x − height`, so `u = u_x − ½ (n·u_x) n`; `x` is a vertex
+//! fixed in the body (a box, a mesh's hull) or, for a ball of radius `ρ` (a sphere, a capsule's
+//! end), `c − ρ n` with the centre `c` fixed in the body: `u_x = S_k.v + S_k.ω × a`,
+//! `a = x + ρ n`. Cylinders and cones (parry's support point) are taken as vertices: exact on a
+//! flat face, first order off where a rim rolls. Between two bodies the point is taken as
+//! fixed in body 1 and the frame as fixed in the world: the turn of the normal with the two
+//! bodies is not in these partials (a documented limit). Joint limits' rows are constant.
+
+use super::solver::ContactSolver;
+use crate::multibody::{
+    joint_kinematics_derivatives, Data, JointId, Model, MultibodyError, ReferenceFrame,
+};
+use crate::spatial::{Twist, Vec3, Wrench};
+use nalgebra::DMatrix;
+
+/// The spatial Jacobian `S` (6 x nv, its chain's columns) of a body, and `∂(S x)/∂q` for one `x`.
+#[derive(Clone, Debug)]
+struct Body {
+    joint: JointId,
+    S: DMatrix<f64>,
+    dV: DMatrix<f64>,
+    V: Twist,
+}
+
+fn col(m: &DMatrix<f64>, k: usize) -> Twist {
+    let c = m.column(k);
+    Twist::new(Vec3::new(c[0], c[1], c[2]), Vec3::new(c[3], c[4], c[5]))
+}
+
+/// A contact block's geometry: first row, frame, point, how its point moves (`ρ` and whether
+/// it is a ground contact) and its bodies.
+struct Contact {
+    row: usize,
+    frame: [Vec3; 3],
+    p: Vec3,
+    gap: f64,
+    ground: Option<f64>,
+    bodies: [(Option<JointId>, f64); 2],
+}
+
+impl ContactSolver {
+    /// The dense rows of `J` (m x nv) into `out`.
+    pub(crate) fn dense_jacobian(&self, out: &mut DMatrix<f64>) {
+        let (m, nv) = (self.m(), self.jacobian.ncols());
+        *out = DMatrix::zeros(m, nv);
+        for (b, block) in self.blocks.iter().enumerate() {
+            for r in block.row..block.row + block.dim {
+                for &(k, _, _) in &self.support[b].cols {
+                    out[(r, k)] = self.jacobian[(r, k)];
+                }
+            }
+        }
+    }
+
+    /// The contact blocks (limits and bilateral rows left out), `radius(g)` the ball radius of
+    /// geometry `g` against the ground (0 for a vertex).
+    fn contact_geometry(&self, radius: &dyn Fn(usize) -> f64) -> Vec<Contact> {
+        let mut out = Vec::new();
+        let mut points = self.points.iter();
+        for b in self.blocks.iter().filter(|b| !b.bilateral && b.dim == 3) {
+            let Some(c) = points.next() else { break };
+            let ground =
+                (c.body2.is_none() && c.geometries.1.is_none()).then(|| radius(c.geometries.0));
+            out.push(Contact {
+                row: b.row,
+                frame: b.frame,
+                p: c.point,
+                gap: c.gap,
+                ground,
+                bodies: [(c.body1, 1.0), (c.body2, -1.0)],
+            });
+        }
+        out
+    }
+
+    /// The bodies the contacts touch, loaded at `(q, x)`.
+    fn bodies(
+        contacts: &[Contact],
+        model: &Model,
+        data: &mut Data,
+        q: &[f64],
+        x: &[f64],
+    ) -> Result<Vec<Body>, MultibodyError> {
+        let mut out: Vec<Body> = Vec::new();
+        let zeros = vec![0.0; model.nv];
+        for c in contacts {
+            for (j, _) in c.bodies {
+                let Some(j) = j else { continue };
+                if out.iter().any(|b| b.joint == j) {
+                    continue;
+                }
+                let d = joint_kinematics_derivatives(
+                    model,
+                    data,
+                    q,
+                    x,
+                    &zeros,
+                    j,
+                    ReferenceFrame::Spatial,
+                )?;
+                let (S, dV) = (d.velocity_dv.clone(), d.velocity_dq.clone());
+                let V = data.placements[j.0].act_twist(&data.velocities[j.0]);
+                out.push(Body { joint: j, S, dV, V });
+            }
+        }
+        Ok(out)
+    }
+
+    /// `u_k = ∂p/∂q_k` of a contact's point (see the [module](self) documentation).
+    fn point_rate(c: &Contact, b1: Option<&Body>, k: usize) -> Vec3 {
+        let Some(b1) = b1 else {
+            return Vec3::zeros();
+        };
+        let Sk = col(&b1.S, k);
+        let n = c.frame[0];
+        match c.ground {
+            Some(rho) => {
+                // the anchor a = x + ρ n, x = p + (φ/2) n the shape's point nearest the plane
+                let a = c.p + n * (0.5 * c.gap + rho);
+                let ux = Sk.v + Sk.w.cross(&a);
+                ux - n * (0.5 * n.dot(&ux))
+            }
+            None => Sk.v + Sk.w.cross(&c.p),
+        }
+    }
+
+    /// `∂(J(q) x)/∂q` (m x nv) into `out`, at the `(q, x)` the contacts were found at;
+    /// `data` a scratch workspace.
+    pub(crate) fn rows_dq(
+        &self,
+        model: &Model,
+        data: &mut Data,
+        q: &[f64],
+        x: &[f64],
+        radius: &dyn Fn(usize) -> f64,
+        out: &mut DMatrix<f64>,
+    ) -> Result<(), MultibodyError> {
+        *out = DMatrix::zeros(self.m(), model.nv);
+        let contacts = self.contact_geometry(radius);
+        let bodies = Self::bodies(&contacts, model, data, q, x)?;
+        let find = |j: Option<JointId>| j.and_then(|j| bodies.iter().find(|b| b.joint == j));
+        for c in &contacts {
+            let b1 = find(c.bodies[0].0);
+            for k in 0..model.nv {
+                let u = Self::point_rate(c, b1, k);
+                for (i, d) in c.frame.iter().enumerate() {
+                    let pd = c.p.cross(d);
+                    let mut t = 0.0;
+                    for (j, s) in c.bodies {
+                        let Some(b) = find(j) else { continue };
+                        let dV = col(&b.dV, k);
+                        t += s * (d.dot(&dV.v) + pd.dot(&dV.w) + d.dot(&b.V.w.cross(&u)));
+                    }
+                    out[(c.row + i, k)] = t;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// `∂(J(q)ᵀ λ)/∂q` (nv x nv) into `out` for the impulses `lambda` (one per row).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn force_dq(
+        &self,
+        model: &Model,
+        data: &mut Data,
+        q: &[f64],
+        lambda: &[f64],
+        radius: &dyn Fn(usize) -> f64,
+        out: &mut DMatrix<f64>,
+    ) -> Result<(), MultibodyError> {
+        let nv = model.nv;
+        *out = DMatrix::zeros(nv, nv);
+        let contacts = self.contact_geometry(radius);
+        let zeros = vec![0.0; nv];
+        let bodies = Self::bodies(&contacts, model, data, q, &zeros)?;
+        let find = |j: Option<JointId>| j.and_then(|j| bodies.iter().find(|b| b.joint == j));
+        for c in &contacts {
+            let l = &lambda[c.row..c.row + 3];
+            let f = c.frame[0] * l[0] + c.frame[1] * l[1] + c.frame[2] * l[2];
+            if f == Vec3::zeros() {
+                continue;
+            }
+            let F = Wrench::new(c.p.cross(&f), f);
+            let b1 = find(c.bodies[0].0);
+            for (jb, s) in c.bodies {
+                let Some(b) = find(jb) else { continue };
+                for j in 0..nv {
+                    let u = Self::point_rate(c, b1, j);
+                    let dF = Wrench::new(u.cross(&f), Vec3::zeros());
+                    let Sj = col(&b.S, j);
+                    let on_j = Sj.w != Vec3::zeros() || Sj.v != Vec3::zeros();
+                    for k in 0..nv {
+                        let Sk = col(&b.S, k);
+                        if Sk.w == Vec3::zeros() && Sk.v == Vec3::zeros() {
+                            continue;
+                        }
+                        let mut t = Sk.dot(&dF);
+                        if on_j && (j <= k || model.dof_joint(j) == model.dof_joint(k)) {
+                            t += Sj.cross(&Sk).dot(&F);
+                        }
+                        out[(k, j)] += s * t;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}

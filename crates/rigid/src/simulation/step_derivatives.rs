@@ -1,0 +1,538 @@
+//! The derivatives of one step of the time-stepping scheme with contacts
+//! ([`contact_step`](super::contact_step)): `∂(q⁺, v⁺)/∂(q, v, τ)`, by the implicit function
+//! theorem on the step's equations at their solution, each contact in the mode the solver left
+//! it in (separated, sticking, sliding), `q` perturbed along `q ⊕ δ` and `q⁺` compared by
+//! `⊖`.
+//!
+//! The step, from [`contact`](super::contact): `M̃ (v⁺ − v − T(v)) = h (τ − b(q, v)) + Jᵀ λ`
+//! (`b` the bias forces with gravity and external wrenches, `T` the free-flyers' world-aligned
+//! turn; a lone free body takes its free velocity from the midpoint rule instead), the contact
+//! conditions on `σ = J v⁺`, the position correction `δq = h M̃⁻¹ Jᵀ μ`, and
+//! `q⁺ = q ⊕ h (v⁺ + δq/h)` with the free-flyers stepped in world-aligned axes.
+//!
+//! 1. **The free velocity.** With `a⁺ = (v⁺ − v − T)/h`, one RNEA derivative at `(q, v, a⁺)`
+//!    gives both `∂b/∂q` and `∂(M(q) u)/∂q` for `u = v⁺ − v_f` (RNEA is `M a + b`):
+//!    `∂v⁺/∂q = M̃⁻¹ (−h ∂RNEA/∂q + ∂(Jᵀλ)/∂q + Jᵀ ∂λ/∂q)`, `∂v_f/∂v = I + ∂T/∂v − h M̃⁻¹ ∂b/∂v`
+//!    (a lone body: the midpoint rule's own derivative,
+//!    [`FreeBodies::velocity_jacobian`](super::free_body)), `∂v_f/∂τ = h M̃⁻¹`; the passive joint
+//!    forces (damping, friction, limit springs) add their diagonal partials.
+//! 2. **The impulses.** `δv⁺ = E δs + M̃⁻¹ Jᵀ δλ`, and per row of the problem:
+//!    - a separated contact (`λ_n = 0`), a frictionless tangent, an idle limit: `δλ = 0`;
+//!    - a pushing normal (or limit), a sticking tangent: `δσ = J δv⁺ + ∂(J v⁺)/∂q δq = δσ*`,
+//!      `σ*_n = −φ/h` when the gap was open (`∂φ/∂q = J_n`), a rebound `−e J_n v` when found
+//!      approaching, else constant;
+//!    - a sliding contact, `λ_t = −μ λ_n σ_t/‖σ_t‖`:
+//!      `δλ_t + μ û δλ_n + (μ λ_n/‖σ_t‖)(I − û ûᵀ) δσ_t = 0`, `û = σ_t/‖σ_t‖`.
+//!
+//!    The rows make one square system in `δλ`, solved in the least-squares sense (a box on its
+//!    four corners has twelve rows for six freedoms: `δλ` is not unique, `δv⁺` is).
+//! 3. **The position correction**, when something penetrated: the same on its normal rows,
+//!    `(J M̃⁻¹ Jᵀ μ)_n = β (−φ)/h` for each pushing one, with `∂(M w)/∂q` from a second RNEA
+//!    derivative (`w = M̃⁻¹ Jᵀ μ`).
+//! 4. **The configuration update**: per joint the Jacobians of `⊕`
+//!    ([`integrate_jacobians`](crate::multibody::integrate_jacobians)); a free-flyer, stepped
+//!    in world-aligned axes with `R = exp(h ω)`: `δθ⁺ = Rᵀ δθ + h J_r(hω) δω`,
+//!    `δp⁺ = Rᵀ (δp − h [v]× δθ + h δv)`, and its velocity turned to the new axes,
+//!    `δ(Rᵀ u) = Rᵀ δu + [Rᵀ u]× J_r(hω) h δω`.
+//!
+//! Where the step is not differentiable (a contact exactly at a mode switch: touching without
+//! pushing, or sticking on the cone's edge), the derivative of the mode the solver returned is
+//! given, which is one of the one-sided derivatives; [`StepDerivatives::at_switch`] names those
+//! contacts. The control law's torque is an input: its own dependence on `(q, v)` is not
+//! differentiated (a law with PD gains, which the step makes implicit, is refused).
+
+use super::contact::Block;
+use super::contact_step::{contact_step, ContactStepper};
+use super::control::Control;
+use super::{SimulationError, Simulator};
+use crate::multibody::algorithms::{ltl_solve_lower, ltl_solve_transposed};
+use crate::multibody::configuration::world_aligned_turn;
+use crate::multibody::{
+    rnea_derivatives, rnea_derivatives_with_external, se3_right_jacobian, Data, JointType,
+};
+use crate::spatial::{so3, Mat3, Mat6, Twist, Vec3};
+use nalgebra::DMatrix;
+
+/// What a contact (or joint limit) did in the differentiated step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContactMode {
+    /// No impulse (`λ_n = 0`).
+    Separated,
+    /// Pushing, without slip (inside the friction cone, or frictionless, or a joint limit).
+    Sticking,
+    /// Pushing and slipping, the friction on the cone's edge.
+    Sliding,
+}
+
+/// `∂(q⁺, v⁺)/∂(q, v, τ)` of one step ([`Simulator::step_derivatives`]), each `nv x nv`: `q`
+/// and `q⁺` in the tangent space (`q ⊕ δ`, `q⁺ ⊖ q⁺₀`), `τ` the torque added to the control's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepDerivatives {
+    /// `∂q⁺/∂q`.
+    pub dq_dq: DMatrix<f64>,
+    /// `∂q⁺/∂v`.
+    pub dq_dv: DMatrix<f64>,
+    /// `∂q⁺/∂τ`.
+    pub dq_dtau: DMatrix<f64>,
+    /// `∂v⁺/∂q`.
+    pub dv_dq: DMatrix<f64>,
+    /// `∂v⁺/∂v`.
+    pub dv_dv: DMatrix<f64>,
+    /// `∂v⁺/∂τ`.
+    pub dv_dtau: DMatrix<f64>,
+    /// The step's new state `(q⁺, v⁺)` (the one [`Simulator::step`] would reach).
+    pub q_next: Vec<f64>,
+    /// See `q_next`.
+    pub v_next: Vec<f64>,
+    /// The mode of each contact (in the order of [`Simulator::contacts`]), then of each joint
+    /// limit of the step's problem.
+    pub modes: Vec<ContactMode>,
+    /// The indices (into `modes`) of those at a mode switch, where the derivative given is
+    /// the one-sided derivative of the mode shown.
+    pub at_switch: Vec<usize>,
+    /// The energy safeguard scaled this step's impulse ([`ContactStats::scaled`](super::contact::ContactStats::scaled)):
+    /// the derivatives are those of the unscaled solution.
+    pub scaled: bool,
+}
+
+/// A row's part in the linearised problem.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Row {
+    /// `δλ = 0`.
+    Free,
+    /// `δσ = δσ*`, with the target's kind.
+    Equal(Target),
+    /// The first tangent row of a sliding contact (its normal row `n`; the second tangent
+    /// follows): `û`, `μ`, `κ = μ λ_n/‖σ_t‖`.
+    Slide {
+        n: usize,
+        u: [f64; 2],
+        mu: f64,
+        kappa: f64,
+    },
+    /// The second tangent row of a sliding contact (written with the first).
+    SlideSecond,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Target {
+    Constant,
+    /// `σ* = −s φ/h` (`s = 1` the velocity solve, `β` the position correction).
+    Gap(f64),
+    /// `σ* = −e J v`.
+    Rebound(f64),
+}
+
+/// `out ← M̃⁻¹ out` column by column, from the factor in `data`.
+fn minv_columns(data: &Data, out: &mut DMatrix<f64>) {
+    let L = data.chol.as_slice();
+    for mut c in out.column_iter_mut() {
+        let x = c.as_mut_slice();
+        ltl_solve_transposed(L, &data.dof_parent, x);
+        ltl_solve_lower(L, &data.dof_parent, x);
+    }
+}
+
+/// Solves the linearised rows for `δλ` (m x cols): `A δλ = B` with `A`, `B` from the rows'
+/// kinds, `G = J M̃⁻¹ Jᵀ`, `JE` the rows' response to the inputs at `δλ = 0` (plus their own
+/// `∂(J x)/∂q` in its first `nv` columns) and the targets' partials `T`.
+fn solve_rows(rows: &[Row], g: &DMatrix<f64>, je: &DMatrix<f64>, t: &DMatrix<f64>) -> DMatrix<f64> {
+    let (m, cols) = (rows.len(), je.ncols());
+    let mut a = DMatrix::zeros(m, m);
+    let mut b = DMatrix::zeros(m, cols);
+    for (r, row) in rows.iter().enumerate() {
+        match *row {
+            Row::Free | Row::SlideSecond => {
+                if *row == Row::Free {
+                    a[(r, r)] = 1.0;
+                }
+            }
+            Row::Equal(_) => {
+                a.row_mut(r).copy_from(&g.row(r));
+                let x = t.row(r) - je.row(r);
+                b.row_mut(r).copy_from(&x);
+            }
+            Row::Slide { n, u, mu, kappa } => {
+                // (I − ûûᵀ) applied to the two tangent rows
+                let p = [
+                    [1.0 - u[0] * u[0], -u[0] * u[1]],
+                    [-u[1] * u[0], 1.0 - u[1] * u[1]],
+                ];
+                for i in 0..2 {
+                    let ri = r + i;
+                    a[(ri, ri)] += 1.0;
+                    a[(ri, n)] += mu * u[i];
+                    for j in 0..2 {
+                        let s = kappa * p[i][j];
+                        let gr = g.row(r + j) * s;
+                        let mut ar = a.row_mut(ri);
+                        ar += gr;
+                        let jr = je.row(r + j) * (-s);
+                        let mut br = b.row_mut(ri);
+                        br += jr;
+                    }
+                }
+            }
+        }
+    }
+    let scale = a.amax().max(1e-300);
+    a.svd(true, true)
+        .solve(&b, 1e-12 * scale)
+        .unwrap_or_else(|_| DMatrix::zeros(m, cols))
+}
+
+impl<C: Control> Simulator<C> {
+    /// The derivatives of one [`step`](Self::step) from the current state, `∂(q⁺, v⁺)/∂(q, v, τ)`
+    /// (see [`step_derivatives`](super::step_derivatives) for the equations), without stepping:
+    /// the state, the time and the contacts' memory (warm starts, impacts) are left as they
+    /// were. For a simulator with collision geometry or unilateral limits (the time-stepping
+    /// scheme); the torque is the control law's, held as an input.
+    ///
+    /// ```
+    /// use rigid::collision::{CollisionModel, Geometry, Ground, Shape};
+    /// use rigid::mass::{RotationalInertia, SpatialInertia};
+    /// use rigid::multibody::{JointId, JointType, ModelBuilder};
+    /// use rigid::simulation::{ContactMode, Controller, Integrator, SimulationOptions, Simulator};
+    /// use rigid::spatial::{Transform, Vec3};
+    /// // a 1 kg box resting on the ground
+    /// let g = SpatialInertia::from_com(1.0, Vec3::zeros(), RotationalInertia::diagonal(0.01, 0.01, 0.01));
+    /// let mut b = ModelBuilder::new("box");
+    /// b.add_joint(None, "box", JointType::FreeFlyer, Transform::identity(), g).unwrap();
+    /// let model = b.build().unwrap();
+    /// let mut cm = CollisionModel::new(Ground::horizontal(0.0, 0.8));
+    /// let shape = Shape::Box { size: Vec3::new(0.2, 0.2, 0.2) };
+    /// cm.geometries.push(Geometry::new("box", Some(JointId(0)), Transform::identity(), shape));
+    /// let opts = SimulationOptions { integrator: Integrator::SemiImplicitEuler, ..Default::default() };
+    /// let q0 = [0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 1.0];
+    /// let mut sim = Simulator::new(&model, &q0, &[0.0; 6], opts, Controller::none(&model))?
+    ///     .with_collision(cm)?;
+    /// let d = sim.step_derivatives()?;
+    /// assert!(d.modes.iter().any(|m| *m == ContactMode::Sticking));
+    /// // a push along x is held by friction: the box does not move
+    /// assert!(d.dv_dtau[(3, 3)].abs() < 1e-9);
+    /// // a push up lifts it at h/m
+    /// assert!((d.dv_dtau[(5, 5)] - 1e-3).abs() < 1e-9);
+    /// # Ok::<(), rigid::simulation::SimulationError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`SimulationError::NotDifferentiable`] for a simulator without contacts or limits (not
+    /// the time-stepping scheme), with bilateral constraints, or with a PD control law; an
+    /// algorithm's error (a model whose joints the analytical derivatives do not cover).
+    pub fn step_derivatives(&mut self) -> Result<StepDerivatives, SimulationError> {
+        let Some(stepper) = &self.contact else {
+            return Err(SimulationError::NotDifferentiable(
+                "only the time-stepping scheme is differentiated: give the simulator collision \
+                 geometry or unilateral limits",
+            ));
+        };
+        if self.dynamics.loops.is_some() {
+            return Err(SimulationError::NotDifferentiable(
+                "bilateral constraints (closed loops, welds) are not differentiated yet",
+            ));
+        }
+        if self.dynamics.control.pd_gains().is_some() {
+            return Err(SimulationError::NotDifferentiable(
+                "a control law with PD gains (integrated implicitly) is not differentiated: \
+                 use an open-loop torque",
+            ));
+        }
+        let mut cs: ContactStepper = (**stepper).clone();
+        let (q, v) = (self.q.clone(), self.v.clone());
+        let d = &mut self.dynamics;
+        let (nq, nv) = (d.model.nq, d.model.nv);
+        let h = d.options.dt;
+        let (mut q1, mut v1) = (vec![0.0; nq], vec![0.0; nv]);
+        contact_step(d, &mut cs, self.t, h, &q, &v, &mut q1, &mut v1)?;
+        let model = &d.model;
+        let data = &d.data; // M̃'s factor, from the step
+        let mut scratch = Data::new(model);
+        let n3 = 3 * nv;
+
+        // 1. the free velocity's partials, E = [E_q | E_v | E_τ] at δλ = 0
+        let (mut tq, mut tv) = (vec![0.0; nv], vec![0.0; nv]);
+        d.passive_partials(&q, &v, &mut tq, &mut tv);
+        let mut turn = vec![0.0; nv];
+        world_aligned_turn(model, &v, h, &mut turn);
+        let vp = &cs.v_plus;
+        let a_plus: Vec<f64> = (0..nv).map(|k| (vp[k] - v[k] - turn[k]) / h).collect();
+        let (mut rq, mut rv) = {
+            let r = if d.has_fext {
+                rnea_derivatives_with_external(model, &mut scratch, &q, &v, &a_plus, &d.fext)?
+            } else {
+                rnea_derivatives(model, &mut scratch, &q, &v, &a_plus)?
+            };
+            (r.dtau_dq.clone(), r.dtau_dv.clone())
+        };
+        let lone: Vec<usize> = cs.free.first_dofs().collect();
+        for &f in &lone {
+            rv.rows_mut(f, 6).fill(0.0); // the midpoint rule's, below
+        }
+        for k in 0..nv {
+            rq[(k, k)] -= tq[k];
+            rv[(k, k)] -= tv[k];
+        }
+        let collision = cs.collision.as_ref();
+        let radius = |g: usize| collision.map_or(0.0, |(_, cd)| cd.ball_radius(g));
+        let solver = &cs.solver;
+        let m = solver.m();
+        let lambda = &solver.lambda[..m];
+        let mut p = DMatrix::zeros(nv, nv);
+        solver.force_dq(model, &mut scratch, &q, lambda, &radius, &mut p)?;
+        let mut e = DMatrix::zeros(nv, n3);
+        {
+            let mut eq = -rq * h + &p;
+            minv_columns(data, &mut eq);
+            e.columns_mut(0, nv).copy_from(&eq);
+            let mut ev = -rv * h;
+            minv_columns(data, &mut ev);
+            let mut base = DMatrix::identity(nv, nv);
+            for j in model.joints() {
+                if j.kind == JointType::FreeFlyer && !lone.contains(&j.idx_v) {
+                    // T = h ω × v_lin
+                    let i = j.idx_v;
+                    let w = Vec3::new(v[i], v[i + 1], v[i + 2]);
+                    let l = Vec3::new(v[i + 3], v[i + 4], v[i + 5]);
+                    let mut b = base.view_mut((i + 3, i), (3, 6));
+                    b.columns_mut(0, 3).copy_from(&(-l.cross_matrix() * h));
+                    let mut bl = b.columns_mut(3, 3);
+                    bl += w.cross_matrix() * h;
+                }
+            }
+            cs.free.velocity_jacobian(&v, h, &mut base);
+            e.columns_mut(nv, nv).copy_from(&(base + ev));
+            let mut et = DMatrix::identity(nv, nv) * h;
+            minv_columns(data, &mut et);
+            e.columns_mut(2 * nv, nv).copy_from(&et);
+        }
+
+        // 2. the impulses
+        let mut jm = DMatrix::zeros(0, 0);
+        solver.dense_jacobian(&mut jm);
+        let mut w = jm.transpose();
+        minv_columns(data, &mut w);
+        let g = &jm * &w;
+        let mut dv_plus = e.clone();
+        let (mut modes, mut at_switch) = (Vec::new(), Vec::new());
+        if m > 0 {
+            let mut c = DMatrix::zeros(m, nv);
+            solver.rows_dq(model, &mut scratch, &q, vp, &radius, &mut c)?;
+            let rows = classify(solver, lambda, &mut modes, &mut at_switch);
+            let mut t = DMatrix::zeros(m, n3);
+            let mut rebound = false;
+            for (r, row) in rows.iter().enumerate() {
+                match row {
+                    Row::Equal(Target::Gap(s)) => {
+                        let x = jm.row(r) * (-s / h);
+                        t.view_mut((r, 0), (1, nv)).copy_from(&x);
+                    }
+                    Row::Equal(Target::Rebound(er)) => {
+                        rebound = true;
+                        let x = jm.row(r) * (-er);
+                        t.view_mut((r, nv), (1, nv)).copy_from(&x);
+                    }
+                    _ => {}
+                }
+            }
+            if rebound {
+                let mut cv = DMatrix::zeros(m, nv);
+                solver.rows_dq(model, &mut scratch, &q, &v, &radius, &mut cv)?;
+                for (r, row) in rows.iter().enumerate() {
+                    if let Row::Equal(Target::Rebound(er)) = row {
+                        let x = cv.row(r) * (-er);
+                        t.view_mut((r, 0), (1, nv)).copy_from(&x);
+                    }
+                }
+            }
+            let mut je = &jm * &e;
+            let mut jq = je.columns_mut(0, nv);
+            jq += &c;
+            let dl = solve_rows(&rows, &g, &je, &t);
+            dv_plus += &w * dl;
+        }
+
+        // 3. the position correction
+        let mut dw = DMatrix::zeros(nv, nv);
+        if cs.dq.iter().any(|x| *x != 0.0) {
+            let mu = &solver.mu[..m];
+            let wc: Vec<f64> = cs.dq.iter().map(|x| x / h).collect();
+            let zeros = vec![0.0; nv];
+            let dmw = rnea_derivatives(&d.free, &mut scratch, &q, &zeros, &wc)?
+                .dtau_dq
+                .clone();
+            let mut pm = DMatrix::zeros(nv, nv);
+            solver.force_dq(model, &mut scratch, &q, mu, &radius, &mut pm)?;
+            let mut ew = pm - dmw;
+            minv_columns(data, &mut ew);
+            let mut cw = DMatrix::zeros(m, nv);
+            solver.rows_dq(model, &mut scratch, &q, &wc, &radius, &mut cw)?;
+            let beta = cs.settings.stabilization;
+            let mut rows = vec![Row::Free; m];
+            let mut t = DMatrix::zeros(m, nv);
+            for b in solver.blocks.iter().filter(|b| !b.bilateral) {
+                if mu[b.row] > 0.0 {
+                    let s = if b.gap < 0.0 { beta } else { 0.0 };
+                    rows[b.row] = Row::Equal(Target::Gap(s));
+                    let x = jm.row(b.row) * (-s / h);
+                    t.row_mut(b.row).copy_from(&x);
+                }
+            }
+            let je = &jm * &ew + cw;
+            let dmu = solve_rows(&rows, &g, &je, &t);
+            dw = ew + &w * dmu;
+        }
+        // δv_step = δv⁺ + δw (q columns)
+        let mut dvs = dv_plus.clone();
+        {
+            let mut x = dvs.columns_mut(0, nv);
+            x += &dw;
+        }
+
+        // 4. the configuration update
+        let mut dq_out = DMatrix::zeros(nv, n3);
+        let mut dv_out = dv_plus.clone();
+        let vs = &cs.v_step;
+        let (mut bq, mut bv) = (Mat6::zeros(), Mat6::zeros());
+        for j in model.joints() {
+            let (i, n) = (j.idx_v, j.nv);
+            if j.kind == JointType::FreeFlyer {
+                let wv = Vec3::new(vs[i], vs[i + 1], vs[i + 2]);
+                let lin = Vec3::new(vs[i + 3], vs[i + 4], vs[i + 5]);
+                let r: Mat3 = so3::exp(&(wv * h));
+                let rt = r.transpose();
+                let jr: Mat3 = se3_right_jacobian(&Twist::new(wv * h, Vec3::zeros()))
+                    .fixed_view::<3, 3>(0, 0)
+                    .into_owned();
+                let hjr = jr * h;
+                let up = [
+                    Vec3::new(vp[i], vp[i + 1], vp[i + 2]),
+                    Vec3::new(vp[i + 3], vp[i + 4], vp[i + 5]),
+                ];
+                for col in 0..n3 {
+                    let (dth, dp) = if col >= i && col < i + 6 {
+                        let mut e6 = [0.0; 6];
+                        e6[col - i] = 1.0;
+                        (
+                            Vec3::new(e6[0], e6[1], e6[2]),
+                            Vec3::new(e6[3], e6[4], e6[5]),
+                        )
+                    } else {
+                        (Vec3::zeros(), Vec3::zeros())
+                    };
+                    let dws = Vec3::new(dvs[(i, col)], dvs[(i + 1, col)], dvs[(i + 2, col)]);
+                    let dls = Vec3::new(dvs[(i + 3, col)], dvs[(i + 4, col)], dvs[(i + 5, col)]);
+                    let th1 = rt * dth + hjr * dws;
+                    let p1 = rt * (dp - lin.cross(&dth) * h + dls * h);
+                    for k in 0..3 {
+                        dq_out[(i + k, col)] = th1[k];
+                        dq_out[(i + 3 + k, col)] = p1[k];
+                    }
+                    for (half, u) in up.iter().enumerate() {
+                        let o = i + 3 * half;
+                        let du = Vec3::new(
+                            dv_plus[(o, col)],
+                            dv_plus[(o + 1, col)],
+                            dv_plus[(o + 2, col)],
+                        );
+                        let x = rt * du + (rt * u).cross(&(hjr * dws));
+                        for k in 0..3 {
+                            dv_out[(o + k, col)] = x[k];
+                        }
+                    }
+                }
+            } else {
+                j.kind
+                    .integrate_jacobians(&vs[i..i + n], h, &mut bq, &mut bv);
+                let bq = bq.view((0, 0), (n, n));
+                let bv = bv.view((0, 0), (n, n));
+                let x = bv * dvs.rows(i, n);
+                dq_out.rows_mut(i, n).copy_from(&x);
+                let mut diag = dq_out.view_mut((i, i), (n, n));
+                diag += bq;
+            }
+        }
+        Ok(StepDerivatives {
+            dq_dq: dq_out.columns(0, nv).into_owned(),
+            dq_dv: dq_out.columns(nv, nv).into_owned(),
+            dq_dtau: dq_out.columns(2 * nv, nv).into_owned(),
+            dv_dq: dv_out.columns(0, nv).into_owned(),
+            dv_dv: dv_out.columns(nv, nv).into_owned(),
+            dv_dtau: dv_out.columns(2 * nv, nv).into_owned(),
+            q_next: q1,
+            v_next: v1,
+            modes,
+            at_switch,
+            scaled: cs.solver.stats.scaled,
+        })
+    }
+}
+
+/// Each row's kind from the solution `lambda` of the velocity solve, with the modes of the
+/// contacts and limits and those at a switch.
+fn classify(
+    solver: &super::contact::ContactSolver,
+    lambda: &[f64],
+    modes: &mut Vec<ContactMode>,
+    at_switch: &mut Vec<usize>,
+) -> Vec<Row> {
+    let m = lambda.len();
+    let mut rows = vec![Row::Free; m];
+    let sigma = &solver.sigma[..m];
+    let target = &solver.target[..m];
+    // contacts first (the order of `contacts()`), then limits
+    let (contacts, limits): (Vec<&Block>, Vec<&Block>) = solver
+        .blocks
+        .iter()
+        .filter(|b| !b.bilateral)
+        .partition(|b| b.dim == 3);
+    let scale = lambda
+        .iter()
+        .fold(0.0_f64, |a, x| a.max(x.abs()))
+        .max(1e-300);
+    let vscale = sigma.iter().fold(1e-3_f64, |a, x| a.max(x.abs()));
+    for b in contacts.into_iter().chain(limits) {
+        let r = b.row;
+        let index = modes.len();
+        let normal = if b.gap_target {
+            Target::Gap(1.0)
+        } else if b.rebound_target {
+            Target::Rebound(b.restitution)
+        } else {
+            Target::Constant
+        };
+        if lambda[r] <= 1e-12 * scale {
+            modes.push(ContactMode::Separated);
+            // touching without pushing: the normal velocity meets its target
+            if (sigma[r] - target[r]).abs() <= 1e-9 * vscale {
+                at_switch.push(index);
+            }
+            continue;
+        }
+        rows[r] = Row::Equal(normal);
+        if b.dim == 1 || b.friction == 0.0 {
+            modes.push(ContactMode::Sticking);
+            continue;
+        }
+        let (lt, st) = ((lambda[r + 1], lambda[r + 2]), (sigma[r + 1], sigma[r + 2]));
+        let (ln, sn) = (lt.0.hypot(lt.1), st.0.hypot(st.1));
+        let edge = ln >= b.friction * lambda[r] * (1.0 - 1e-7);
+        if edge && sn > 1e-9 * vscale {
+            modes.push(ContactMode::Sliding);
+            rows[r + 1] = Row::Slide {
+                n: r,
+                u: [st.0 / sn, st.1 / sn],
+                mu: b.friction,
+                kappa: b.friction * lambda[r] / sn,
+            };
+            rows[r + 2] = Row::SlideSecond;
+        } else {
+            modes.push(ContactMode::Sticking);
+            rows[r + 1] = Row::Equal(Target::Constant);
+            rows[r + 2] = Row::Equal(Target::Constant);
+            if edge {
+                at_switch.push(index);
+            }
+        }
+    }
+    rows
+}

@@ -1,0 +1,310 @@
+//! The derivatives of a step with contacts (`Simulator::step_derivatives`) against central
+//! differences of the step itself, `q` perturbed along `q ⊕ δ` and `q⁺` compared by `⊖`: a box
+//! resting, sliding, penetrating, landing on a corner and in flight, a ball rolling, Solo-12
+//! standing on its four feet. Each state is chosen inside one contact mode (a gap of a few µm
+//! that the step closes, not exactly 0), where the step is differentiable; the solver's
+//! tolerance is tightened so that the differences are not its noise.
+
+use super::{options, q_of, scene, Free, G};
+use crate::common::example_robot_data;
+use nalgebra::DMatrix;
+use rigid::collision::{place_on_ground, CollisionModel, Ground};
+use rigid::io::collision::{ground_model, urdf_geometries};
+use rigid::io::urdf::{load_urdf, parse_urdf_file};
+use rigid::multibody::{difference, integrate, Model, MultibodyError};
+use rigid::simulation::contact::ContactSettings;
+use rigid::simulation::{ContactMode, Control, ControlLaw, Controller, Simulator, StepDerivatives};
+use rigid::spatial::{so3, Vec3};
+
+/// An open-loop torque, the input the derivatives are taken with respect to.
+#[derive(Clone, Debug)]
+struct Push(Vec<f64>);
+
+impl Control for Push {
+    fn torque(
+        &mut self,
+        _: &Model,
+        _: f64,
+        _: &[f64],
+        _: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        tau.copy_from_slice(&self.0);
+        Ok(())
+    }
+}
+
+fn settings() -> ContactSettings {
+    ContactSettings {
+        max_iterations: 5000,
+        tolerance: 1e-15,
+        ..ContactSettings::default()
+    }
+}
+
+fn sim(model: &Model, cm: CollisionModel, q: &[f64], v: &[f64], tau: &[f64]) -> Simulator<Push> {
+    Simulator::new(model, q, v, options(1e-3), Push(tau.to_vec()))
+        .unwrap()
+        .with_collision(cm)
+        .unwrap()
+        .with_contact_settings(settings())
+        .unwrap()
+}
+
+/// `(q⁺, v⁺)` of one step of a copy of `s` from `(q, v)` with the torque `tau`.
+fn step(s: &Simulator<Push>, q: &[f64], v: &[f64], tau: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let mut s = s.clone();
+    s.set_state(q, v).unwrap();
+    s.control_mut().0.copy_from_slice(tau);
+    s.step().unwrap();
+    (s.q().to_vec(), s.v().to_vec())
+}
+
+/// Forward and backward differences of the step of `s` from its state, with step `eps`: the
+/// six matrices (in the order of `StepDerivatives`) of each.
+fn one_sided(s: &Simulator<Push>, eps: f64) -> [[DMatrix<f64>; 6]; 2] {
+    let model = s.model();
+    let nv = model.nv();
+    let (q, v, tau) = (s.q().to_vec(), s.v().to_vec(), s.control().0.clone());
+    let (q0, v0) = step(s, &q, &v, &tau);
+    let mut out: [[DMatrix<f64>; 6]; 2] =
+        std::array::from_fn(|_| std::array::from_fn(|_| DMatrix::zeros(nv, nv)));
+    for wrt in 0..3 {
+        for k in 0..nv {
+            for (side, sign) in [1.0, -1.0].into_iter().enumerate() {
+                let (mut qp, mut vp, mut tp) = (q.clone(), v.clone(), tau.clone());
+                let mut e = vec![0.0; nv];
+                e[k] = sign * eps;
+                match wrt {
+                    0 => integrate(model, &q, &e, 1.0, &mut qp).unwrap(),
+                    1 => vp[k] += sign * eps,
+                    _ => tp[k] += sign * eps,
+                }
+                let (q1, v1) = step(s, &qp, &vp, &tp);
+                let mut dq = vec![0.0; nv];
+                difference(model, &q0, &q1, &mut dq).unwrap();
+                for r in 0..nv {
+                    out[side][wrt][(r, k)] = dq[r] / (sign * eps);
+                    out[side][3 + wrt][(r, k)] = (v1[r] - v0[r]) / (sign * eps);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Checks every matrix of `d` against differences of the step: each column must equal the
+/// central difference within `tol` of the matrix's size (and of 1), or, where the step is not
+/// smooth along that column (a contact point or mode switching within `eps`: the forward and
+/// backward differences part), one of the one-sided differences within `kink_tol`. Returns the
+/// derivatives and the number of columns of the second kind.
+fn check(what: &str, s: &mut Simulator<Push>, eps: f64, tol: f64) -> (StepDerivatives, usize) {
+    let d = s.step_derivatives().unwrap();
+    let (q1, v1) = step(s, s.q(), s.v(), &s.control().0.clone());
+    assert_eq!((&d.q_next, &d.v_next), (&q1, &v1), "{what}: the next state");
+    let [fwd, bwd] = one_sided(s, eps);
+    let names = ["dq_dq", "dq_dv", "dq_dtau", "dv_dq", "dv_dv", "dv_dtau"];
+    let ours = [
+        &d.dq_dq, &d.dq_dv, &d.dq_dtau, &d.dv_dq, &d.dv_dv, &d.dv_dtau,
+    ];
+    let kink_tol = 1e-3;
+    let mut kinks = 0;
+    for (i, (name, a)) in names.iter().zip(ours).enumerate() {
+        let central = (&fwd[i] + &bwd[i]) * 0.5;
+        let scale = central.amax().max(1.0);
+        let mut err: f64 = 0.0;
+        for k in 0..a.ncols() {
+            let (f, b, c) = (fwd[i].column(k), bwd[i].column(k), central.column(k));
+            let ak = a.column(k);
+            let ec = (ak - c).amax();
+            if ec <= tol * scale {
+                err = err.max(ec);
+            } else {
+                kinks += 1;
+                let e = (ak - f).amax().min((ak - b).amax());
+                assert!(
+                    e <= kink_tol * scale,
+                    "{what} {name} column {k}: {e:.3e} from either one-sided difference\nours {:.6}\nforward {:.6}\nbackward {:.6}",
+                    ak.transpose(), f.transpose(), b.transpose()
+                );
+            }
+        }
+        println!("{what} {name}: |analytic - central| = {err:.2e} (scale {scale:.2e})");
+        assert!(err <= tol * scale, "{what} {name}: {err:.3e} > {tol:e} x {scale:.3e}\nanalytic {a:.6}\ncentral {central:.6}");
+    }
+    println!(
+        "{what}: {kinks} columns at a switch; modes {:?}, at a switch {:?}",
+        d.modes, d.at_switch
+    );
+    (d, kinks)
+}
+
+fn cube() -> Free {
+    Free::cube(1.0, Vec3::new(0.2, 0.3, 0.1))
+}
+
+/// `(model, collision model)` of one free body on the ground `z = 0` with friction `mu`.
+fn one(body: Free, mu: f64) -> (Model, CollisionModel) {
+    scene(
+        &[body],
+        Vec3::new(0.0, 0.0, -G),
+        Some(Ground::horizontal(0.0, mu)),
+    )
+}
+
+#[test]
+fn a_box_resting_on_its_four_corners() {
+    let (model, cm) = one(cube(), 0.8);
+    // 3 µm above the ground: the step closes the gap (gravity's h² g = 9.8 µm) and the box rests
+    let q = q_of(Vec3::new(0.0, 0.0, 0.05 + 3e-6), &so3::exp(&Vec3::zeros()));
+    let mut s = sim(
+        &model,
+        cm,
+        &q,
+        &[0.0; 6],
+        &[0.1, -0.05, 0.02, 0.3, -0.2, 0.0],
+    );
+    let (d, kinks) = check("resting", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert_eq!(d.modes, vec![ContactMode::Sticking; 4]);
+    // the box cannot sink: ∂v⁺_z/∂τ_z = h/m pushes it up only, ∂v⁺_x/∂τ_x = 0 (friction holds)
+    assert!(d.dv_dtau[(3, 3)].abs() < 1e-9);
+}
+
+/// The lowest corner's height of the box `cube()` turned by `r`.
+fn lowest(r: &rigid::spatial::Mat3) -> f64 {
+    let mut z = f64::INFINITY;
+    for x in [-0.1, 0.1] {
+        for y in [-0.15, 0.15] {
+            for w in [-0.05, 0.05] {
+                z = z.min((r * Vec3::new(x, y, w)).z);
+            }
+        }
+    }
+    z
+}
+
+#[test]
+fn a_box_sliding_on_an_edge() {
+    // on the edge of its two corners at y = −0.15, z = −0.05 (turned 0.3 rad about x), sliding
+    // along x: two contacts, their normal impulses determined (on four corners of a face they
+    // are not, nor is the friction's yaw moment that depends on how they share the weight)
+    let (model, cm) = one(cube(), 0.3);
+    let r = so3::exp(&Vec3::new(-0.3, 0.0, 0.0));
+    let q = q_of(Vec3::new(0.1, -0.2, -lowest(&r) + 3e-6), &r);
+    let vb = r.transpose() * Vec3::new(1.5, 0.2, 0.0);
+    let v = [0.0, 0.0, 0.0, vb.x, vb.y, vb.z];
+    let mut s = sim(&model, cm, &q, &v, &[0.0; 6]);
+    let (d, kinks) = check("sliding", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    let sliding = d
+        .modes
+        .iter()
+        .filter(|m| **m == ContactMode::Sliding)
+        .count();
+    assert_eq!(sliding, 2, "{:?}", d.modes);
+}
+
+#[test]
+fn a_box_pressed_into_the_ground_is_corrected() {
+    let (model, cm) = one(cube(), 0.8);
+    // 20 µm into the ground, tilted: the position correction lifts it out
+    let r = so3::exp(&Vec3::new(1e-3, -2e-3, 0.1));
+    let q = q_of(Vec3::new(0.0, 0.0, 0.05 - 2e-5), &r);
+    let mut s = sim(&model, cm, &q, &[0.0, 0.0, 0.0, 0.01, 0.0, 0.0], &[0.0; 6]);
+    let (d, kinks) = check("penetrating", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert!(
+        d.modes.iter().any(|m| *m != ContactMode::Separated),
+        "{:?}",
+        d.modes
+    );
+}
+
+#[test]
+fn a_box_landing_on_a_corner_and_sliding() {
+    let (model, cm) = one(cube(), 0.5);
+    let r = so3::exp(&Vec3::new(0.5, 0.3, 0.2));
+    // the lowest corner 4 µm above the ground
+    let q = q_of(Vec3::new(0.0, 0.0, -lowest(&r) + 4e-6), &r);
+    let vw = Vec3::new(0.8, -0.3, -0.5);
+    let vb = r.transpose() * vw;
+    let v = [1.0, -2.0, 0.5, vb.x, vb.y, vb.z];
+    let mut s = sim(&model, cm, &q, &v, &[0.0; 6]);
+    let (d, kinks) = check("corner", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert!(d.modes.contains(&ContactMode::Sliding), "{:?}", d.modes);
+}
+
+#[test]
+fn a_box_tumbling_in_flight() {
+    let (model, cm) = one(cube(), 0.8);
+    let q = q_of(
+        Vec3::new(0.0, 0.0, 1.0),
+        &so3::exp(&Vec3::new(0.3, -0.2, 0.9)),
+    );
+    let v = [2.0, -5.0, 3.0, 1.0, 0.5, -0.3];
+    let mut s = sim(&model, cm, &q, &v, &[0.1, 0.2, -0.3, 1.0, 0.0, 2.0]);
+    let (d, kinks) = check("flight", &mut s, 1e-6, 1e-6);
+    assert_eq!(kinks, 0);
+    assert!(d.modes.is_empty());
+}
+
+#[test]
+fn a_ball_rolling() {
+    let (model, cm) = one(Free::ball(2.0, 0.1), 0.8);
+    let q = q_of(
+        Vec3::new(0.0, 0.0, 0.1 + 3e-6),
+        &so3::exp(&Vec3::new(0.2, 0.1, 0.0)),
+    );
+    let r = so3::exp(&Vec3::new(0.2, 0.1, 0.0));
+    // rolling along x at 1 m/s: ω = (0, 10, 0) in the world
+    let (w, u) = (
+        r.transpose() * Vec3::new(0.0, 10.0, 0.0),
+        r.transpose() * Vec3::new(1.0, 0.0, 0.0),
+    );
+    let mut s = sim(&model, cm, &q, &[w.x, w.y, w.z, u.x, u.y, u.z], &[0.0; 6]);
+    let (d, kinks) = check("rolling", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert_eq!(d.modes, vec![ContactMode::Sticking]);
+}
+
+#[test]
+fn solo12_standing_on_its_four_feet() {
+    let path = example_robot_data().join("solo_description/robots/solo12.urdf");
+    let model = load_urdf(&path, true).unwrap();
+    let robot = parse_urdf_file(&path).unwrap();
+    let (geometries, _) = urdf_geometries(&robot, &model);
+    let cm = ground_model(Some(0.0), Some(0.9), None, geometries).unwrap();
+    let mut q = vec![
+        0.0, 0.0, 0.3, 0.0, 0.0, 0.0, 1.0, 0.1, 0.8, -1.6, -0.1, 0.8, -1.6, 0.1, -0.8, 1.6, -0.1,
+        -0.8, 1.6,
+    ];
+    place_on_ground(&model, &cm, &mut q).unwrap();
+    // settled on its feet by the stance controller for 0.3 s, then its torque held open-loop
+    // and the robot lifted 3 µm, so that every foot closes its gap in the step
+    let law = ControlLaw::standing(&model, &q, &cm).unwrap();
+    let nv = model.nv();
+    let mut stand = Simulator::new(
+        &model,
+        &q,
+        &vec![0.0; nv],
+        options(1e-3),
+        Controller::new(&model, law).unwrap(),
+    )
+    .unwrap()
+    .with_collision(cm.clone())
+    .unwrap();
+    stand.run(300, |_| {}).unwrap();
+    let tau = stand.torques().unwrap().0.to_vec();
+    let mut q = stand.q().to_vec();
+    q[2] += 3e-6;
+    let mut s = sim(&model, cm, &q, stand.v(), &tau);
+    let (d, _) = check("solo", &mut s, 1e-7, 1e-5);
+    let pushing = d
+        .modes
+        .iter()
+        .filter(|m| **m != ContactMode::Separated)
+        .count();
+    assert!(pushing >= 4, "{:?}", d.modes);
+}
