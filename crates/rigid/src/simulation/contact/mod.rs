@@ -56,7 +56,9 @@
 mod rows;
 mod solver;
 
-pub(crate) use solver::{Block, ContactSolver};
+#[cfg(feature = "collision")]
+pub(crate) use solver::Block;
+pub(crate) use solver::ContactSolver;
 
 /// The solver's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
