@@ -219,6 +219,9 @@ pub struct Simulator<C = super::Controller> {
     /// Contacts and unilateral limits, when there are any ([`with_collision`](Self::with_collision),
     /// [`JointLimits::Unilateral`]).
     pub(crate) contact: Option<Box<ContactStepper>>,
+    /// A copy of `contact` that [`step_derivatives`](Self::step_derivatives) steps, so that
+    /// the simulator's own contacts and memory stay those of its last step (made on first use).
+    pub(crate) derivative_stepper: Option<Box<ContactStepper>>,
 }
 
 impl<C: Control> Simulator<C> {
@@ -281,6 +284,7 @@ impl<C: Control> Simulator<C> {
             v: v0.to_vec(),
             p: vec![0.0; nv],
             contact: None,
+            derivative_stepper: None,
         };
         if options.limits == JointLimits::Unilateral {
             sim.contact_stepper()?;
@@ -296,6 +300,7 @@ impl<C: Control> Simulator<C> {
             return Err(SimulationError::ContactIntegrator { integrator });
         }
         let model = &self.dynamics.model;
+        self.derivative_stepper = None;
         Ok(self
             .contact
             .get_or_insert_with(|| Box::new(ContactStepper::new(model))))

@@ -217,6 +217,13 @@ impl ContactSolver {
         }
     }
 
+    /// The memory of `other`'s last step (warm starts, impacts), for a solve of the same step
+    /// from a copy.
+    #[cfg(feature = "collision")]
+    pub(crate) fn copy_memory(&mut self, other: &Self) {
+        self.next_memory.clone_from(&other.next_memory);
+    }
+
     /// Forgets the blocks of the last step (remembering their impulses and impacts for the
     /// warm start of this one).
     pub(crate) fn clear(&mut self) {
