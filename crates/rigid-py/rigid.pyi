@@ -386,6 +386,42 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
     (N,; the largest constraint error, m or rad, and its rate): the columns of ``rigid simulate
     --csv``."""
 
+class Simulator:
+    """The time-stepping simulation with contacts (``simulate``'s ``"semi-implicit"`` scheme:
+    Signorini-Coulomb impulses, the position correction) one step at a time from any state with
+    an open-loop torque, and the derivatives of that step. The world as ``simulate``'s: an MJCF
+    file's own floor, geom pairs and ``<equality>`` loops; ``ground`` (a height, m) adds the
+    plane ``z = ground`` under a URDF's ``<collision>`` geometry, with ``friction`` (default: the
+    file's, else 0.8) and ``restitution`` (default 0); ``dt`` defaults to an MJCF file's
+    ``timestep``, else 1 ms. A model with nothing that can touch raises ``ValueError``. The
+    contacts' memory (warm starts, an impact of the last step) is the last ``step``'s: call it in
+    sequence along a trajectory."""
+
+    def __init__(self, model: Model, dt: float | None = None, ground: float | None = None,
+                 friction: float | None = None, restitution: float | None = None,
+                 self_collision: bool = False) -> None: ...
+    @property
+    def dt(self) -> float:
+        """The step (s)."""
+    def step(self, q: ArrayLike, v: ArrayLike, tau: ArrayLike) -> tuple[Vector, Vector]:
+        """``(q⁺, v⁺)`` after one step from ``(q, v)`` with the joint torques ``tau`` (length nv;
+        with the model's joint damping and friction), in the model's layout."""
+    def step_derivatives(self, q: ArrayLike, v: ArrayLike, tau: ArrayLike
+                         ) -> dict[str, Any]:
+        """The derivatives of ``step(q, v, tau)``, analytical (the implicit function theorem on
+        the step's contact problem at its solution, each contact separated, sticking or
+        sliding): ``dq_dq``, ``dq_dv``, ``dq_dtau``, ``dv_dq``, ``dv_dv``, ``dv_dtau`` (each
+        nv × nv, the model's layout; ``q`` perturbed by ``integrate``, ``q⁺`` compared by
+        ``difference``), ``q_next``, ``v_next`` (the step's result), ``modes`` (one per contact,
+        then per joint limit: ``"separated"``, ``"sticking"``, ``"sliding"``), ``at_switch``
+        (indices into ``modes`` of those at a mode switch, where the derivative is the one-sided
+        derivative of the mode shown) and ``scaled`` (the energy safeguard scaled the impulse:
+        the derivatives are those of the unscaled one). The state is not advanced. Not covered:
+        bilateral constraints (an MJCF ``<equality>``), the turn of the normal between two
+        moving bodies, and the ``mujoco`` layout with a free joint; each raises or is said in
+        docs/contact.md. Not in Pinocchio's Python; MuJoCo has finite differences
+        (``mjd_transitionFD``)."""
+
 def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -> None:
     """Write the 3D replay of ``traj`` (a dict or object with ``t`` (N,) and ``q`` (N, nq), such
     as the result of ``simulate``) to one self-contained HTML file (WebGL; the URDF's visual

@@ -13,6 +13,7 @@
 //! | `outputs.rs` | the batch verbs' fresh outputs, from a cache of the arrays they returned, `set_output_cache` |
 //! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch`, `rnea_derivatives_batch` (all cores, GIL released) |
 //! | `simulation.rs` | `simulate` (robot simulation, built-in or Python control laws), `replay_html` |
+//! | `simulator.rs` | `Simulator`: one step at a time from any state with an open-loop torque, and `step_derivatives` |
 //! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, private field accessors |
 //! | `inverse_kinematics.rs` | `inverse_kinematics` (`rigid::kinematics::inverse`: targets in, a dict out) |
 //! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_lie`) |
@@ -37,6 +38,7 @@ mod outputs;
 mod pinocchio;
 mod scale;
 mod simulation;
+mod simulator;
 
 use pyo3::prelude::*;
 
@@ -100,6 +102,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(derivatives::aba_derivatives, m)?)?;
     m.add_function(wrap_pyfunction!(derivatives::gravity_derivatives, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
+    m.add_class::<simulator::Simulator>()?;
     m.add_function(wrap_pyfunction!(simulation::replay_html, m)?)?;
     m.add_function(wrap_pyfunction!(batch::rnea_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::aba_batch, m)?)?;

@@ -126,7 +126,7 @@ pub(crate) fn run<C: Control>(
 }
 
 /// Warns in Python with each of `warnings`, prefixed by `func`.
-fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyResult<()> {
+pub(crate) fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyResult<()> {
     let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
     for w in warnings {
         let text =

@@ -8,30 +8,11 @@
 use rigid::collision::place_on_ground;
 use rigid::io::collision::{ground_model, urdf_geometries};
 use rigid::io::urdf::{load_urdf, parse_urdf_file};
-use rigid::multibody::{Model, MultibodyError};
 use rigid::simulation::{
-    Control, ControlLaw, Controller, Integrator, SimulationOptions, Simulator,
+    ControlLaw, Controller, Integrator, OpenLoop, SimulationOptions, Simulator,
 };
 use std::hint::black_box;
 use std::time::Instant;
-
-/// An open-loop torque.
-#[derive(Clone)]
-struct Push(Vec<f64>);
-
-impl Control for Push {
-    fn torque(
-        &mut self,
-        _: &Model,
-        _: f64,
-        _: &[f64],
-        _: &[f64],
-        tau: &mut [f64],
-    ) -> Result<(), MultibodyError> {
-        tau.copy_from_slice(&self.0);
-        Ok(())
-    }
-}
 
 /// The fastest per-call time (s) of 11 batches of `n` calls of `f`.
 fn fastest(n: usize, mut f: impl FnMut()) -> f64 {
@@ -74,7 +55,7 @@ fn main() {
     stand.run(300, |_| {}).unwrap();
     let tau = stand.torques().unwrap().0.to_vec();
     let (q0, v0) = (stand.q().to_vec(), stand.v().to_vec());
-    let mut sim = Simulator::new(&model, &q0, &v0, opts, Push(tau))
+    let mut sim = Simulator::new(&model, &q0, &v0, opts, OpenLoop(tau))
         .unwrap()
         .with_collision(cm)
         .unwrap();

@@ -49,6 +49,33 @@ impl<F: FnMut(f64, &[f64], &[f64], &mut [f64])> Control for F {
     }
 }
 
+/// An open-loop torque `τ(t, q, v) = u` (length `nv`), held until changed: the input of
+/// [`Simulator::step_derivatives`](super::Simulator::step_derivatives) and of a step-by-step
+/// loop (`sim.control_mut().0 = u`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OpenLoop(pub Vec<f64>);
+
+impl Control for OpenLoop {
+    fn torque(
+        &mut self,
+        model: &Model,
+        _t: f64,
+        _q: &[f64],
+        _v: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), MultibodyError> {
+        crate::error::DimensionError::check("torque", model.nv, self.0.len())?;
+        if let Some(index) = self.0.iter().position(|x| !x.is_finite()) {
+            return Err(MultibodyError::NonFinite {
+                what: "torque",
+                index,
+            });
+        }
+        tau.copy_from_slice(&self.0);
+        Ok(())
+    }
+}
+
 /// The built-in control laws.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ControlLaw {

@@ -51,7 +51,7 @@ mod trajectory;
 
 #[cfg(feature = "parallel")]
 pub use batch::simulate_batch;
-pub use control::{Control, ControlKind, ControlLaw, Controller};
+pub use control::{Control, ControlKind, ControlLaw, Controller, OpenLoop};
 pub use loops::{ConstraintOptions, Violation, MAX_INITIAL_VIOLATION};
 pub use scenario::{Scenario, Start};
 pub use simulator::Simulator;

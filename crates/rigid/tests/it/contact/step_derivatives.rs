@@ -11,28 +11,12 @@ use nalgebra::DMatrix;
 use rigid::collision::{place_on_ground, CollisionModel, Ground};
 use rigid::io::collision::{ground_model, urdf_geometries};
 use rigid::io::urdf::{load_urdf, parse_urdf_file};
-use rigid::multibody::{difference, integrate, Model, MultibodyError};
+use rigid::multibody::{difference, integrate, Model};
 use rigid::simulation::contact::ContactSettings;
-use rigid::simulation::{ContactMode, Control, ControlLaw, Controller, Simulator, StepDerivatives};
+use rigid::simulation::{
+    ContactMode, ControlLaw, Controller, OpenLoop, Simulator, StepDerivatives,
+};
 use rigid::spatial::{so3, Vec3};
-
-/// An open-loop torque, the input the derivatives are taken with respect to.
-#[derive(Clone, Debug)]
-struct Push(Vec<f64>);
-
-impl Control for Push {
-    fn torque(
-        &mut self,
-        _: &Model,
-        _: f64,
-        _: &[f64],
-        _: &[f64],
-        tau: &mut [f64],
-    ) -> Result<(), MultibodyError> {
-        tau.copy_from_slice(&self.0);
-        Ok(())
-    }
-}
 
 fn settings() -> ContactSettings {
     ContactSettings {
@@ -42,8 +26,14 @@ fn settings() -> ContactSettings {
     }
 }
 
-fn sim(model: &Model, cm: CollisionModel, q: &[f64], v: &[f64], tau: &[f64]) -> Simulator<Push> {
-    Simulator::new(model, q, v, options(1e-3), Push(tau.to_vec()))
+fn sim(
+    model: &Model,
+    cm: CollisionModel,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+) -> Simulator<OpenLoop> {
+    Simulator::new(model, q, v, options(1e-3), OpenLoop(tau.to_vec()))
         .unwrap()
         .with_collision(cm)
         .unwrap()
@@ -52,7 +42,7 @@ fn sim(model: &Model, cm: CollisionModel, q: &[f64], v: &[f64], tau: &[f64]) -> 
 }
 
 /// `(q⁺, v⁺)` of one step of a copy of `s` from `(q, v)` with the torque `tau`.
-fn step(s: &Simulator<Push>, q: &[f64], v: &[f64], tau: &[f64]) -> (Vec<f64>, Vec<f64>) {
+fn step(s: &Simulator<OpenLoop>, q: &[f64], v: &[f64], tau: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let mut s = s.clone();
     s.set_state(q, v).unwrap();
     s.control_mut().0.copy_from_slice(tau);
@@ -62,7 +52,7 @@ fn step(s: &Simulator<Push>, q: &[f64], v: &[f64], tau: &[f64]) -> (Vec<f64>, Ve
 
 /// Forward and backward differences of the step of `s` from its state, with step `eps`: the
 /// six matrices (in the order of `StepDerivatives`) of each.
-fn one_sided(s: &Simulator<Push>, eps: f64) -> [[DMatrix<f64>; 6]; 2] {
+fn one_sided(s: &Simulator<OpenLoop>, eps: f64) -> [[DMatrix<f64>; 6]; 2] {
     let model = s.model();
     let nv = model.nv();
     let (q, v, tau) = (s.q().to_vec(), s.v().to_vec(), s.control().0.clone());
@@ -98,7 +88,7 @@ fn one_sided(s: &Simulator<Push>, eps: f64) -> [[DMatrix<f64>; 6]; 2] {
 /// smooth along that column (a contact point or mode switching within `eps`: the forward and
 /// backward differences part), one of the one-sided differences within `kink_tol`. Returns the
 /// derivatives and the number of columns of the second kind.
-fn check(what: &str, s: &mut Simulator<Push>, eps: f64, tol: f64) -> (StepDerivatives, usize) {
+fn check(what: &str, s: &mut Simulator<OpenLoop>, eps: f64, tol: f64) -> (StepDerivatives, usize) {
     let d = s.step_derivatives().unwrap();
     let (q1, v1) = step(s, s.q(), s.v(), &s.control().0.clone());
     assert_eq!((&d.q_next, &d.v_next), (&q1, &v1), "{what}: the next state");
