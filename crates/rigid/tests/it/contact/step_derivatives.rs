@@ -298,3 +298,41 @@ fn solo12_standing_on_its_four_feet() {
         .count();
     assert!(pushing >= 4, "{:?}", d.modes);
 }
+
+#[test]
+fn an_arm_falling_into_a_joint_limit() {
+    use rigid::mass::{RotationalInertia, SpatialInertia};
+    use rigid::multibody::{JointType, ModelBuilder};
+    use rigid::simulation::JointLimits;
+    use rigid::spatial::Transform;
+    // two links about y under gravity, the shoulder 2 µm above its lower limit and turning into
+    // it, the elbow free: the limit pushes (a unilateral row of the problem)
+    let link = SpatialInertia::from_com(
+        1.0,
+        Vec3::new(0.0, 0.0, -0.25),
+        RotationalInertia::diagonal(0.02, 0.02, 0.001),
+    );
+    let mut b = ModelBuilder::new("arm");
+    let y = JointType::Revolute { axis: Vec3::y() };
+    let j1 = b
+        .add_joint(None, "shoulder", y.clone(), Transform::identity(), link)
+        .unwrap();
+    let down = Transform::from_translation(Vec3::new(0.0, 0.0, -0.5));
+    b.add_joint(Some(j1), "elbow", y, down, link).unwrap();
+    let inf = f64::INFINITY;
+    b.set_limits(j1, &[-0.5], &[inf], &[inf], &[inf]).unwrap();
+    let model = b.build().unwrap().with_gravity(Vec3::new(0.0, 0.0, -G));
+    let mut opts = options(1e-3);
+    opts.limits = JointLimits::Unilateral;
+    opts.joint_dynamics = true; // with the model's (zero) damping: the passive partials' path
+    let (q, v) = ([-0.5 + 2e-6, 0.8], [-0.1, 0.3]);
+    let mut s = Simulator::new(&model, &q, &v, opts, OpenLoop(vec![0.3, -0.1]))
+        .unwrap()
+        .with_contact_settings(settings())
+        .unwrap();
+    let (d, kinks) = check("limit", &mut s, 1e-8, 1e-5);
+    assert_eq!(kinks, 0);
+    assert_eq!(d.modes, vec![ContactMode::Sticking]);
+    // held at the limit: the shoulder's own torque does not move it
+    assert!(d.dv_dtau[(0, 0)].abs() < 1e-9);
+}
