@@ -100,3 +100,19 @@ def test_bad_input_raises(tmp_path):
         sim.step(pose([0, 0, 1], np.zeros(3)), np.zeros(5), np.zeros(6))
     with pytest.raises(ValueError):
         sim.step_derivatives(pose([0, 0, 1], np.zeros(3)), np.zeros(6), [np.nan] * 6)
+
+
+def test_the_push_through_contact_example_converges():
+    """examples/python/push_through_contact.py: its gradient against central differences of the
+    whole rollout, and Gauss-Newton to the mark and to rest."""
+    import importlib.util
+    import os
+
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "..", "examples", "python",
+                        "push_through_contact.py")
+    spec = importlib.util.spec_from_file_location("push_through_contact", path)
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    u, q, v, history = example.optimise(n=300, verbose=False)
+    assert abs(q[0] - example.TARGET) < 1e-8 and abs(v[3]) < 1e-7, (q[0], v[3], history)
+    assert len(history) <= 5
