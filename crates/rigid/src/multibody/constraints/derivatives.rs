@@ -17,12 +17,14 @@
 //! way with `∂(M x)/∂q = ∂RNEA(q, 0, x)/∂q − ∂g/∂q`, `∂r_1/∂q̇⁻ = −M` and `∂r_2/∂q̇⁻ = e J`.
 //!
 //! With redundant constraints and `μ > 0`, `λ` is the least-norm multiplier of the proximal
-//! iterations, and its derivatives are those of the least-norm solution: the same iterations
-//! run on each column.
+//! iterations, and its derivatives are those of the least-norm solution, `∂λ = K⁺ (…)` by the
+//! pivoted Cholesky pseudo-inverse (iterating the proximal steps on each column instead would
+//! let the round-off of the right-hand side outside `K`'s range grow `∂λ` in `K`'s null space
+//! by `b_⊥/μ` per iteration).
 
 use super::dynamics::joint_coords;
 use super::partials::{force_partials, residual_rows, BodyMotion, Level};
-use super::solver::{primal_rows, proximal_iterations, z_transpose_times};
+use super::solver::{pinv_solve, primal_rows, proximal_iterations, z_transpose_times};
 use super::ProximalSettings;
 use super::{constraint_dynamics, impulse_dynamics, ConstraintData, ConstraintError};
 use crate::multibody::algorithms::ltl_solve_transposed;
@@ -85,6 +87,8 @@ struct Work {
     y: Vec<f64>,
     b: Vec<f64>,
     prev: Vec<f64>,
+    /// The pseudo-inverse's scratch (m x m, m x m, m): with `μ > 0`.
+    pinv: (DMatrix<f64>, DMatrix<f64>, Vec<usize>),
 }
 
 impl Work {
@@ -101,6 +105,7 @@ impl Work {
             y: vec![0.0; m],
             b: vec![0.0; m],
             prev: vec![0.0; m],
+            pinv: (DMatrix::zeros(m, m), DMatrix::zeros(m, m), vec![0; m]),
         }
     }
 
@@ -173,14 +178,22 @@ impl Work {
         for (b, y) in self.b.iter_mut().zip(&self.y) {
             *b = y - *b;
         }
-        proximal_iterations(
-            &cd.delassus,
-            &cd.chol,
-            &self.b,
-            &mut self.y,
-            &mut self.prev,
-            settings,
-        );
+        if settings.mu > 0.0 {
+            // the derivative of the least-norm λ: y = K⁺ b (the proximal iterations would
+            // converge to it too, but the round-off of b outside K's range would grow y in K's
+            // null space by b_⊥/μ at each iteration)
+            let (c, n2, perm) = &mut self.pinv;
+            pinv_solve(&cd.delassus, c, n2, perm, &self.b, &mut self.y);
+        } else {
+            proximal_iterations(
+                &cd.delassus,
+                &cd.chol,
+                &self.b,
+                &mut self.y,
+                &mut self.prev,
+                settings,
+            );
+        }
         let n = cd.constraints.len();
         primal_rows(
             data,

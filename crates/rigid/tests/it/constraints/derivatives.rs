@@ -300,3 +300,83 @@ fn impulse_dynamics_derivatives_equal_finite_differences() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// A redundant set (a point held twice, a frame held twice: consistent, of rank 9 in 18 rows)
+/// under the proximal solver (`μ = 1e-6`, iterated to convergence): `∂q̈` equals central
+/// differences, and `∂λ` is the derivative of the least-norm λ the iterations converge to.
+#[test]
+fn redundant_constraints_under_the_proximal_solver_equal_finite_differences() {
+    let model = two_branches();
+    let mut rng = Rng::new(11);
+    let id = |n: &str| model.joint_id(n).unwrap();
+    let (tip0, tip1) = (id("b0j3"), id("b1j3"));
+    let at0 = transform(&mut rng);
+    let at1 = transform(&mut rng);
+    let mut held = ConstraintModel::point(Some(tip0), at0, None, transform(&mut rng));
+    held.reference = ReferenceFrame::WorldAligned;
+    let mut frame = ConstraintModel::frame(Some(tip1), at1, None, transform(&mut rng));
+    frame.baumgarte = Baumgarte { kp: 4.0, kd: 2.0 };
+    let sets = [
+        ("a point twice", vec![held.clone(), held.clone()]),
+        ("a frame twice", vec![frame.clone(), frame.clone()]),
+        ("both twice", vec![held.clone(), held, frame.clone(), frame]),
+    ];
+    let settings = ProximalSettings::redundant();
+    let mut failures = Vec::new();
+    for (name, set) in &sets {
+        let mut data = Data::new(&model);
+        let mut cd = ConstraintData::new(&model, set).unwrap();
+        let mut d = ConstraintDynamicsDerivatives::new(&model, &cd);
+        for _ in 0..1 {
+            let q = random_configuration(&model, &mut rng);
+            let v: Vec<f64> = (0..model.nv()).map(|_| rng.uniform(-1.0, 1.0)).collect();
+            let tau: Vec<f64> = (0..model.nv()).map(|_| rng.uniform(-3.0, 3.0)).collect();
+            constraint_dynamics_derivatives(
+                &model, &mut data, &mut cd, &q, &v, &tau, &settings, &mut d,
+            )
+            .unwrap();
+            let m = cd.dim();
+            let eval = |q: &[f64], v: &[f64], tau: &[f64]| {
+                let mut data = Data::new(&model);
+                let mut cd = ConstraintData::new(&model, set).unwrap();
+                constraint_dynamics(&model, &mut data, &mut cd, q, v, tau, &settings).unwrap();
+                let mut x = DVector::zeros(model.nv() + m);
+                x.rows_mut(0, model.nv()).copy_from(&cd.ddq);
+                // the least-norm λ shares each pair's force equally: the iterations' λ
+                // projected so (their round-off drift along the pair's difference, b_⊥/μ per
+                // iteration, is not the solution's, and central differences amplify it)
+                for c in (0..set.len()).step_by(2) {
+                    for (r1, r2) in cd.rows_of(c).zip(cd.rows_of(c + 1)) {
+                        let mean = 0.5 * (cd.lambda[r1] + cd.lambda[r2]);
+                        x[model.nv() + r1] = mean;
+                        x[model.nv() + r2] = mean;
+                    }
+                }
+                x
+            };
+            let by_q = fd(&model, &q, true, |q| eval(q, &v, &tau));
+            let by_v = fd(&model, &v, false, |v| eval(&q, v, &tau));
+            let by_tau = fd(&model, &tau, false, |t| eval(&q, &v, t));
+            for (what, ours, theirs) in [
+                ("q", stack(&d.ddq_dq, &d.dlambda_dq), by_q),
+                ("v", stack(&d.ddq_dv, &d.dlambda_dv), by_v),
+                ("tau", stack(&d.ddq_dtau, &d.dlambda_dtau), by_tau),
+            ] {
+                let e = rel(&ours, &theirs);
+                let nv = model.nv();
+                let e_ddq = rel(
+                    &ours.rows(0, nv).into_owned(),
+                    &theirs.rows(0, nv).into_owned(),
+                );
+                println!("{name}: d/d{what} {e:.1e} (q̈ alone {e_ddq:.1e})");
+                if e >= TOLERANCE {
+                    failures.push(format!(
+                        "{name}: d/d{what} off by {e:.1e} at {}",
+                        worst(&ours, &theirs)
+                    ));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
