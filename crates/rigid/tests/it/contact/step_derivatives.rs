@@ -315,7 +315,7 @@ fn an_arm_falling_into_a_joint_limit() {
     let mut b = ModelBuilder::new("arm");
     let y = JointType::Revolute { axis: Vec3::y() };
     let j1 = b
-        .add_joint(None, "shoulder", y.clone(), Transform::identity(), link)
+        .add_joint(None, "shoulder", y, Transform::identity(), link)
         .unwrap();
     let down = Transform::from_translation(Vec3::new(0.0, 0.0, -0.5));
     b.add_joint(Some(j1), "elbow", y, down, link).unwrap();
