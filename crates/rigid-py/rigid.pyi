@@ -415,11 +415,12 @@ class Simulator:
         ``difference``), ``q_next``, ``v_next`` (the step's result), ``modes`` (one per contact,
         then per joint limit: ``"separated"``, ``"sticking"``, ``"sliding"``), ``at_switch``
         (indices into ``modes`` of those at a mode switch, where the derivative is the one-sided
-        derivative of the mode shown) and ``scaled`` (the energy safeguard scaled the impulse:
-        the derivatives are those of the unscaled one). The state is not advanced. Not covered:
-        bilateral constraints (an MJCF ``<equality>``), the turn of the normal between two
-        moving bodies, and the ``mujoco`` layout with a free joint; each raises or is said in
-        docs/contact.md. Not in Pinocchio's Python; MuJoCo has finite differences
+        derivative of the mode shown), ``held_normal`` (indices of the pushing contacts between two
+        moving bodies, whose normal's turn is left out) and ``scaled`` (the energy safeguard scaled the impulse:
+        the derivatives are those of the unscaled one). The state is not advanced; an MJCF file's
+        ``<equality>`` loops are differentiated with the contacts. Not covered: the turn of the
+        normal between two moving bodies, and the ``mujoco`` layout with a free joint (raises);
+        see docs/contact.md. Not in Pinocchio's Python; MuJoCo has finite differences
         (``mjd_transitionFD``)."""
 
 def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -> None:

@@ -182,6 +182,7 @@ impl Simulator {
             .collect();
         out.set_item("modes", modes)?;
         out.set_item("at_switch", d.at_switch.clone())?;
+        out.set_item("held_normal", d.held_normal.clone())?;
         out.set_item("scaled", d.scaled)?;
         Ok(out)
     }

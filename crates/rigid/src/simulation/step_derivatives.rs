@@ -26,14 +26,23 @@
 //!
 //!    The rows make one square system in `δλ`, solved in the least-squares sense (a box on its
 //!    four corners has twelve rows for six freedoms: `δλ` is not unique, `δv⁺` is).
+//!
+//!    Bilateral rows (closed loops, welds: [`loops`](super::loops)) hold `J_B v⁺ = 0`, their
+//!    `∂(J_B v⁺)/∂q` and `∂(J_Bᵀ λ_B)/∂q` the velocity-level partials of the constrained
+//!    dynamics' derivatives ([`constraints`](crate::multibody::constraints)).
 //! 3. **The position correction**, when something penetrated: the same on its normal rows,
 //!    `(J M̃⁻¹ Jᵀ μ)_n = β (−φ)/h` for each pushing one, with `∂(M w)/∂q` from a second RNEA
-//!    derivative (`w = M̃⁻¹ Jᵀ μ`).
+//!    derivative (`w = M̃⁻¹ Jᵀ μ`); bilateral rows always (`−β e/h`, `∂e/∂q = J_B` at `e = 0`:
+//!    an error within the projection's tolerance asks no correction, but any perturbation
+//!    leaves that band).
 //! 4. **The configuration update**: per joint the Jacobians of `⊕`
 //!    ([`integrate_jacobians`](crate::multibody::integrate_jacobians)); a free-flyer, stepped
 //!    in world-aligned axes with `R = exp(h ω)`: `δθ⁺ = Rᵀ δθ + h J_r(hω) δω`,
 //!    `δp⁺ = Rᵀ (δp − h [v]× δθ + h δv)`, and its velocity turned to the new axes,
 //!    `δ(Rᵀ u) = Rᵀ δu + [Rᵀ u]× J_r(hω) h δω`.
+//! 5. **The projection onto the loops** ([`ConstraintOptions::project`](super::ConstraintOptions)),
+//!    at its solution: the tangent projector in the metric of `M`,
+//!    `I − M⁻¹ J_Bᵀ (J_B M⁻¹ J_Bᵀ)⁺ J_B` at `q⁺` (first order in the error it removed, `O(h²)`).
 //!
 //! Where the step is not differentiable (a contact exactly at a mode switch: touching without
 //! pushing, or sticking on the cone's edge), the derivative of the mode the solver returned is
@@ -45,10 +54,11 @@ use super::contact::Block;
 use super::contact_step::{contact_step, ContactStepper};
 use super::control::Control;
 use super::{SimulationError, Simulator};
-use crate::multibody::algorithms::{ltl_solve_lower, ltl_solve_transposed};
+use crate::multibody::algorithms::{ltl_factor, ltl_solve_lower, ltl_solve_transposed};
 use crate::multibody::configuration::world_aligned_turn;
+use crate::multibody::constraints::velocity_level_partials;
 use crate::multibody::{
-    rnea_derivatives, rnea_derivatives_with_external, se3_right_jacobian, Data, JointType,
+    crba, rnea_derivatives, rnea_derivatives_with_external, se3_right_jacobian, Data, JointType,
 };
 use crate::spatial::{so3, Mat3, Mat6, Twist, Vec3};
 use nalgebra::DMatrix;
@@ -90,6 +100,9 @@ pub struct StepDerivatives {
     /// The indices (into `modes`) of those at a mode switch, where the derivative given is
     /// the one-sided derivative of the mode shown.
     pub at_switch: Vec<usize>,
+    /// The indices (into `modes`) of the pushing contacts between two moving bodies, whose
+    /// normal is held fixed in these derivatives (its turn with the bodies is left out).
+    pub held_normal: Vec<usize>,
     /// The energy safeguard scaled this step's impulse ([`ContactStats::scaled`](super::contact::ContactStats::scaled)):
     /// the derivatives are those of the unscaled solution.
     pub scaled: bool,
@@ -228,8 +241,8 @@ impl<C: Control> Simulator<C> {
     ///
     /// # Errors
     /// [`SimulationError::NotDifferentiable`] for a simulator without contacts or limits (not
-    /// the time-stepping scheme), with bilateral constraints, or with a PD control law; an
-    /// algorithm's error (a model whose joints the analytical derivatives do not cover).
+    /// the time-stepping scheme) or with a PD control law; an algorithm's error (a model whose
+    /// joints the analytical derivatives do not cover).
     pub fn step_derivatives(&mut self) -> Result<StepDerivatives, SimulationError> {
         let Some(stepper) = &self.contact else {
             return Err(SimulationError::NotDifferentiable(
@@ -237,11 +250,6 @@ impl<C: Control> Simulator<C> {
                  geometry or unilateral limits",
             ));
         };
-        if self.dynamics.loops.is_some() {
-            return Err(SimulationError::NotDifferentiable(
-                "bilateral constraints (closed loops, welds) are not differentiated yet",
-            ));
-        }
         if self.dynamics.control.pd_gains().is_some() {
             return Err(SimulationError::NotDifferentiable(
                 "a control law with PD gains (integrated implicitly) is not differentiated: \
@@ -294,6 +302,18 @@ impl<C: Control> Simulator<C> {
         let lambda = &solver.lambda[..m];
         let mut p = DMatrix::zeros(nv, nv);
         solver.force_dq(model, &mut scratch, &q, lambda, &radius, &mut p)?;
+        // the bilateral rows lead, in the constraints' row order (at q: before the projection)
+        let mb = solver.bilateral_rows;
+        let bilateral = |x: &[f64], l: &[f64], scratch: &mut Data| match &d.loops {
+            Some(lp) if mb > 0 => {
+                velocity_level_partials(model, scratch, &lp.cdata, &q, x, &l[..mb]).map(Some)
+            }
+            _ => Ok(None),
+        };
+        let bilateral_v = bilateral(vp, lambda, &mut scratch)?;
+        if let Some((_, pb)) = &bilateral_v {
+            p += pb;
+        }
         let mut e = DMatrix::zeros(nv, n3);
         {
             let mut eq = -rq * h + &p;
@@ -328,11 +348,19 @@ impl<C: Control> Simulator<C> {
         minv_columns(data, &mut w);
         let g = &jm * &w;
         let mut dv_plus = e.clone();
-        let (mut modes, mut at_switch) = (Vec::new(), Vec::new());
+        let (mut modes, mut at_switch, mut held_normal) = (Vec::new(), Vec::new(), Vec::new());
         if m > 0 {
             let mut c = DMatrix::zeros(m, nv);
             solver.rows_dq(model, &mut scratch, &q, vp, &radius, &mut c)?;
+            if let Some((cb, _)) = &bilateral_v {
+                c.rows_mut(0, mb).copy_from(cb);
+            }
             let rows = classify(solver, lambda, &mut modes, &mut at_switch);
+            for (i, c) in solver.points.iter().enumerate() {
+                if c.body1.is_some() && c.body2.is_some() && modes[i] != ContactMode::Separated {
+                    held_normal.push(i);
+                }
+            }
             let mut t = DMatrix::zeros(m, n3);
             let mut rebound = false;
             for (r, row) in rows.iter().enumerate() {
@@ -366,9 +394,11 @@ impl<C: Control> Simulator<C> {
             dv_plus += &w * dl;
         }
 
-        // 3. the position correction
+        // 3. the position correction; with bilateral rows always (an error within the
+        // projection's tolerance asks none, but any perturbation of q leaves that band)
         let mut dw = DMatrix::zeros(nv, nv);
-        if cs.dq.iter().any(|x| *x != 0.0) {
+        let beta = cs.settings.stabilization;
+        if cs.dq.iter().any(|x| *x != 0.0) || (mb > 0 && beta > 0.0) {
             let mu = &solver.mu[..m];
             let wc: Vec<f64> = cs.dq.iter().map(|x| x / h).collect();
             let zeros = vec![0.0; nv];
@@ -377,13 +407,25 @@ impl<C: Control> Simulator<C> {
                 .clone();
             let mut pm = DMatrix::zeros(nv, nv);
             solver.force_dq(model, &mut scratch, &q, mu, &radius, &mut pm)?;
+            let bilateral_w = bilateral(&wc, mu, &mut scratch)?;
+            if let Some((_, pb)) = &bilateral_w {
+                pm += pb;
+            }
             let mut ew = pm - dmw;
             minv_columns(data, &mut ew);
             let mut cw = DMatrix::zeros(m, nv);
             solver.rows_dq(model, &mut scratch, &q, &wc, &radius, &mut cw)?;
-            let beta = cs.settings.stabilization;
+            if let Some((cb, _)) = &bilateral_w {
+                cw.rows_mut(0, mb).copy_from(cb);
+            }
             let mut rows = vec![Row::Free; m];
             let mut t = DMatrix::zeros(m, nv);
+            // the bilateral rows aim at −β e/h, `∂e/∂q = J` (at e = 0)
+            for r in (0..mb).filter(|&r| !solver.bilateral_idle[r]) {
+                rows[r] = Row::Equal(Target::Gap(beta));
+                let x = jm.row(r) * (-beta / h);
+                t.row_mut(r).copy_from(&x);
+            }
             for b in solver.blocks.iter().filter(|b| !b.bilateral) {
                 if mu[b.row] > 0.0 {
                     let s = if b.gap < 0.0 { beta } else { 0.0 };
@@ -466,6 +508,32 @@ impl<C: Control> Simulator<C> {
                 diag += bq;
             }
         }
+        // 5. the projection onto the constraint manifold: at its solution, the tangent
+        // projector in the metric of M, I − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁺ J (∂e/∂q = J at e = 0)
+        if let Some(l) = d.loops.as_mut().filter(|l| l.options.project) {
+            let velocity = cs.solver.stats.scaled;
+            l.project(model, &mut d.data, &mut q1, &mut v1, velocity)?;
+            crba(model, &mut d.data, &q1)?;
+            ltl_factor(model, &mut d.data)?;
+            let cd = &l.cdata;
+            let mut jb = DMatrix::zeros(cd.dim(), nv);
+            for i in 0..cd.constraints.len() {
+                for r in cd.rows_of(i) {
+                    for &(k, _, _) in &cd.support[i].cols {
+                        jb[(r, k)] = cd.jacobian[(r, k)];
+                    }
+                }
+            }
+            let mut wb = jb.transpose();
+            minv_columns(&d.data, &mut wb);
+            let gb = &jb * &wb;
+            let tol = 1e-10 * gb.amax().max(1e-300);
+            let gp = gb
+                .pseudo_inverse(tol)
+                .unwrap_or_else(|_| DMatrix::zeros(cd.dim(), cd.dim()));
+            let projector = DMatrix::identity(nv, nv) - wb * gp * jb;
+            dq_out = projector * dq_out;
+        }
         Ok(StepDerivatives {
             dq_dq: dq_out.columns(0, nv).into_owned(),
             dq_dv: dq_out.columns(nv, nv).into_owned(),
@@ -477,6 +545,7 @@ impl<C: Control> Simulator<C> {
             v_next: v1,
             modes,
             at_switch,
+            held_normal,
             scaled: cs.solver.stats.scaled,
         })
     }
@@ -492,6 +561,10 @@ fn classify(
 ) -> Vec<Row> {
     let m = lambda.len();
     let mut rows = vec![Row::Free; m];
+    // the bilateral rows hold J v⁺ = 0 (an idle row, which moves nothing, keeps λ = 0)
+    for r in (0..solver.bilateral_rows).filter(|&r| !solver.bilateral_idle[r]) {
+        rows[r] = Row::Equal(Target::Constant);
+    }
     let sigma = &solver.sigma[..m];
     let target = &solver.target[..m];
     // contacts first (the order of `contacts()`), then limits

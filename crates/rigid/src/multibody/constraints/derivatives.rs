@@ -206,6 +206,24 @@ impl Work {
     }
 }
 
+/// `∂(J(q) w)/∂q` (m x nv) and `∂(J(q)ᵀ λ)/∂q` (nv x nv) of the constraints of `cdata` (its
+/// rows and placements made at `q`): the velocity-level partials of [the module](self), for the
+/// derivatives of a simulation step whose bilateral rows hold `J v⁺ = 0`.
+#[cfg(feature = "collision")]
+pub(crate) fn velocity_level_partials(
+    model: &Model,
+    data: &mut Data,
+    cdata: &ConstraintData,
+    q: &[f64],
+    w: &[f64],
+    lambda: &[f64],
+) -> Result<(DMatrix<f64>, DMatrix<f64>), MultibodyError> {
+    let mut work = Work::new(model.nv(), cdata.dim());
+    work.v.copy_from_slice(w);
+    work.partials(model, data, cdata, q, lambda, Level::Velocity)?;
+    Ok((work.dr_dq, work.dQ))
+}
+
 impl ConstraintDynamicsDerivatives {
     /// The buffers for `model` and the constraint set of `cdata`.
     #[must_use]

@@ -74,6 +74,8 @@ mod partials;
 pub(crate) mod solver;
 pub(crate) mod workspace;
 
+#[cfg(feature = "collision")]
+pub(crate) use derivatives::velocity_level_partials;
 pub use derivatives::{
     constraint_dynamics_derivatives, impulse_dynamics_derivatives, ConstraintDynamicsDerivatives,
     ImpulseDynamicsDerivatives,

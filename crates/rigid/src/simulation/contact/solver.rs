@@ -103,7 +103,7 @@ pub(crate) struct ContactSolver {
     x: Vec<f64>,
     /// The rows of the bilateral group (the leading rows), and the Cholesky factor of
     /// `K_BB + ρ I` (`None` until a step has bilateral rows).
-    bilateral_rows: usize,
+    pub(crate) bilateral_rows: usize,
     bilateral_factor: DMatrix<f64>,
     /// The bilateral rows' errors `e` at this step's `q`, and their largest `‖e‖∞`.
     bilateral_e: Vec<f64>,
@@ -112,7 +112,7 @@ pub(crate) struct ContactSolver {
     bilateral_step: Vec<f64>,
     /// The bilateral rows that move nothing (`K_rr` ≤ 1e-9 of the largest: a planar loop's
     /// out-of-plane row); their impulse stays 0.
-    bilateral_idle: Vec<bool>,
+    pub(crate) bilateral_idle: Vec<bool>,
     /// Per block, the row ranges of the blocks it shares a dof with (its own included): the
     /// nonzero columns of its rows of `K`; `coupled[first[b]..first[b + 1]]`.
     coupled: Vec<(usize, usize)>,

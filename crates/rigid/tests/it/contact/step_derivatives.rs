@@ -336,3 +336,61 @@ fn an_arm_falling_into_a_joint_limit() {
     // held at the limit: the shoulder's own torque does not move it
     assert!(d.dv_dtau[(0, 0)].abs() < 1e-9);
 }
+
+#[test]
+fn a_four_bar_loop() {
+    use rigid::mass::{RotationalInertia, SpatialInertia};
+    use rigid::multibody::constraints::{ConstraintModel, ProximalSettings};
+    use rigid::multibody::{forward_kinematics_q, Data, JointType, ModelBuilder};
+    use rigid::simulation::{ConstraintOptions, JointLimits};
+    use rigid::spatial::Transform;
+    // three links about y, the third one's tip pinned where it starts: a planar four-bar (one
+    // freedom; the pin's y row redundant), swinging under gravity in the time-stepping scheme
+    // (unilateral limits, none near): the pin's rows in the step, then the projection onto the
+    // loop. (With its first joint landing on a limit the loop locks, and the step is not
+    // differentiable there: one side moves, the other does not.)
+    let link = SpatialInertia::from_com(
+        1.0,
+        Vec3::new(0.0, 0.0, -0.25),
+        RotationalInertia::diagonal(0.02, 0.02, 0.001),
+    );
+    let y = JointType::Revolute { axis: Vec3::y() };
+    let down = Transform::from_translation(Vec3::new(0.0, 0.0, -0.5));
+    let mut b = ModelBuilder::new("four-bar");
+    let j1 = b
+        .add_joint(None, "a", y, Transform::identity(), link)
+        .unwrap();
+    let j2 = b.add_joint(Some(j1), "b", y, down, link).unwrap();
+    let j3 = b.add_joint(Some(j2), "c", y, down, link).unwrap();
+    let inf = f64::INFINITY;
+    b.set_limits(j1, &[-1.0], &[inf], &[inf], &[inf]).unwrap();
+    let model = b.build().unwrap().with_gravity(Vec3::new(0.0, 0.0, -G));
+    let q0 = [0.3, -1.2, 0.9];
+    let mut data = Data::new(&model);
+    forward_kinematics_q(&model, &mut data, &q0).unwrap();
+    let pin = ConstraintModel::point(Some(j3), down, None, data.placements[j3.0] * down);
+    let mut opts = options(1e-3);
+    opts.limits = JointLimits::Unilateral;
+    let copts = ConstraintOptions {
+        settings: ProximalSettings::redundant(),
+        ..ConstraintOptions::default()
+    };
+    let mut s = Simulator::new(
+        &model,
+        &q0,
+        &[-1.0, 2.0, -1.5],
+        opts,
+        OpenLoop(vec![0.0, 0.2, 0.0]),
+    )
+    .unwrap()
+    .with_constraints(&[pin], copts)
+    .unwrap()
+    .with_contact_settings(settings())
+    .unwrap();
+    let (d, kinks) = check("four-bar", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert!(d.modes.is_empty(), "{:?}", d.modes);
+    // q⁺ stays on the loop: its perturbations move along the loop's one freedom (rank 1)
+    let sv = d.dq_dq.singular_values();
+    assert!(sv[1] < 1e-9 * sv[0], "{sv}");
+}
