@@ -21,6 +21,7 @@ mod mobile_drive;
 mod model;
 mod plotting;
 mod simulate;
+mod step;
 mod util;
 mod view;
 
@@ -51,6 +52,8 @@ enum Command {
     Ik(ik::IkArgs),
     /// Evaluate a robot model's dynamics (RNEA, CRBA, ABA, energies, CoM, placements) on cases.
     Eval(eval::EvalArgs),
+    /// One simulation step with contacts from each case's (q, v, tau), and its derivatives.
+    Step(Box<step::StepArgs>),
     /// The explicit dynamic model: M(q), Coriolis, centrifugal and gravity terms as abbreviated tables or code.
     Explicit(explicit::ExplicitArgs),
     /// Summarise a robot model: bodies, joints, sizes, mass and the validity of every inertia.
@@ -108,6 +111,7 @@ fn main() -> ExitCode {
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),
         Command::Eval(args) => report(eval::run(&args)),
+        Command::Step(args) => report(step::run(&args)),
         Command::Ik(args) => ik::run(&args),
         Command::Identify(args) => report(identify::run(&args)),
         Command::Excite(args) => report(excite::run(&args)),

@@ -24,3 +24,4 @@ mod mobile_cli;
 mod replay_browser;
 mod simulate;
 mod simulate_ground;
+mod step_cli;
