@@ -395,7 +395,8 @@ class Simulator:
     file's, else 0.8) and ``restitution`` (default 0); ``dt`` defaults to an MJCF file's
     ``timestep``, else 1 ms. A model with nothing that can touch raises ``ValueError``. The
     contacts' memory (warm starts, an impact of the last step) is the last ``step``'s: call it in
-    sequence along a trajectory."""
+    sequence along a trajectory (a ``step`` from a state other than the last one's result
+    starts its contacts cold)."""
 
     def __init__(self, model: Model, dt: float | None = None, ground: float | None = None,
                  friction: float | None = None, restitution: float | None = None,
@@ -416,7 +417,8 @@ class Simulator:
         then per joint limit: ``"separated"``, ``"sticking"``, ``"sliding"``), ``at_switch``
         (indices into ``modes`` of those at a mode switch, where the derivative is the one-sided
         derivative of the mode shown), ``held_normal`` (indices of the pushing contacts between two
-        moving bodies, whose normal's turn is left out) and ``scaled`` (the energy safeguard scaled the impulse:
+        moving bodies, whose normal's turn is left out), ``contact_points`` (the step's contact points,
+        in the order of ``modes``, world frame) and ``scaled`` (the energy safeguard scaled the impulse:
         the derivatives are those of the unscaled one). The state is not advanced; an MJCF file's
         ``<equality>`` loops are differentiated with the contacts. Not covered: the turn of the
         normal between two moving bodies, and the ``mujoco`` layout with a free joint (raises);

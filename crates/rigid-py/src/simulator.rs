@@ -45,6 +45,11 @@ impl Simulator {
             func,
             "tau",
         )?;
+        // a step that does not continue the last one starts its contacts cold (no warm start,
+        // no rebound of an impact from another state)
+        if qr != self.sim.q() || vr != self.sim.v() {
+            self.sim.forget_contacts();
+        }
         self.sim
             .set_state(&qr, &vr)
             .map_err(|e| value_error(func, e))?;
@@ -183,6 +188,12 @@ impl Simulator {
         out.set_item("modes", modes)?;
         out.set_item("at_switch", d.at_switch.clone())?;
         out.set_item("held_normal", d.held_normal.clone())?;
+        let points: Vec<[f64; 3]> = d
+            .contacts
+            .iter()
+            .map(|c| [c.point.x, c.point.y, c.point.z])
+            .collect();
+        out.set_item("contact_points", points)?;
         out.set_item("scaled", d.scaled)?;
         Ok(out)
     }

@@ -54,7 +54,7 @@ def check(sim, model, q, v, tau):
     d = sim.step_derivatives(q, v, tau)
     fd = central(sim, model, q, v, tau)
     for k, m in fd.items():
-        scale = max(1.0, np.abs(m).max())
+        scale = max(1e-3, np.abs(m).max())
         assert np.abs(d[k] - m).max() <= 1e-5 * scale, (k, np.abs(d[k] - m).max())
     return d
 

@@ -235,6 +235,14 @@ impl CollisionData {
         }
     }
 
+    /// What `other` (a workspace of the same collision model) carries from one call to the
+    /// next: parry's persistent manifolds and each hull walk's start, so that a copy finds the
+    /// contacts `other` would.
+    pub(crate) fn copy_warm_from(&mut self, other: &Self) {
+        self.manifolds.clone_from(&other.manifolds);
+        self.walks.clone_from(&other.walks);
+    }
+
     /// The radius of the balls geometry `k` meets the ground with (a sphere, a capsule's ends:
     /// its points nearest the plane are `c − ρ n`, `c` fixed in the body); 0 for the shapes
     /// that meet it at vertices.

@@ -188,6 +188,7 @@ pub(crate) fn contact_step<C: Control>(
     }
     if cs.solver.is_empty() {
         cs.v_step.copy_from_slice(v_new);
+        cs.dq.fill(0.0);
     } else {
         cs.solver.solve(data, v, v_new, h, &cs.settings);
         cs.dissipated -= cs.solver.stats.work;

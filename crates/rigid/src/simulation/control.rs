@@ -33,6 +33,13 @@ pub trait Control {
     fn pd_gains(&self) -> Option<(&[f64], &[f64])> {
         None
     }
+
+    /// Whether the torque depends on neither `q` nor `v` (an open-loop law): what
+    /// [`Simulator::step_derivatives`](super::Simulator::step_derivatives) needs, as it holds
+    /// the torque as an input. `false` (the default) when unknown.
+    fn open_loop(&self) -> bool {
+        false
+    }
 }
 
 impl<F: FnMut(f64, &[f64], &[f64], &mut [f64])> Control for F {
@@ -73,6 +80,10 @@ impl Control for OpenLoop {
         }
         tau.copy_from_slice(&self.0);
         Ok(())
+    }
+
+    fn open_loop(&self) -> bool {
+        true
     }
 }
 
@@ -360,6 +371,10 @@ impl Controller {
 }
 
 impl Control for Controller {
+    fn open_loop(&self) -> bool {
+        self.law == ControlLaw::None
+    }
+
     fn pd_gains(&self) -> Option<(&[f64], &[f64])> {
         match &self.law {
             ControlLaw::Pd { kp, kd, .. } | ControlLaw::Stance { kp, kd, .. } => Some((kp, kd)),

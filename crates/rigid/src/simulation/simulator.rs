@@ -660,6 +660,15 @@ impl<C: Control> Simulator<C> {
         Ok(())
     }
 
+    /// Forgets the contacts of past steps (their impulses, the warm start of the next solve,
+    /// and an impact of the last step, whose rebound the next step would give): for a step
+    /// from a state that does not continue the last one.
+    pub fn forget_contacts(&mut self) {
+        if let Some(c) = &mut self.contact {
+            c.solver.forget();
+        }
+    }
+
     /// Set the external wrench on the body moved by `joint`, in that body's frame, held until
     /// changed (for a wrench that varies, set it between steps).
     ///

@@ -25,7 +25,9 @@
 //!      `δλ_t + μ û δλ_n + (μ λ_n/‖σ_t‖)(I − û ûᵀ) δσ_t = 0`, `û = σ_t/‖σ_t‖`.
 //!
 //!    The rows make one square system in `δλ`, solved in the least-squares sense (a box on its
-//!    four corners has twelve rows for six freedoms: `δλ` is not unique, `δv⁺` is).
+//!    four corners has twelve rows for six freedoms: `δλ` is not unique, `δv⁺` is while the
+//!    contacts stick; sliding on four coplanar points, the friction's moment depends on how the
+//!    solver shared the weight, and the least-norm `δλ` need not be the solver's).
 //!
 //!    Bilateral rows (closed loops, welds: [`loops`](super::loops)) hold `J_B v⁺ = 0`, their
 //!    `∂(J_B v⁺)/∂q` and `∂(J_Bᵀ λ_B)/∂q` the velocity-level partials of the constrained
@@ -47,8 +49,8 @@
 //! Where the step is not differentiable (a contact exactly at a mode switch: touching without
 //! pushing, or sticking on the cone's edge), the derivative of the mode the solver returned is
 //! given, which is one of the one-sided derivatives; [`StepDerivatives::at_switch`] names those
-//! contacts. The control law's torque is an input: its own dependence on `(q, v)` is not
-//! differentiated (a law with PD gains, which the step makes implicit, is refused).
+//! contacts. The control law's torque is an input: a law that is not open-loop
+//! ([`Control::open_loop`]: [`OpenLoop`](super::OpenLoop), `ControlLaw::None`) is refused.
 
 use super::contact::Block;
 use super::contact_step::{contact_step, ContactStepper};
@@ -94,17 +96,24 @@ pub struct StepDerivatives {
     pub q_next: Vec<f64>,
     /// See `q_next`.
     pub v_next: Vec<f64>,
-    /// The mode of each contact (in the order of [`Simulator::contacts`]), then of each joint
-    /// limit of the step's problem.
+    /// The mode of each contact (in the order of `contacts`), then of each joint limit of the
+    /// step's problem.
     pub modes: Vec<ContactMode>,
     /// The indices (into `modes`) of those at a mode switch, where the derivative given is
     /// the one-sided derivative of the mode shown.
     pub at_switch: Vec<usize>,
-    /// The indices (into `modes`) of the pushing contacts between two moving bodies, whose
-    /// normal is held fixed in these derivatives (its turn with the bodies is left out).
+    /// The contact points of the differentiated step (those of `modes`, in its order; the
+    /// limits follow in `modes`).
+    pub contacts: Vec<crate::collision::ContactPoint>,
+    /// The indices (into `modes`) of the pushing contacts other than a body on the ground,
+    /// whose normal is held fixed in these derivatives: between two moving bodies its turn is
+    /// left out; against a static geometry it is exact where that geometry meets the body with
+    /// a face.
     pub held_normal: Vec<usize>,
-    /// The energy safeguard scaled this step's impulse ([`ContactStats::scaled`](super::contact::ContactStats::scaled)):
-    /// the derivatives are those of the unscaled solution.
+    /// The energy safeguard scaled this step's impulse
+    /// ([`ContactStats::scaled`](super::contact::ContactStats::scaled)): the scaled impulse no
+    /// longer meets the targets the linearisation holds, so that step's derivatives are not
+    /// reliable (nor is the velocity projection onto the loops that follows it differentiated).
     pub scaled: bool,
 }
 
@@ -134,6 +143,11 @@ enum Target {
     Gap(f64),
     /// `σ* = −e J v`.
     Rebound(f64),
+}
+
+/// Whether every entry of these matrices is finite.
+fn finite(ms: &[&DMatrix<f64>]) -> bool {
+    ms.iter().all(|m| m.iter().all(|x| x.is_finite()))
 }
 
 /// `out ← M̃⁻¹ out` column by column, from the factor in `data`.
@@ -241,8 +255,9 @@ impl<C: Control> Simulator<C> {
     ///
     /// # Errors
     /// [`SimulationError::NotDifferentiable`] for a simulator without contacts or limits (not
-    /// the time-stepping scheme) or with a PD control law; an algorithm's error (a model whose
-    /// joints the analytical derivatives do not cover).
+    /// the time-stepping scheme) or with a control law that is not open-loop;
+    /// [`SimulationError::Diverged`] for a non-finite result; an algorithm's error (a model
+    /// whose joints the analytical derivatives do not cover).
     pub fn step_derivatives(&mut self) -> Result<StepDerivatives, SimulationError> {
         let Some(stepper) = &self.contact else {
             return Err(SimulationError::NotDifferentiable(
@@ -250,10 +265,10 @@ impl<C: Control> Simulator<C> {
                  geometry or unilateral limits",
             ));
         };
-        if self.dynamics.control.pd_gains().is_some() {
+        if !self.dynamics.control.open_loop() {
             return Err(SimulationError::NotDifferentiable(
-                "a control law with PD gains (integrated implicitly) is not differentiated: \
-                 use an open-loop torque",
+                "the control law's dependence on (q, v) is not differentiated: give the torque \
+                 as an input (OpenLoop, or Controller with ControlLaw::None)",
             ));
         }
         let cs: &mut ContactStepper = self
@@ -261,6 +276,9 @@ impl<C: Control> Simulator<C> {
             .get_or_insert_with(|| stepper.clone());
         cs.solver.copy_memory(&stepper.solver);
         cs.settings = stepper.settings;
+        if let (Some((_, to)), Some((_, from))) = (&mut cs.collision, &stepper.collision) {
+            to.copy_warm_from(from);
+        }
         let (q, v) = (self.q.clone(), self.v.clone());
         let d = &mut self.dynamics;
         let (nq, nv) = (d.model.nq, d.model.nv);
@@ -347,6 +365,10 @@ impl<C: Control> Simulator<C> {
         let mut w = jm.transpose();
         minv_columns(data, &mut w);
         let g = &jm * &w;
+        let diverged = SimulationError::Diverged { time: self.t + h };
+        if !finite(&[&e, &jm, &g]) {
+            return Err(diverged);
+        }
         let mut dv_plus = e.clone();
         let (mut modes, mut at_switch, mut held_normal) = (Vec::new(), Vec::new(), Vec::new());
         if m > 0 {
@@ -356,8 +378,12 @@ impl<C: Control> Simulator<C> {
                 c.rows_mut(0, mb).copy_from(cb);
             }
             let rows = classify(solver, lambda, &mut modes, &mut at_switch);
+            // every pushing contact but a moving body on the ground: between two moving bodies
+            // the normal's turn is left out, and against a static geometry it is exact only
+            // where that geometry meets the body with a face
             for (i, c) in solver.points.iter().enumerate() {
-                if c.body1.is_some() && c.body2.is_some() && modes[i] != ContactMode::Separated {
+                let ground = c.body2.is_none() && c.geometries.1.is_none();
+                if !ground && modes[i] != ContactMode::Separated {
                     held_normal.push(i);
                 }
             }
@@ -534,6 +560,9 @@ impl<C: Control> Simulator<C> {
             let projector = DMatrix::identity(nv, nv) - wb * gp * jb;
             dq_out = projector * dq_out;
         }
+        if !finite(&[&dq_out, &dv_out]) || !q1.iter().chain(&v1).all(|x| x.is_finite()) {
+            return Err(diverged);
+        }
         Ok(StepDerivatives {
             dq_dq: dq_out.columns(0, nv).into_owned(),
             dq_dv: dq_out.columns(nv, nv).into_owned(),
@@ -546,6 +575,7 @@ impl<C: Control> Simulator<C> {
             modes,
             at_switch,
             held_normal,
+            contacts: cs.solver.points.clone(),
             scaled: cs.solver.stats.scaled,
         })
     }

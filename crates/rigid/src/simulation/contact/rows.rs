@@ -20,10 +20,12 @@
 //! point nearest the plane and `φ = n·x − height`, so `u = u_x − ½ (n·u_x) n`; `x` is a vertex
 //! fixed in the body (a box, a mesh's hull) or, for a ball of radius `ρ` (a sphere, a capsule's
 //! end), `c − ρ n` with the centre `c` fixed in the body: `u_x = S_k.v + S_k.ω × a`,
-//! `a = x + ρ n`. Cylinders and cones (parry's support point) are taken as vertices: exact on a
-//! flat face, first order off where a rim rolls. Between two bodies the point is taken as
-//! fixed in body 1 and the frame as fixed in the world: the turn of the normal with the two
-//! bodies is not in these partials (a documented limit). Joint limits' rows are constant.
+//! `a = x + ρ n`. A moving body against any static geometry is taken the same way, the normal
+//! fixed (exact against a static face). Cylinders and cones (parry's support point) are taken
+//! as vertices: exact on a flat face, first order off where a rim rolls. Between two moving
+//! bodies the point is taken as fixed in body 1 and the frame as fixed in the world: the turn
+//! of the normal with the bodies is not in these partials (`StepDerivatives::held_normal` names
+//! those contacts). Joint limits' rows are constant.
 
 use super::solver::ContactSolver;
 use crate::multibody::{
@@ -46,14 +48,15 @@ fn col(m: &DMatrix<f64>, k: usize) -> Twist {
     Twist::new(Vec3::new(c[0], c[1], c[2]), Vec3::new(c[3], c[4], c[5]))
 }
 
-/// A contact block's geometry: first row, frame, point, how its point moves (`ρ` and whether
-/// it is a ground contact) and its bodies.
+/// A contact block's geometry: first row, frame, point, gap, its bodies and, when one side is
+/// the world, how its point moves: `(ρ, side)`, the ball radius of the moving side's geometry
+/// and that side (`+1` body 1, `−1` body 2).
 struct Contact {
     row: usize,
     frame: [Vec3; 3],
     p: Vec3,
     gap: f64,
-    ground: Option<f64>,
+    anchor: Option<(f64, f64)>,
     bodies: [(Option<JointId>, f64); 2],
 }
 
@@ -78,14 +81,17 @@ impl ContactSolver {
         let mut points = self.points.iter();
         for b in self.blocks.iter().filter(|b| !b.bilateral && b.dim == 3) {
             let Some(c) = points.next() else { break };
-            let ground =
-                (c.body2.is_none() && c.geometries.1.is_none()).then(|| radius(c.geometries.0));
+            let anchor = match (c.body1, c.body2) {
+                (Some(_), None) => Some((radius(c.geometries.0), 1.0)),
+                (None, Some(_)) => c.geometries.1.map(|g| (radius(g), -1.0)),
+                _ => None,
+            };
             out.push(Contact {
                 row: b.row,
                 frame: b.frame,
                 p: c.point,
                 gap: c.gap,
-                ground,
+                anchor,
                 bodies: [(c.body1, 1.0), (c.body2, -1.0)],
             });
         }
@@ -125,21 +131,33 @@ impl ContactSolver {
         Ok(out)
     }
 
-    /// `u_k = ∂p/∂q_k` of a contact's point (see the [module](self) documentation).
-    fn point_rate(c: &Contact, b1: Option<&Body>, k: usize) -> Vec3 {
-        let Some(b1) = b1 else {
+    /// `u_k = ∂p/∂q_k` of a contact's point (see the [module](self) documentation), `moving`
+    /// the body it moves with.
+    fn point_rate(c: &Contact, moving: Option<&Body>, k: usize) -> Vec3 {
+        let Some(b) = moving else {
             return Vec3::zeros();
         };
-        let Sk = col(&b1.S, k);
+        let Sk = col(&b.S, k);
         let n = c.frame[0];
-        match c.ground {
-            Some(rho) => {
-                // the anchor a = x + ρ n, x = p + (φ/2) n the shape's point nearest the plane
-                let a = c.p + n * (0.5 * c.gap + rho);
+        match c.anchor {
+            Some((rho, side)) => {
+                // the moving side's nearest point x = p ± (φ/2) n and its anchor x ± ρ n
+                let a = c.p + n * (side * (0.5 * c.gap + rho));
                 let ux = Sk.v + Sk.w.cross(&a);
                 ux - n * (0.5 * n.dot(&ux))
             }
             None => Sk.v + Sk.w.cross(&c.p),
+        }
+    }
+
+    /// The body a contact's point moves with: the moving side against the world, else body 1.
+    fn mover<'a>(
+        c: &Contact,
+        find: &impl Fn(Option<JointId>) -> Option<&'a Body>,
+    ) -> Option<&'a Body> {
+        match c.anchor {
+            Some((_, side)) if side < 0.0 => find(c.bodies[1].0),
+            _ => find(c.bodies[0].0),
         }
     }
 
@@ -159,9 +177,9 @@ impl ContactSolver {
         let bodies = Self::bodies(&contacts, model, data, q, x)?;
         let find = |j: Option<JointId>| j.and_then(|j| bodies.iter().find(|b| b.joint == j));
         for c in &contacts {
-            let b1 = find(c.bodies[0].0);
+            let mover = Self::mover(c, &find);
             for k in 0..model.nv {
-                let u = Self::point_rate(c, b1, k);
+                let u = Self::point_rate(c, mover, k);
                 for (i, d) in c.frame.iter().enumerate() {
                     let pd = c.p.cross(d);
                     let mut t = 0.0;
@@ -201,11 +219,11 @@ impl ContactSolver {
                 continue;
             }
             let F = Wrench::new(c.p.cross(&f), f);
-            let b1 = find(c.bodies[0].0);
+            let mover = Self::mover(c, &find);
             for (jb, s) in c.bodies {
                 let Some(b) = find(jb) else { continue };
                 for j in 0..nv {
-                    let u = Self::point_rate(c, b1, j);
+                    let u = Self::point_rate(c, mover, j);
                     let dF = Wrench::new(u.cross(&f), Vec3::zeros());
                     let Sj = col(&b.S, j);
                     let on_j = Sj.w != Vec3::zeros() || Sj.v != Vec3::zeros();

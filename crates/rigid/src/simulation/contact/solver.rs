@@ -224,6 +224,12 @@ impl ContactSolver {
         self.next_memory.clone_from(&other.next_memory);
     }
 
+    /// Forgets the contacts of past steps (warm starts, impacts): the next step starts cold.
+    pub(crate) fn forget(&mut self) {
+        self.memory.clear();
+        self.next_memory.clear();
+    }
+
     /// Forgets the blocks of the last step (remembering their impulses and impacts for the
     /// warm start of this one).
     pub(crate) fn clear(&mut self) {
