@@ -10,10 +10,7 @@ use clap::Args;
 use nalgebra::DMatrix;
 use rigid::io::cases::parse_cases;
 use rigid::io::collision::{file_world, FileWorld, WorldOptions};
-use rigid::simulation::{
-    ConstraintOptions, ContactMode, Integrator, OpenLoop, SimulationOptions, Simulator,
-    StepDerivatives,
-};
+use rigid::simulation::{ContactMode, OpenLoop, Scenario, StepDerivatives};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -139,43 +136,25 @@ pub fn run(args: &StepArgs) -> Result<(), String> {
         eprintln!("warning: {}: {w}", args.model);
     }
     world.check_materials(&options).map_err(|e| e.to_string())?;
-    let Some(collision) = world.collision.clone() else {
+    if world.collision.is_none() {
         return Err(format!(
             "{}: nothing can touch: give --ground (and <collision> geometry in the file), or a \
              file with a floor",
             args.model
         ));
-    };
+    }
     let path = args.cases.display();
     let text = std::fs::read_to_string(&args.cases)
         .map_err(|e| format!("cannot read cases file {path}: {e}"))?;
     let cases = parse_cases(&text, &model).map_err(|e| format!("{path}: {e}"))?;
-    let dt = world.time_step(args.dt);
-    let opts = SimulationOptions {
-        dt,
-        integrator: Integrator::SemiImplicitEuler,
-        ..SimulationOptions::default()
-    };
     let nv = model.nv();
-    // the simulator starts where the file puts the model; each case then sets its own state
-    let q0 = world
-        .home
-        .clone()
-        .unwrap_or_else(|| rigid::multibody::neutral(&model));
-    let err = |e: rigid::simulation::SimulationError| e.to_string();
-    let mut sim = Simulator::new(&model, &q0, &vec![0.0; nv], opts, OpenLoop(vec![0.0; nv]))
-        .map_err(err)?
-        .with_collision(collision)
-        .map_err(err)?;
-    if !world.constraints.is_empty() {
-        let copts = ConstraintOptions {
-            settings: world.constraint_settings,
-            ..ConstraintOptions::default()
-        };
-        sim = sim
-            .with_constraints(&world.constraints, copts)
-            .map_err(err)?;
+    let mut scenario = Scenario::in_world(model, world);
+    if let Some(dt) = args.dt {
+        scenario.options.dt = dt;
     }
+    let dt = scenario.options.dt;
+    let err = |e: rigid::simulation::SimulationError| e.to_string();
+    let mut sim = scenario.build_with(OpenLoop(vec![0.0; nv])).map_err(err)?;
     let mut results = Vec::with_capacity(cases.len());
     for (i, c) in cases.iter().enumerate() {
         let at = |e: rigid::simulation::SimulationError| format!("{path}: case {i}: {e}");
@@ -195,8 +174,8 @@ pub fn run(args: &StepArgs) -> Result<(), String> {
         });
     }
     let out = Output {
-        model: model.name().to_string(),
-        nq: model.nq(),
+        model: sim.model().name().to_string(),
+        nq: sim.model().nq(),
         nv,
         dt,
         results,

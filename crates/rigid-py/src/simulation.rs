@@ -125,6 +125,26 @@ pub(crate) fn run<C: Control>(
     Ok(())
 }
 
+/// The world of `core`'s model: its file's ([`file_world`]), or without a file the ground of
+/// `options` alone; its warnings issued, its materials checked.
+pub(crate) fn world(
+    py: Python<'_>,
+    func: &str,
+    core: &ModelCore,
+    options: &WorldOptions,
+) -> PyResult<FileWorld> {
+    let world = match &core.source {
+        Some(path) => file_world(path, &core.model, options),
+        None => FileWorld::without_file(options, Vec::new()),
+    }
+    .map_err(|e| value_error(func, e))?;
+    warn_all(py, func, &world.warnings)?;
+    world
+        .check_materials(options)
+        .map_err(|e| value_error(func, e))?;
+    Ok(world)
+}
+
 /// Warns in Python with each of `warnings`, prefixed by `func`.
 pub(crate) fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyResult<()> {
     let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
@@ -198,15 +218,7 @@ pub fn simulate<'py>(
         restitution,
         self_collision,
     };
-    let world = match &core.source {
-        Some(path) => file_world(path, m, &options).map_err(|e| value_error(func, e))?,
-        None => FileWorld::without_file(&options, Vec::new()).map_err(|e| value_error(func, e))?,
-    };
-    warn_all(py, func, &world.warnings)?;
-    world
-        .check_materials(&options)
-        .map_err(|e| value_error(func, e))?;
-    let mut world = world;
+    let mut world = world(py, func, core, &options)?;
     if let Some(path) = &srdf {
         let Some(cm) = world.collision.as_mut().filter(|_| self_collision) else {
             return Err(value_error(func, "srdf applies with self_collision=True"));

@@ -7,12 +7,8 @@ use crate::model::{Model, ModelCore};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rigid::io::collision::{file_world, FileWorld, WorldOptions};
-use rigid::multibody::neutral;
-use rigid::simulation::{
-    ConstraintOptions, ContactMode, Integrator, OpenLoop, SimulationOptions,
-    Simulator as RigidSimulator,
-};
+use rigid::io::collision::WorldOptions;
+use rigid::simulation::{ContactMode, OpenLoop, Scenario, Simulator as RigidSimulator};
 
 /// `(q, v)` as two arrays.
 type State<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
@@ -75,51 +71,28 @@ impl Simulator {
         let sim = {
             let m = model.borrow(py);
             let core: &ModelCore = &m.inner;
-            let rm = &core.model;
             let options = WorldOptions {
                 ground,
                 friction,
                 restitution,
                 self_collision,
             };
-            let world = match &core.source {
-                Some(path) => file_world(path, rm, &options).map_err(|e| value_error(func, e))?,
-                None => FileWorld::without_file(&options, Vec::new())
-                    .map_err(|e| value_error(func, e))?,
-            };
-            crate::simulation::warn_all(py, func, &world.warnings)?;
-            world
-                .check_materials(&options)
-                .map_err(|e| value_error(func, e))?;
-            let Some(collision) = world.collision.clone() else {
+            let world = crate::simulation::world(py, func, core, &options)?;
+            if world.collision.is_none() {
                 return Err(value_error(
                     func,
                     "nothing can touch: give ground=<height> (and collision geometry in the \
                      file), or a model whose file has a floor",
                 ));
-            };
-            let opts = SimulationOptions {
-                dt: world.time_step(dt),
-                integrator: Integrator::SemiImplicitEuler,
-                ..SimulationOptions::default()
-            };
-            let q0 = world.home.clone().unwrap_or_else(|| neutral(rm));
-            let v0 = vec![0.0; rm.nv()];
-            let err = |e| value_error(func, e);
-            let mut sim = RigidSimulator::new(rm, &q0, &v0, opts, OpenLoop(v0.clone()))
-                .map_err(err)?
-                .with_collision(collision)
-                .map_err(err)?;
-            if !world.constraints.is_empty() {
-                let copts = ConstraintOptions {
-                    settings: world.constraint_settings,
-                    ..ConstraintOptions::default()
-                };
-                sim = sim
-                    .with_constraints(&world.constraints, copts)
-                    .map_err(err)?;
             }
-            sim
+            let mut scenario = Scenario::in_world(core.model.clone(), world);
+            if let Some(dt) = dt {
+                scenario.options.dt = dt;
+            }
+            let nv = core.model.nv();
+            scenario
+                .build_with(OpenLoop(vec![0.0; nv]))
+                .map_err(|e| value_error(func, e))?
         };
         Ok(Self { model, sim })
     }

@@ -88,6 +88,21 @@ impl Scenario {
         }
     }
 
+    /// `model` in the world its file describes ([`crate::io::collision::file_world`]): the
+    /// home the file places it at, the collision model, the bilateral constraints and their
+    /// solver, the file's time step (else 1 ms); at rest, no controller.
+    #[cfg(feature = "collision")]
+    #[must_use]
+    pub fn in_world(model: Model, world: crate::io::collision::FileWorld) -> Self {
+        let mut s = Self::new(model);
+        s.options.dt = world.time_step(None);
+        s.home = world.home;
+        s.collision = world.collision;
+        s.constraints = world.constraints;
+        s.constraint_options.settings = world.constraint_settings;
+        s
+    }
+
     /// Whether anything can touch: collision geometry or unilateral joint limits.
     #[must_use]
     pub fn touches(&self) -> bool {

@@ -51,27 +51,10 @@ impl<C: Control> Dynamics<C> {
             }
             self.tau[k] = tk;
         }
-        if let JointLimits::Spring {
-            time_constant: tc,
-            damping_ratio: zeta,
-        } = opts.limits
-        {
-            for j in m.joints() {
-                if j.nq != 1 || j.nv != 1 {
-                    continue;
-                }
-                let (x, k) = (q[j.idx_q], j.idx_v);
-                let (lo, hi) = (m.lower[j.idx_q], m.upper[j.idx_q]);
-                let d = self.limit_inertia[k];
-                if x > hi {
-                    let f = -d * ((x - hi) / (tc * tc) + 2.0 * zeta * v[k] / tc);
-                    self.tau[k] += f.min(0.0);
-                } else if x < lo {
-                    let f = -d * ((x - lo) / (tc * tc) + 2.0 * zeta * v[k] / tc);
-                    self.tau[k] += f.max(0.0);
-                }
-            }
-        }
+        let tau = &mut self.tau;
+        limit_springs(m, opts, &self.limit_inertia, q, v, |k, [f, _, _]| {
+            tau[k] += f
+        });
         Ok(())
     }
 
@@ -89,31 +72,10 @@ impl<C: Control> Dynamics<C> {
                 dv[k] = -m.damping[k] - m.friction[k] * (1.0 - t * t) / opts.friction_speed;
             }
         }
-        if let JointLimits::Spring {
-            time_constant: tc,
-            damping_ratio: zeta,
-        } = opts.limits
-        {
-            for j in m.joints() {
-                if j.nq != 1 || j.nv != 1 {
-                    continue;
-                }
-                let (x, k) = (q[j.idx_q], j.idx_v);
-                let (lo, hi) = (m.lower[j.idx_q], m.upper[j.idx_q]);
-                let d = self.limit_inertia[k];
-                let pushing = if x > hi {
-                    -d * ((x - hi) / (tc * tc) + 2.0 * zeta * v[k] / tc) < 0.0
-                } else if x < lo {
-                    -d * ((x - lo) / (tc * tc) + 2.0 * zeta * v[k] / tc) > 0.0
-                } else {
-                    false
-                };
-                if pushing {
-                    dq[k] -= d / (tc * tc);
-                    dv[k] -= 2.0 * d * zeta / tc;
-                }
-            }
-        }
+        limit_springs(m, opts, &self.limit_inertia, q, v, |k, [_, fx, fv]| {
+            dq[k] += fx;
+            dv[k] += fv;
+        });
     }
 
     /// `a = q̈(t, q, v)` by ABA with every force, or by the constrained dynamics when there are
@@ -188,6 +150,46 @@ impl<C: Control> Dynamics<C> {
             }
         }
         Ok(())
+    }
+}
+
+/// Each 1-dof joint's limit spring ([`JointLimits::Spring`]) at `(q, v)`, where it pushes:
+/// `each(dof, [f, ∂f/∂x, ∂f/∂v])` with `f = −D ((x − l)/T² + 2ζ v/T)`, `l` the limit passed, `D`
+/// the joint's articulated inertia at the start, `T` the time constant, `ζ` the damping ratio;
+/// a spring that would pull the joint further out pushes nothing.
+fn limit_springs(
+    m: &Model,
+    opts: &SimulationOptions,
+    inertia: &[f64],
+    q: &[f64],
+    v: &[f64],
+    mut each: impl FnMut(usize, [f64; 3]),
+) {
+    let JointLimits::Spring {
+        time_constant: tc,
+        damping_ratio: zeta,
+    } = opts.limits
+    else {
+        return;
+    };
+    for j in m.joints() {
+        if j.nq != 1 || j.nv != 1 {
+            continue;
+        }
+        let (x, k) = (q[j.idx_q], j.idx_v);
+        let (lo, hi) = (m.lower[j.idx_q], m.upper[j.idx_q]);
+        let (past, sign) = if x > hi {
+            (hi, -1.0)
+        } else if x < lo {
+            (lo, 1.0)
+        } else {
+            continue;
+        };
+        let d = inertia[k];
+        let f = -d * ((x - past) / (tc * tc) + 2.0 * zeta * v[k] / tc);
+        if sign * f > 0.0 {
+            each(k, [f, -d / (tc * tc), -2.0 * d * zeta / tc]);
+        }
     }
 }
 

@@ -399,8 +399,8 @@ fn a_four_bar_loop() {
     assert!(sv[1] < 1e-9 * sv[0], "{sv}");
 }
 
-/// A box base with a flap on a hinge (damped, with Coulomb friction and armature), an external
-/// wrench on the base, its base box colliding with the ground.
+/// A box base with a flap on a hinge (damped, with Coulomb friction, armature and limits at
+/// ±0.2 rad), its base box colliding with the ground.
 fn flapper() -> (Model, CollisionModel) {
     use rigid::collision::Geometry;
     use rigid::mass::{RotationalInertia, SpatialInertia};
@@ -421,6 +421,8 @@ fn flapper() -> (Model, CollisionModel) {
     let y = JointType::Revolute { axis: Vec3::y() };
     let j = b.add_joint(Some(base), "flap", y, hinge, flap).unwrap();
     b.set_joint_dynamics(j, &[0.3], &[0.05]).unwrap();
+    let inf = f64::INFINITY;
+    b.set_limits(j, &[-0.2], &[0.2], &[inf], &[inf]).unwrap();
     b.set_armature(j, &[0.01]).unwrap();
     let model = b.build().unwrap().with_gravity(Vec3::new(0.0, 0.0, -G));
     let mut cm = CollisionModel::new(Ground::horizontal(0.0, 0.6));
@@ -434,13 +436,14 @@ fn flapper() -> (Model, CollisionModel) {
 }
 
 #[test]
-fn an_articulated_body_in_flight_with_damping_and_a_wrench_after_a_landing() {
+fn an_articulated_body_in_flight_with_damping_a_limit_spring_and_a_wrench_after_a_landing() {
     use rigid::simulation::JointLimits;
     use rigid::spatial::Wrench;
     let (model, cm) = flapper();
     let mut opts = options(1e-3);
     opts.joint_dynamics = true;
-    opts.limits = JointLimits::Ignored;
+    // the flap starts 0.2 rad past its upper limit, turning further out: the limit spring pushes
+    assert!(matches!(opts.limits, JointLimits::Spring { .. }));
     let r = so3::exp(&Vec3::new(0.2, -0.1, 0.3));
     let flight = {
         let mut q = q_of(Vec3::new(0.0, 0.0, 1.0), &r);
