@@ -144,3 +144,34 @@ fn step_derivatives_with_respect_to_tau_equal_central_differences_of_the_command
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+#[test]
+fn a_case_that_does_not_continue_the_last_one_starts_cold() {
+    // a crate 3 µm above the ground falling at 0.5 m/s with restitution 0.5: its gap closes in
+    // the step (an impact the next step would rebound from, were it its continuation); the same
+    // case twice gives the same result twice
+    let urdf = temp_file("crate2.urdf", CRATE);
+    let case = r#"{"q": [0, 0, 0.050003, 0, 0, 0, 1], "v": [0, 0, 0, 0, 0, -0.5]}"#;
+    let file = temp_file("twice.json", &format!(r#"{{"cases": [{case}, {case}]}}"#));
+    let out = rigid(&[
+        "step",
+        &urdf,
+        "--floating",
+        "--cases",
+        &file,
+        "--ground",
+        "0",
+        "--restitution",
+        "0.5",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let r = doc["results"].as_array().unwrap();
+    assert_eq!(numbers(&r[0]["v_next"]), numbers(&r[1]["v_next"]));
+    assert_eq!(numbers(&r[0]["q_next"]), numbers(&r[1]["q_next"]));
+}

@@ -243,6 +243,17 @@ impl CollisionData {
         self.walks.clone_from(&other.walks);
     }
 
+    /// Forgets what past calls carry to the next (parry's persistent manifolds, the hull
+    /// walks' starts): the next call starts cold.
+    pub(crate) fn forget(&mut self) {
+        for m in &mut self.manifolds {
+            m.clear();
+        }
+        for w in &mut self.walks {
+            *w = Walk::default();
+        }
+    }
+
     /// The radius of the balls geometry `k` meets the ground with (a sphere, a capsule's ends:
     /// its points nearest the plane are `c − ρ n`, `c` fixed in the body); 0 for the shapes
     /// that meet it at vertices.

@@ -663,11 +663,15 @@ impl<C: Control> Simulator<C> {
     }
 
     /// Forgets the contacts of past steps (their impulses, the warm start of the next solve,
-    /// and an impact of the last step, whose rebound the next step would give): for a step
-    /// from a state that does not continue the last one.
+    /// an impact of the last step, whose rebound the next step would give, and the collision
+    /// search's warm starts): for a step from a state that does not continue the last one.
     pub fn forget_contacts(&mut self) {
         if let Some(c) = &mut self.contact {
             c.solver.forget();
+            #[cfg(feature = "collision")]
+            if let Some((_, cd)) = &mut c.collision {
+                cd.forget();
+            }
         }
     }
 

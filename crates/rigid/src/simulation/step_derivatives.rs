@@ -318,8 +318,10 @@ impl<C: Control> Simulator<C> {
         let solver = &cs.solver;
         let m = solver.m();
         let lambda = &solver.lambda[..m];
+        // the contact bodies at (q, v⁺): their Jacobians serve every force partial below
+        let at_vp = solver.rows_at(model, &mut scratch, &q, vp, &radius)?;
         let mut p = DMatrix::zeros(nv, nv);
-        solver.force_dq(model, &mut scratch, &q, lambda, &radius, &mut p)?;
+        solver.force_dq(&at_vp, model, lambda, &mut p);
         // the bilateral rows lead, in the constraints' row order (at q: before the projection)
         let mb = solver.bilateral_rows;
         let bilateral = |x: &[f64], l: &[f64], scratch: &mut Data| match &d.loops {
@@ -373,7 +375,7 @@ impl<C: Control> Simulator<C> {
         let (mut modes, mut at_switch, mut held_normal) = (Vec::new(), Vec::new(), Vec::new());
         if m > 0 {
             let mut c = DMatrix::zeros(m, nv);
-            solver.rows_dq(model, &mut scratch, &q, vp, &radius, &mut c)?;
+            solver.rows_dq(&at_vp, nv, &mut c);
             if let Some((cb, _)) = &bilateral_v {
                 c.rows_mut(0, mb).copy_from(cb);
             }
@@ -405,7 +407,8 @@ impl<C: Control> Simulator<C> {
             }
             if rebound {
                 let mut cv = DMatrix::zeros(m, nv);
-                solver.rows_dq(model, &mut scratch, &q, &v, &radius, &mut cv)?;
+                let at_v = solver.rows_at(model, &mut scratch, &q, &v, &radius)?;
+                solver.rows_dq(&at_v, nv, &mut cv);
                 for (r, row) in rows.iter().enumerate() {
                     if let Row::Equal(Target::Rebound(er)) = row {
                         let x = cv.row(r) * (-er);
@@ -432,7 +435,7 @@ impl<C: Control> Simulator<C> {
                 .dtau_dq
                 .clone();
             let mut pm = DMatrix::zeros(nv, nv);
-            solver.force_dq(model, &mut scratch, &q, mu, &radius, &mut pm)?;
+            solver.force_dq(&at_vp, model, mu, &mut pm);
             let bilateral_w = bilateral(&wc, mu, &mut scratch)?;
             if let Some((_, pb)) = &bilateral_w {
                 pm += pb;
@@ -440,7 +443,8 @@ impl<C: Control> Simulator<C> {
             let mut ew = pm - dmw;
             minv_columns(data, &mut ew);
             let mut cw = DMatrix::zeros(m, nv);
-            solver.rows_dq(model, &mut scratch, &q, &wc, &radius, &mut cw)?;
+            let at_w = solver.rows_at(model, &mut scratch, &q, &wc, &radius)?;
+            solver.rows_dq(&at_w, nv, &mut cw);
             if let Some((cb, _)) = &bilateral_w {
                 cw.rows_mut(0, mb).copy_from(cb);
             }

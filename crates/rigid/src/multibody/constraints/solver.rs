@@ -376,7 +376,11 @@ pub(crate) fn pinv_solve(
             n2[(i, k)] = (i..n).map(|l| c[(l, i)] * c[(l, k)]).sum();
         }
     }
-    cholesky(n2, r).expect("LᵀL is positive definite for the rank found");
+    if cholesky(n2, r).is_err() {
+        // only a non-finite G gets here (LᵀL is positive definite for the rank found): say so
+        y[..n].fill(f64::NAN);
+        return r;
+    }
     // w = Lᵀ P b, solved twice with LᵀL, then y = Pᵀ L w
     for i in 0..r {
         y[i] = (i..n).map(|l| c[(l, i)] * b[perm[l]]).sum();

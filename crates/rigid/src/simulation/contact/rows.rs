@@ -60,7 +60,36 @@ struct Contact {
     bodies: [(Option<JointId>, f64); 2],
 }
 
+/// The contacts of a solver's rows and the bodies they touch, loaded at one `(q, x)`: what
+/// [`ContactSolver::rows_dq`] and [`ContactSolver::force_dq`] read (the latter only the bodies'
+/// Jacobians, which do not depend on `x`).
+pub(crate) struct RowsAt {
+    contacts: Vec<Contact>,
+    bodies: Vec<Body>,
+}
+
+impl RowsAt {
+    fn find(&self, j: Option<JointId>) -> Option<&Body> {
+        j.and_then(|j| self.bodies.iter().find(|b| b.joint == j))
+    }
+}
+
 impl ContactSolver {
+    /// The contacts and their bodies at `(q, x)` (`radius(g)` the ball radius of geometry `g`,
+    /// 0 for a vertex); `data` a scratch workspace.
+    pub(crate) fn rows_at(
+        &self,
+        model: &Model,
+        data: &mut Data,
+        q: &[f64],
+        x: &[f64],
+        radius: &dyn Fn(usize) -> f64,
+    ) -> Result<RowsAt, MultibodyError> {
+        let contacts = self.contact_geometry(radius);
+        let bodies = Self::bodies(&contacts, model, data, q, x)?;
+        Ok(RowsAt { contacts, bodies })
+    }
+
     /// The dense rows of `J` (m x nv) into `out`.
     pub(crate) fn dense_jacobian(&self, out: &mut DMatrix<f64>) {
         let (m, nv) = (self.m(), self.jacobian.ncols());
@@ -161,24 +190,13 @@ impl ContactSolver {
         }
     }
 
-    /// `∂(J(q) x)/∂q` (m x nv) into `out`, at the `(q, x)` the contacts were found at;
-    /// `data` a scratch workspace.
-    pub(crate) fn rows_dq(
-        &self,
-        model: &Model,
-        data: &mut Data,
-        q: &[f64],
-        x: &[f64],
-        radius: &dyn Fn(usize) -> f64,
-        out: &mut DMatrix<f64>,
-    ) -> Result<(), MultibodyError> {
-        *out = DMatrix::zeros(self.m(), model.nv);
-        let contacts = self.contact_geometry(radius);
-        let bodies = Self::bodies(&contacts, model, data, q, x)?;
-        let find = |j: Option<JointId>| j.and_then(|j| bodies.iter().find(|b| b.joint == j));
-        for c in &contacts {
+    /// `∂(J(q) x)/∂q` (m x nv) into `out`, for the `x` of `at`.
+    pub(crate) fn rows_dq(&self, at: &RowsAt, nv: usize, out: &mut DMatrix<f64>) {
+        *out = DMatrix::zeros(self.m(), nv);
+        let find = |j: Option<JointId>| at.find(j);
+        for c in &at.contacts {
             let mover = Self::mover(c, &find);
-            for k in 0..model.nv {
+            for k in 0..nv {
                 let u = Self::point_rate(c, mover, k);
                 for (i, d) in c.frame.iter().enumerate() {
                     let pd = c.p.cross(d);
@@ -192,27 +210,20 @@ impl ContactSolver {
                 }
             }
         }
-        Ok(())
     }
 
     /// `∂(J(q)ᵀ λ)/∂q` (nv x nv) into `out` for the impulses `lambda` (one per row).
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn force_dq(
         &self,
+        at: &RowsAt,
         model: &Model,
-        data: &mut Data,
-        q: &[f64],
         lambda: &[f64],
-        radius: &dyn Fn(usize) -> f64,
         out: &mut DMatrix<f64>,
-    ) -> Result<(), MultibodyError> {
+    ) {
         let nv = model.nv;
         *out = DMatrix::zeros(nv, nv);
-        let contacts = self.contact_geometry(radius);
-        let zeros = vec![0.0; nv];
-        let bodies = Self::bodies(&contacts, model, data, q, &zeros)?;
-        let find = |j: Option<JointId>| j.and_then(|j| bodies.iter().find(|b| b.joint == j));
-        for c in &contacts {
+        let find = |j: Option<JointId>| at.find(j);
+        for c in &at.contacts {
             let l = &lambda[c.row..c.row + 3];
             let f = c.frame[0] * l[0] + c.frame[1] * l[1] + c.frame[2] * l[2];
             if f == Vec3::zeros() {
@@ -241,6 +252,5 @@ impl ContactSolver {
                 }
             }
         }
-        Ok(())
     }
 }
