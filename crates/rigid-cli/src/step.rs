@@ -10,7 +10,7 @@ use clap::Args;
 use nalgebra::DMatrix;
 use rigid::io::cases::parse_cases;
 use rigid::io::collision::{file_world, FileWorld, WorldOptions};
-use rigid::simulation::{ContactMode, OpenLoop, Scenario, StepDerivatives};
+use rigid::simulation::{OpenLoop, Scenario, StepDerivatives};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -97,15 +97,7 @@ impl From<StepDerivatives> for Derivatives {
             dv_dq: rows(&d.dv_dq),
             dv_dv: rows(&d.dv_dv),
             dv_dtau: rows(&d.dv_dtau),
-            modes: d
-                .modes
-                .iter()
-                .map(|m| match m {
-                    ContactMode::Separated => "separated",
-                    ContactMode::Sticking => "sticking",
-                    ContactMode::Sliding => "sliding",
-                })
-                .collect(),
+            modes: d.modes.iter().map(|m| m.name()).collect(),
             at_switch: d.at_switch,
             held_normal: d.held_normal,
             scaled: d.scaled,

@@ -8,7 +8,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rigid::io::collision::WorldOptions;
-use rigid::simulation::{ContactMode, OpenLoop, Scenario, Simulator as RigidSimulator};
+use rigid::simulation::{OpenLoop, Scenario, Simulator as RigidSimulator};
 
 /// `(q, v)` as two arrays.
 type State<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
@@ -149,15 +149,7 @@ impl Simulator {
         out.set_item("dv_dtau", core.matrix_out(py, &d.dv_dtau))?;
         out.set_item("q_next", core.q_out(py, &d.q_next))?;
         out.set_item("v_next", core.v_out(py, &d.v_next))?;
-        let modes: Vec<&str> = d
-            .modes
-            .iter()
-            .map(|m| match m {
-                ContactMode::Separated => "separated",
-                ContactMode::Sticking => "sticking",
-                ContactMode::Sliding => "sliding",
-            })
-            .collect();
+        let modes: Vec<&str> = d.modes.iter().map(|m| m.name()).collect();
         out.set_item("modes", modes)?;
         out.set_item("at_switch", d.at_switch.clone())?;
         out.set_item("held_normal", d.held_normal.clone())?;

@@ -76,6 +76,18 @@ pub enum ContactMode {
     Sliding,
 }
 
+impl ContactMode {
+    /// `separated`, `sticking` or `sliding` (the word of `rigid step` and Python).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Separated => "separated",
+            Self::Sticking => "sticking",
+            Self::Sliding => "sliding",
+        }
+    }
+}
+
 /// `∂(q⁺, v⁺)/∂(q, v, τ)` of one step ([`Simulator::step_derivatives`]), each `nv x nv`: `q`
 /// and `q⁺` in the tangent space (`q ⊕ δ`, `q⁺ ⊖ q⁺₀`), `τ` the torque added to the control's.
 #[derive(Clone, Debug, PartialEq)]
