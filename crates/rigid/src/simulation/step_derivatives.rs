@@ -468,8 +468,12 @@ impl<C: Control> Simulator<C> {
                 let x = jm.row(r) * (-beta / h);
                 t.row_mut(r).copy_from(&x);
             }
+            // a contact row pushes in the correction, or may as soon as the correction moves
+            // (μ = 0 where every error is in the band): one that pushed in the velocity solve
+            // is in touch, and its row is held
             for b in solver.blocks.iter().filter(|b| !b.bilateral) {
-                if mu[b.row] > 0.0 {
+                let touching = mb > 0 && lambda[b.row] > 0.0;
+                if mu[b.row] > 0.0 || touching {
                     let s = if b.gap < 0.0 { beta } else { 0.0 };
                     rows[b.row] = Row::Equal(Target::Gap(s));
                     let x = jm.row(b.row) * (-s / h);
