@@ -492,92 +492,13 @@ impl<C: Control> Simulator<C> {
         }
 
         // 4. the configuration update
-        let mut dq_out = DMatrix::zeros(nv, n3);
-        let mut dv_out = dv_plus.clone();
-        let vs = &cs.v_step;
-        let (mut bq, mut bv) = (Mat6::zeros(), Mat6::zeros());
-        for j in model.joints() {
-            let (i, n) = (j.idx_v, j.nv);
-            if j.kind == JointType::FreeFlyer {
-                let wv = Vec3::new(vs[i], vs[i + 1], vs[i + 2]);
-                let lin = Vec3::new(vs[i + 3], vs[i + 4], vs[i + 5]);
-                let r: Mat3 = so3::exp(&(wv * h));
-                let rt = r.transpose();
-                let jr: Mat3 = se3_right_jacobian(&Twist::new(wv * h, Vec3::zeros()))
-                    .fixed_view::<3, 3>(0, 0)
-                    .into_owned();
-                let hjr = jr * h;
-                let up = [
-                    Vec3::new(vp[i], vp[i + 1], vp[i + 2]),
-                    Vec3::new(vp[i + 3], vp[i + 4], vp[i + 5]),
-                ];
-                for col in 0..n3 {
-                    let (dth, dp) = if col >= i && col < i + 6 {
-                        let mut e6 = [0.0; 6];
-                        e6[col - i] = 1.0;
-                        (
-                            Vec3::new(e6[0], e6[1], e6[2]),
-                            Vec3::new(e6[3], e6[4], e6[5]),
-                        )
-                    } else {
-                        (Vec3::zeros(), Vec3::zeros())
-                    };
-                    let dws = Vec3::new(dvs[(i, col)], dvs[(i + 1, col)], dvs[(i + 2, col)]);
-                    let dls = Vec3::new(dvs[(i + 3, col)], dvs[(i + 4, col)], dvs[(i + 5, col)]);
-                    let th1 = rt * dth + hjr * dws;
-                    let p1 = rt * (dp - lin.cross(&dth) * h + dls * h);
-                    for k in 0..3 {
-                        dq_out[(i + k, col)] = th1[k];
-                        dq_out[(i + 3 + k, col)] = p1[k];
-                    }
-                    for (half, u) in up.iter().enumerate() {
-                        let o = i + 3 * half;
-                        let du = Vec3::new(
-                            dv_plus[(o, col)],
-                            dv_plus[(o + 1, col)],
-                            dv_plus[(o + 2, col)],
-                        );
-                        let x = rt * du + (rt * u).cross(&(hjr * dws));
-                        for k in 0..3 {
-                            dv_out[(o + k, col)] = x[k];
-                        }
-                    }
-                }
-            } else {
-                j.kind
-                    .integrate_jacobians(&vs[i..i + n], h, &mut bq, &mut bv);
-                let bq = bq.view((0, 0), (n, n));
-                let bv = bv.view((0, 0), (n, n));
-                let x = bv * dvs.rows(i, n);
-                dq_out.rows_mut(i, n).copy_from(&x);
-                let mut diag = dq_out.view_mut((i, i), (n, n));
-                diag += bq;
-            }
-        }
+        let (mut dq_out, dv_out) = update_partials(model, &cs.v_step, vp, h, &dvs, &dv_plus);
         // 5. the projection onto the constraint manifold: at its solution, the tangent
         // projector in the metric of M, I − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁺ J (∂e/∂q = J at e = 0)
         if let Some(l) = d.loops.as_mut().filter(|l| l.options.project) {
             let velocity = cs.solver.stats.scaled;
             l.project(model, &mut d.data, &mut q1, &mut v1, velocity)?;
-            crba(model, &mut d.data, &q1)?;
-            ltl_factor(model, &mut d.data)?;
-            let cd = &l.cdata;
-            let mut jb = DMatrix::zeros(cd.dim(), nv);
-            for i in 0..cd.constraints.len() {
-                for r in cd.rows_of(i) {
-                    for &(k, _, _) in &cd.support[i].cols {
-                        jb[(r, k)] = cd.jacobian[(r, k)];
-                    }
-                }
-            }
-            let mut wb = jb.transpose();
-            minv_columns(&d.data, &mut wb);
-            let gb = &jb * &wb;
-            let tol = 1e-10 * gb.amax().max(1e-300);
-            let gp = gb
-                .pseudo_inverse(tol)
-                .unwrap_or_else(|_| DMatrix::zeros(cd.dim(), cd.dim()));
-            let projector = DMatrix::identity(nv, nv) - wb * gp * jb;
+            let projector = loop_projector(model, &mut d.data, &l.cdata, &q1)?;
             dq_out = projector * dq_out;
         }
         if !finite(&[&dq_out, &dv_out]) || !q1.iter().chain(&v1).all(|x| x.is_finite()) {
@@ -599,6 +520,104 @@ impl<C: Control> Simulator<C> {
             scaled: cs.solver.stats.scaled,
         })
     }
+}
+
+/// Step 4's partials: `∂q⁺` (tangent at `q⁺`) and the velocity carried to the new axes, from
+/// `δv_step` (`dvs`) and `δv⁺` (`dv_plus`), each `nv x 3nv`, `vs` and `vp` the step's `v_step`
+/// and `v⁺` (see the [module](self)'s step 4).
+fn update_partials(
+    model: &crate::multibody::Model,
+    vs: &[f64],
+    vp: &[f64],
+    h: f64,
+    dvs: &DMatrix<f64>,
+    dv_plus: &DMatrix<f64>,
+) -> (DMatrix<f64>, DMatrix<f64>) {
+    let (nv, n3) = (model.nv, dvs.ncols());
+    let mut dq_out = DMatrix::zeros(nv, n3);
+    let mut dv_out = dv_plus.clone();
+    let (mut bq, mut bv) = (Mat6::zeros(), Mat6::zeros());
+    for j in model.joints() {
+        let (i, n) = (j.idx_v, j.nv);
+        if j.kind == JointType::FreeFlyer {
+            let wv = Vec3::new(vs[i], vs[i + 1], vs[i + 2]);
+            let lin = Vec3::new(vs[i + 3], vs[i + 4], vs[i + 5]);
+            let rt: Mat3 = so3::exp(&(wv * h)).transpose();
+            let jr: Mat3 = se3_right_jacobian(&Twist::new(wv * h, Vec3::zeros()))
+                .fixed_view::<3, 3>(0, 0)
+                .into_owned();
+            let hjr = jr * h;
+            let up = [
+                Vec3::new(vp[i], vp[i + 1], vp[i + 2]),
+                Vec3::new(vp[i + 3], vp[i + 4], vp[i + 5]),
+            ];
+            let at = |m: &DMatrix<f64>, o: usize, col: usize| {
+                Vec3::new(m[(o, col)], m[(o + 1, col)], m[(o + 2, col)])
+            };
+            for col in 0..n3 {
+                // the q-column's own δθ, δp (zero off this joint and for v, τ)
+                let mut e6 = [0.0; 6];
+                if (i..i + 6).contains(&col) {
+                    e6[col - i] = 1.0;
+                }
+                let (dth, dp) = (
+                    Vec3::new(e6[0], e6[1], e6[2]),
+                    Vec3::new(e6[3], e6[4], e6[5]),
+                );
+                let (dws, dls) = (at(dvs, i, col), at(dvs, i + 3, col));
+                let th1 = rt * dth + hjr * dws;
+                let p1 = rt * (dp - lin.cross(&dth) * h + dls * h);
+                for k in 0..3 {
+                    dq_out[(i + k, col)] = th1[k];
+                    dq_out[(i + 3 + k, col)] = p1[k];
+                }
+                for (half, u) in up.iter().enumerate() {
+                    let o = i + 3 * half;
+                    let x = rt * at(dv_plus, o, col) + (rt * u).cross(&(hjr * dws));
+                    for k in 0..3 {
+                        dv_out[(o + k, col)] = x[k];
+                    }
+                }
+            }
+        } else {
+            j.kind
+                .integrate_jacobians(&vs[i..i + n], h, &mut bq, &mut bv);
+            let x = bv.view((0, 0), (n, n)) * dvs.rows(i, n);
+            dq_out.rows_mut(i, n).copy_from(&x);
+            let mut diag = dq_out.view_mut((i, i), (n, n));
+            diag += bq.view((0, 0), (n, n));
+        }
+    }
+    (dq_out, dv_out)
+}
+
+/// Step 5's projector onto the loops at `q` (`cd` their rows there): the tangent projector in
+/// the metric of `M`, `I − M⁻¹ J_Bᵀ (J_B M⁻¹ J_Bᵀ)⁺ J_B`.
+fn loop_projector(
+    model: &crate::multibody::Model,
+    data: &mut Data,
+    cd: &crate::multibody::constraints::ConstraintData,
+    q: &[f64],
+) -> Result<DMatrix<f64>, SimulationError> {
+    let nv = model.nv;
+    crba(model, data, q)?;
+    ltl_factor(model, data)?;
+    let mut jb = DMatrix::zeros(cd.dim(), nv);
+    for i in 0..cd.constraints.len() {
+        for r in cd.rows_of(i) {
+            for &(k, _, _) in &cd.support[i].cols {
+                jb[(r, k)] = cd.jacobian[(r, k)];
+            }
+        }
+    }
+    let mut wb = jb.transpose();
+    minv_columns(data, &mut wb);
+    let gb = &jb * &wb;
+    let tol = 1e-10 * gb.amax().max(1e-300);
+    let gp = gb
+        .pseudo_inverse(tol)
+        .unwrap_or_else(|_| DMatrix::zeros(cd.dim(), cd.dim()));
+    Ok(DMatrix::identity(nv, nv) - wb * gp * jb)
 }
 
 /// Each row's kind from the solution `lambda` of the velocity solve, with the modes of the
