@@ -43,6 +43,11 @@ use crate::multibody::{
 use crate::simulation::contact::{ContactSettings, ContactSolver, ContactStats};
 use crate::spatial::Vec3;
 
+/// How near a joint limit (rad or m) a joint enters the step's problem beyond what its speed
+/// reaches in two steps: the position correction moves joints too (a foot pressed out of the
+/// ground moves the leg), and a limit left out of the problem would be crossed.
+const LIMIT_MARGIN: f64 = 1e-3;
+
 /// The contact part of a simulator: the solver's workspace, the collision geometry and its
 /// workspace, and the results of the last step.
 #[derive(Clone, Debug)]
@@ -175,8 +180,10 @@ pub(crate) fn contact_step<C: Control>(
             }
             let (x, k) = (q[joint.idx_q], joint.idx_v);
             let (lo, hi) = (model.lower[joint.idx_q], model.upper[joint.idx_q]);
-            // near enough to reach the limit within two steps at this speed
-            let reach = 2.0 * h * v[k].abs() + 1e-9;
+            // near enough to reach the limit within two steps at this speed or the free
+            // velocity's, or by the position correction (which moves joints through the
+            // contacts and loops: a limit left out of the problem would be crossed)
+            let reach = 2.0 * h * v[k].abs().max(v_new[k].abs()) + LIMIT_MARGIN;
             let id = crate::multibody::JointId(j);
             if lo.is_finite() && x - lo <= reach {
                 cs.solver.push_limit(id, k, 1.0, x - lo);

@@ -47,8 +47,12 @@
 //!    `I − M⁻¹ J_Bᵀ (J_B M⁻¹ J_Bᵀ)⁺ J_B` at `q⁺` (first order in the error it removed, `O(h²)`).
 //!
 //! Where the step is not differentiable (a contact exactly at a mode switch: touching without
-//! pushing, or sticking on the cone's edge), the derivative of the mode the solver returned is
-//! given, which is one of the one-sided derivatives; [`StepDerivatives::at_switch`] names those
+//! pushing, pushing at `φ = 0`, sticking on the cone's edge), each column is the one-sided
+//! derivative along `+δ`: a contact touching without pushing is a complementarity row of the
+//! linearised problem (`δλ ≥ 0`, `δσ ≥ δσ*`), solved per column by a small active set; at
+//! `φ = 0` the target takes the side the column moves the gap to (an opening closed in the
+//! step, a penetration left to the correction); the correction's rows that meet their target
+//! without pushing are complementarity rows too. [`StepDerivatives::at_switch`] names those
 //! contacts. The control law's torque is an input: a law that is not open-loop
 //! ([`Control::open_loop`]: [`OpenLoop`](super::OpenLoop), `ControlLaw::None`) is refused.
 
@@ -111,8 +115,13 @@ pub struct StepDerivatives {
     /// The mode of each contact (in the order of `contacts`), then of each joint limit of the
     /// step's problem.
     pub modes: Vec<ContactMode>,
-    /// The indices (into `modes`) of those at a mode switch, where the derivative given is
-    /// the one-sided derivative of the mode shown.
+    /// The indices (into `modes`) of those at a mode switch, where the step is not
+    /// differentiable: touching without pushing, pushing exactly at `φ = 0` (within 1e-12),
+    /// sticking on the cone's edge. Each column is then the one-sided derivative along `+δ`
+    /// (`q ⊕ δ e_k`, `v + δ e_k`, `τ + δ e_k`, `δ → 0⁺`): a contact touching without pushing
+    /// pushes (and sticks) in the columns that press it, one at `φ = 0` is closed in the step
+    /// along the columns that open it and corrected along those that press it; a contact on
+    /// the cone's edge is held sticking (one side only).
     pub at_switch: Vec<usize>,
     /// The contact points of the differentiated step (those of `modes`, in its order; the
     /// limits follow in `modes`).
@@ -146,15 +155,32 @@ enum Row {
     },
     /// The second tangent row of a sliding contact (written with the first).
     SlideSecond,
+    /// A normal row at a switch (touching without pushing): per column, `δλ ≥ 0` and
+    /// `δσ ≥ δσ*`, complementary; active, it is `Equal` and its `tangents` rows stick.
+    Switch { target: Target, tangents: usize },
+    /// A tangent row of a `Switch` contact.
+    SwitchTangent,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Target {
     Constant,
-    /// `σ* = −s φ/h` (`s = 1` the velocity solve, `β` the position correction).
-    Gap(f64),
+    /// `σ* = −(open · max(δφ, 0) + closed · min(δφ, 0))/h`, `δφ = J_n δq`: `1` in the velocity
+    /// solve for an open gap, `β` in the position correction for a penetration; a contact
+    /// touching (`φ = 0`) takes `open` and `closed` of either side.
+    Gap {
+        open: f64,
+        closed: f64,
+    },
     /// `σ* = −e J v`.
     Rebound(f64),
+}
+
+impl Target {
+    /// The same share of the gap on either side.
+    fn gap(s: f64) -> Self {
+        Self::Gap { open: s, closed: s }
+    }
 }
 
 /// Whether every entry of these matrices is finite.
@@ -176,9 +202,71 @@ fn minv_columns(data: &Data, out: &mut DMatrix<f64>) {
 /// kinds, `G = J M̃⁻¹ Jᵀ`, `JE` the rows' response to the inputs at `δλ = 0` (plus their own
 /// `∂(J x)/∂q` in its first `nv` columns) and the targets' partials `T`.
 fn solve_rows(rows: &[Row], g: &DMatrix<f64>, je: &DMatrix<f64>, t: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut out = solve_fixed(rows, g, je, t);
+    let switches: Vec<(usize, usize)> = (0..rows.len())
+        .filter_map(|r| match rows[r] {
+            Row::Switch { tangents, .. } => Some((r, tangents)),
+            _ => None,
+        })
+        .collect();
+    if switches.is_empty() {
+        return out;
+    }
+    // each column its own active set among the switches: the one-sided derivative along it
+    for k in 0..je.ncols() {
+        let scale = je.column(k).amax().max(t.column(k).amax()).max(1e-300);
+        let mut active = vec![false; rows.len()];
+        for _ in 0..=switches.len() {
+            let x = out.column(k);
+            let mut changed = false;
+            for &(r, _) in &switches {
+                let gap = (g.row(r) * x)[0] + je[(r, k)] - t[(r, k)];
+                if !active[r] && gap < -1e-9 * scale {
+                    active[r] = true;
+                    changed = true;
+                } else if active[r] && x[r] < -1e-9 * x.amax() {
+                    active[r] = false;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+            let mut rk = rows.to_vec();
+            for &(r, tangents) in &switches {
+                let on = if active[r] {
+                    Row::Equal(Target::Constant)
+                } else {
+                    Row::Free
+                };
+                for row in &mut rk[r..=r + tangents] {
+                    *row = on;
+                }
+            }
+            let x = solve_fixed(
+                &rk,
+                g,
+                &je.columns(k, 1).into_owned(),
+                &t.columns(k, 1).into_owned(),
+            );
+            out.set_column(k, &x.column(0));
+        }
+    }
+    out
+}
+
+/// [`solve_rows`] with the switches held free.
+fn solve_fixed(
+    rows: &[Row],
+    g: &DMatrix<f64>,
+    je: &DMatrix<f64>,
+    t: &DMatrix<f64>,
+) -> DMatrix<f64> {
     let (m, cols) = (rows.len(), je.ncols());
     // the unknowns: the rows not held at δλ = 0
-    let live: Vec<usize> = (0..m).filter(|&r| rows[r] != Row::Free).collect();
+    let live: Vec<usize> = (0..m)
+        .filter(|&r| !matches!(rows[r], Row::Free | Row::Switch { .. } | Row::SwitchTangent))
+        .collect();
     let at = |r: usize| live.binary_search(&r).ok();
     let na = live.len();
     let mut a = DMatrix::zeros(na, na);
@@ -190,7 +278,7 @@ fn solve_rows(rows: &[Row], g: &DMatrix<f64>, je: &DMatrix<f64>, t: &DMatrix<f64
     };
     for (i, &r) in live.iter().enumerate() {
         match rows[r] {
-            Row::Free | Row::SlideSecond => {}
+            Row::Free | Row::SlideSecond | Row::Switch { .. } | Row::SwitchTangent => {}
             Row::Equal(_) => {
                 copy_g(&mut a, i, r, 1.0);
                 let x = t.row(r) - je.row(r);
@@ -404,12 +492,11 @@ impl<C: Control> Simulator<C> {
             let mut t = DMatrix::zeros(m, n3);
             let mut rebound = false;
             for (r, row) in rows.iter().enumerate() {
-                match row {
-                    Row::Equal(Target::Gap(s)) => {
-                        let x = jm.row(r) * (-s / h);
-                        t.view_mut((r, 0), (1, nv)).copy_from(&x);
+                match target_of(row) {
+                    Some(Target::Gap { open, closed }) => {
+                        gap_target(&mut t, r, &jm, h, open, closed)
                     }
-                    Row::Equal(Target::Rebound(er)) => {
+                    Some(Target::Rebound(er)) => {
                         rebound = true;
                         let x = jm.row(r) * (-er);
                         t.view_mut((r, nv), (1, nv)).copy_from(&x);
@@ -422,7 +509,7 @@ impl<C: Control> Simulator<C> {
                 let at_v = solver.rows_at(model, &mut scratch, &q, &v, &radius)?;
                 solver.rows_dq(&at_v, nv, &mut cv);
                 for (r, row) in rows.iter().enumerate() {
-                    if let Row::Equal(Target::Rebound(er)) = row {
+                    if let Some(Target::Rebound(er)) = target_of(row) {
                         let x = cv.row(r) * (-er);
                         t.view_mut((r, 0), (1, nv)).copy_from(&x);
                     }
@@ -439,7 +526,12 @@ impl<C: Control> Simulator<C> {
         // projection's tolerance asks none, but any perturbation of q leaves that band)
         let mut dw = DMatrix::zeros(nv, nv);
         let beta = cs.settings.stabilization;
-        if cs.dq.iter().any(|x| *x != 0.0) || (mb > 0 && beta > 0.0) {
+        // a pushing contact or limit touching (φ = 0, within round-off) is taken on the side
+        // where the gap closed: the correction takes β of any penetration a perturbation makes
+        let touching = |b: &Block| !b.bilateral && at_zero(b.gap) && lambda[b.row] > 0.0;
+        let corrects =
+            cs.dq.iter().any(|x| *x != 0.0) || mb > 0 || solver.blocks.iter().any(touching);
+        if corrects && beta > 0.0 {
             let mu = &solver.mu[..m];
             let wc: Vec<f64> = cs.dq.iter().map(|x| x / h).collect();
             let zeros = vec![0.0; nv];
@@ -464,21 +556,42 @@ impl<C: Control> Simulator<C> {
             let mut t = DMatrix::zeros(m, nv);
             // the bilateral rows aim at −β e/h, `∂e/∂q = J` (at e = 0)
             for r in (0..mb).filter(|&r| !solver.bilateral_idle[r]) {
-                rows[r] = Row::Equal(Target::Gap(beta));
-                let x = jm.row(r) * (-beta / h);
-                t.row_mut(r).copy_from(&x);
+                rows[r] = Row::Equal(Target::gap(beta));
+                gap_target(&mut t, r, &jm, h, beta, beta);
             }
-            // a contact row pushes in the correction, or may as soon as the correction moves
-            // (μ = 0 where every error is in the band): one that pushed in the velocity solve
-            // is in touch, and its row is held
+            // a contact row pushes in the correction (μ > 0), or may as soon as a perturbation
+            // moves the correction: one whose row meets its target (`J w = σ*`; every row
+            // not penetrating when nothing was corrected) is a switch, pushing only if the
+            // correction would press it in; touching at φ = 0, it takes β of the penetration
+            // a perturbation makes and none of an opening
+            let ran = cs.dq.iter().any(|x| *x != 0.0);
+            let wscale = solver.sigma_mu[..m]
+                .iter()
+                .chain(&solver.target_mu[..m])
+                .fold(1e-300_f64, |a, x| a.max(x.abs()));
+            let tight = |r: usize| {
+                !ran || (solver.sigma_mu[r] - solver.target_mu[r]).abs() <= 1e-9 * wscale
+            };
             for b in solver.blocks.iter().filter(|b| !b.bilateral) {
-                let touching = mb > 0 && lambda[b.row] > 0.0;
-                if mu[b.row] > 0.0 || touching {
-                    let s = if b.gap < 0.0 { beta } else { 0.0 };
-                    rows[b.row] = Row::Equal(Target::Gap(s));
-                    let x = jm.row(b.row) * (-s / h);
-                    t.row_mut(b.row).copy_from(&x);
+                let (open, closed) = if at_zero(b.gap) {
+                    (0.0, beta)
+                } else if b.gap < 0.0 {
+                    (beta, beta)
+                } else {
+                    (0.0, 0.0)
+                };
+                let target = Target::Gap { open, closed };
+                if mu[b.row] > 0.0 {
+                    rows[b.row] = Row::Equal(target);
+                } else if tight(b.row) {
+                    rows[b.row] = Row::Switch {
+                        target,
+                        tangents: 0,
+                    };
+                } else {
+                    continue;
                 }
+                gap_target(&mut t, b.row, &jm, h, open, closed);
             }
             let je = &jm * &ew + cw;
             let dmu = solve_rows(&rows, &g, &je, &t);
@@ -620,6 +733,31 @@ fn loop_projector(
     Ok(DMatrix::identity(nv, nv) - wb * gp * jb)
 }
 
+/// The target of a row that holds one.
+fn target_of(row: &Row) -> Option<Target> {
+    match *row {
+        Row::Equal(t) | Row::Switch { target: t, .. } => Some(t),
+        _ => None,
+    }
+}
+
+/// Row `r` of the targets' `q` columns for `σ* = −(open · max(δφ, 0) + closed · min(δφ, 0))/h`
+/// with `δφ = J_n δq` along each column (`∂φ/∂q = J_n`): per column, the side of the switch
+/// that the perturbation moves to.
+fn gap_target(t: &mut DMatrix<f64>, r: usize, jm: &DMatrix<f64>, h: f64, open: f64, closed: f64) {
+    for k in 0..jm.ncols() {
+        let dphi = jm[(r, k)];
+        t[(r, k)] = -(if dphi > 0.0 { open } else { closed }) * dphi / h;
+    }
+}
+
+/// Whether a gap (m, or rad for a limit) is zero within round-off: a contact or limit
+/// touching, at the switch between closing its gap in the velocity solve (`φ > 0`) and being
+/// corrected (`φ < 0`).
+fn at_zero(gap: f64) -> bool {
+    gap.abs() <= 1e-12
+}
+
 /// Each row's kind from the solution `lambda` of the velocity solve, with the modes of the
 /// contacts and limits and those at a switch.
 fn classify(
@@ -651,21 +789,40 @@ fn classify(
         let r = b.row;
         let index = modes.len();
         let normal = if b.gap_target {
-            Target::Gap(1.0)
+            Target::gap(1.0)
         } else if b.rebound_target {
             Target::Rebound(b.restitution)
+        } else if at_zero(b.gap) {
+            // touching: an opening perturbation is closed in this step, a penetration is
+            // left to the correction
+            Target::Gap {
+                open: 1.0,
+                closed: 0.0,
+            }
         } else {
             Target::Constant
         };
         if lambda[r] <= 1e-12 * scale {
             modes.push(ContactMode::Separated);
-            // touching without pushing: the normal velocity meets its target
+            // touching without pushing: the normal velocity meets its target, and a
+            // perturbation that presses the contact makes it push (sticking)
             if (sigma[r] - target[r]).abs() <= 1e-9 * vscale {
                 at_switch.push(index);
+                rows[r] = Row::Switch {
+                    target: normal,
+                    tangents: if b.friction > 0.0 { b.dim - 1 } else { 0 },
+                };
+                for row in &mut rows[r + 1..r + b.dim] {
+                    *row = Row::SwitchTangent;
+                }
             }
             continue;
         }
         rows[r] = Row::Equal(normal);
+        if at_zero(b.gap) {
+            // pushing at φ = 0: each side has its own target (see `Target::Gap`)
+            at_switch.push(index);
+        }
         if b.dim == 1 || b.friction == 0.0 {
             modes.push(ContactMode::Sticking);
             continue;

@@ -98,8 +98,8 @@ pub(crate) struct ContactSolver {
     /// The position correction's impulses and contact velocities (`lambda` keeps the velocity
     /// solve's).
     pub(crate) mu: Vec<f64>,
-    sigma_mu: Vec<f64>,
-    target_mu: Vec<f64>,
+    pub(crate) sigma_mu: Vec<f64>,
+    pub(crate) target_mu: Vec<f64>,
     x: Vec<f64>,
     /// The rows of the bilateral group (the leading rows), and the Cholesky factor of
     /// `K_BB + ρ I` (`None` until a step has bilateral rows).

@@ -512,3 +512,56 @@ fn a_box_rebounding_from_the_ground() {
     // the rebound leaves faster than it came in from the lowest corner: e > 0 acted
     assert!(d.v_next.iter().any(|x| x.abs() > 0.1));
 }
+
+/// The leg of `fixtures/constraints/leg.xml` (a box on a parallelogram leg closed by a
+/// `<connect>`, its hip limited to ±0.2 rad, its foot a box on the file's floor), dropped from
+/// 3 cm for `steps` steps, its base then moved by `dz`.
+fn leg(steps: usize, dz: f64) -> Simulator<OpenLoop> {
+    use rigid::io::collision::{mjcf_file_world, WorldOptions};
+    use rigid::simulation::{JointLimits, Scenario};
+    let file = crate::common::fixtures_dir().join("constraints/leg.xml");
+    let mj = rigid::io::mjcf::load_mjcf(file).unwrap();
+    let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
+    let mut s = Scenario::in_world(mj.model.clone(), world);
+    let mut q0 = rigid::multibody::neutral(&mj.model);
+    q0[2] = 0.47;
+    let at = |name: &str| mj.model.joints()[mj.model.joint_id(name).unwrap().0].idx_q;
+    q0[at("hip_a")] = 0.05;
+    q0[at("hip_b")] = 0.05;
+    q0[at("ankle")] = -0.05;
+    s.q0 = Some(q0);
+    s.options.limits = JointLimits::Unilateral;
+    let nv = mj.model.nv();
+    let mut sim = s
+        .build_with(OpenLoop(vec![0.0; nv]))
+        .unwrap()
+        .with_contact_settings(settings())
+        .unwrap();
+    for _ in 0..steps {
+        sim.step().unwrap();
+    }
+    let (mut q, v) = (sim.q().to_vec(), sim.v().to_vec());
+    q[2] += dz;
+    sim.set_state(&q, &v).unwrap();
+    sim
+}
+
+#[test]
+fn a_leg_with_a_loop_on_its_foot() {
+    // loops and contacts on one chain: the foot's four corners, the loop's three rows, the hip
+    // limit. Landing (0.15 s), the foot pressed 3 µm into the floor: inside one mode
+    let (d, kinks) = check("leg landing", &mut leg(150, -3e-6), 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert_eq!(d.modes, [ContactMode::Sticking; 4]);
+    // tipping over on the foot's edge (0.4 s), two corners lifting, the hip on its limit
+    // exactly (φ = 0: at a switch, each column the side its perturbation moves to)
+    let (d, kinks) = check("leg tipping", &mut leg(400, 0.0), 1e-7, 1e-5);
+    assert!(kinks <= 8, "{kinks}");
+    assert_eq!(d.modes[4], ContactMode::Sticking);
+    assert!(d.at_switch.contains(&4), "{:?}", d.at_switch);
+    // at rest (2 s) on the hip's limit, pressed 3 µm: the limit, the loop and four corners
+    // hold a locked mechanism
+    let (d, kinks) = check("leg at rest", &mut leg(2000, -3e-6), 1e-7, 1e-5);
+    assert!(kinks <= 2, "{kinks}");
+    assert_eq!(d.modes, [ContactMode::Sticking; 5]);
+}
