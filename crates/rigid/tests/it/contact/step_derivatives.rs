@@ -565,3 +565,23 @@ fn a_leg_with_a_loop_on_its_foot() {
     assert!(kinks <= 2, "{kinks}");
     assert_eq!(d.modes, [ContactMode::Sticking; 5]);
 }
+
+#[test]
+fn a_correction_through_a_loop_does_not_cross_a_joint_limit() {
+    // the leg at rest on its hip limit, pressed 3 µm into the floor, its hip 1e-8 rad inside the
+    // limit: the correction lifts the foot through the loop and turns the hip toward its limit,
+    // which must hold (left out of the problem, it was crossed by 1.5e-5 rad)
+    let mut s = leg(2000, -3e-6);
+    let hip = 6;
+    let upper = 0.2;
+    assert!((s.q()[hip + 1] - upper).abs() < 1e-12, "{}", s.q()[hip + 1]);
+    let (mut q, v) = (s.q().to_vec(), s.v().to_vec());
+    q[hip + 1] -= 1e-8;
+    s.set_state(&q, &v).unwrap();
+    s.step().unwrap();
+    assert!(
+        s.q()[hip + 1] <= upper + 1e-12,
+        "{}",
+        s.q()[hip + 1] - upper
+    );
+}
