@@ -1,6 +1,7 @@
 //! The workspace of a collision model and the contact points at a configuration.
 
 use super::shape::{from_parry, pose, Parry, Walk};
+use super::turn::{turn, Turn};
 use super::ContactPoint;
 use super::{CollisionError, CollisionModel};
 use crate::multibody::{JointId, Model};
@@ -25,6 +26,9 @@ pub struct CollisionData {
     bodies: Vec<(JointId, Vec<usize>)>,
     /// Per geometry, its walk on its hull against the ground.
     walks: Vec<Walk>,
+    /// How each contact of the last [`contacts`](Self::contacts) turns with its bodies (in
+    /// its order), for the derivatives of a step.
+    pub(crate) turns: Vec<Turn>,
     njoints: usize,
 }
 
@@ -82,6 +86,7 @@ impl CollisionData {
             pairs,
             near: Vec::new(),
             walks: vec![Walk::default(); cm.geometries.len()],
+            turns: Vec::new(),
             njoints: model.njoints(),
         })
     }
@@ -168,6 +173,8 @@ impl CollisionData {
         // in the order of the geometries, whichever body they are on (the Gauss–Seidel sweeps
         // take the contacts in this order)
         out.sort_by_key(|c| c.geometries.0);
+        self.turns.clear();
+        self.turns.resize(out.len(), Turn::Ground);
         let dispatcher = DefaultQueryDispatcher;
         for (p, &(i, j)) in self.pairs.iter().enumerate() {
             let (si, sj) = (&self.shapes[i], &self.shapes[j]);
@@ -220,6 +227,10 @@ impl CollisionData {
                     {
                         continue;
                     }
+                    self.turns.push(turn(
+                        (&*si.shape, &pi, c.local_p1, m.local_n1),
+                        (&*sj.shape, &pj, c.local_p2, m.local_n2),
+                    ));
                     out.push(ContactPoint {
                         body1: a.body,
                         body2: b.body,

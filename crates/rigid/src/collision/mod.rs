@@ -49,10 +49,12 @@
 
 mod detect;
 mod shape;
+mod turn;
 
 pub use detect::CollisionData;
 pub(crate) use detect::RESTING_FACE;
 pub use shape::Shape;
+pub(crate) use turn::Turn;
 
 use crate::multibody::JointId;
 use crate::spatial::{Transform, Vec3};

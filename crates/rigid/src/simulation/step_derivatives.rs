@@ -60,6 +60,7 @@ use super::contact::Block;
 use super::contact_step::{contact_step, ContactStepper};
 use super::control::Control;
 use super::{SimulationError, Simulator};
+use crate::collision::Turn;
 use crate::multibody::algorithms::{ltl_factor, ltl_solve_lower, ltl_solve_transposed};
 use crate::multibody::configuration::world_aligned_turn;
 use crate::multibody::constraints::velocity_level_partials;
@@ -126,10 +127,10 @@ pub struct StepDerivatives {
     /// The contact points of the differentiated step (those of `modes`, in its order; the
     /// limits follow in `modes`).
     pub contacts: Vec<crate::collision::ContactPoint>,
-    /// The indices (into `modes`) of the pushing contacts other than a body on the ground,
-    /// whose normal is held fixed in these derivatives: between two moving bodies its turn is
-    /// left out; against a static geometry it is exact where that geometry meets the body with
-    /// a face.
+    /// The indices (into `modes`) of the pushing contacts whose normal's turn and point's
+    /// move are held fixed in these derivatives: between two geometries, those that are
+    /// neither a flat face against a vertex or a ball nor two balls (an edge across an edge,
+    /// a capsule's side, a cylinder's rim, a mesh's triangle; see `contact/rows.rs`).
     pub held_normal: Vec<usize>,
     /// The energy safeguard scaled this step's impulse
     /// ([`ContactStats::scaled`](super::contact::ContactStats::scaled)): the scaled impulse no
@@ -415,11 +416,13 @@ impl<C: Control> Simulator<C> {
         }
         let collision = cs.collision.as_ref();
         let radius = |g: usize| collision.map_or(0.0, |(_, cd)| cd.ball_radius(g));
+        let turns = collision.map_or(&[][..], |(_, cd)| cd.turns.as_slice());
+        let geometry = (&radius as &dyn Fn(usize) -> f64, turns);
         let solver = &cs.solver;
         let m = solver.m();
         let lambda = &solver.lambda[..m];
         // the contact bodies at (q, v⁺): their Jacobians serve every force partial below
-        let at_vp = solver.rows_at(model, &mut scratch, &q, vp, &radius)?;
+        let at_vp = solver.rows_at(model, &mut scratch, &q, vp, geometry)?;
         let mut p = DMatrix::zeros(nv, nv);
         solver.force_dq(&at_vp, model, lambda, &mut p);
         // the bilateral rows lead, in the constraints' row order (at q: before the projection)
@@ -480,12 +483,12 @@ impl<C: Control> Simulator<C> {
                 c.rows_mut(0, mb).copy_from(cb);
             }
             let rows = classify(solver, lambda, &mut modes, &mut at_switch);
-            // every pushing contact but a moving body on the ground: between two moving bodies
-            // the normal's turn is left out, and against a static geometry it is exact only
-            // where that geometry meets the body with a face
+            // the pushing contacts whose normal's turn is not followed (an edge across an
+            // edge, a capsule's side, a cylinder's rim, a mesh's triangle)
             for (i, c) in solver.points.iter().enumerate() {
-                let ground = c.body2.is_none() && c.geometries.1.is_none();
-                if !ground && modes[i] != ContactMode::Separated {
+                let held =
+                    c.geometries.1.is_some() && turns.get(i).is_none_or(|t| *t == Turn::Held);
+                if held && modes[i] != ContactMode::Separated {
                     held_normal.push(i);
                 }
             }
@@ -506,7 +509,7 @@ impl<C: Control> Simulator<C> {
             }
             if rebound {
                 let mut cv = DMatrix::zeros(m, nv);
-                let at_v = solver.rows_at(model, &mut scratch, &q, &v, &radius)?;
+                let at_v = solver.rows_at(model, &mut scratch, &q, &v, geometry)?;
                 solver.rows_dq(&at_v, nv, &mut cv);
                 for (r, row) in rows.iter().enumerate() {
                     if let Some(Target::Rebound(er)) = target_of(row) {
@@ -547,7 +550,7 @@ impl<C: Control> Simulator<C> {
             let mut ew = pm - dmw;
             minv_columns(data, &mut ew);
             let mut cw = DMatrix::zeros(m, nv);
-            let at_w = solver.rows_at(model, &mut scratch, &q, &wc, &radius)?;
+            let at_w = solver.rows_at(model, &mut scratch, &q, &wc, geometry)?;
             solver.rows_dq(&at_w, nv, &mut cw);
             if let Some((cb, _)) = &bilateral_w {
                 cw.rows_mut(0, mb).copy_from(cb);

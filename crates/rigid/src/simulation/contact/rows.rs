@@ -16,18 +16,33 @@
 //!
 //! `∂Q_k/∂q_j = Σ_b s_b (S_kᵀ (u_j × f, 0) + [j ⪯ k] (S_j × S_k)ᵀ F)`.
 //!
-//! How the point moves, `u_k`: a ground contact's point is `p = x − (φ/2) n`, `x` the shape's
-//! point nearest the plane and `φ = n·x − height`, so `u = u_x − ½ (n·u_x) n`; `x` is a vertex
-//! fixed in the body (a box, a mesh's hull) or, for a ball of radius `ρ` (a sphere, a capsule's
-//! end), `c − ρ n` with the centre `c` fixed in the body: `u_x = S_k.v + S_k.ω × a`,
-//! `a = x + ρ n`. A moving body against any static geometry is taken the same way, the normal
-//! fixed (exact against a static face). Cylinders and cones (parry's support point) are taken
-//! as vertices: exact on a flat face, first order off where a rim rolls. Between two moving
-//! bodies the point is taken as fixed in body 1 and the frame as fixed in the world: the turn
-//! of the normal with the bodies is not in these partials (`StepDerivatives::held_normal` names
-//! those contacts). Joint limits' rows are constant.
+//! How the point moves, `u_k`, and the frame turns, `θ_k` (each direction `d` of the frame
+//! turns with the normal, `∂d/∂q_k = θ_k × d`, which adds `θ_k · (d × v_rel(p))` to the rows
+//! and `(p × δf, δf)`, `δf = θ_k × f`, to the forces), per
+//! [`Turn`](crate::collision::Turn):
+//!
+//! - **a body on the ground**: `p = x − (φ/2) n`, `x` the shape's point nearest the plane and
+//!   `φ = n·x − height`, so `u = u_x − ½ (n·u_x) n`, `θ = 0`; `x` is a vertex fixed in the body
+//!   (a box, a mesh's hull) or, for a ball of radius `ρ` (a sphere, a capsule's end),
+//!   `c − ρ n` with the centre `c` fixed in the body: `u_x = S_k.v + S_k.w × a`, `a = x + ρ n`.
+//!   Cylinders and cones (parry's support point) are taken as vertices: exact on a flat face,
+//!   first order off where a rim rolls.
+//! - **a flat face** of one side against a vertex or a ball (centre `a`, radius `ρ`) of the
+//!   other: `θ` the face body's `S_k.ω`, `δn = θ × n`; with the point on body 1 (`s = 1`; on
+//!   body 2 `s = −1`) `x = a − s ρ n`, `δx = u(a) − s ρ δn`, `φ = n·(x₁ − x₂)`,
+//!   `δφ = s n·(δx − u_face(x − s φ n))`, `p = x − s (φ/2) n`:
+//!   `u = δx − s (½ δφ n + (φ/2) δn)`.
+//! - **two balls** (or a ball and a vertex) of centres `a₁`, `a₂`, radii `ρ₁`, `ρ₂`:
+//!   `n = (a₁ − a₂)/|a₁ − a₂|`, `δn = (I − n nᵀ)(u₁(a₁) − u₂(a₂))/|a₁ − a₂|`, `θ = n × δn`,
+//!   `p = ½ (a₁ + a₂ + (ρ₂ − ρ₁) n)`: `u = ½ (u₁ + u₂ + (ρ₂ − ρ₁) δn)`.
+//! - **anything else** (an edge across an edge, a capsule's side, a cylinder's rim, a mesh's
+//!   triangle): the point fixed in a moving body, the frame in the world, `θ = 0`
+//!   (`StepDerivatives::held_normal` names those contacts).
+//!
+//! Joint limits' rows are constant.
 
 use super::solver::ContactSolver;
+use crate::collision::Turn;
 use crate::multibody::{
     joint_kinematics_derivatives, Data, JointId, Model, MultibodyError, ReferenceFrame,
 };
@@ -57,6 +72,7 @@ struct Contact {
     p: Vec3,
     gap: f64,
     anchor: Option<(f64, f64)>,
+    turn: Turn,
     bodies: [(Option<JointId>, f64); 2],
 }
 
@@ -83,9 +99,9 @@ impl ContactSolver {
         data: &mut Data,
         q: &[f64],
         x: &[f64],
-        radius: &dyn Fn(usize) -> f64,
+        (radius, turns): (&dyn Fn(usize) -> f64, &[Turn]),
     ) -> Result<RowsAt, MultibodyError> {
-        let contacts = self.contact_geometry(radius);
+        let contacts = self.contact_geometry(radius, turns);
         let bodies = Self::bodies(&contacts, model, data, q, x)?;
         Ok(RowsAt { contacts, bodies })
     }
@@ -104,16 +120,22 @@ impl ContactSolver {
     }
 
     /// The contact blocks (limits and bilateral rows left out), `radius(g)` the ball radius of
-    /// geometry `g` against the ground (0 for a vertex).
-    fn contact_geometry(&self, radius: &dyn Fn(usize) -> f64) -> Vec<Contact> {
+    /// geometry `g` against the ground (0 for a vertex), `turns` how each of `points` turns
+    /// with its bodies (empty: held).
+    fn contact_geometry(&self, radius: &dyn Fn(usize) -> f64, turns: &[Turn]) -> Vec<Contact> {
         let mut out = Vec::new();
-        let mut points = self.points.iter();
+        let mut points = self.points.iter().enumerate();
         for b in self.blocks.iter().filter(|b| !b.bilateral && b.dim == 3) {
-            let Some(c) = points.next() else { break };
-            let anchor = match (c.body1, c.body2) {
-                (Some(_), None) => Some((radius(c.geometries.0), 1.0)),
-                (None, Some(_)) => c.geometries.1.map(|g| (radius(g), -1.0)),
+            let Some((i, c)) = points.next() else { break };
+            let ground = c.geometries.1.is_none();
+            let anchor = match (c.body1, ground) {
+                (Some(_), true) => Some((radius(c.geometries.0), 1.0)),
                 _ => None,
+            };
+            let turn = if ground {
+                Turn::Ground
+            } else {
+                turns.get(i).copied().unwrap_or(Turn::Held)
             };
             out.push(Contact {
                 row: b.row,
@@ -121,6 +143,7 @@ impl ContactSolver {
                 p: c.point,
                 gap: c.gap,
                 anchor,
+                turn,
                 bodies: [(c.body1, 1.0), (c.body2, -1.0)],
             });
         }
@@ -160,33 +183,56 @@ impl ContactSolver {
         Ok(out)
     }
 
-    /// `u_k = ∂p/∂q_k` of a contact's point (see the [module](self) documentation), `moving`
-    /// the body it moves with.
-    fn point_rate(c: &Contact, moving: Option<&Body>, k: usize) -> Vec3 {
-        let Some(b) = moving else {
-            return Vec3::zeros();
-        };
-        let Sk = col(&b.S, k);
+    /// How a contact moves along `q_k`: its point's `u_k = ∂p/∂q_k` and its frame's turn
+    /// `θ_k` (`∂d/∂q_k = θ_k × d`), see the [module](self) documentation.
+    fn motion(c: &Contact, at: &RowsAt, k: usize) -> (Vec3, Vec3) {
+        let body = |side: usize| at.find(c.bodies[side].0).map(|b| col(&b.S, k));
+        // the velocity of the point `x` fixed in side's body
+        let carried =
+            |side: usize, x: &Vec3| body(side).map_or(Vec3::zeros(), |S| S.v + S.w.cross(x));
         let n = c.frame[0];
-        match c.anchor {
-            Some((rho, side)) => {
-                // the moving side's nearest point x = p ± (φ/2) n and its anchor x ± ρ n
-                let a = c.p + n * (side * (0.5 * c.gap + rho));
-                let ux = Sk.v + Sk.w.cross(&a);
-                ux - n * (0.5 * n.dot(&ux))
+        let phi = c.gap;
+        match c.turn {
+            Turn::Ground => {
+                let Some(S) = body(0) else {
+                    return (Vec3::zeros(), Vec3::zeros());
+                };
+                let (rho, _) = c.anchor.unwrap_or((0.0, 1.0));
+                // the nearest point x = p + (φ/2) n and its anchor x + ρ n
+                let a = c.p + n * (0.5 * phi + rho);
+                let ux = S.v + S.w.cross(&a);
+                (ux - n * (0.5 * n.dot(&ux)), Vec3::zeros())
             }
-            None => Sk.v + Sk.w.cross(&c.p),
-        }
-    }
-
-    /// The body a contact's point moves with: the moving side against the world, else body 1.
-    fn mover<'a>(
-        c: &Contact,
-        find: &impl Fn(Option<JointId>) -> Option<&'a Body>,
-    ) -> Option<&'a Body> {
-        match c.anchor {
-            Some((_, side)) if side < 0.0 => find(c.bodies[1].0),
-            _ => find(c.bodies[0].0),
+            Turn::Face { face, a, rho } => {
+                let theta = body(face).map_or(Vec3::zeros(), |S| S.w);
+                let dn = theta.cross(&n);
+                let (sign, point) = if face == 1 { (1.0, 0) } else { (-1.0, 1) };
+                // sign = +1 with the point on body 1: its nearest point x = a − sign ρ n, the
+                // face's x − sign φ n (φ = n·(x₁ − x₂)), p = x − sign (φ/2) n
+                let x = a - n * (sign * rho);
+                let dx = carried(point, &a) - dn * (sign * rho);
+                let xf = x - n * (sign * phi);
+                let dphi = sign * n.dot(&(dx - carried(face, &xf)));
+                (
+                    dx - n * (sign * 0.5 * dphi) - dn * (sign * 0.5 * phi),
+                    theta,
+                )
+            }
+            Turn::Centres {
+                a: [a1, a2],
+                rho: [r1, r2],
+            } => {
+                let (u1, u2) = (carried(0, &a1), carried(1, &a2));
+                let d = (a1 - a2).norm();
+                let du = u1 - u2;
+                let dn = (du - n * n.dot(&du)) / d;
+                ((u1 + u2 + dn * (r2 - r1)) * 0.5, n.cross(&dn))
+            }
+            Turn::Held => {
+                // the point fixed in a moving body, the frame in the world
+                let side = usize::from(c.bodies[0].0.is_none());
+                (carried(side, &c.p), Vec3::zeros())
+            }
         }
     }
 
@@ -195,12 +241,18 @@ impl ContactSolver {
         *out = DMatrix::zeros(self.m(), nv);
         let find = |j: Option<JointId>| at.find(j);
         for c in &at.contacts {
-            let mover = Self::mover(c, &find);
+            // the bodies' relative velocity at the point
+            let mut rel = Vec3::zeros();
+            for (j, s) in c.bodies {
+                if let Some(b) = find(j) {
+                    rel += (b.V.v + b.V.w.cross(&c.p)) * s;
+                }
+            }
             for k in 0..nv {
-                let u = Self::point_rate(c, mover, k);
+                let (u, theta) = Self::motion(c, at, k);
                 for (i, d) in c.frame.iter().enumerate() {
                     let pd = c.p.cross(d);
-                    let mut t = 0.0;
+                    let mut t = theta.dot(&d.cross(&rel));
                     for (j, s) in c.bodies {
                         let Some(b) = find(j) else { continue };
                         let dV = col(&b.dV, k);
@@ -230,12 +282,13 @@ impl ContactSolver {
                 continue;
             }
             let F = Wrench::new(c.p.cross(&f), f);
-            let mover = Self::mover(c, &find);
+            let motions: Vec<(Vec3, Vec3)> = (0..nv).map(|j| Self::motion(c, at, j)).collect();
             for (jb, s) in c.bodies {
                 let Some(b) = find(jb) else { continue };
-                for j in 0..nv {
-                    let u = Self::point_rate(c, mover, j);
-                    let dF = Wrench::new(u.cross(&f), Vec3::zeros());
+                for (j, (u, theta)) in motions.iter().enumerate() {
+                    // the point's move and the frame's turn (δf = θ × f)
+                    let df = theta.cross(&f);
+                    let dF = Wrench::new(u.cross(&f) + c.p.cross(&df), df);
                     let Sj = col(&b.S, j);
                     let on_j = Sj.w != Vec3::zeros() || Sj.v != Vec3::zeros();
                     for k in 0..nv {

@@ -9,6 +9,7 @@ mod closed_form;
 mod energy;
 mod robots;
 mod step_derivatives;
+mod step_derivatives_pairs;
 mod wheels;
 mod world;
 

@@ -18,7 +18,7 @@ use rigid::simulation::{
 };
 use rigid::spatial::{so3, Vec3};
 
-fn settings() -> ContactSettings {
+pub(super) fn settings() -> ContactSettings {
     ContactSettings {
         max_iterations: 5000,
         tolerance: 1e-15,
@@ -26,7 +26,7 @@ fn settings() -> ContactSettings {
     }
 }
 
-fn sim(
+pub(super) fn sim(
     model: &Model,
     cm: CollisionModel,
     q: &[f64],
@@ -88,7 +88,12 @@ fn one_sided(s: &Simulator<OpenLoop>, eps: f64) -> [[DMatrix<f64>; 6]; 2] {
 /// smooth along that column (a contact point or mode switching within `eps`: the forward and
 /// backward differences part), one of the one-sided differences within `kink_tol`. Returns the
 /// derivatives and the number of columns of the second kind.
-fn check(what: &str, s: &mut Simulator<OpenLoop>, eps: f64, tol: f64) -> (StepDerivatives, usize) {
+pub(super) fn check(
+    what: &str,
+    s: &mut Simulator<OpenLoop>,
+    eps: f64,
+    tol: f64,
+) -> (StepDerivatives, usize) {
     let d = s.step_derivatives().unwrap();
     let (q1, v1) = step(s, s.q(), s.v(), &s.control().0.clone());
     assert_eq!((&d.q_next, &d.v_next), (&q1, &v1), "{what}: the next state");
@@ -99,6 +104,7 @@ fn check(what: &str, s: &mut Simulator<OpenLoop>, eps: f64, tol: f64) -> (StepDe
     ];
     let kink_tol = 1e-4;
     let mut kinks = 0;
+    let mut at: Vec<String> = Vec::new();
     for (i, (name, a)) in names.iter().zip(ours).enumerate() {
         let central = (&fwd[i] + &bwd[i]) * 0.5;
         // each matrix against its own size (floored at 1e-3: q⁺'s round-off over the
@@ -113,6 +119,7 @@ fn check(what: &str, s: &mut Simulator<OpenLoop>, eps: f64, tol: f64) -> (StepDe
                 err = err.max(ec);
             } else {
                 kinks += 1;
+                at.push(format!("{name}[{k}]"));
                 let e = (ak - f).amax().min((ak - b).amax());
                 assert!(
                     e <= kink_tol * scale,
@@ -125,7 +132,7 @@ fn check(what: &str, s: &mut Simulator<OpenLoop>, eps: f64, tol: f64) -> (StepDe
         assert!(err <= tol * scale, "{what} {name}: {err:.3e} > {tol:e} x {scale:.3e}\nanalytic {a:.6}\ncentral {central:.6}");
     }
     println!(
-        "{what}: {kinks} columns at a switch; modes {:?}, at a switch {:?}",
+        "{what}: {kinks} columns at a switch {at:?}; modes {:?}, at a switch {:?}",
         d.modes, d.at_switch
     );
     (d, kinks)

@@ -1,0 +1,144 @@
+//! The derivatives of a step with contacts between two moving bodies, whose normal turns with
+//! them: a box on a box (the lower one's face), a ball on a box (the box's face), a ball on a
+//! ball (the line of centres), a capsule across a box (its end caps on the box's face), each
+//! against central differences of the step (`step_derivatives::check`), inside one mode.
+
+use super::step_derivatives::{check, sim};
+use super::{q_of, scene, Free, G};
+use rigid::collision::{Ground, Shape};
+use rigid::simulation::ContactMode;
+use rigid::spatial::{so3, Vec3};
+
+fn ground() -> Option<Ground> {
+    Some(Ground::horizontal(0.0, 0.8))
+}
+
+fn down() -> Vec3 {
+    Vec3::new(0.0, 0.0, -G)
+}
+
+/// The pushing contacts between the two bodies (not on the ground) and the held ones.
+fn pair_contacts(d: &rigid::simulation::StepDerivatives) -> usize {
+    d.contacts
+        .iter()
+        .zip(&d.modes)
+        .filter(|(c, m)| c.body2.is_some() && **m != ContactMode::Separated)
+        .count()
+}
+
+/// A box (2 kg, 0.4 x 0.4 x 0.1 m) pressed 1 µm into the ground and a smaller one (1 kg,
+/// 0.2 x 0.15 x 0.1 m) on its top face turned by `r`, its lowest corner `depth` into that face.
+fn two_boxes(
+    r: &rigid::spatial::Mat3,
+    depth: f64,
+) -> (
+    rigid::multibody::Model,
+    rigid::collision::CollisionModel,
+    Vec<f64>,
+) {
+    let lower = Free::cube(2.0, Vec3::new(0.4, 0.4, 0.1));
+    let upper = Free::cube(1.0, Vec3::new(0.2, 0.15, 0.1));
+    let (model, cm) = scene(&[lower, upper], down(), ground());
+    let mut z = f64::INFINITY;
+    for x in [-0.1, 0.1] {
+        for y in [-0.075, 0.075] {
+            for h in [-0.05, 0.05] {
+                z = z.min((r * Vec3::new(x, y, h)).z);
+            }
+        }
+    }
+    let mut q = q_of(Vec3::new(0.0, 0.0, 0.05 - 1e-6), &so3::exp(&Vec3::zeros()));
+    q.extend(q_of(Vec3::new(0.02, -0.01, 0.1 - 1e-6 - z - depth), r));
+    (model, cm, q)
+}
+
+#[test]
+fn a_box_on_a_box() {
+    // tilted 2 mrad, sliding and turning on its lowest corner (the lower box's face turns
+    // the normal)
+    let (model, cm, q) = two_boxes(&so3::exp(&Vec3::new(0.002, -0.001, 0.3)), 2e-6);
+    let v = [
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, -0.2, 0.05, 0.01, 0.0, 0.0,
+    ];
+    let tau = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.02, 0.0, 0.1, 0.0, 0.0];
+    let mut s = sim(&model, cm, &q, &v, &tau);
+    let (d, kinks) = check("box on a box's corner", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert_eq!(pair_contacts(&d), 1, "{:?}", d.modes);
+    assert!(d.held_normal.is_empty(), "{:?}", d.held_normal);
+    // flat (2 µrad) on its four corners 3 µm in, pushed within the friction cone (sticking;
+    // four coplanar points sliding would share the weight as the solver chose: docs/contact.md)
+    let (model, cm, q) = two_boxes(&so3::exp(&Vec3::new(2e-6, -1e-6, 0.3)), 3e-6);
+    let mut s = sim(&model, cm, &q, &[0.0; 12], &tau);
+    let (d, kinks) = check("box on a box's face", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert_eq!(pair_contacts(&d), 4, "{:?}", d.modes);
+    assert!(d.held_normal.is_empty(), "{:?}", d.held_normal);
+}
+
+#[test]
+fn a_ball_on_a_box_and_a_ball_on_a_ball() {
+    // a ball resting off-centre on a box's top face (the box's normal), and a ball on a ball
+    // 4 cm off the vertical (the line of centres), each pressed 2 µm in, sliding and spinning
+    let bx = Free::cube(2.0, Vec3::new(0.4, 0.4, 0.1));
+    let (model, cm) = scene(&[bx, Free::ball(0.5, 0.05)], down(), ground());
+    let r = so3::exp(&Vec3::new(0.01, -0.02, 0.1));
+    let mut q = q_of(Vec3::new(0.0, 0.0, 0.05 - 1e-6), &r);
+    let top = r * Vec3::new(0.1, -0.05, 0.05);
+    let n = r * Vec3::z();
+    q.extend(q_of(top + n * (0.05 - 2e-6), &so3::exp(&Vec3::zeros())));
+    let v = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2.0, -1.0, 0.5, 0.3, 0.1, 0.0];
+    let mut s = sim(&model, cm, &q, &v, &[0.0; 12]);
+    let (d, kinks) = check("ball on a box", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert_eq!(pair_contacts(&d), 1, "{:?}", d.modes);
+    assert!(d.held_normal.is_empty(), "{:?}", d.held_normal);
+
+    let (model, cm) = scene(
+        &[Free::ball(1.0, 0.1), Free::ball(0.5, 0.05)],
+        down(),
+        ground(),
+    );
+    let mut q = q_of(Vec3::new(0.0, 0.0, 0.1 - 1e-6), &so3::exp(&Vec3::zeros()));
+    let dir = Vec3::new(0.04, 0.01, 0.15).normalize();
+    q.extend(q_of(
+        Vec3::new(0.0, 0.0, 0.1) + dir * (0.15 - 2e-6),
+        &so3::exp(&Vec3::zeros()),
+    ));
+    let v = [
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -2.0, 0.0, 0.1, -0.05,
+    ];
+    let mut s = sim(&model, cm, &q, &v, &[0.0; 12]);
+    let (d, kinks) = check("ball on a ball", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert_eq!(pair_contacts(&d), 1, "{:?}", d.modes);
+    assert!(d.held_normal.is_empty(), "{:?}", d.held_normal);
+}
+
+#[test]
+fn a_capsule_across_a_box() {
+    // a capsule lying across a box's top face on its two end caps, tilted 3 mrad, 2 µm in
+    let bx = Free::cube(2.0, Vec3::new(0.4, 0.4, 0.1));
+    let capsule = Free {
+        mass: 0.3,
+        inertia: rigid::mass::RotationalInertia::diagonal(0.002, 0.002, 0.0003),
+        shape: Shape::Capsule {
+            radius: 0.03,
+            length: 0.2,
+        },
+    };
+    let (model, cm) = scene(&[bx, capsule], down(), ground());
+    let mut q = q_of(Vec3::new(0.0, 0.0, 0.05 - 1e-6), &so3::exp(&Vec3::zeros()));
+    // the capsule's axis (z in its frame) laid along x, one end 0.3 mm higher
+    let r = so3::exp(&Vec3::new(0.0, std::f64::consts::FRAC_PI_2 - 0.003, 0.2));
+    let low = (r * Vec3::new(0.0, 0.0, 0.1))
+        .z
+        .min((r * Vec3::new(0.0, 0.0, -0.1)).z);
+    q.extend(q_of(Vec3::new(0.01, 0.02, 0.1 + 0.03 - low - 2e-6), &r));
+    let v = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.2, 0.0, -0.1];
+    let mut s = sim(&model, cm, &q, &v, &[0.0; 12]);
+    let (d, kinks) = check("capsule across a box", &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0);
+    assert!(pair_contacts(&d) >= 1, "{:?}", d.modes);
+    assert!(d.held_normal.is_empty(), "{:?}", d.held_normal);
+}
