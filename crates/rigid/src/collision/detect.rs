@@ -26,9 +26,9 @@ pub struct CollisionData {
     bodies: Vec<(JointId, Vec<usize>)>,
     /// Per geometry, its walk on its hull against the ground.
     walks: Vec<Walk>,
-    /// How each contact of the last [`contacts`](Self::contacts) turns with its bodies (in
-    /// its order), for the derivatives of a step.
-    pub(crate) turns: Vec<Turn>,
+    /// Where each contact of the last [`contacts`](Self::contacts) came from (in its order):
+    /// `(pair, manifold, point)`, `None` on the ground; [`turn`](Self::turn) reads it.
+    sources: Vec<Option<(usize, usize, usize)>>,
     njoints: usize,
 }
 
@@ -86,7 +86,7 @@ impl CollisionData {
             pairs,
             near: Vec::new(),
             walks: vec![Walk::default(); cm.geometries.len()],
-            turns: Vec::new(),
+            sources: Vec::new(),
             njoints: model.njoints(),
         })
     }
@@ -173,8 +173,8 @@ impl CollisionData {
         // in the order of the geometries, whichever body they are on (the Gauss–Seidel sweeps
         // take the contacts in this order)
         out.sort_by_key(|c| c.geometries.0);
-        self.turns.clear();
-        self.turns.resize(out.len(), Turn::Ground);
+        self.sources.clear();
+        self.sources.resize(out.len(), None);
         let dispatcher = DefaultQueryDispatcher;
         for (p, &(i, j)) in self.pairs.iter().enumerate() {
             let (si, sj) = (&self.shapes[i], &self.shapes[j]);
@@ -207,10 +207,10 @@ impl CollisionData {
             let friction = pick(a.friction, b.friction, cm.friction);
             let restitution = pick(a.restitution, b.restitution, cm.restitution);
             let first = out.len();
-            for m in &self.manifolds[p] {
+            for (mi, m) in self.manifolds[p].iter().enumerate() {
                 // the normal out of shape i, towards j: body i is pushed along its opposite
                 let n1 = pi.rotation * from_parry(m.local_n1);
-                for c in &m.points {
+                for (ci, c) in m.points.iter().enumerate() {
                     if c.dist > margin {
                         continue;
                     }
@@ -227,10 +227,7 @@ impl CollisionData {
                     {
                         continue;
                     }
-                    self.turns.push(turn(
-                        (&*si.shape, &pi, c.local_p1, m.local_n1),
-                        (&*sj.shape, &pj, c.local_p2, m.local_n2),
-                    ));
+                    self.sources.push(Some((p, mi, ci)));
                     out.push(ContactPoint {
                         body1: a.body,
                         body2: b.body,
@@ -263,6 +260,24 @@ impl CollisionData {
         for w in &mut self.walks {
             *w = Walk::default();
         }
+    }
+
+    /// How contact `k` of the last [`contacts`](Self::contacts) turns with its bodies (for
+    /// the derivatives of a step; see [`Turn`]).
+    pub(crate) fn turn(&self, k: usize, normal: &Vec3) -> Turn {
+        let Some(Some((p, mi, ci))) = self.sources.get(k).copied() else {
+            return Turn::Ground;
+        };
+        let (i, j) = self.pairs[p];
+        let m = &self.manifolds[p][mi];
+        let c = &m.points[ci];
+        let (si, sj) = (&self.shapes[i], &self.shapes[j]);
+        let (pi, pj) = (self.poses[i] * si.offset, self.poses[j] * sj.offset);
+        turn(
+            (&*si.shape, &pi, c.local_p1, m.local_n1),
+            (&*sj.shape, &pj, c.local_p2, m.local_n2),
+            normal,
+        )
     }
 
     /// The radius of the balls geometry `k` meets the ground with (a sphere, a capsule's ends:

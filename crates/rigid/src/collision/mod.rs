@@ -54,7 +54,7 @@ mod turn;
 pub use detect::CollisionData;
 pub(crate) use detect::RESTING_FACE;
 pub use shape::Shape;
-pub(crate) use turn::Turn;
+pub(crate) use turn::{Feature, Turn};
 
 use crate::multibody::JointId;
 use crate::spatial::{Transform, Vec3};

@@ -1,15 +1,25 @@
 //! How a contact between two geometries moves with their bodies: which side's flat face holds
-//! the normal, or which two ball centres it joins. The derivatives of a step read it
-//! ([`rows`](crate::simulation::Simulator::step_derivatives)): the normal of a face turns with
-//! that face's body, `δn = δθ_face × n`; the normal between two balls of centres `a₁`, `a₂`
-//! (radii `ρ₁`, `ρ₂`) is `n = (a₁ − a₂)/|a₁ − a₂|`, `δn = (I − n nᵀ)(δa₁ − δa₂)/|a₁ − a₂|`.
-//! Anything else (an edge across an edge, a capsule's side, a cylinder's rim, a mesh's
-//! triangle) is held: its normal's turn is not followed.
+//! the normal, or which features (ball centres, vertices, edges, capsule axes) it joins. The
+//! derivatives of a step read it ([`rows`](crate::simulation::Simulator::step_derivatives)):
+//! the normal of a face turns with that face's body; the normal between two features is their
+//! common perpendicular, which turns and slides with both bodies. Anything else (edges crossing
+//! inside a face's outline, a cylinder's rim, an ellipsoid, a mesh's triangle) is held: its
+//! normal's turn is not followed.
 
 use super::shape::from_parry;
 use crate::spatial::{Transform, Vec3};
 use parry3d_f64::math::Vector;
 use parry3d_f64::shape::Shape;
+
+/// A feature fixed in a body that a contact's normal is perpendicular to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Feature {
+    /// A point `a` (world): a vertex (`rho = 0`) or a ball's centre of radius `rho`.
+    Point { a: Vec3, rho: f64 },
+    /// A line through `a` (world, the feature's point nearest the other side) along the unit
+    /// `e`: an edge (`rho = 0`) or a capsule's axis of radius `rho`.
+    Line { a: Vec3, e: Vec3, rho: f64 },
+}
 
 /// How a contact's normal turns and its point moves with the bodies.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -20,90 +30,136 @@ pub(crate) enum Turn {
     /// turns with that body; the other side meets it at `a` (world), a vertex (`rho = 0`) or a
     /// ball's centre of radius `rho`, fixed in its body.
     Face { face: usize, a: Vec3, rho: f64 },
-    /// The normal joins two ball centres `a` (world; `rho` their radii, one may be a vertex),
-    /// each fixed in its body.
-    Centres { a: [Vec3; 2], rho: [f64; 2] },
+    /// The normal is the common perpendicular of two features (body 1's, body 2's).
+    Features([Feature; 2]),
     /// Neither: the normal and the point are held fixed in the partials.
     Held,
 }
 
 /// What one side shows at a contact: whether the normal is one of its flat faces', and the
-/// point fixed in it that meets the other side (a vertex, or a ball's centre and radius).
+/// feature fixed in it that meets the other side.
 struct Side {
     face: bool,
-    point: Option<(Vec3, f64)>,
+    feature: Option<Feature>,
 }
 
-/// Within this (relative) a normal is a face's and a point a vertex.
+/// Within this (relative) a normal is a face's, a point a vertex or on an edge, two
+/// directions parallel.
 const SAME: f64 = 1e-9;
 
 /// Side `shape` (posed at `at`) at its contact point `p` (its frame), `n` its outward normal
 /// there (its frame).
 fn side(shape: &dyn Shape, at: &Transform, p: Vector, n: Vector) -> Side {
     let world = |x: Vector| at.act_point(&from_parry(x));
+    let dir = |x: Vector| at.rotation * from_parry(x).normalize();
+    let point = |a: Vector, rho: f64| Some(Feature::Point { a: world(a), rho });
+    let line = |a: Vector, e: Vector, rho: f64| {
+        Some(Feature::Line {
+            a: world(a),
+            e: dir(e),
+            rho,
+        })
+    };
     if let Some(b) = shape.as_ball() {
         return Side {
             face: false,
-            point: Some((world(Vector::ZERO), b.radius)),
+            feature: point(Vector::ZERO, b.radius),
         };
     }
     if let Some(c) = shape.as_capsule() {
         // a point at the radius from an end's centre is that end's ball (parry takes a
-        // capsule's points against a face as its ends' balls); one along the axis slides
-        let r = c.radius;
-        let end = [c.segment.a, c.segment.b]
-            .into_iter()
-            .find(|e| ((p - *e).length() - r).abs() <= SAME * r.max(1e-3));
+        // capsule's points against a face as its ends' balls), else the axis
+        let (r, a, b) = (c.radius, c.segment.a, c.segment.b);
+        let tol = SAME * r.max(1e-3);
+        let feature = if ((p - a).length() - r).abs() <= tol {
+            point(a, r)
+        } else if ((p - b).length() - r).abs() <= tol {
+            point(b, r)
+        } else {
+            let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+            line(a + (b - a) * t, b - a, r)
+        };
         return Side {
             face: false,
-            point: end.map(|e| (world(e), r)),
+            feature,
         };
     }
     if let Some(cb) = shape.as_cuboid() {
         let he = cb.half_extents;
-        let face = n.abs().max_element() >= 1.0 - SAME;
         let tol = SAME * he.max_element();
-        let corner = (p.abs() - he).abs().max_element() <= tol;
+        let on = (p.abs() - he).abs();
+        let at_face = [on.x <= tol, on.y <= tol, on.z <= tol];
         let v = Vector::new(he.x.copysign(p.x), he.y.copysign(p.y), he.z.copysign(p.z));
+        let feature = match at_face.iter().filter(|x| **x).count() {
+            3 => point(v, 0.0),
+            2 => {
+                let k = at_face.iter().position(|x| !*x).unwrap_or(0);
+                let mut e = Vector::ZERO;
+                e[k] = 1.0;
+                line(p, e, 0.0)
+            }
+            _ => None,
+        };
         return Side {
-            face,
-            point: corner.then(|| (world(v), 0.0)),
+            face: n.abs().max_element() >= 1.0 - SAME,
+            feature,
         };
     }
     if let Some(poly) = shape.as_convex_polyhedron() {
-        let face = poly.faces().iter().any(|f| f.normal.dot(n) >= 1.0 - SAME);
-        let scale = poly.points().iter().fold(0.0_f64, |a, x| a.max(x.length()));
-        let vertex = poly
-            .points()
-            .iter()
-            .find(|x| (**x - p).length() <= SAME * scale.max(1e-3));
+        let pts = poly.points();
+        let scale = pts.iter().fold(1e-3_f64, |a, x| a.max(x.length()));
+        let tol = SAME * scale;
+        let feature = if let Some(v) = pts.iter().find(|x| (**x - p).length() <= tol) {
+            point(*v, 0.0)
+        } else {
+            poly.edges().iter().find_map(|e| {
+                let (a, b) = (pts[e.vertices[0] as usize], pts[e.vertices[1] as usize]);
+                let t = (p - a).dot(b - a) / (b - a).length_squared();
+                let off = (a + (b - a) * t - p).length();
+                ((0.0..=1.0).contains(&t) && off <= tol).then(|| line(p, b - a, 0.0))?
+            })
+        };
         return Side {
-            face,
-            point: vertex.map(|v| (world(*v), 0.0)),
+            face: poly.faces().iter().any(|f| f.normal.dot(n) >= 1.0 - SAME),
+            feature,
         };
     }
     Side {
         face: false,
-        point: None,
+        feature: None,
     }
 }
 
 /// The turn of a contact between geometry 1 (`shape1` at `at1`, its point `p1` and outward
-/// normal `n1` in its frame) and geometry 2 (the same).
+/// normal `n1` in its frame) and geometry 2 (the same); `normal` the contact's (world, from
+/// body 2 towards body 1).
 pub(crate) fn turn(
     (shape1, at1, p1, n1): (&dyn Shape, &Transform, Vector, Vector),
     (shape2, at2, p2, n2): (&dyn Shape, &Transform, Vector, Vector),
+    normal: &Vec3,
 ) -> Turn {
     let (s1, s2) = (side(shape1, at1, p1, n1), side(shape2, at2, p2, n2));
-    match (s1.point, s2.point) {
-        (_, Some((a, rho))) if s1.face => Turn::Face { face: 0, a, rho },
-        (Some((a, rho)), _) if s2.face => Turn::Face { face: 1, a, rho },
-        (Some((a1, r1)), Some((a2, r2))) if r1 + r2 > 0.0 && (a1 - a2).norm() > SAME => {
-            Turn::Centres {
-                a: [a1, a2],
-                rho: [r1, r2],
-            }
-        }
+    match (s1.feature, s2.feature) {
+        (_, Some(Feature::Point { a, rho })) if s1.face => Turn::Face { face: 0, a, rho },
+        (Some(Feature::Point { a, rho }), _) if s2.face => Turn::Face { face: 1, a, rho },
+        (Some(f1), Some(f2)) if perpendicular(&f1, &f2, normal) => Turn::Features([f1, f2]),
         _ => Turn::Held,
+    }
+}
+
+/// Whether `normal` is the common perpendicular of the two features, well defined: along the
+/// line between two points (at least one a ball), across a point and a line (the same), or
+/// along the cross product of two lines that are not parallel.
+fn perpendicular(f1: &Feature, f2: &Feature, normal: &Vec3) -> bool {
+    use Feature::{Line, Point};
+    let along = |w: Vec3| w.norm() > SAME && w.normalize().dot(normal).abs() >= 1.0 - 1e-6;
+    match (f1, f2) {
+        (Point { a: a1, rho: r1 }, Point { a: a2, rho: r2 }) => r1 + r2 > 0.0 && along(a1 - a2),
+        (Point { a, rho: rp }, Line { a: b, e, rho: rl })
+        | (Line { a: b, e, rho: rl }, Point { a, rho: rp }) => {
+            let w = a - b;
+            rp + rl > 0.0 && along(w - e * e.dot(&w))
+        }
+        (Line { e: e1, .. }, Line { e: e2, .. }) => along(e1.cross(e2)),
     }
 }

@@ -129,8 +129,9 @@ pub struct StepDerivatives {
     pub contacts: Vec<crate::collision::ContactPoint>,
     /// The indices (into `modes`) of the pushing contacts whose normal's turn and point's
     /// move are held fixed in these derivatives: between two geometries, those that are
-    /// neither a flat face against a vertex or a ball nor two balls (an edge across an edge,
-    /// a capsule's side, a cylinder's rim, a mesh's triangle; see `contact/rows.rs`).
+    /// neither a flat face against a vertex or a ball nor two features' common perpendicular
+    /// (vertices, ball centres, edges, capsule axes): edges crossing inside a face's outline, a
+    /// cylinder's rim, an ellipsoid, a non-convex mesh's triangle (see `contact/rows.rs`).
     pub held_normal: Vec<usize>,
     /// The energy safeguard scaled this step's impulse
     /// ([`ContactStats::scaled`](super::contact::ContactStats::scaled)): the scaled impulse no
@@ -322,7 +323,7 @@ fn solve_fixed(
 
 impl<C: Control> Simulator<C> {
     /// The derivatives of one [`step`](Self::step) from the current state, `∂(q⁺, v⁺)/∂(q, v, τ)`
-    /// (see [`step_derivatives`](super::step_derivatives) for the equations), without stepping:
+    /// (see the module documentation of `simulation/step_derivatives.rs` for the equations), without stepping:
     /// the state, the time and the contacts' memory (warm starts, impacts) are left as they
     /// were. For a simulator with collision geometry or unilateral limits (the time-stepping
     /// scheme); the torque is the control law's, held as an input.
@@ -416,8 +417,12 @@ impl<C: Control> Simulator<C> {
         }
         let collision = cs.collision.as_ref();
         let radius = |g: usize| collision.map_or(0.0, |(_, cd)| cd.ball_radius(g));
-        let turns = collision.map_or(&[][..], |(_, cd)| cd.turns.as_slice());
-        let geometry = (&radius as &dyn Fn(usize) -> f64, turns);
+        let solver = &cs.solver;
+        let turns: Vec<Turn> = collision.map_or(Vec::new(), |(_, cd)| {
+            let points = solver.points.iter().enumerate();
+            points.map(|(k, c)| cd.turn(k, &c.normal)).collect()
+        });
+        let geometry = (&radius as &dyn Fn(usize) -> f64, turns.as_slice());
         let solver = &cs.solver;
         let m = solver.m();
         let lambda = &solver.lambda[..m];

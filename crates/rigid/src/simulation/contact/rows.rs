@@ -32,17 +32,21 @@
 //!   body 2 `s = −1`) `x = a − s ρ n`, `δx = u(a) − s ρ δn`, `φ = n·(x₁ − x₂)`,
 //!   `δφ = s n·(δx − u_face(x − s φ n))`, `p = x − s (φ/2) n`:
 //!   `u = δx − s (½ δφ n + (φ/2) δn)`.
-//! - **two balls** (or a ball and a vertex) of centres `a₁`, `a₂`, radii `ρ₁`, `ρ₂`:
-//!   `n = (a₁ − a₂)/|a₁ − a₂|`, `δn = (I − n nᵀ)(u₁(a₁) − u₂(a₂))/|a₁ − a₂|`, `θ = n × δn`,
-//!   `p = ½ (a₁ + a₂ + (ρ₂ − ρ₁) n)`: `u = ½ (u₁ + u₂ + (ρ₂ − ρ₁) δn)`.
-//! - **anything else** (an edge across an edge, a capsule's side, a cylinder's rim, a mesh's
-//!   triangle): the point fixed in a moving body, the frame in the world, `θ = 0`
-//!   (`StepDerivatives::held_normal` names those contacts).
+//! - **two features** (ball centres and vertices `Point`s, edges and capsule axes `Line`s of
+//!   direction `e`, radius `ρ`; their nearest points `x₁`, `x₂`, `w = x₁ − x₂`): a `Line`
+//!   slides by `δt_i` along itself so that `w` stays perpendicular to it,
+//!   `δw·e_i + w·(θ_i × e_i) = 0` with `δw = u₁(x₁) − u₂(x₂) + δt₁ e₁ − δt₂ e₂`; the normal is
+//!   `w/|w|` (`δn = (I − n nᵀ) δw/|w|`) or, between two lines, `e₁ × e₂/|e₁ × e₂|`
+//!   (`δn = (I − n nᵀ)((θ₁ × e₁) × e₂ + e₁ × (θ₂ × e₂))/|e₁ × e₂|`); `θ = n × δn`, and
+//!   `p = ½ (x₁ + x₂ + (ρ₂ − ρ₁) n)`: `u = ½ (δx₁ + δx₂ + (ρ₂ − ρ₁) δn)`.
+//! - **anything else** (edges crossing inside a face's outline, a cylinder's rim, an ellipsoid,
+//!   a non-convex mesh's triangle): the point fixed in a moving body, the frame in the world,
+//!   `θ = 0` (`StepDerivatives::held_normal` names those contacts).
 //!
 //! Joint limits' rows are constant.
 
 use super::solver::ContactSolver;
-use crate::collision::Turn;
+use crate::collision::{Feature, Turn};
 use crate::multibody::{
     joint_kinematics_derivatives, Data, JointId, Model, MultibodyError, ReferenceFrame,
 };
@@ -218,22 +222,61 @@ impl ContactSolver {
                     theta,
                 )
             }
-            Turn::Centres {
-                a: [a1, a2],
-                rho: [r1, r2],
-            } => {
-                let (u1, u2) = (carried(0, &a1), carried(1, &a2));
-                let d = (a1 - a2).norm();
-                let du = u1 - u2;
-                let dn = (du - n * n.dot(&du)) / d;
-                ((u1 + u2 + dn * (r2 - r1)) * 0.5, n.cross(&dn))
-            }
+            Turn::Features(f) => Self::features_motion(&f, n, &body, &carried),
             Turn::Held => {
                 // the point fixed in a moving body, the frame in the world
                 let side = usize::from(c.bodies[0].0.is_none());
                 (carried(side, &c.p), Vec3::zeros())
             }
         }
+    }
+
+    /// [`motion`](Self::motion) of a contact along the common perpendicular of two features
+    /// (see the [module](self) documentation): their nearest points `x_i` (`Line`s slide by
+    /// `δt_i` along `e_i`, keeping `w = x₁ − x₂` perpendicular to them), the normal `n` along
+    /// `w` or, between two lines, along `e₁ × e₂`.
+    fn features_motion(
+        f: &[Feature; 2],
+        n: Vec3,
+        body: &dyn Fn(usize) -> Option<Twist>,
+        carried: &dyn Fn(usize, &Vec3) -> Vec3,
+    ) -> (Vec3, Vec3) {
+        let parts = |i: usize| match f[i] {
+            Feature::Point { a, rho } => (a, None, rho),
+            Feature::Line { a, e, rho } => (a, Some(e), rho),
+        };
+        let ((x1, e1, r1), (x2, e2, r2)) = (parts(0), parts(1));
+        let (u1, u2) = (carried(0, &x1), carried(1, &x2));
+        let turn = |i: usize, e: &Vec3| body(i).map_or(Vec3::zeros(), |S| S.w.cross(e));
+        let w = x1 - x2;
+        let delta = u1 - u2;
+        // the slides: for each line, δw·e_i + w·δe_i = 0, δw = Δ + δt₁ e₁ − δt₂ e₂
+        let (dt1, dt2) = match (e1, e2) {
+            (Some(e1), Some(e2)) => {
+                let c = e1.dot(&e2);
+                let b1 = -delta.dot(&e1) - w.dot(&turn(0, &e1));
+                let b2 = -delta.dot(&e2) - w.dot(&turn(1, &e2));
+                // [1 −c; c −1] (δt₁, δt₂) = (b₁, b₂)
+                let det = c * c - 1.0;
+                ((c * b2 - b1) / det, (b2 - c * b1) / det)
+            }
+            (Some(e1), None) => (-delta.dot(&e1) - w.dot(&turn(0, &e1)), 0.0),
+            (None, Some(e2)) => (0.0, delta.dot(&e2) + w.dot(&turn(1, &e2))),
+            (None, None) => (0.0, 0.0),
+        };
+        let (e1v, e2v) = (e1.unwrap_or_default(), e2.unwrap_or_default());
+        let dx1 = u1 + e1v * dt1;
+        let dx2 = u2 + e2v * dt2;
+        let project = |x: Vec3| x - n * n.dot(&x);
+        let dn = match (e1, e2) {
+            (Some(e1), Some(e2)) => {
+                let m = e1.cross(&e2);
+                let dm = turn(0, &e1).cross(&e2) + e1.cross(&turn(1, &e2));
+                project(dm) * (n.dot(&m).signum() / m.norm())
+            }
+            _ => project(dx1 - dx2) * (n.dot(&w).signum() / w.norm()),
+        };
+        ((dx1 + dx2 + dn * (r2 - r1)) * 0.5, n.cross(&dn))
     }
 
     /// `∂(J(q) x)/∂q` (m x nv) into `out`, for the `x` of `at`.

@@ -142,3 +142,116 @@ fn a_capsule_across_a_box() {
     assert!(pair_contacts(&d) >= 1, "{:?}", d.modes);
     assert!(d.held_normal.is_empty(), "{:?}", d.held_normal);
 }
+
+/// A solid body of `shape` with a rough inertia (the derivatives do not care how round).
+fn body(mass: f64, shape: Shape) -> Free {
+    let i = 0.002 * mass;
+    Free {
+        mass,
+        inertia: rigid::mass::RotationalInertia::diagonal(i, 1.2 * i, 0.8 * i),
+        shape,
+    }
+}
+
+/// One step's derivatives of a pair of free bodies 2 µm into each other without ground or
+/// gravity: body 0 at the origin turned by `r0`, body 1 at `c1` turned by `r1`, with the
+/// velocities `v`, against central differences; the pair must push, its normal followed.
+fn pair(what: &str, shapes: [Free; 2], (r0, r1): (Vec3, Vec3), c1: Vec3, v: &[f64; 12]) {
+    let (model, cm) = scene(&shapes, Vec3::zeros(), None);
+    let mut q = q_of(Vec3::zeros(), &so3::exp(&r0));
+    q.extend(q_of(c1, &so3::exp(&r1)));
+    let mut s = sim(&model, cm, &q, v, &[0.0; 12]);
+    let (d, kinks) = check(what, &mut s, 1e-7, 1e-5);
+    assert_eq!(kinks, 0, "{what}");
+    assert_eq!(pair_contacts(&d), 1, "{what}: {:?}", d.modes);
+    assert!(d.held_normal.is_empty(), "{what}: {:?}", d.held_normal);
+}
+
+fn capsule(radius: f64, length: f64) -> Shape {
+    Shape::Capsule { radius, length }
+}
+
+#[test]
+fn edges_and_axes_across_each_other() {
+    let v = [
+        0.3, -0.2, 0.1, 0.05, 0.1, 0.2, -0.2, 0.4, 0.3, -0.1, 0.05, -0.3,
+    ];
+    // two capsules crossing at 1.2 rad (their axes' common perpendicular), both lying along
+    // the horizontal plane
+    let flat = |yaw: f64| {
+        so3::log(&(so3::exp(&Vec3::new(0.0, 0.0, yaw)) * so3::exp(&Vec3::new(1.5, 0.0, 0.0))))
+    };
+    pair(
+        "capsule across a capsule",
+        [body(1.0, capsule(0.05, 0.4)), body(0.5, capsule(0.03, 0.3))],
+        (flat(0.0), flat(1.2)),
+        Vec3::new(0.02, -0.01, 0.08 - 2e-6),
+        &v,
+    );
+    // a box's edge across another box's edge: each turned 45° about a horizontal axis, the
+    // upper one also 1 rad about z
+    let edge = std::f64::consts::FRAC_PI_4;
+    let cube = |m: f64, a: f64| Free::cube(m, Vec3::new(a, a, a));
+    let r1 =
+        so3::log(&(so3::exp(&Vec3::new(0.0, 0.0, 1.0)) * so3::exp(&Vec3::new(edge, 0.0, 0.0))));
+    let h = 0.1 * std::f64::consts::SQRT_2 / 2.0;
+    pair(
+        "edge across an edge",
+        [cube(1.0, 0.1), cube(0.7, 0.1)],
+        (Vec3::new(0.0, edge, 0.0), r1),
+        Vec3::new(0.003, -0.002, 2.0 * h - 2e-6),
+        &v,
+    );
+    // a ball on a box's edge, and a capsule's side on a ball
+    pair(
+        "ball on an edge",
+        [cube(1.0, 0.1), Free::ball(0.3, 0.04)],
+        (Vec3::new(0.0, edge, 0.0), Vec3::zeros()),
+        Vec3::new(0.0, 0.01, h + 0.04 - 2e-6),
+        &v,
+    );
+    pair(
+        "capsule's side on a ball",
+        [Free::ball(1.0, 0.05), body(0.4, capsule(0.03, 0.3))],
+        (Vec3::zeros(), Vec3::new(0.0, 1.5, 0.2)),
+        Vec3::new(0.02, 0.01, 0.08 - 2e-6),
+        &v,
+    );
+}
+
+#[test]
+fn a_hull_on_a_hull() {
+    // an octahedron's vertex on a tetrahedron's face (convex hulls: the face's normal)
+    let octahedron = Shape::ConvexHull {
+        points: vec![
+            Vec3::new(0.05, 0.0, 0.0),
+            Vec3::new(-0.05, 0.0, 0.0),
+            Vec3::new(0.0, 0.05, 0.0),
+            Vec3::new(0.0, -0.05, 0.0),
+            Vec3::new(0.0, 0.0, 0.05),
+            Vec3::new(0.0, 0.0, -0.05),
+        ],
+    };
+    let slab = Shape::ConvexHull {
+        points: vec![
+            Vec3::new(-0.2, -0.2, -0.05),
+            Vec3::new(0.2, -0.2, -0.05),
+            Vec3::new(-0.2, 0.2, -0.05),
+            Vec3::new(0.2, 0.2, -0.05),
+            Vec3::new(-0.15, -0.15, 0.05),
+            Vec3::new(0.15, -0.15, 0.05),
+            Vec3::new(-0.15, 0.15, 0.05),
+            Vec3::new(0.15, 0.15, 0.05),
+        ],
+    };
+    let v = [
+        0.3, -0.2, 0.1, 0.05, 0.1, 0.2, -0.2, 0.4, 0.3, -0.1, 0.05, -0.3,
+    ];
+    pair(
+        "octahedron's vertex on a slab's face",
+        [body(2.0, slab), body(0.5, octahedron)],
+        (Vec3::new(0.01, -0.02, 0.1), Vec3::new(0.05, 0.02, 0.3)),
+        Vec3::new(0.02, 0.01, 0.1 - 2e-6),
+        &v,
+    );
+}
