@@ -1,7 +1,7 @@
 //! The workspace of a collision model and the contact points at a configuration.
 
 use super::shape::{from_parry, pose, Parry, Walk};
-use super::turn::{turn, Turn};
+use super::turn::{rim, turn, Turn};
 use super::ContactPoint;
 use super::{CollisionError, CollisionModel};
 use crate::multibody::{JointId, Model};
@@ -264,9 +264,14 @@ impl CollisionData {
 
     /// How contact `k` of the last [`contacts`](Self::contacts) turns with its bodies (for
     /// the derivatives of a step; see [`Turn`]).
-    pub(crate) fn turn(&self, k: usize, normal: &Vec3) -> Turn {
+    pub(crate) fn turn(&self, k: usize, contact: &ContactPoint) -> Turn {
+        let normal = &contact.normal;
         let Some(Some((p, mi, ci))) = self.sources.get(k).copied() else {
-            return Turn::Ground;
+            // on the ground: a rim's point slides, any other is a vertex or a ball's
+            let g = contact.geometries.0;
+            let s = &self.shapes[g];
+            let x = contact.point + normal * (0.5 * contact.gap);
+            return rim(&*s.shape, &(self.poses[g] * s.offset), &x, normal).unwrap_or(Turn::Ground);
         };
         let (i, j) = self.pairs[p];
         let m = &self.manifolds[p][mi];

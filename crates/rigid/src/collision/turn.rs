@@ -26,6 +26,10 @@ pub(crate) enum Feature {
 pub(crate) enum Turn {
     /// A body on the ground: its point is a vertex or a ball's (the ground's own rules).
     Ground,
+    /// A body on the ground at a point of a rim (a cylinder's or a cone's circle of centre `c`,
+    /// unit axis `a`, radius `radius`, world), which slides along the rim as the body turns:
+    /// the rim's point farthest along `−n`.
+    Rim { c: Vec3, a: Vec3, radius: f64 },
     /// The normal is the flat face's of side `face` (0: the contact's body 1, 1: body 2) and
     /// turns with that body; the other side meets it at `a` (world), a vertex (`rho = 0`) or a
     /// ball's centre of radius `rho`, fixed in its body.
@@ -162,4 +166,33 @@ fn perpendicular(f1: &Feature, f2: &Feature, normal: &Vec3) -> bool {
         }
         (Line { e: e1, .. }, Line { e: e2, .. }) => along(e1.cross(e2)),
     }
+}
+
+/// The rim of a cylinder or a cone (posed at `at`, parry's frame: the axis along y) that the
+/// world point `x` lies on, with the ground's normal `n` not along the axis (a flat cap on the
+/// ground rests on its rim's points as vertices).
+pub(crate) fn rim(shape: &dyn Shape, at: &Transform, x: &Vec3, n: &Vec3) -> Option<Turn> {
+    let (hh, rims): (f64, &[(f64, f64)]) = if let Some(c) = shape.as_cylinder() {
+        (c.half_height, &[(-1.0, c.radius), (1.0, c.radius)][..])
+    } else if let Some(c) = shape.as_cone() {
+        (c.half_height, &[(-1.0, c.radius)][..])
+    } else {
+        return None;
+    };
+    let local = at.inverse().act_point(x);
+    let a = at.rotation * Vec3::y();
+    if (n - a * a.dot(n)).norm() < 1e-6 {
+        return None;
+    }
+    rims.iter().find_map(|&(side, radius)| {
+        let off = (local.y - side * hh).abs();
+        let r = local.x.hypot(local.z);
+        (off <= SAME * hh.max(1e-3) && (r - radius).abs() <= SAME * radius.max(1e-3)).then(|| {
+            Turn::Rim {
+                c: at.act_point(&Vec3::new(0.0, side * hh, 0.0)),
+                a,
+                radius,
+            }
+        })
+    })
 }

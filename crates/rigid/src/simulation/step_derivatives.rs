@@ -420,7 +420,7 @@ impl<C: Control> Simulator<C> {
         let solver = &cs.solver;
         let turns: Vec<Turn> = collision.map_or(Vec::new(), |(_, cd)| {
             let points = solver.points.iter().enumerate();
-            points.map(|(k, c)| cd.turn(k, &c.normal)).collect()
+            points.map(|(k, c)| cd.turn(k, c)).collect()
         });
         let geometry = (&radius as &dyn Fn(usize) -> f64, turns.as_slice());
         let solver = &cs.solver;

@@ -25,8 +25,11 @@
 //!   `φ = n·x − height`, so `u = u_x − ½ (n·u_x) n`, `θ = 0`; `x` is a vertex fixed in the body
 //!   (a box, a mesh's hull) or, for a ball of radius `ρ` (a sphere, a capsule's end),
 //!   `c − ρ n` with the centre `c` fixed in the body: `u_x = S_k.v + S_k.w × a`, `a = x + ρ n`.
-//!   Cylinders and cones (parry's support point) are taken as vertices: exact on a flat face,
-//!   first order off where a rim rolls.
+//!   A cylinder's or cone's rim (centre `c`, unit axis `a`, radius `R`) meets it at its point
+//!   farthest along `−n`, `x = c + R d`, `d = −m/|m|`, `m = n − a (a·n)`, which slides along
+//!   the rim as the body turns: `δa = θ × a`, `δm = −δa (a·n) − a (δa·n)`,
+//!   `δd = −(I − m̂ m̂ᵀ) δm/|m|`, `u_x = u(c) + R δd` (a cap flat on the ground: its points as
+//!   vertices).
 //! - **a flat face** of one side against a vertex or a ball (centre `a`, radius `ρ`) of the
 //!   other: `θ` the face body's `S_k.ω`, `δn = θ × n`; with the point on body 1 (`s = 1`; on
 //!   body 2 `s = −1`) `x = a − s ρ n`, `δx = u(a) − s ρ δn`, `φ = n·(x₁ − x₂)`,
@@ -136,10 +139,10 @@ impl ContactSolver {
                 (Some(_), true) => Some((radius(c.geometries.0), 1.0)),
                 _ => None,
             };
-            let turn = if ground {
-                Turn::Ground
-            } else {
-                turns.get(i).copied().unwrap_or(Turn::Held)
+            let turn = match turns.get(i) {
+                Some(t) => *t,
+                None if ground => Turn::Ground,
+                None => Turn::Held,
             };
             out.push(Contact {
                 row: b.row,
@@ -206,6 +209,23 @@ impl ContactSolver {
                 let a = c.p + n * (0.5 * phi + rho);
                 let ux = S.v + S.w.cross(&a);
                 (ux - n * (0.5 * n.dot(&ux)), Vec3::zeros())
+            }
+            Turn::Rim {
+                c: centre,
+                a,
+                radius,
+            } => {
+                // x = c + R d, d = −m/|m|, m = n − a (a·n): the rim's point farthest along −n
+                let Some(S) = body(0) else {
+                    return (Vec3::zeros(), Vec3::zeros());
+                };
+                let da = S.w.cross(&a);
+                let m = n - a * a.dot(&n);
+                let (mn, mh) = (m.norm(), m.normalize());
+                let dm = -(da * a.dot(&n) + a * da.dot(&n));
+                let dd = -(dm - mh * mh.dot(&dm)) / mn;
+                let dx = S.v + S.w.cross(&centre) + dd * radius;
+                (dx - n * (0.5 * n.dot(&dx)), Vec3::zeros())
             }
             Turn::Face { face, a, rho } => {
                 let theta = body(face).map_or(Vec3::zeros(), |S| S.w);
