@@ -3,8 +3,8 @@
 //! derivatives of a step read it ([`rows`](crate::simulation::Simulator::step_derivatives)):
 //! the normal of a face turns with that face's body; the normal between two features is their
 //! common perpendicular, which turns and slides with both bodies. Anything else (edges crossing
-//! inside a face's outline, a cylinder's rim, an ellipsoid, a mesh's triangle) is held: its
-//! normal's turn is not followed.
+//! inside a face's outline, a cylinder against anything but a face, a non-convex mesh's
+//! triangle) is held: its normal's turn is not followed.
 
 use super::shape::from_parry;
 use crate::spatial::{Transform, Vec3};
@@ -19,6 +19,9 @@ pub(crate) enum Feature {
     /// A line through `a` (world, the feature's point nearest the other side) along the unit
     /// `e`: an edge (`rho = 0`) or a capsule's axis of radius `rho`.
     Line { a: Vec3, e: Vec3, rho: f64 },
+    /// A circle (a cylinder's or a cone's rim) of centre `c`, unit axis `a` and radius `radius`
+    /// (world), met at its point farthest towards the other side, which slides along it.
+    Rim { c: Vec3, a: Vec3, radius: f64 },
 }
 
 /// How a contact's normal turns and its point moves with the bodies.
@@ -26,14 +29,13 @@ pub(crate) enum Feature {
 pub(crate) enum Turn {
     /// A body on the ground: its point is a vertex or a ball's (the ground's own rules).
     Ground,
-    /// A body on the ground at a point of a rim (a cylinder's or a cone's circle of centre `c`,
-    /// unit axis `a`, radius `radius`, world), which slides along the rim as the body turns:
-    /// the rim's point farthest along `−n`.
-    Rim { c: Vec3, a: Vec3, radius: f64 },
+    /// A body on the ground at a point of a rim (a [`Feature::Rim`]), which slides along the
+    /// rim as the body turns: the rim's point farthest along `−n`.
+    Rim(Feature),
     /// The normal is the flat face's of side `face` (0: the contact's body 1, 1: body 2) and
-    /// turns with that body; the other side meets it at `a` (world), a vertex (`rho = 0`) or a
-    /// ball's centre of radius `rho`, fixed in its body.
-    Face { face: usize, a: Vec3, rho: f64 },
+    /// turns with that body; the other side meets it at `point`: a vertex, a ball (its centre
+    /// fixed in its body) or a rim.
+    Face { face: usize, point: Feature },
     /// The normal is the common perpendicular of two features (body 1's, body 2's).
     Features([Feature; 2]),
     /// Neither: the normal and the point are held fixed in the partials.
@@ -128,9 +130,10 @@ fn side(shape: &dyn Shape, at: &Transform, p: Vector, n: Vector) -> Side {
             feature,
         };
     }
+    let normal = at.rotation * from_parry(n);
     Side {
         face: false,
-        feature: None,
+        feature: rim(shape, at, &world(p), &normal),
     }
 }
 
@@ -144,8 +147,12 @@ pub(crate) fn turn(
 ) -> Turn {
     let (s1, s2) = (side(shape1, at1, p1, n1), side(shape2, at2, p2, n2));
     match (s1.feature, s2.feature) {
-        (_, Some(Feature::Point { a, rho })) if s1.face => Turn::Face { face: 0, a, rho },
-        (Some(Feature::Point { a, rho }), _) if s2.face => Turn::Face { face: 1, a, rho },
+        (_, Some(point @ (Feature::Point { .. } | Feature::Rim { .. }))) if s1.face => {
+            Turn::Face { face: 0, point }
+        }
+        (Some(point @ (Feature::Point { .. } | Feature::Rim { .. })), _) if s2.face => {
+            Turn::Face { face: 1, point }
+        }
         (Some(f1), Some(f2)) if perpendicular(&f1, &f2, normal) => Turn::Features([f1, f2]),
         _ => Turn::Held,
     }
@@ -165,13 +172,16 @@ fn perpendicular(f1: &Feature, f2: &Feature, normal: &Vec3) -> bool {
             rp + rl > 0.0 && along(w - e * e.dot(&w))
         }
         (Line { e: e1, .. }, Line { e: e2, .. }) => along(e1.cross(e2)),
+        _ => false,
     }
 }
 
-/// The rim of a cylinder or a cone (posed at `at`, parry's frame: the axis along y) that the
-/// world point `x` lies on, with the ground's normal `n` not along the axis (a flat cap on the
-/// ground rests on its rim's points as vertices).
-pub(crate) fn rim(shape: &dyn Shape, at: &Transform, x: &Vec3, n: &Vec3) -> Option<Turn> {
+/// The rim of a cylinder or a cone (posed at `at`, parry's frame: the axis along y, a cone's
+/// base at `−h/2`) that the world point `x` lies on, with the normal `n` not along the axis (a
+/// flat cap on a face rests on its rim's points as vertices): the rim's point farthest along
+/// the normal, which slides along it as the body turns. A point inside a side's line of
+/// contact (parry adds its deepest point there, wherever along the line) is not a rim's.
+pub(crate) fn rim(shape: &dyn Shape, at: &Transform, x: &Vec3, n: &Vec3) -> Option<Feature> {
     let (hh, rims): (f64, &[(f64, f64)]) = if let Some(c) = shape.as_cylinder() {
         (c.half_height, &[(-1.0, c.radius), (1.0, c.radius)][..])
     } else if let Some(c) = shape.as_cone() {
@@ -187,12 +197,11 @@ pub(crate) fn rim(shape: &dyn Shape, at: &Transform, x: &Vec3, n: &Vec3) -> Opti
     rims.iter().find_map(|&(side, radius)| {
         let off = (local.y - side * hh).abs();
         let r = local.x.hypot(local.z);
-        (off <= SAME * hh.max(1e-3) && (r - radius).abs() <= SAME * radius.max(1e-3)).then(|| {
-            Turn::Rim {
-                c: at.act_point(&Vec3::new(0.0, side * hh, 0.0)),
-                a,
-                radius,
-            }
+        let tol = SAME * radius.max(1e-3);
+        (off <= tol && (r - radius).abs() <= tol).then(|| Feature::Rim {
+            c: at.act_point(&Vec3::new(0.0, side * hh, 0.0)),
+            a,
+            radius,
         })
     })
 }

@@ -129,9 +129,10 @@ pub struct StepDerivatives {
     pub contacts: Vec<crate::collision::ContactPoint>,
     /// The indices (into `modes`) of the pushing contacts whose normal's turn and point's
     /// move are held fixed in these derivatives: between two geometries, those that are
-    /// neither a flat face against a vertex or a ball nor two features' common perpendicular
-    /// (vertices, ball centres, edges, capsule axes): edges crossing inside a face's outline, a
-    /// cylinder's rim, an ellipsoid, a non-convex mesh's triangle (see `contact/rows.rs`).
+    /// neither a flat face against a vertex, a ball or a rim nor two features' common
+    /// perpendicular (vertices, ball centres, edges, capsule axes): edges crossing inside a
+    /// face's outline, a cylinder against anything but a face, a non-convex mesh's triangle
+    /// (see `contact/rows.rs`).
     pub held_normal: Vec<usize>,
     /// The energy safeguard scaled this step's impulse
     /// ([`ContactStats::scaled`](super::contact::ContactStats::scaled)): the scaled impulse no
@@ -215,8 +216,11 @@ fn solve_rows(rows: &[Row], g: &DMatrix<f64>, je: &DMatrix<f64>, t: &DMatrix<f64
         return out;
     }
     // each column its own active set among the switches: the one-sided derivative along it
+    // (a residual counts against the whole problem's size: a column that barely moves the
+    // rows must not switch on round-off)
+    let scale = je.amax().max(t.amax()).max(1e-300);
+    let lscale = out.amax().max(1e-300);
     for k in 0..je.ncols() {
-        let scale = je.column(k).amax().max(t.column(k).amax()).max(1e-300);
         let mut active = vec![false; rows.len()];
         for _ in 0..=switches.len() {
             let x = out.column(k);
@@ -226,7 +230,7 @@ fn solve_rows(rows: &[Row], g: &DMatrix<f64>, je: &DMatrix<f64>, t: &DMatrix<f64
                 if !active[r] && gap < -1e-9 * scale {
                     active[r] = true;
                     changed = true;
-                } else if active[r] && x[r] < -1e-9 * x.amax() {
+                } else if active[r] && x[r] < -1e-9 * lscale {
                     active[r] = false;
                     changed = true;
                 }

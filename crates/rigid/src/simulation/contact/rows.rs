@@ -32,7 +32,8 @@
 //!   vertices).
 //! - **a flat face** of one side against a vertex or a ball (centre `a`, radius `ρ`) of the
 //!   other: `θ` the face body's `S_k.ω`, `δn = θ × n`; with the point on body 1 (`s = 1`; on
-//!   body 2 `s = −1`) `x = a − s ρ n`, `δx = u(a) − s ρ δn`, `φ = n·(x₁ − x₂)`,
+//!   body 2 `s = −1`) `x = a − s ρ n`, `δx = u(a) − s ρ δn` (against a rim, the rim's point
+//!   farthest along `−s n`, as on the ground with the normal turning), `φ = n·(x₁ − x₂)`,
 //!   `δφ = s n·(δx − u_face(x − s φ n))`, `p = x − s (φ/2) n`:
 //!   `u = δx − s (½ δφ n + (φ/2) δn)`.
 //! - **two features** (ball centres and vertices `Point`s, edges and capsule axes `Line`s of
@@ -42,8 +43,9 @@
 //!   `w/|w|` (`δn = (I − n nᵀ) δw/|w|`) or, between two lines, `e₁ × e₂/|e₁ × e₂|`
 //!   (`δn = (I − n nᵀ)((θ₁ × e₁) × e₂ + e₁ × (θ₂ × e₂))/|e₁ × e₂|`); `θ = n × δn`, and
 //!   `p = ½ (x₁ + x₂ + (ρ₂ − ρ₁) n)`: `u = ½ (δx₁ + δx₂ + (ρ₂ − ρ₁) δn)`.
-//! - **anything else** (edges crossing inside a face's outline, a cylinder's rim, an ellipsoid,
-//!   a non-convex mesh's triangle): the point fixed in a moving body, the frame in the world,
+//! - **anything else** (edges crossing inside a face's outline, a cylinder against anything but
+//!   a face, a non-convex mesh's triangle): the point fixed in a moving body, the frame in the
+//!   world,
 //!   `θ = 0` (`StepDerivatives::held_normal` names those contacts).
 //!
 //! Joint limits' rows are constant.
@@ -210,31 +212,28 @@ impl ContactSolver {
                 let ux = S.v + S.w.cross(&a);
                 (ux - n * (0.5 * n.dot(&ux)), Vec3::zeros())
             }
-            Turn::Rim {
-                c: centre,
-                a,
-                radius,
-            } => {
-                // x = c + R d, d = −m/|m|, m = n − a (a·n): the rim's point farthest along −n
-                let Some(S) = body(0) else {
-                    return (Vec3::zeros(), Vec3::zeros());
-                };
-                let da = S.w.cross(&a);
-                let m = n - a * a.dot(&n);
-                let (mn, mh) = (m.norm(), m.normalize());
-                let dm = -(da * a.dot(&n) + a * da.dot(&n));
-                let dd = -(dm - mh * mh.dot(&dm)) / mn;
-                let dx = S.v + S.w.cross(&centre) + dd * radius;
+            Turn::Rim(rim) => {
+                // the rim's point farthest along −n, the ground's normal fixed
+                let dx = Self::rim_rate(&rim, n, Vec3::zeros(), -1.0, &|x| carried(0, x));
                 (dx - n * (0.5 * n.dot(&dx)), Vec3::zeros())
             }
-            Turn::Face { face, a, rho } => {
+            Turn::Face { face, point } => {
                 let theta = body(face).map_or(Vec3::zeros(), |S| S.w);
                 let dn = theta.cross(&n);
-                let (sign, point) = if face == 1 { (1.0, 0) } else { (-1.0, 1) };
-                // sign = +1 with the point on body 1: its nearest point x = a − sign ρ n, the
-                // face's x − sign φ n (φ = n·(x₁ − x₂)), p = x − sign (φ/2) n
-                let x = a - n * (sign * rho);
-                let dx = carried(point, &a) - dn * (sign * rho);
+                let (sign, side) = if face == 1 { (1.0, 0) } else { (-1.0, 1) };
+                // sign = +1 with the point on body 1: its nearest point x (a ball's centre
+                // less sign ρ n, a rim's point farthest along −sign n), the face's point
+                // x − sign φ n (φ = n·(x₁ − x₂)), p = x − sign (φ/2) n
+                let (x, dx) = match point {
+                    Feature::Point { a, rho } => {
+                        (a - n * (sign * rho), carried(side, &a) - dn * (sign * rho))
+                    }
+                    Feature::Rim { .. } => (
+                        c.p + n * (sign * 0.5 * phi),
+                        Self::rim_rate(&point, n, dn, -sign, &|x| carried(side, x)),
+                    ),
+                    Feature::Line { .. } => (c.p, carried(side, &c.p)),
+                };
                 let xf = x - n * (sign * phi);
                 let dphi = sign * n.dot(&(dx - carried(face, &xf)));
                 (
@@ -251,6 +250,22 @@ impl ContactSolver {
         }
     }
 
+    /// The rate of a rim's point farthest along `s n` (`s = ±1`), `x = c + R d`, `d = s m̂`,
+    /// `m = n − a (a·n)`, as its body turns (`δa = ω × a`, `carried(x)` the velocity of the
+    /// body's point at `x`) and the normal turns by `δn`:
+    /// `δm = δn − δa (a·n) − a (δa·n + a·δn)`, `δx = u(c) + s R (I − m̂ m̂ᵀ) δm/|m|`.
+    fn rim_rate(rim: &Feature, n: Vec3, dn: Vec3, s: f64, carried: &dyn Fn(&Vec3) -> Vec3) -> Vec3 {
+        let Feature::Rim { c, a, radius } = *rim else {
+            return Vec3::zeros();
+        };
+        let uc = carried(&c);
+        let da = carried(&(c + a)) - uc;
+        let m = n - a * a.dot(&n);
+        let (mn, mh) = (m.norm(), m.normalize());
+        let dm = dn - da * a.dot(&n) - a * (da.dot(&n) + a.dot(&dn));
+        uc + (dm - mh * mh.dot(&dm)) * (s * radius / mn)
+    }
+
     /// [`motion`](Self::motion) of a contact along the common perpendicular of two features
     /// (see the [module](self) documentation): their nearest points `x_i` (`Line`s slide by
     /// `δt_i` along `e_i`, keeping `w = x₁ − x₂` perpendicular to them), the normal `n` along
@@ -264,6 +279,7 @@ impl ContactSolver {
         let parts = |i: usize| match f[i] {
             Feature::Point { a, rho } => (a, None, rho),
             Feature::Line { a, e, rho } => (a, Some(e), rho),
+            Feature::Rim { c, .. } => (c, None, 0.0), // not paired (see `turn`)
         };
         let ((x1, e1, r1), (x2, e2, r2)) = (parts(0), parts(1));
         let (u1, u2) = (carried(0, &x1), carried(1, &x2));

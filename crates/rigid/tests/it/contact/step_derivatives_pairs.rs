@@ -323,6 +323,64 @@ fn rims_rolling_on_the_ground() {
 }
 
 #[test]
+fn a_coin_rolling_on_a_box() {
+    // a cylinder leaning 0.1 rad, sliding and spinning on its rim on a tilted, turning box's
+    // top face (the face's normal turns with the box, the rim's point slides), 2 µm in, no
+    // ground: the box falls with it. To 1e-3 only: parry's cylinder–box contact moves with
+    // the box's position along its own face (a static box moved 1 mm along its face changes
+    // the coin's spin after one step by 5e-7 rad/s, where the coin cannot tell), which the
+    // differences see and the derivatives do not
+    let bx = Free::cube(2.0, Vec3::new(0.4, 0.4, 0.1));
+    let coin = body(
+        1.0,
+        Shape::Cylinder {
+            radius: 0.1,
+            length: 0.02,
+        },
+    );
+    let (model, cm) = scene(&[bx, coin], down(), None);
+    let rb = so3::exp(&Vec3::new(0.02, -0.01, 0.1));
+    let mut q = q_of(Vec3::zeros(), &rb);
+    // the coin's axis (z) along the face, leaning 0.1 rad about its rolling direction
+    let r = rb
+        * so3::exp(&Vec3::new(0.0, 0.0, 0.3))
+        * so3::exp(&Vec3::new(std::f64::consts::FRAC_PI_2 - 0.1, 0.0, 0.0));
+    let mut low = f64::INFINITY;
+    for k in 0..3600 {
+        let t = k as f64 / 3600.0 * std::f64::consts::TAU;
+        for h in [-0.01, 0.01] {
+            let x = rb.transpose() * (r * Vec3::new(0.1 * t.cos(), 0.1 * t.sin(), h));
+            low = low.min(x.z);
+        }
+    }
+    let n = rb * Vec3::z();
+    q.extend(q_of(
+        rb * Vec3::new(0.03, -0.02, 0.05) + n * (-low - 2e-6),
+        &r,
+    ));
+    let w = r.transpose() * (n * 0.5);
+    let v = [
+        0.1,
+        0.0,
+        -0.2,
+        0.0,
+        0.1,
+        0.0,
+        w.x,
+        w.y,
+        w.z + 5.0,
+        0.5,
+        0.0,
+        -0.1,
+    ];
+    let mut s = sim(&model, cm, &q, &v, &[0.0; 12]);
+    let (d, kinks) = check("coin on a box", &mut s, 1e-7, 1e-3);
+    assert_eq!(kinks, 0);
+    assert_eq!(pair_contacts(&d), 1, "{:?}", d.modes);
+    assert!(d.held_normal.is_empty(), "{:?}", d.held_normal);
+}
+
+#[test]
 fn a_differential_drive_rolling_on_its_wheels() {
     // examples/diff_drive.urdf with 4 cm treads (its own 4 mm treads' two points 4 mm apart
     // leave projected Gauss–Seidel unconverged after 100,000 sweeps, so that differences of
