@@ -271,7 +271,7 @@ impl CollisionData {
             let g = contact.geometries.0;
             let s = &self.shapes[g];
             let x = contact.point + normal * (0.5 * contact.gap);
-            return rim(&*s.shape, &(self.poses[g] * s.offset), &x, normal)
+            return rim(&*s.shape, &(self.poses[g] * s.offset), &x, &-normal)
                 .map_or(Turn::Ground, Turn::Rim);
         };
         let (i, j) = self.pairs[p];

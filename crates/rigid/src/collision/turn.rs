@@ -153,14 +153,19 @@ pub(crate) fn turn(
         (Some(point @ (Feature::Point { .. } | Feature::Rim { .. })), _) if s2.face => {
             Turn::Face { face: 1, point }
         }
-        (Some(f1), Some(f2)) if perpendicular(&f1, &f2, normal) => Turn::Features([f1, f2]),
+        // a face's normal with anything but a point or a rim on the other side (two faces'
+        // clipped edges crossing, a capsule's axis over a face's edge): not followed
+        (Some(f1), Some(f2)) if !s1.face && !s2.face && perpendicular(&f1, &f2, normal) => {
+            Turn::Features([f1, f2])
+        }
         _ => Turn::Held,
     }
 }
 
 /// Whether `normal` is the common perpendicular of the two features, well defined: along the
 /// line between two points (at least one a ball), across a point and a line (the same), or
-/// along the cross product of two lines that are not parallel.
+/// along the cross product of two lines at least 1 mrad from parallel (nearer, the slides
+/// along them are ill-conditioned: held).
 fn perpendicular(f1: &Feature, f2: &Feature, normal: &Vec3) -> bool {
     use Feature::{Line, Point};
     let along = |w: Vec3| w.norm() > SAME && w.normalize().dot(normal).abs() >= 1.0 - 1e-6;
@@ -171,17 +176,20 @@ fn perpendicular(f1: &Feature, f2: &Feature, normal: &Vec3) -> bool {
             let w = a - b;
             rp + rl > 0.0 && along(w - e * e.dot(&w))
         }
-        (Line { e: e1, .. }, Line { e: e2, .. }) => along(e1.cross(e2)),
+        (Line { e: e1, .. }, Line { e: e2, .. }) => {
+            e1.cross(e2).norm() >= 1e-3 && along(e1.cross(e2))
+        }
         _ => false,
     }
 }
 
 /// The rim of a cylinder or a cone (posed at `at`, parry's frame: the axis along y, a cone's
-/// base at `−h/2`) that the world point `x` lies on, with the normal `n` not along the axis (a
-/// flat cap on a face rests on its rim's points as vertices): the rim's point farthest along
-/// the normal, which slides along it as the body turns. A point inside a side's line of
-/// contact (parry adds its deepest point there, wherever along the line) is not a rim's.
-pub(crate) fn rim(shape: &dyn Shape, at: &Transform, x: &Vec3, n: &Vec3) -> Option<Feature> {
+/// base at `−h/2`) whose point farthest along `out` (the shape's outward normal at the
+/// contact, not along the axis: a flat cap rests on its rim's points as vertices) is the world
+/// point `x`: that point slides along the rim as the body turns. Other points of a rim (the
+/// corners of parry's square for a cap facing the other side) and points inside a side's line
+/// of contact (parry adds its deepest point anywhere along the line) are not.
+pub(crate) fn rim(shape: &dyn Shape, at: &Transform, x: &Vec3, out: &Vec3) -> Option<Feature> {
     let (hh, rims): (f64, &[(f64, f64)]) = if let Some(c) = shape.as_cylinder() {
         (c.half_height, &[(-1.0, c.radius), (1.0, c.radius)][..])
     } else if let Some(c) = shape.as_cone() {
@@ -189,19 +197,14 @@ pub(crate) fn rim(shape: &dyn Shape, at: &Transform, x: &Vec3, n: &Vec3) -> Opti
     } else {
         return None;
     };
-    let local = at.inverse().act_point(x);
     let a = at.rotation * Vec3::y();
-    if (n - a * a.dot(n)).norm() < 1e-6 {
+    let m = out - a * a.dot(out);
+    if m.norm() < 1e-6 {
         return None;
     }
     rims.iter().find_map(|&(side, radius)| {
-        let off = (local.y - side * hh).abs();
-        let r = local.x.hypot(local.z);
-        let tol = SAME * radius.max(1e-3);
-        (off <= tol && (r - radius).abs() <= tol).then(|| Feature::Rim {
-            c: at.act_point(&Vec3::new(0.0, side * hh, 0.0)),
-            a,
-            radius,
-        })
+        let c = at.act_point(&Vec3::new(0.0, side * hh, 0.0));
+        let farthest = c + m.normalize() * radius;
+        ((x - farthest).norm() <= 1e-6 * radius).then_some(Feature::Rim { c, a, radius })
     })
 }

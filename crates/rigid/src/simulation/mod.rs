@@ -39,13 +39,14 @@ mod contact_step;
 mod control;
 mod free_body;
 mod integrators;
+#[cfg(feature = "collision")]
+mod linearised;
 pub mod loops;
 mod momentum;
 mod scenario;
 mod simulator;
 #[cfg(feature = "collision")]
 mod stance;
-#[cfg(feature = "collision")]
 mod step_derivatives;
 mod trajectory;
 

@@ -59,6 +59,7 @@
 use super::contact::Block;
 use super::contact_step::{contact_step, ContactStepper};
 use super::control::Control;
+use super::linearised::{at_zero, classify, gap_target, solve_rows, target_of, Row, Target};
 use super::{SimulationError, Simulator};
 use crate::collision::Turn;
 use crate::multibody::algorithms::{ltl_factor, ltl_solve_lower, ltl_solve_transposed};
@@ -141,51 +142,6 @@ pub struct StepDerivatives {
     pub scaled: bool,
 }
 
-/// A row's part in the linearised problem.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Row {
-    /// `δλ = 0`.
-    Free,
-    /// `δσ = δσ*`, with the target's kind.
-    Equal(Target),
-    /// The first tangent row of a sliding contact (its normal row `n`; the second tangent
-    /// follows): `û`, `μ`, `κ = μ λ_n/‖σ_t‖`.
-    Slide {
-        n: usize,
-        u: [f64; 2],
-        mu: f64,
-        kappa: f64,
-    },
-    /// The second tangent row of a sliding contact (written with the first).
-    SlideSecond,
-    /// A normal row at a switch (touching without pushing): per column, `δλ ≥ 0` and
-    /// `δσ ≥ δσ*`, complementary; active, it is `Equal` and its `tangents` rows stick.
-    Switch { target: Target, tangents: usize },
-    /// A tangent row of a `Switch` contact.
-    SwitchTangent,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Target {
-    Constant,
-    /// `σ* = −(open · max(δφ, 0) + closed · min(δφ, 0))/h`, `δφ = J_n δq`: `1` in the velocity
-    /// solve for an open gap, `β` in the position correction for a penetration; a contact
-    /// touching (`φ = 0`) takes `open` and `closed` of either side.
-    Gap {
-        open: f64,
-        closed: f64,
-    },
-    /// `σ* = −e J v`.
-    Rebound(f64),
-}
-
-impl Target {
-    /// The same share of the gap on either side.
-    fn gap(s: f64) -> Self {
-        Self::Gap { open: s, closed: s }
-    }
-}
-
 /// Whether every entry of these matrices is finite.
 fn finite(ms: &[&DMatrix<f64>]) -> bool {
     ms.iter().all(|m| m.iter().all(|x| x.is_finite()))
@@ -199,130 +155,6 @@ fn minv_columns(data: &Data, out: &mut DMatrix<f64>) {
         ltl_solve_transposed(L, &data.dof_parent, x);
         ltl_solve_lower(L, &data.dof_parent, x);
     }
-}
-
-/// Solves the linearised rows for `δλ` (m x cols): `A δλ = B` with `A`, `B` from the rows'
-/// kinds, `G = J M̃⁻¹ Jᵀ`, `JE` the rows' response to the inputs at `δλ = 0` (plus their own
-/// `∂(J x)/∂q` in its first `nv` columns) and the targets' partials `T`.
-fn solve_rows(rows: &[Row], g: &DMatrix<f64>, je: &DMatrix<f64>, t: &DMatrix<f64>) -> DMatrix<f64> {
-    let mut out = solve_fixed(rows, g, je, t);
-    let switches: Vec<(usize, usize)> = (0..rows.len())
-        .filter_map(|r| match rows[r] {
-            Row::Switch { tangents, .. } => Some((r, tangents)),
-            _ => None,
-        })
-        .collect();
-    if switches.is_empty() {
-        return out;
-    }
-    // each column its own active set among the switches: the one-sided derivative along it
-    // (a residual counts against the whole problem's size: a column that barely moves the
-    // rows must not switch on round-off)
-    let scale = je.amax().max(t.amax()).max(1e-300);
-    let lscale = out.amax().max(1e-300);
-    for k in 0..je.ncols() {
-        let mut active = vec![false; rows.len()];
-        for _ in 0..=switches.len() {
-            let x = out.column(k);
-            let mut changed = false;
-            for &(r, _) in &switches {
-                let gap = (g.row(r) * x)[0] + je[(r, k)] - t[(r, k)];
-                if !active[r] && gap < -1e-9 * scale {
-                    active[r] = true;
-                    changed = true;
-                } else if active[r] && x[r] < -1e-9 * lscale {
-                    active[r] = false;
-                    changed = true;
-                }
-            }
-            if !changed {
-                break;
-            }
-            let mut rk = rows.to_vec();
-            for &(r, tangents) in &switches {
-                let on = if active[r] {
-                    Row::Equal(Target::Constant)
-                } else {
-                    Row::Free
-                };
-                for row in &mut rk[r..=r + tangents] {
-                    *row = on;
-                }
-            }
-            let x = solve_fixed(
-                &rk,
-                g,
-                &je.columns(k, 1).into_owned(),
-                &t.columns(k, 1).into_owned(),
-            );
-            out.set_column(k, &x.column(0));
-        }
-    }
-    out
-}
-
-/// [`solve_rows`] with the switches held free.
-fn solve_fixed(
-    rows: &[Row],
-    g: &DMatrix<f64>,
-    je: &DMatrix<f64>,
-    t: &DMatrix<f64>,
-) -> DMatrix<f64> {
-    let (m, cols) = (rows.len(), je.ncols());
-    // the unknowns: the rows not held at δλ = 0
-    let live: Vec<usize> = (0..m)
-        .filter(|&r| !matches!(rows[r], Row::Free | Row::Switch { .. } | Row::SwitchTangent))
-        .collect();
-    let at = |r: usize| live.binary_search(&r).ok();
-    let na = live.len();
-    let mut a = DMatrix::zeros(na, na);
-    let mut b = DMatrix::zeros(na, cols);
-    let copy_g = |a: &mut DMatrix<f64>, i: usize, r: usize, s: f64| {
-        for (j, &c) in live.iter().enumerate() {
-            a[(i, j)] += s * g[(r, c)];
-        }
-    };
-    for (i, &r) in live.iter().enumerate() {
-        match rows[r] {
-            Row::Free | Row::SlideSecond | Row::Switch { .. } | Row::SwitchTangent => {}
-            Row::Equal(_) => {
-                copy_g(&mut a, i, r, 1.0);
-                let x = t.row(r) - je.row(r);
-                b.row_mut(i).copy_from(&x);
-            }
-            Row::Slide { n, u, mu, kappa } => {
-                // (I − ûûᵀ) applied to the two tangent rows
-                let p = [
-                    [1.0 - u[0] * u[0], -u[0] * u[1]],
-                    [-u[1] * u[0], 1.0 - u[1] * u[1]],
-                ];
-                let ni = at(n).expect("a sliding contact's normal row pushes");
-                for k in 0..2 {
-                    let ik = i + k;
-                    a[(ik, ik)] += 1.0;
-                    a[(ik, ni)] += mu * u[k];
-                    for j in 0..2 {
-                        let s = kappa * p[k][j];
-                        copy_g(&mut a, ik, r + j, s);
-                        let jr = je.row(r + j) * (-s);
-                        let mut br = b.row_mut(ik);
-                        br += jr;
-                    }
-                }
-            }
-        }
-    }
-    let mut out = DMatrix::zeros(m, cols);
-    if na == 0 {
-        return out;
-    }
-    let scale = a.amax().max(1e-300);
-    if let Ok(x) = a.svd(true, true).solve(&b, 1e-12 * scale) {
-        for (i, &r) in live.iter().enumerate() {
-            out.row_mut(r).copy_from(&x.row(i));
-        }
-    }
-    out
 }
 
 impl<C: Control> Simulator<C> {
@@ -427,7 +259,6 @@ impl<C: Control> Simulator<C> {
             points.map(|(k, c)| cd.turn(k, c)).collect()
         });
         let geometry = (&radius as &dyn Fn(usize) -> f64, turns.as_slice());
-        let solver = &cs.solver;
         let m = solver.m();
         let lambda = &solver.lambda[..m];
         // the contact bodies at (q, v⁺): their Jacobians serve every force partial below
@@ -530,7 +361,7 @@ impl<C: Control> Simulator<C> {
             let mut je = &jm * &e;
             let mut jq = je.columns_mut(0, nv);
             jq += &c;
-            let dl = solve_rows(&rows, &g, &je, &t);
+            let dl = solve_rows(&rows, (&g, &je, &t), nv);
             dv_plus += &w * dl;
         }
 
@@ -540,7 +371,9 @@ impl<C: Control> Simulator<C> {
         let beta = cs.settings.stabilization;
         // a pushing contact or limit touching (φ = 0, within round-off) is taken on the side
         // where the gap closed: the correction takes β of any penetration a perturbation makes
-        let touching = |b: &Block| !b.bilateral && at_zero(b.gap) && lambda[b.row] > 0.0;
+        let lscale = lambda.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+        let pushing = |r: usize| lambda[r] > 1e-12 * lscale;
+        let touching = |b: &Block| !b.bilateral && at_zero(b.gap) && pushing(b.row);
         let corrects =
             cs.dq.iter().any(|x| *x != 0.0) || mb > 0 || solver.blocks.iter().any(touching);
         if corrects && beta > 0.0 {
@@ -599,6 +432,7 @@ impl<C: Control> Simulator<C> {
                     rows[b.row] = Row::Switch {
                         target,
                         tangents: 0,
+                        slide: None,
                     };
                 } else {
                     continue;
@@ -606,7 +440,7 @@ impl<C: Control> Simulator<C> {
                 gap_target(&mut t, b.row, &jm, h, open, closed);
             }
             let je = &jm * &ew + cw;
-            let dmu = solve_rows(&rows, &g, &je, &t);
+            let dmu = solve_rows(&rows, (&g, &je, &t), nv);
             dw = ew + &w * dmu;
         }
         // δv_step = δv⁺ + δw (q columns)
@@ -743,122 +577,4 @@ fn loop_projector(
         .pseudo_inverse(tol)
         .unwrap_or_else(|_| DMatrix::zeros(cd.dim(), cd.dim()));
     Ok(DMatrix::identity(nv, nv) - wb * gp * jb)
-}
-
-/// The target of a row that holds one.
-fn target_of(row: &Row) -> Option<Target> {
-    match *row {
-        Row::Equal(t) | Row::Switch { target: t, .. } => Some(t),
-        _ => None,
-    }
-}
-
-/// Row `r` of the targets' `q` columns for `σ* = −(open · max(δφ, 0) + closed · min(δφ, 0))/h`
-/// with `δφ = J_n δq` along each column (`∂φ/∂q = J_n`): per column, the side of the switch
-/// that the perturbation moves to.
-fn gap_target(t: &mut DMatrix<f64>, r: usize, jm: &DMatrix<f64>, h: f64, open: f64, closed: f64) {
-    for k in 0..jm.ncols() {
-        let dphi = jm[(r, k)];
-        t[(r, k)] = -(if dphi > 0.0 { open } else { closed }) * dphi / h;
-    }
-}
-
-/// Whether a gap (m, or rad for a limit) is zero within round-off: a contact or limit
-/// touching, at the switch between closing its gap in the velocity solve (`φ > 0`) and being
-/// corrected (`φ < 0`).
-fn at_zero(gap: f64) -> bool {
-    gap.abs() <= 1e-12
-}
-
-/// Each row's kind from the solution `lambda` of the velocity solve, with the modes of the
-/// contacts and limits and those at a switch.
-fn classify(
-    solver: &super::contact::ContactSolver,
-    lambda: &[f64],
-    modes: &mut Vec<ContactMode>,
-    at_switch: &mut Vec<usize>,
-) -> Vec<Row> {
-    let m = lambda.len();
-    let mut rows = vec![Row::Free; m];
-    // the bilateral rows hold J v⁺ = 0 (an idle row, which moves nothing, keeps λ = 0)
-    for r in (0..solver.bilateral_rows).filter(|&r| !solver.bilateral_idle[r]) {
-        rows[r] = Row::Equal(Target::Constant);
-    }
-    let sigma = &solver.sigma[..m];
-    let target = &solver.target[..m];
-    // contacts first (the order of `contacts()`), then limits
-    let (contacts, limits): (Vec<&Block>, Vec<&Block>) = solver
-        .blocks
-        .iter()
-        .filter(|b| !b.bilateral)
-        .partition(|b| b.dim == 3);
-    let scale = lambda
-        .iter()
-        .fold(0.0_f64, |a, x| a.max(x.abs()))
-        .max(1e-300);
-    let vscale = sigma.iter().fold(1e-3_f64, |a, x| a.max(x.abs()));
-    for b in contacts.into_iter().chain(limits) {
-        let r = b.row;
-        let index = modes.len();
-        let normal = if b.gap_target {
-            Target::gap(1.0)
-        } else if b.rebound_target {
-            Target::Rebound(b.restitution)
-        } else if at_zero(b.gap) {
-            // touching: an opening perturbation is closed in this step, a penetration is
-            // left to the correction
-            Target::Gap {
-                open: 1.0,
-                closed: 0.0,
-            }
-        } else {
-            Target::Constant
-        };
-        if lambda[r] <= 1e-12 * scale {
-            modes.push(ContactMode::Separated);
-            // touching without pushing: the normal velocity meets its target, and a
-            // perturbation that presses the contact makes it push (sticking)
-            if (sigma[r] - target[r]).abs() <= 1e-9 * vscale {
-                at_switch.push(index);
-                rows[r] = Row::Switch {
-                    target: normal,
-                    tangents: if b.friction > 0.0 { b.dim - 1 } else { 0 },
-                };
-                for row in &mut rows[r + 1..r + b.dim] {
-                    *row = Row::SwitchTangent;
-                }
-            }
-            continue;
-        }
-        rows[r] = Row::Equal(normal);
-        if at_zero(b.gap) {
-            // pushing at φ = 0: each side has its own target (see `Target::Gap`)
-            at_switch.push(index);
-        }
-        if b.dim == 1 || b.friction == 0.0 {
-            modes.push(ContactMode::Sticking);
-            continue;
-        }
-        let (lt, st) = ((lambda[r + 1], lambda[r + 2]), (sigma[r + 1], sigma[r + 2]));
-        let (ln, sn) = (lt.0.hypot(lt.1), st.0.hypot(st.1));
-        let edge = ln >= b.friction * lambda[r] * (1.0 - 1e-7);
-        if edge && sn > 1e-9 * vscale {
-            modes.push(ContactMode::Sliding);
-            rows[r + 1] = Row::Slide {
-                n: r,
-                u: [st.0 / sn, st.1 / sn],
-                mu: b.friction,
-                kappa: b.friction * lambda[r] / sn,
-            };
-            rows[r + 2] = Row::SlideSecond;
-        } else {
-            modes.push(ContactMode::Sticking);
-            rows[r + 1] = Row::Equal(Target::Constant);
-            rows[r + 2] = Row::Equal(Target::Constant);
-            if edge {
-                at_switch.push(index);
-            }
-        }
-    }
-    rows
 }

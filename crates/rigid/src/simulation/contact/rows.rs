@@ -72,15 +72,14 @@ fn col(m: &DMatrix<f64>, k: usize) -> Twist {
     Twist::new(Vec3::new(c[0], c[1], c[2]), Vec3::new(c[3], c[4], c[5]))
 }
 
-/// A contact block's geometry: first row, frame, point, gap, its bodies and, when one side is
-/// the world, how its point moves: `(ρ, side)`, the ball radius of the moving side's geometry
-/// and that side (`+1` body 1, `−1` body 2).
+/// A contact block's geometry: first row, frame, point, gap, how it turns, its bodies and, on
+/// the ground, `rho` the ball radius of its geometry (0 for a vertex).
 struct Contact {
     row: usize,
     frame: [Vec3; 3],
     p: Vec3,
     gap: f64,
-    anchor: Option<(f64, f64)>,
+    rho: f64,
     turn: Turn,
     bodies: [(Option<JointId>, f64); 2],
 }
@@ -137,10 +136,7 @@ impl ContactSolver {
         for b in self.blocks.iter().filter(|b| !b.bilateral && b.dim == 3) {
             let Some((i, c)) = points.next() else { break };
             let ground = c.geometries.1.is_none();
-            let anchor = match (c.body1, ground) {
-                (Some(_), true) => Some((radius(c.geometries.0), 1.0)),
-                _ => None,
-            };
+            let rho = if ground { radius(c.geometries.0) } else { 0.0 };
             let turn = match turns.get(i) {
                 Some(t) => *t,
                 None if ground => Turn::Ground,
@@ -151,7 +147,7 @@ impl ContactSolver {
                 frame: b.frame,
                 p: c.point,
                 gap: c.gap,
-                anchor,
+                rho,
                 turn,
                 bodies: [(c.body1, 1.0), (c.body2, -1.0)],
             });
@@ -206,7 +202,7 @@ impl ContactSolver {
                 let Some(S) = body(0) else {
                     return (Vec3::zeros(), Vec3::zeros());
                 };
-                let (rho, _) = c.anchor.unwrap_or((0.0, 1.0));
+                let rho = c.rho;
                 // the nearest point x = p + (φ/2) n and its anchor x + ρ n
                 let a = c.p + n * (0.5 * phi + rho);
                 let ux = S.v + S.w.cross(&a);
@@ -232,6 +228,7 @@ impl ContactSolver {
                         c.p + n * (sign * 0.5 * phi),
                         Self::rim_rate(&point, n, dn, -sign, &|x| carried(side, x)),
                     ),
+                    // not made by `turn` (a line against a face is held); as held
                     Feature::Line { .. } => (c.p, carried(side, &c.p)),
                 };
                 let xf = x - n * (sign * phi);

@@ -78,6 +78,37 @@ fn a_box_on_a_box() {
 }
 
 #[test]
+fn a_box_overhanging_a_box_s_edge_is_held_where_the_edges_cross() {
+    // flat on the lower box's face, hanging over its edge: parry clips the two faces, and the
+    // points where their edges cross slide along both edges under the face's normal; those
+    // are held (named by held_normal), the upper box's own corners on the face are not
+    let (model, cm, mut q) = two_boxes(&so3::exp(&Vec3::new(2e-6, -1e-6, 0.3)), 3e-6);
+    q[7] += 0.15;
+    let mut s = sim(&model, cm, &q, &[0.0; 12], &[0.0; 12]);
+    let d = s.step_derivatives().unwrap();
+    let pairs: Vec<usize> = (0..d.contacts.len())
+        .filter(|&i| d.contacts[i].body2.is_some() && d.modes[i] != ContactMode::Separated)
+        .collect();
+    assert!(pairs.len() >= 3, "{:?}", d.modes);
+    let held: Vec<&usize> = pairs.iter().filter(|i| d.held_normal.contains(i)).collect();
+    assert!(
+        !held.is_empty() && held.len() < pairs.len(),
+        "{pairs:?} {:?}",
+        d.held_normal
+    );
+    // the lower box's edge is at x = 0.2: the held points lie on it, the others inside
+    for i in pairs {
+        let on_edge = (d.contacts[i].point.x - 0.2).abs() < 1e-6;
+        assert_eq!(
+            d.held_normal.contains(&i),
+            on_edge,
+            "{:?}",
+            d.contacts[i].point
+        );
+    }
+}
+
+#[test]
 fn a_ball_on_a_box_and_a_ball_on_a_ball() {
     // a ball resting off-centre on a box's top face (the box's normal), and a ball on a ball
     // 4 cm off the vertical (the line of centres), each pressed 2 µm in, sliding and spinning
