@@ -47,6 +47,7 @@ mod scenario;
 mod simulator;
 #[cfg(feature = "collision")]
 mod stance;
+#[cfg(feature = "collision")]
 mod step_derivatives;
 mod trajectory;
 
