@@ -541,21 +541,8 @@ fn a_box_rebounding_from_the_ground() {
 /// `<connect>`, its hip limited to ±0.2 rad, its foot a box on the file's floor), dropped from
 /// 3 cm for `steps` steps, its base then moved by `dz`.
 fn leg(steps: usize, dz: f64) -> Simulator<OpenLoop> {
-    use rigid::io::collision::{mjcf_file_world, WorldOptions};
-    use rigid::simulation::{JointLimits, Scenario};
-    let file = crate::common::fixtures_dir().join("constraints/leg.xml");
-    let mj = rigid::io::mjcf::load_mjcf(file).unwrap();
-    let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
-    let mut s = Scenario::in_world(mj.model.clone(), world);
-    let mut q0 = rigid::multibody::neutral(&mj.model);
-    q0[2] = 0.47;
-    let at = |name: &str| mj.model.joints()[mj.model.joint_id(name).unwrap().0].idx_q;
-    q0[at("hip_a")] = 0.05;
-    q0[at("hip_b")] = 0.05;
-    q0[at("ankle")] = -0.05;
-    s.q0 = Some(q0);
-    s.options.limits = JointLimits::Unilateral;
-    let nv = mj.model.nv();
+    let s = super::world::mjcf_leg();
+    let nv = s.model.nv();
     let mut sim = s
         .build_with(OpenLoop(vec![0.0; nv]))
         .unwrap()

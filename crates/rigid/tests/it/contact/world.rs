@@ -14,6 +14,23 @@ fn leg(file: &str) -> std::path::PathBuf {
     crate::common::fixtures_dir().join("constraints").join(file)
 }
 
+/// The leg of `leg.xml` in its file's world (its floor and `<connect>`, read as MuJoCo reads
+/// them), its limits unilateral, set 3 cm above the floor with its hips at 0.05 rad.
+pub(super) fn mjcf_leg() -> Scenario {
+    let mj = rigid::io::mjcf::load_mjcf(leg("leg.xml")).unwrap();
+    let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
+    let mut s = Scenario::in_world(mj.model.clone(), world);
+    let mut q0 = rigid::multibody::neutral(&mj.model);
+    q0[2] = 0.47;
+    let at = |name: &str| mj.model.joints()[mj.model.joint_id(name).unwrap().0].idx_q;
+    q0[at("hip_a")] = 0.05;
+    q0[at("hip_b")] = 0.05;
+    q0[at("ankle")] = -0.05;
+    s.q0 = Some(q0);
+    s.options.limits = JointLimits::Unilateral;
+    s
+}
+
 /// What a drop of the leg showed.
 #[derive(Debug)]
 struct Drop {
@@ -104,22 +121,9 @@ fn a_closed_loop_leg_dropped_onto_the_ground_keeps_its_loop_and_comes_to_rest() 
     check("URDF leg", &drop(&s, 3.0).unwrap());
 
     // MJCF: the file's floor and <connect>, no flag
-    let mj = rigid::io::mjcf::load_mjcf(leg("leg.xml")).unwrap();
-    let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
-    assert_eq!(world.constraints.len(), 1);
-    assert!(world.collision.as_ref().unwrap().ground.is_some());
-    let mut s = Scenario::new(mj.model.clone());
-    let mut q0 = rigid::multibody::neutral(&mj.model);
-    q0[2] = 0.47;
-    let at = |name: &str| mj.model.joints()[mj.model.joint_id(name).unwrap().0].idx_q;
-    q0[at("hip_a")] = 0.05;
-    q0[at("hip_b")] = 0.05;
-    q0[at("ankle")] = -0.05;
-    s.q0 = Some(q0);
-    s.collision = world.collision;
-    s.options.limits = JointLimits::Unilateral;
-    s.constraints = world.constraints;
-    s.constraint_options.settings = world.constraint_settings;
+    let s = mjcf_leg();
+    assert_eq!(s.constraints.len(), 1);
+    assert!(s.collision.as_ref().unwrap().ground.is_some());
     check("MJCF leg", &drop(&s, 3.0).unwrap());
 }
 
