@@ -415,14 +415,16 @@ class Simulator:
         nv × nv, the model's layout; ``q`` perturbed by ``integrate``, ``q⁺`` compared by
         ``difference``), ``q_next``, ``v_next`` (the step's result), ``modes`` (one per contact,
         then per joint limit: ``"separated"``, ``"sticking"``, ``"sliding"``), ``at_switch``
-        (indices into ``modes`` of those at a mode switch, where the derivative is the one-sided
-        derivative of the mode shown), ``held_normal`` (indices of the pushing contacts between two
-        moving bodies, whose normal's turn is left out), ``contact_points`` (the step's contact points,
-        in the order of ``modes``, world frame) and ``scaled`` (the energy safeguard scaled the impulse:
-        the derivatives are those of the unscaled one). The state is not advanced; an MJCF file's
-        ``<equality>`` loops are differentiated with the contacts. Not covered: the turn of the
-        normal between two moving bodies, and the ``mujoco`` layout with a free joint (raises);
-        see docs/contact.md. Not in Pinocchio's Python; MuJoCo has finite differences
+        (indices into ``modes`` of those at a mode switch: touching without pushing, pushing at a
+        zero gap, sticking on the cone's edge; there each column is the one-sided derivative
+        along ``+δ``), ``held_normal`` (indices of the pushing contacts whose normal's turn is
+        left out: two faces' clipped edges crossing, a cylinder against anything but a face, a
+        non-convex mesh's triangle; elsewhere the normal turns with the bodies), ``contact_points``
+        (the step's contact points, in the order of ``modes``, world frame) and ``scaled`` (the
+        energy safeguard scaled the impulse: the derivatives are those of the unscaled one). The
+        state is not advanced; an MJCF file's ``<equality>`` loops are differentiated with the
+        contacts. Not covered: the ``mujoco`` layout with a free joint (raises); see
+        docs/contact.md. Not in Pinocchio's Python; MuJoCo has finite differences
         (``mjd_transitionFD``)."""
 
 def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -> None:
