@@ -97,6 +97,18 @@ pub struct SimulateArgs {
     /// Newton restitution of the contacts, in [0, 1] (with --ground; default 0: no bounce).
     #[arg(long, allow_hyphen_values = true, value_name = "E")]
     pub restitution: Option<f64>,
+    /// The contact solver: `pgs` (projected Gauss–Seidel, contact by contact) or `admm` (the
+    /// alternating direction method of multipliers, island by island: converges where the
+    /// sweep stalls, on stacks and redundant contacts, and spreads a load over a flat face).
+    /// Both solve the same problem (hard contacts, the exact Coulomb cone) to the same tolerance;
+    /// the summary prints their ContactBench residuals.
+    #[arg(long, default_value = "pgs", value_name = "pgs|admm")]
+    pub contact_solver: rigid::simulation::contact::Solver,
+    /// With --csv, when anything can touch: the contact solve of each step as well, columns
+    /// `iterations`, `converged` (1 or 0) and the ContactBench residuals `signorini` (J),
+    /// `coulomb` (N·s), `dissipation` (J) and `velocity` (m/s).
+    #[arg(long)]
+    pub residuals: bool,
     /// Simulated time (s).
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub duration: f64,

@@ -13,9 +13,10 @@ use std::io::Write;
 /// The CSV header (docs/cli.md): `t`, then `q_<joint>`, `v_<joint>`, `tau_<joint>`
 /// (`_<coordinate>` for multi-dof joints) and `energy`; a body spec's `t,px,py,pz,qx,qy,qz,qw,
 /// wx,wy,wz,vx,vy,vz` (the CoM frame's pose and body twist) and `energy`; then `contacts` and
-/// `normal_force` when anything can touch, `violation_position` and `violation_velocity` with
-/// bilateral constraints.
-fn csv_header(model: &Model, spec: bool, contacts: bool, loops: bool) -> String {
+/// `normal_force` when anything can touch (and with `--residuals` the solve's `iterations`,
+/// `converged`, `signorini`, `coulomb`, `dissipation`, `velocity`), `violation_position` and
+/// `violation_velocity` with bilateral constraints.
+fn csv_header(model: &Model, spec: bool, contacts: Columns, loops: bool) -> String {
     let mut cols: Vec<String> = if spec {
         super::body::CSV_HEADER
             .split(',')
@@ -27,8 +28,18 @@ fn csv_header(model: &Model, spec: bool, contacts: bool, loops: bool) -> String 
         c
     };
     cols.push("energy".into());
-    if contacts {
+    if contacts != Columns::None {
         cols.extend(["contacts".to_string(), "normal_force".to_string()]);
+    }
+    if contacts == Columns::Residuals {
+        let names = [
+            "iterations",
+            "converged",
+            "signorini",
+            "coulomb",
+            "dissipation",
+        ];
+        cols.extend(names.iter().chain(&["velocity"]).map(|c| c.to_string()));
     }
     if loops {
         cols.extend(["violation_position", "violation_velocity"].map(String::from));
@@ -36,12 +47,21 @@ fn csv_header(model: &Model, spec: bool, contacts: bool, loops: bool) -> String 
     cols.join(",")
 }
 
+/// The CSV's contact columns.
+#[derive(Clone, Copy, PartialEq)]
+enum Columns {
+    None,
+    Contacts,
+    /// The contacts and their solve.
+    Residuals,
+}
+
 /// One CSV row of `sim` (a body spec: no torques).
 fn write_row(
     out: &mut impl Write,
     sim: &mut Simulator,
     spec: bool,
-    contacts: bool,
+    contacts: Columns,
     loops: bool,
     dt: f64,
 ) -> Result<(), String> {
@@ -57,9 +77,21 @@ fn write_row(
         row += &format!(",{x}");
     }
     row += &format!(",{e}");
-    if contacts {
-        let s = sim.contact_stats();
+    let s = sim.contact_stats();
+    if contacts != Columns::None {
         row += &format!(",{},{}", s.active, s.normal_impulse / dt);
+    }
+    if contacts == Columns::Residuals {
+        let r = s.residuals;
+        row += &format!(
+            ",{},{},{},{},{},{}",
+            s.iterations,
+            u8::from(s.converged),
+            r.signorini,
+            r.coulomb,
+            r.dissipation,
+            r.velocity
+        );
     }
     if loops {
         let w = sim.violation().map_err(|e| e.to_string())?;
@@ -92,10 +124,15 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         Some(path) => Some(crate::util::AtomicFile::create(path)?),
         None => None,
     };
+    let columns = match (contacts, args.residuals) {
+        (false, _) => Columns::None,
+        (true, false) => Columns::Contacts,
+        (true, true) => Columns::Residuals,
+    };
     if let Some(f) = csv.as_mut() {
-        writeln!(f.writer(), "{}", csv_header(model, spec, contacts, loops))
+        writeln!(f.writer(), "{}", csv_header(model, spec, columns, loops))
             .map_err(|e| e.to_string())?;
-        write_row(f.writer(), &mut sim, spec, contacts, loops, dt)?;
+        write_row(f.writer(), &mut sim, spec, columns, loops, dt)?;
     }
     let mut scene = match (spec_nodes, &args.html) {
         (Some((nodes, warnings)), _) => rigid_replay::Scene {
@@ -154,8 +191,10 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     }
     let mut max_speed = (0.0f64, 0usize);
     let mut max_penetration = 0.0f64;
-    // the contact solves: (steps with one, their sweeps, those that met the tolerance)
+    // the contact solves: (steps with one, their sweeps, those that met the tolerance), and
+    // the largest residuals
     let mut solves = (0usize, 0usize, 0usize);
+    let mut residuals = rigid::simulation::contact::ContactResiduals::default();
     let mut progress = super::Progress::new(steps)?;
     let mut failure = None;
     for k in 1..=steps {
@@ -170,6 +209,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             solves.0 += 1;
             solves.1 += stats.iterations;
             solves.2 += usize::from(stats.converged);
+            let (r, s) = (&mut residuals, stats.residuals);
+            r.signorini = r.signorini.max(s.signorini);
+            r.coulomb = r.coulomb.max(s.coulomb);
+            r.dissipation = r.dissipation.max(s.dissipation);
+            r.velocity = r.velocity.max(s.velocity);
         }
         for (i, x) in sim.v().iter().enumerate() {
             if x.abs() > max_speed.0 {
@@ -182,7 +226,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             worst.velocity = worst.velocity.max(w.velocity);
         }
         if let Some(f) = csv.as_mut() {
-            write_row(f.writer(), &mut sim, spec, contacts, loops, dt)?;
+            write_row(f.writer(), &mut sim, spec, columns, loops, dt)?;
         }
         if args.plot.is_some() && (k.is_multiple_of(stride) || k == steps) {
             let tau = tau_row(&mut sim)?;
@@ -300,11 +344,21 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             s.normal_impulse / dt
         );
         if solves.0 > 0 {
+            let (name, unit) = match args.contact_solver {
+                rigid::simulation::contact::Solver::Pgs => ("pgs", "sweeps"),
+                rigid::simulation::contact::Solver::Admm => ("admm", "iterations"),
+            };
             println!(
-                "contact solves: {} steps, {:.1} Gauss-Seidel sweeps on average, {:.1} % converged",
+                "contact solves ({name}): {} steps, {:.1} {unit} on average, {:.1} % converged",
                 solves.0,
                 solves.1 as f64 / solves.0 as f64,
                 100.0 * solves.2 as f64 / solves.0 as f64
+            );
+            let r = residuals;
+            println!(
+                "contact residuals, largest of a step: Signorini {:.1e} J, Coulomb {:.1e} N·s, \
+                 dissipation {:.1e} J, velocity {:.1e} m/s",
+                r.signorini, r.coulomb, r.dissipation, r.velocity
             );
         }
     }

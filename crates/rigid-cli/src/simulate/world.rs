@@ -132,6 +132,7 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
         settings,
         ..ConstraintOptions::default()
     };
+    s.contact.solver = args.contact_solver;
     Ok(World {
         scenario: s,
         spec,

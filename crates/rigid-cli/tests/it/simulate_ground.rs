@@ -74,7 +74,7 @@ fn a_urdf_box_falls_onto_the_ground_and_rests_on_it() {
     // the solver's record: every step after the landing solved to its tolerance
     let solves = stdout
         .lines()
-        .find(|l| l.starts_with("contact solves: "))
+        .find(|l| l.starts_with("contact solves (pgs): "))
         .unwrap_or_else(|| panic!("no record of the contact solves: {stdout}"));
     assert!(solves.ends_with(" % converged"), "{solves}");
     let converged: f64 = solves.rsplit(", ").next().unwrap()[..5]
@@ -91,6 +91,57 @@ fn a_urdf_box_falls_onto_the_ground_and_rests_on_it() {
         (row["normal_force"] - 2.0 * 9.81).abs() < 0.02 * 2.0 * 9.81,
         "{row:?}"
     );
+}
+
+/// `--contact-solver admm --residuals`: the box rests the same, the summary names the solver,
+/// and each CSV row carries the solve's iterations, whether it converged and its residuals.
+#[test]
+fn the_admm_solver_and_its_residuals_in_the_csv() {
+    let dir = scratch("admm");
+    let urdf = dir.join("crate.urdf");
+    std::fs::write(&urdf, BOX_URDF).unwrap();
+    let csv = dir.join("box.csv");
+    let out = rigid(&[
+        "simulate",
+        urdf.to_str().unwrap(),
+        "--floating",
+        "--q0",
+        "0,0,0.5,0,0,0,1",
+        "--ground",
+        "--duration",
+        "1",
+        "--contact-solver",
+        "admm",
+        "--residuals",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("contact solves (admm): "), "{stdout}");
+    assert!(
+        stdout.contains("contact residuals, largest of a step: Signorini "),
+        "{stdout}"
+    );
+    let row = last_row(&csv);
+    assert!((row["q_root_joint_z"] - 0.05).abs() < 1e-4, "{row:?}");
+    assert_eq!(row["contacts"], 4.0, "{row:?}");
+    assert_eq!(row["converged"], 1.0, "{row:?}");
+    assert!(row["iterations"] >= 1.0, "{row:?}");
+    // at rest, solved: the residuals at round-off of the 0.02 N·s impulse and 1e-3 m/s speeds
+    for k in ["signorini", "dissipation", "coulomb"] {
+        assert!(row[k].abs() < 1e-12, "{k}: {row:?}");
+    }
+    assert!(row["velocity"].abs() < 1e-9, "{row:?}");
+    // an unknown solver is refused by name
+    let bad = rigid(&["simulate", "double_pendulum", "--contact-solver", "newton"]);
+    assert!(!bad.status.success());
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.contains("newton"), "{err}");
 }
 
 #[test]

@@ -15,6 +15,7 @@
 //! - **constraints**: held by the same step ([`Simulator::with_constraints`]), the start
 //!   projected onto them.
 
+use super::contact::ContactSettings;
 use super::{
     ConstraintOptions, ControlKind, ControlLaw, Controller, Integrator, JointLimits,
     SimulationError, SimulationOptions, Simulator, TimeScaling,
@@ -65,6 +66,8 @@ pub struct Scenario {
     pub constraints: Vec<ConstraintModel>,
     /// How they are held.
     pub constraint_options: ConstraintOptions,
+    /// The contact solver's settings (used when anything can touch).
+    pub contact: ContactSettings,
 }
 
 impl Scenario {
@@ -85,6 +88,7 @@ impl Scenario {
             collision: None,
             constraints: Vec::new(),
             constraint_options: ConstraintOptions::default(),
+            contact: ContactSettings::default(),
         }
     }
 
@@ -243,6 +247,9 @@ impl Scenario {
         }
         if !self.constraints.is_empty() {
             sim = sim.with_constraints(&self.constraints, self.constraint_options)?;
+        }
+        if self.contact != ContactSettings::default() {
+            sim = sim.with_contact_settings(self.contact)?;
         }
         Ok(sim)
     }

@@ -52,20 +52,51 @@
 // loops over several per-row arrays at once read better indexed
 #![allow(clippy::needless_range_loop)]
 
+mod admm;
+mod residuals;
 #[cfg(feature = "collision")]
 mod rows;
 mod solver;
+
+pub use residuals::ContactResiduals;
 
 #[cfg(feature = "collision")]
 pub(crate) use solver::Block;
 pub(crate) use solver::ContactSolver;
 
+/// The algorithm that solves a step's contact problem (both on the same rows, to the same
+/// tolerance).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Solver {
+    /// Projected Gauss–Seidel on the exact cone, contact by contact (Jean & Moreau).
+    #[default]
+    Pgs,
+    /// The alternating direction method of multipliers on the exact cone with the De Saxcé
+    /// shift, island by island (Carpentier et al. 2024; Pinocchio's ADMM): converges where the
+    /// sweep stalls (stacks, redundant contacts) and spreads a load over a flat face.
+    Admm,
+}
+
+impl std::str::FromStr for Solver {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "pgs" => Ok(Self::Pgs),
+            "admm" => Ok(Self::Admm),
+            _ => Err(format!("unknown contact solver `{s}`: `pgs` or `admm`")),
+        }
+    }
+}
+
 /// The solver's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactSettings {
-    /// The most Gauss–Seidel sweeps per step.
+    /// The algorithm.
+    pub solver: Solver,
+    /// The most sweeps (PGS) or iterations (ADMM) per step.
     pub max_iterations: usize,
-    /// Stop when no impulse changed by more than `tolerance × (largest impulse)` in a sweep.
+    /// Stop when no impulse changed by more than `tolerance × (largest impulse)` in a sweep (PGS)
+    /// or an iteration, with the split `x = z` held to the same (ADMM).
     pub tolerance: f64,
     /// `β ∈ [0, 1]`: the share of a penetration removed by the position correction of one step
     /// (1: all of it, post-stabilisation; 0: none).
@@ -76,9 +107,10 @@ pub struct ContactSettings {
 }
 
 impl Default for ContactSettings {
-    /// 200 sweeps, tolerance `1e-10`, `β = 1`, restitution below 1 cm/s ignored.
+    /// PGS, 200 sweeps, tolerance `1e-10`, `β = 1`, restitution below 1 cm/s ignored.
     fn default() -> Self {
         Self {
+            solver: Solver::Pgs,
             max_iterations: 200,
             tolerance: 1e-10,
             stabilization: 1.0,
@@ -105,10 +137,13 @@ pub struct ContactStats {
     pub candidates: usize,
     /// Of those, the ones that pushed (`λ_n > 0`).
     pub active: usize,
-    /// Gauss–Seidel sweeps done.
+    /// Sweeps (PGS) or iterations (ADMM, the most of an island) done.
     pub iterations: usize,
-    /// Whether the tolerance was met within the sweeps.
+    /// Whether the tolerance was met within `max_iterations`.
     pub converged: bool,
+    /// How far the velocity solve's impulse is from an exact solution (after the energy
+    /// safeguard's scaling).
+    pub residuals: ContactResiduals,
     /// Whether the impulse was scaled down so as not to add kinetic energy (see the
     /// [module](self) documentation).
     pub scaled: bool,

@@ -9,7 +9,9 @@
 //! a hard constraint. Their position error is removed by the position correction with the
 //! contacts' penetration (`σ*_B = −β e/h`).
 
-use super::{ContactSettings, ContactStats};
+use super::admm::Admm;
+use super::residuals::ContactResiduals;
+use super::{ContactSettings, ContactStats, Solver};
 #[cfg(feature = "collision")]
 use crate::collision::ContactPoint;
 use crate::multibody::constraints::solver::{cholesky, cholesky_solve, delassus_rows, primal_rows};
@@ -125,6 +127,8 @@ pub(crate) struct ContactSolver {
     memory: Vec<Memory>,
     next_memory: Vec<Memory>,
     keys: Vec<((usize, usize), Vec3)>,
+    /// The second solver's workspace.
+    admm: Admm,
     /// What the last solve did.
     pub(crate) stats: ContactStats,
 }
@@ -181,6 +185,7 @@ impl ContactSolver {
             memory: Vec::new(),
             next_memory: Vec::new(),
             keys: Vec::new(),
+            admm: Admm::default(),
             stats: ContactStats::default(),
         };
         s.reserve(24);
@@ -573,17 +578,30 @@ impl ContactSolver {
                 }
             }
         }
-        let (iterations, converged) = pgs(
-            &self.blocks,
-            (&self.coupled, &self.coupled_first),
-            K,
-            (&self.bilateral_factor, &mut self.bilateral_step[..mb], idle),
-            &self.target[..m],
-            lambda,
-            sigma,
-            settings,
-            true,
-        );
+        let (iterations, converged) = match settings.solver {
+            Solver::Pgs => pgs(
+                &self.blocks,
+                (&self.coupled, &self.coupled_first),
+                K,
+                (&self.bilateral_factor, &mut self.bilateral_step[..mb], idle),
+                &self.target[..m],
+                lambda,
+                sigma,
+                settings,
+                true,
+            ),
+            Solver::Admm => self.admm.solve(
+                &self.blocks,
+                (&self.coupled, &self.coupled_first),
+                K,
+                idle,
+                &self.target[..m],
+                lambda,
+                sigma,
+                settings,
+                true,
+            ),
+        };
         // ΔK = λᵀ σ_f + ½ λᵀ G λ, with G λ = σ − σ_f; at most the credit of the rebounds
         let (mut lsf, mut lgl) = (0.0, 0.0);
         for r in 0..m {
@@ -659,11 +677,19 @@ impl ContactSolver {
                 self.impulses.push(f[0] * l[0] + f[1] * l[1] + f[2] * l[2]);
             }
         }
+        let residuals = ContactResiduals::of(
+            &self.blocks,
+            &self.target[..m],
+            &self.lambda[..m],
+            &self.sigma[..m],
+            true,
+        );
         self.stats = ContactStats {
             candidates: unilateral,
             active,
             iterations,
             converged,
+            residuals,
             scaled,
             kinetic_change: dk,
             work,
@@ -705,6 +731,9 @@ impl ContactSolver {
         let (lambda, sigma) = (&mut self.mu[..m], &mut self.sigma_mu[..m]);
         lambda.fill(0.0);
         sigma.fill(0.0);
+        // the sweep whichever the solver: without friction the rows are a plain LCP, where it
+        // converges in a few sweeps (ADMM's split converges slowly on the tiny targets of a
+        // resting stack's redundant corners)
         pgs(
             &self.blocks,
             (&self.coupled, &self.coupled_first),

@@ -8,6 +8,7 @@
 mod closed_form;
 mod energy;
 mod robots;
+mod solvers;
 mod step_derivatives;
 mod step_derivatives_pairs;
 mod wheels;
