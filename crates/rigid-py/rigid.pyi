@@ -353,8 +353,8 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
              control: Callable[[float, Vector, Vector], ArrayLike] | None = None,
              every: int = 1, ground: float | None = None, friction: float | None = None,
              restitution: float | None = None, self_collision: bool = False,
-             constraints: list[ConstraintModel] | None = None, srdf: Path | None = None
-             ) -> dict[str, npt.NDArray[np.float64]]:
+             constraints: list[ConstraintModel] | None = None, srdf: Path | None = None,
+             contact_solver: str = "pgs") -> dict[str, npt.NDArray[np.float64]]:
     """Simulate the robot from ``(q0, v0)`` (default: its home, at rest) for ``duration`` s with
     a fixed step ``dt`` (default: an MJCF file's ``timestep``, else 1 ms), as ``rigid simulate``
     (the library's ``Scenario``): forward dynamics by ABA, ``integrator`` ``"semi-implicit"``
@@ -378,11 +378,15 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
     can touch is stepped by ``"semi-implicit"`` time stepping (``"rk4"`` is replaced), a
     floating robot without ``q0`` starts set down at ``target`` (or its home), and
     ``controller="pd"`` holds that stance on its feet. Loops are held exactly by the same step.
+    ``contact_solver``: ``"pgs"`` (projected Gauss-Seidel) or ``"admm"`` (the alternating
+    direction method of multipliers, island by island), the same problem to the same tolerance.
 
     Returns ``t`` (N,), ``q`` (N, nq), ``v`` (N, nv), ``tau`` (N, nv; the control torques) and
     ``energy`` (N,; J), one row every ``every`` steps and the last, in the model's layout; when
-    anything can touch also ``contacts`` (N,; active contacts) and ``normal_force`` (N,; their
-    normal force sum, N); with constraints ``violation_position`` and ``violation_velocity``
+    anything can touch also ``contacts`` (N,; active contacts), ``normal_force`` (N,; their
+    normal force sum, N) and the step's contact solve: ``iterations``, ``converged`` (1 or 0)
+    and its ContactBench residuals ``signorini`` (J), ``coulomb`` (N·s), ``dissipation`` (J),
+    ``velocity_error`` (m/s); with constraints ``violation_position`` and ``violation_velocity``
     (N,; the largest constraint error, m or rad, and its rate): the columns of ``rigid simulate
     --csv``."""
 
@@ -393,14 +397,14 @@ class Simulator:
     file's own floor, geom pairs and ``<equality>`` loops; ``ground`` (a height, m) adds the
     plane ``z = ground`` under a URDF's ``<collision>`` geometry, with ``friction`` (default: the
     file's, else 0.8) and ``restitution`` (default 0); ``dt`` defaults to an MJCF file's
-    ``timestep``, else 1 ms. A model with nothing that can touch raises ``ValueError``. The
-    contacts' memory (warm starts, an impact of the last step) is the last ``step``'s: call it in
+    ``timestep``, else 1 ms; ``contact_solver`` ``"pgs"`` or ``"admm"`` as ``simulate``'s. A model
+    with nothing that can touch raises ``ValueError``. The contacts' memory (warm starts, an impact of the last step) is the last ``step``'s: call it in
     sequence along a trajectory (a ``step`` from a state other than the last one's result
     starts its contacts cold)."""
 
     def __init__(self, model: Model, dt: float | None = None, ground: float | None = None,
                  friction: float | None = None, restitution: float | None = None,
-                 self_collision: bool = False) -> None: ...
+                 self_collision: bool = False, contact_solver: str = "pgs") -> None: ...
     @property
     def dt(self) -> float:
         """The step (s)."""

@@ -106,7 +106,7 @@ pub struct SimulateArgs {
     pub contact_solver: rigid::simulation::contact::Solver,
     /// With --csv, when anything can touch: the contact solve of each step as well, columns
     /// `iterations`, `converged` (1 or 0) and the ContactBench residuals `signorini` (J),
-    /// `coulomb` (N·s), `dissipation` (J) and `velocity` (m/s).
+    /// `coulomb` (N·s), `dissipation` (J) and `velocity_error` (m/s).
     #[arg(long)]
     pub residuals: bool,
     /// Simulated time (s).

@@ -91,6 +91,9 @@ pub(crate) struct Record {
     pub normal_force: Vec<f64>,
     pub violation_position: Vec<f64>,
     pub violation_velocity: Vec<f64>,
+    /// Per row, the contact solve's iterations, whether it converged (1 or 0) and its
+    /// residuals (Signorini, Coulomb, dissipation, velocity error).
+    pub solves: Vec<[f64; 6]>,
 }
 
 pub(crate) fn run<C: Control>(
@@ -110,6 +113,15 @@ pub(crate) fn run<C: Control>(
         rec.contacts.push(stats.active as f64);
         rec.normal_force
             .push(stats.normal_impulse / sim.options().dt);
+        let r = stats.residuals;
+        rec.solves.push([
+            stats.iterations as f64,
+            f64::from(u8::from(stats.converged)),
+            r.signorini,
+            r.coulomb,
+            r.dissipation,
+            r.velocity_error,
+        ]);
         let w = sim.violation()?;
         rec.violation_position.push(w.position);
         rec.violation_velocity.push(w.velocity);
@@ -162,7 +174,10 @@ pub(crate) fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyRes
 /// numpy arrays, one row every `every` steps and the last, in the model's layout: `t` (N),
 /// `q` (N × nq), `v` (N × nv), `tau` (N × nv, the control law's torques), `energy` (N, kinetic
 /// + potential, J); when anything can touch, `contacts` (N, active contacts) and
-/// `normal_force` (N, their normal force sum, N); with constraints, `violation_position` and
+/// `normal_force` (N, their normal force sum, N) and the contact solve of the step (`contact_solver`
+/// `"pgs"` or `"admm"`): `iterations`, `converged` (1 or 0) and its ContactBench residuals
+/// `signorini` (J), `coulomb` (N·s), `dissipation` (J), `velocity_error` (m/s); with
+/// constraints, `violation_position` and
 /// `violation_velocity` (N, the largest constraint error and its rate). The world: an MJCF
 /// file's own floor, geom pairs and `<equality>` elements; `ground` (a height, m) adds the
 /// plane `z = ground` under a robot without one (its URDF `<collision>` or MJCF geoms, Coulomb
@@ -179,7 +194,7 @@ pub(crate) fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyRes
     controller = "none", target = None, move_time = None, profile = "quintic",
     limits = "spring", joint_dynamics = true, control = None, every = 1, ground = None,
     friction = None, restitution = None, self_collision = false, constraints = None,
-    srdf = None
+    srdf = None, contact_solver = "pgs"
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
@@ -204,6 +219,7 @@ pub fn simulate<'py>(
     self_collision: bool,
     constraints: Option<Vec<PyRef<'py, crate::constraints::ConstraintModel>>>,
     srdf: Option<PathBuf>,
+    contact_solver: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let func = "simulate";
     let core: &ModelCore = &model.inner;
@@ -243,6 +259,7 @@ pub fn simulate<'py>(
         ..SimulationOptions::default()
     };
     s.collision = world.collision;
+    s.contact.solver = contact_solver.parse().map_err(|e| value_error(func, e))?;
     s.constraint_options = ConstraintOptions {
         settings: world.constraint_settings,
         ..ConstraintOptions::default()
@@ -314,6 +331,17 @@ fn trajectory<'py>(
     if contacts {
         out.set_item("contacts", PyArray1::from_vec(py, rec.contacts))?;
         out.set_item("normal_force", PyArray1::from_vec(py, rec.normal_force))?;
+        let names = [
+            "iterations",
+            "converged",
+            "signorini",
+            "coulomb",
+            "dissipation",
+        ];
+        for (i, name) in names.iter().chain(&["velocity_error"]).enumerate() {
+            let x: Vec<f64> = rec.solves.iter().map(|s| s[i]).collect();
+            out.set_item(*name, PyArray1::from_vec(py, x))?;
+        }
     }
     if loops {
         let (p, v) = (rec.violation_position, rec.violation_velocity);

@@ -57,7 +57,8 @@ impl Simulator {
 #[pymethods]
 impl Simulator {
     #[new]
-    #[pyo3(signature = (model, dt = None, ground = None, friction = None, restitution = None, self_collision = false))]
+    #[pyo3(signature = (model, dt = None, ground = None, friction = None, restitution = None, self_collision = false, contact_solver = "pgs"))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         model: Py<Model>,
@@ -66,6 +67,7 @@ impl Simulator {
         friction: Option<f64>,
         restitution: Option<f64>,
         self_collision: bool,
+        contact_solver: &str,
     ) -> PyResult<Self> {
         let func = "Simulator";
         let sim = {
@@ -89,6 +91,7 @@ impl Simulator {
             if let Some(dt) = dt {
                 scenario.options.dt = dt;
             }
+            scenario.contact.solver = contact_solver.parse().map_err(|e| value_error(func, e))?;
             let nv = core.model.nv();
             scenario
                 .build_with(OpenLoop(vec![0.0; nv]))

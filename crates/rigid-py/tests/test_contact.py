@@ -33,6 +33,28 @@ def test_a_box_falls_onto_the_ground_and_rests_on_its_face(tmp_path):
     assert run["contacts"].shape == run["t"].shape
 
 
+def test_the_admm_solver_rests_the_box_and_reports_its_residuals(tmp_path):
+    m = crate(tmp_path)
+    runs = {s: rigid.simulate(m, q0=[0, 0, 0.5, 0, 0, 0, 1], duration=1.0, ground=0.0,
+                              every=10, contact_solver=s) for s in ("pgs", "admm")}
+    for s, run in runs.items():
+        assert run["q"][-1, 2] == pytest.approx(0.05, abs=1e-4), s
+        assert run["contacts"][-1] == 4, s
+        assert run["converged"][-1] == 1.0, s
+        assert run["iterations"][-1] >= 1, s
+        # at rest and solved: the residuals at round-off of the 0.02 N·s impulse
+        for k in ("signorini", "coulomb", "dissipation"):
+            assert abs(run[k][-1]) < 1e-12, (s, k, run[k][-1])
+        assert run["velocity_error"][-1] < 1e-9, s
+        assert run["signorini"].shape == run["t"].shape
+    # the same rest reached either way
+    assert np.max(np.abs(runs["pgs"]["q"][-1] - runs["admm"]["q"][-1])) < 1e-6
+    with pytest.raises(ValueError, match="newton"):
+        rigid.simulate(m, duration=0.01, ground=0.0, contact_solver="newton")
+    with pytest.raises(ValueError, match="newton"):
+        rigid.Simulator(m, ground=0.0, contact_solver="newton")
+
+
 def test_solo12_stands_on_the_ground_under_pd():
     path, _ = robot_path("solo12")
     m = rigid.Model.from_urdf(path, floating=True)

@@ -14,7 +14,7 @@ use std::io::Write;
 /// (`_<coordinate>` for multi-dof joints) and `energy`; a body spec's `t,px,py,pz,qx,qy,qz,qw,
 /// wx,wy,wz,vx,vy,vz` (the CoM frame's pose and body twist) and `energy`; then `contacts` and
 /// `normal_force` when anything can touch (and with `--residuals` the solve's `iterations`,
-/// `converged`, `signorini`, `coulomb`, `dissipation`, `velocity`), `violation_position` and
+/// `converged`, `signorini`, `coulomb`, `dissipation`, `velocity_error`), `violation_position` and
 /// `violation_velocity` with bilateral constraints.
 fn csv_header(model: &Model, spec: bool, contacts: Columns, loops: bool) -> String {
     let mut cols: Vec<String> = if spec {
@@ -39,7 +39,12 @@ fn csv_header(model: &Model, spec: bool, contacts: Columns, loops: bool) -> Stri
             "coulomb",
             "dissipation",
         ];
-        cols.extend(names.iter().chain(&["velocity"]).map(|c| c.to_string()));
+        cols.extend(
+            names
+                .iter()
+                .chain(&["velocity_error"])
+                .map(|c| c.to_string()),
+        );
     }
     if loops {
         cols.extend(["violation_position", "violation_velocity"].map(String::from));
@@ -90,7 +95,7 @@ fn write_row(
             r.signorini,
             r.coulomb,
             r.dissipation,
-            r.velocity
+            r.velocity_error
         );
     }
     if loops {
@@ -213,7 +218,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             r.signorini = r.signorini.max(s.signorini);
             r.coulomb = r.coulomb.max(s.coulomb);
             r.dissipation = r.dissipation.max(s.dissipation);
-            r.velocity = r.velocity.max(s.velocity);
+            r.velocity_error = r.velocity_error.max(s.velocity_error);
         }
         for (i, x) in sim.v().iter().enumerate() {
             if x.abs() > max_speed.0 {
@@ -357,8 +362,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             let r = residuals;
             println!(
                 "contact residuals, largest of a step: Signorini {:.1e} J, Coulomb {:.1e} N·s, \
-                 dissipation {:.1e} J, velocity {:.1e} m/s",
-                r.signorini, r.coulomb, r.dissipation, r.velocity
+                 dissipation {:.1e} J, velocity error {:.1e} m/s",
+                r.signorini, r.coulomb, r.dissipation, r.velocity_error
             );
         }
     }

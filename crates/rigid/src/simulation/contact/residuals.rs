@@ -11,7 +11,7 @@
 use super::solver::Block;
 
 /// The residuals of one step's contact solve (0 at an exact solution). Bilateral rows (loops,
-/// welds) enter only `velocity`.
+/// welds) enter only `velocity_error`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ContactResiduals {
     /// Signorini's complementarity `max |λ_n σ̄_n|` (J): an impulse on a contact that separates
@@ -25,7 +25,7 @@ pub struct ContactResiduals {
     /// The dual feasibility `max (−σ̄_n)⁺` over the contacts and limits (`σ̄ + Γ(σ̄) ∈ K_μ*` is
     /// `σ̄_n ≥ 0`) and `|σ̄|` over the bilateral rows (m/s or rad/s): a contact approaching
     /// faster than its target, a constraint violated at the velocity level.
-    pub velocity: f64,
+    pub velocity_error: f64,
 }
 
 impl ContactResiduals {
@@ -45,7 +45,7 @@ impl ContactResiduals {
             let s = |i: usize| sigma[k + i] - target[k + i];
             if b.bilateral {
                 for i in 0..b.dim {
-                    r.velocity = r.velocity.max(s(i).abs());
+                    r.velocity_error = r.velocity_error.max(s(i).abs());
                 }
                 continue;
             }
@@ -60,7 +60,7 @@ impl ContactResiduals {
             } else {
                 r.coulomb = r.coulomb.max(-ln);
             }
-            r.velocity = r.velocity.max(-sn);
+            r.velocity_error = r.velocity_error.max(-sn);
         }
         r
     }
