@@ -304,13 +304,15 @@ const SAME_POINT: f64 = 1e-6;
 /// flat sole is uneven by a fraction of a millimetre.
 pub(crate) const RESTING_FACE: f64 = 1e-3;
 
-/// Keeps at most four of the points near a plane of normal `n`, as Bullet's manifold reduction
+/// Keeps four of the points near a plane of normal `n`, as Bullet's manifold reduction
 /// (the deepest, the farthest from it, the one making the largest triangle with those two, and
 /// the one making the largest triangle on the other side of their line), each taken first from
 /// the resting face (the points within [`RESTING_FACE`] of the deepest) and from the others
 /// only when the face has no point that spreads the set: a flat sole rests on its four widest
 /// points, not on its deepest one and three corners raised by its rounded edges; a box landing
-/// on one corner keeps the other corners as speculative contacts.
+/// on one corner keeps the other corners as speculative contacts. Then the points of the
+/// resting face under the envelope of those four (at most [`MOST_POINTS`] in all): an uneven
+/// sole settles on points the widest four may miss.
 ///
 /// Returns whether the resting face alone did not fill the set (points beyond it were wanted).
 fn reduce(pts: &mut Vec<(Vec3, f64, usize)>, n: &Vec3) -> bool {
@@ -352,7 +354,94 @@ fn reduce(pts: &mut Vec<(Vec3, f64, usize)>, n: &Vec3) -> bool {
         }
         keep.push(p);
     }
+    add_under_envelope(&mut keep, pts, n, deepest);
     pts.clear();
     pts.extend(keep);
     beyond
+}
+
+/// The most ground points a body keeps: the four widest, and those of its resting face under
+/// their envelope ([`add_under_envelope`]).
+const MOST_POINTS: usize = 8;
+
+/// A point within this of the deepest (m) touches the ground as much as the deepest does.
+const TOUCHING: f64 = 1e-6;
+
+/// Adds to `keep` the points of `pts` on the resting face (within [`RESTING_FACE`] of the
+/// deepest) that lie under the kept points' envelope when two points 0.1 mm apart or more touch
+/// (within [`TOUCHING`] of the deepest: the body rests on a line or a face, not on a rounded
+/// point, which the four widest hold as it rolls): a point
+/// inside a triangle of kept points
+/// (seen along `n`) whose gap is below the gaps of its corners interpolated there by more than
+/// 1 µm would touch before them as the body settles onto them (a mesh sole uneven by a fraction
+/// of a millimetre rests on its hull's lowest facet, which the four widest points may miss), and
+/// a point outside them within [`TOUCHING`] of the deepest. The deepest such point first, then
+/// again against the grown set, at most [`MOST_POINTS`] kept.
+fn add_under_envelope(
+    keep: &mut Vec<(Vec3, f64, usize)>,
+    pts: &[(Vec3, f64, usize)],
+    n: &Vec3,
+    deepest: f64,
+) {
+    // on one point (a ball, a rounded foot) the four widest hold the body as it rolls; on a
+    // line or a face the others may have to as it settles
+    let low = pts
+        .iter()
+        .find(|p| p.1 == deepest)
+        .map_or(Vec3::zeros(), |p| p.0);
+    let line = pts
+        .iter()
+        .any(|p| p.1 <= deepest + TOUCHING && (p.0 - low).norm() > 1e-4);
+    if !line {
+        return;
+    }
+    while keep.len() < MOST_POINTS {
+        let mut worst: Option<(f64, usize)> = None;
+        for (i, p) in pts.iter().enumerate() {
+            if p.1 > deepest + RESTING_FACE || keep.iter().any(|k| (k.0 - p.0).norm() <= 1e-4) {
+                continue;
+            }
+            // outside every kept triangle: wanted if it touches (it extends the support)
+            let under = match envelope(keep, &p.0, n) {
+                Some(held) => held - p.1,
+                None if p.1 <= deepest + TOUCHING => deepest + RESTING_FACE - p.1,
+                None => continue,
+            };
+            if under > 1e-6 && worst.is_none_or(|(w, _)| under > w) {
+                worst = Some((under, i));
+            }
+        }
+        let Some((_, i)) = worst else {
+            return;
+        };
+        keep.push(pts[i]);
+    }
+}
+
+/// The lowest gap at `x` (seen along `n`) of the triangles of kept points that contain it,
+/// interpolated linearly from their corners' gaps; `None` when no triangle contains it.
+fn envelope(keep: &[(Vec3, f64, usize)], x: &Vec3, n: &Vec3) -> Option<f64> {
+    let k = keep.len();
+    let mut lowest: Option<f64> = None;
+    for a in 0..k {
+        for b in a + 1..k {
+            for c in b + 1..k {
+                let (pa, pb, pc) = (&keep[a], &keep[b], &keep[c]);
+                // barycentric coordinates in the plane normal to n
+                let area = n.dot(&(pb.0 - pa.0).cross(&(pc.0 - pa.0)));
+                if area.abs() < 1e-10 {
+                    continue;
+                }
+                let wa = n.dot(&(pb.0 - x).cross(&(pc.0 - x))) / area;
+                let wb = n.dot(&(pc.0 - x).cross(&(pa.0 - x))) / area;
+                let wc = 1.0 - wa - wb;
+                if wa < -1e-9 || wb < -1e-9 || wc < -1e-9 {
+                    continue;
+                }
+                let g = wa * pa.1 + wb * pb.1 + wc * pc.1;
+                lowest = Some(lowest.map_or(g, |l: f64| l.min(g)));
+            }
+        }
+    }
+    lowest
 }

@@ -242,17 +242,17 @@ fn a_box_on_a_slope_sticks_below_the_friction_angle_and_slides_above_it() {
 
 /// A 1 kg plate whose mesh bottom is uneven by 0.5 mm (a 5 x 5 grid of points at random
 /// heights, as real sole meshes are), set down spinning at 2 rad/s about the vertical (issue
-/// 48): it stops spinning and rests, on the points of its resting face, its normal force the
-/// weight. Not met yet (the reproducer of the open part of issue 48; run it with `--ignored`):
-/// the pose stops (the quaternion constant to 3e-5 over the last 0.5 s), but every step's
-/// `v⁺` holds ω_x = 0.134 rad/s and v_z = −5.3 mm/s, a fixed point where the velocity solve
-/// lets the speculative contacts approach at `−φ/h` and the position correction undoes the
-/// motion; the normal force is off the weight by 33 %. The same without spin; a flat bottom
-/// rests to 1e-12, and so does this one when every point of its resting face is kept: the
-/// reduction to the four widest drops a lower interior vertex, which penetrates and is pushed
-/// back by the position correction each step.
+/// 48): from 0.5 s on the normal force is the weight within 2 % at every step, and from 1 s on
+/// |ω| ≤ 1e-3 rad/s, |v| ≤ 1e-4 m/s on at least 3 points. The issue asks the rest from 0.5 s:
+/// not met here, by physics: it stops spinning at 0.06 s balanced on the line through its two
+/// lowest points, its CoM 1 mm off that line, and tips over it slowly (|ω| 3e-6 rad/s growing
+/// to 2.1e-3 at 0.96 s) onto a third point, where it rests (|ω| ≤ 2.0e-11 rad/s after 1 s). Before,
+/// it rocked for good (|ω| 0.11 rad/s, the force off by 33 %): the four widest points of its
+/// resting face missed the lower interior vertex it
+/// settles on, which penetrated each step and was pushed back by the position correction; the
+/// reduction now keeps the face's points under the envelope of the four and those touching
+/// outside them (`collision::detect`, at most 8).
 #[test]
-#[ignore = "issue 48, not met: v⁺ keeps |ω| 0.11 rad/s, |v| 8.6e-3 m/s after 1 s while the pose has stopped; normal force off by 33 % (bars: 1e-3, 1e-4, 2 %)"]
 fn a_plate_with_an_uneven_mesh_bottom_set_down_spinning_comes_to_rest() {
     let mut seed = 0x9e37_79b9_7f4a_7c15u64;
     let mut next = || {
@@ -283,24 +283,32 @@ fn a_plate_with_an_uneven_mesh_bottom_set_down_spinning_comes_to_rest() {
     let mut sim = simulator(&model, cm, &q0, &[0.0, 0.0, 2.0, 0.0, 0.0, 0.0], 1e-3);
     let (mut worst_force, mut steps): (f64, usize) = (0.0, 0);
     let mut pushing = usize::MAX;
-    for k in 0..1000 {
+    // the largest |ω| and |v| from 0.5 s and from 1 s on
+    let (mut tipping, mut w, mut lin): (f64, f64, f64) = (0.0, 0.0, 0.0);
+    for k in 0..1500 {
         sim.step().unwrap();
+        let v = sim.v();
+        let (wk, vk) = (
+            Vec3::new(v[0], v[1], v[2]).norm(),
+            Vec3::new(v[3], v[4], v[5]).norm(),
+        );
         if k >= 500 {
             let force = sim.contact_stats().normal_impulse / 1e-3;
             worst_force = worst_force.max((force - G).abs() / G);
+            tipping = tipping.max(wk);
+        }
+        if k >= 1000 {
             pushing = pushing.min(sim.contact_stats().active);
             steps += 1;
+            w = w.max(wk);
+            lin = lin.max(vk);
         }
     }
-    let v = sim.v();
-    let (w, lin) = (
-        Vec3::new(v[0], v[1], v[2]).norm(),
-        Vec3::new(v[3], v[4], v[5]).norm(),
-    );
     println!(
-        "plate: after 1 s |ω| = {w:.1e} rad/s, |v| = {lin:.1e} m/s; over the last {steps} steps the normal force within {:.2} % of the weight, at least {pushing} points pushing",
+        "plate: |ω| ≤ {tipping:.1e} rad/s from 0.5 s; over the last {steps} steps |ω| ≤ {w:.1e} rad/s, |v| ≤ {lin:.1e} m/s, at least {pushing} points pushing; from 0.5 s the normal force within {:.2} % of the weight",
         100.0 * worst_force
     );
     assert!(w <= 1e-3 && lin <= 1e-4, "{w} {lin}");
+    assert!(pushing >= 3, "{pushing} points push");
     assert!(worst_force <= 0.02, "{worst_force}");
 }
