@@ -370,8 +370,7 @@ const TOUCHING: f64 = 1e-6;
 /// Adds to `keep` the points of `pts` on the resting face (within [`RESTING_FACE`] of the
 /// deepest) that lie under the kept points' envelope when two points 0.1 mm apart or more touch
 /// (within [`TOUCHING`] of the deepest: the body rests on a line or a face, not on a rounded
-/// point, which the four widest hold as it rolls): a point
-/// inside a triangle of kept points
+/// point, which the four widest hold as it rolls): a point inside a triangle of kept points
 /// (seen along `n`) whose gap is below the gaps of its corners interpolated there by more than
 /// 1 µm would touch before them as the body settles onto them (a mesh sole uneven by a fraction
 /// of a millimetre rests on its hull's lowest facet, which the four widest points may miss), and
