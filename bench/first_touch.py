@@ -94,12 +94,12 @@ def main():
         times["out="].append(batch(TAU))
         time.sleep(args.pause)
         times["out=, after a pause"].append(batch(TAU))
-        limit = rigid.set_output_cache(0)  # every fresh output a new array
+        rigid.set_output_cache(0)  # every fresh output a new array
         batch()
         times["fresh, right after"].append(batch())
         time.sleep(args.pause)
         times["fresh, after a pause"].append(batch())
-        rigid.set_output_cache(limit)  # a fresh output from the array the last call dropped
+        rigid.set_output_cache(1 << 30)  # a fresh output from the array the last call dropped
         batch()
         times["fresh, cache: right after"].append(batch())
         time.sleep(args.pause)

@@ -467,14 +467,16 @@ def rnea_derivatives_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLik
 def set_output_cache(max_bytes: int) -> int:
     """The most bytes of output arrays the batch verbs (``rnea_batch``, ``aba_batch``,
     ``crba_batch``, ``rnea_derivatives_batch``, ``regressor_batch``) keep for their next fresh
-    outputs; returns the previous limit (default 512 MiB; 0: keep none, and let the kept ones
+    outputs; returns the previous limit (default 0: keep none; setting 0 lets the kept ones
     go). A fresh output is made from a kept array of the same size that no Python object
     refers to any more (a result, or any view of it, keeps its array in use), so a loop that
     drops each result before the next call touches no new memory, as with ``out=``: on a
     virtual machine that gives freed memory back to its host, the first touch of a new array
     can cost more than the batch (BENCHMARKS.md). A kept result is a view of the cache's array
     (its ``base``); an empty result, one over the limit, or any with the cache off owns its
-    memory. Not in Pinocchio's Python."""
+    memory. Off by default because a raw pointer to a result's data (``__array_interface__``,
+    ctypes, a C extension) holds no reference: with the cache on, the next call may overwrite
+    what it points to. Not in Pinocchio's Python."""
 
 def regressor_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
                     threads: int | None = None) -> npt.NDArray[np.float64]:

@@ -67,7 +67,10 @@ const PINOCCHIO_ALIASES: [(&str, &str); 13] = [
 /// verbs and numpy arrays. SI units; twists angular first; quaternions x-y-z-w; joints
 /// depth-first. `layout="pinocchio"` models read and write Pinocchio's raw arrays. See the stubs
 /// (`rigid.pyi`) for every verb's formula, units and conventions.
-#[pymodule]
+// `gil_used`: a free-threaded CPython enables the GIL when it imports rigid (with a warning
+// that names the module); the batch verbs' output cache and the pyclasses' state are not
+// written for threads running Python at once
+#[pymodule(gil_used = true)]
 #[pyo3(name = "rigid")]
 fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

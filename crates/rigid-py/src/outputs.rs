@@ -8,8 +8,14 @@
 //! arrays they made, up to a limit in bytes, and make a fresh output from the most recent one
 //! of the same length that no Python object refers to any more: a loop of calls that drops each
 //! result before the next call touches no new memory, as with `out=`.
-//! `rigid.set_output_cache(max_bytes)` sets the limit (0: no cache, and the kept arrays are let
-//! go).
+//! `rigid.set_output_cache(max_bytes)` sets the limit; it starts at 0 (no cache: every fresh
+//! output is a new array), since the reuse has a risk the caller must accept (below).
+//!
+//! **The risk.** "Nothing refers to it" is read from the reference count. A raw pointer to the
+//! data taken through `__array_interface__`, the buffer protocol released early, ctypes or a C
+//! extension that keeps the address without a reference is invisible to it: the array is made
+//! again by the next call and what the pointer reads changes under it. Opt in only where
+//! results are read through numpy objects.
 //!
 //! An output is a reshaped view of a flat array the cache holds; numpy makes every view of a
 //! result (a row, a slice, a memoryview) refer to that flat array, so its reference count is 1
@@ -29,9 +35,10 @@ use pyo3::sync::MutexExt;
 use std::collections::VecDeque;
 use std::sync::{Mutex, MutexGuard};
 
-/// The limit the cache starts with: 512 MiB (10⁵ states of TALOS with its 50 velocities are 40
+/// The limit the cache starts with: 0, no cache (the reuse is opt-in; a limit that serves a
+/// loop is the output's size, e.g. 512 MiB: 10⁵ states of TALOS with its 50 velocities are 40
 /// MB of `rnea_batch`, 10⁴ of `rnea_derivatives_batch` 2 x 200 MB).
-const DEFAULT_LIMIT: usize = 512 << 20;
+const DEFAULT_LIMIT: usize = 0;
 
 /// The arrays the verbs made, oldest first, and the limit on their bytes together.
 struct Cache {
@@ -123,12 +130,16 @@ pub(crate) fn fresh<'py, D: Dimension>(
 }
 
 /// The most bytes of output arrays the batch verbs keep for their next fresh outputs
-/// (default 512 MiB; 0: none, and the kept arrays are let go). Returns the previous limit.
+/// (default 0: none; setting 0 lets the kept arrays go). Returns the previous limit.
 ///
 /// A fresh output is made from a kept array of the same size that no Python object refers to
 /// any more, so a loop that drops each result before the next call touches no new memory (on a
 /// virtual machine that gives freed memory back to its host, a first touch can cost more than
 /// the batch). Arrays still in use count against the limit until they are let go.
+///
+/// Opt in only where results are read through numpy objects: a raw pointer to a result's data
+/// (`__array_interface__`, ctypes, a C extension) holds no reference, so the next call may
+/// overwrite what it points to.
 #[pyfunction]
 pub fn set_output_cache(py: Python<'_>, max_bytes: i128) -> PyResult<i128> {
     if max_bytes < 0 {
