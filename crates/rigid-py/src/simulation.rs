@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 use rigid::io::collision::{exclude_srdf_pairs, file_world, ground_model, FileWorld, WorldOptions};
 use rigid::multibody::constraints::ProximalSettings;
 use rigid::multibody::{Data, Model as RigidModel, MultibodyError};
+use rigid::simulation::contact::ContactStats;
 use rigid::simulation::{
     step_count, ConstraintOptions, Control, Integrator, JointLimits, Scenario, SimulationError,
     SimulationOptions, Simulator,
@@ -113,15 +114,7 @@ pub(crate) fn run<C: Control>(
         rec.contacts.push(stats.active as f64);
         rec.normal_force
             .push(stats.normal_impulse / sim.options().dt);
-        let r = stats.residuals;
-        rec.solves.push([
-            stats.iterations as f64,
-            f64::from(u8::from(stats.converged)),
-            r.signorini,
-            r.coulomb,
-            r.dissipation,
-            r.velocity_error,
-        ]);
+        rec.solves.push(stats.solve_row());
         let w = sim.violation()?;
         rec.violation_position.push(w.position);
         rec.violation_velocity.push(w.velocity);
@@ -331,14 +324,7 @@ fn trajectory<'py>(
     if contacts {
         out.set_item("contacts", PyArray1::from_vec(py, rec.contacts))?;
         out.set_item("normal_force", PyArray1::from_vec(py, rec.normal_force))?;
-        let names = [
-            "iterations",
-            "converged",
-            "signorini",
-            "coulomb",
-            "dissipation",
-        ];
-        for (i, name) in names.iter().chain(&["velocity_error"]).enumerate() {
+        for (i, name) in ContactStats::SOLVE_COLUMNS.iter().enumerate() {
             let x: Vec<f64> = rec.solves.iter().map(|s| s[i]).collect();
             out.set_item(*name, PyArray1::from_vec(py, x))?;
         }

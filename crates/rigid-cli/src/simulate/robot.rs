@@ -5,6 +5,7 @@ use super::world;
 use super::{robot_plot::Samples, SimulateArgs, PLOT_POINTS};
 use crate::load::urdf_path;
 use rigid::multibody::{center_of_mass, column_names, Data, Model};
+use rigid::simulation::contact::{ContactResiduals, ContactStats};
 use rigid::simulation::{JointLimits, Simulator};
 use rigid::spatial::Vec3;
 use rigid_replay::{collision_nodes, robot_nodes, Recording};
@@ -32,19 +33,7 @@ fn csv_header(model: &Model, spec: bool, contacts: Columns, loops: bool) -> Stri
         cols.extend(["contacts".to_string(), "normal_force".to_string()]);
     }
     if contacts == Columns::Residuals {
-        let names = [
-            "iterations",
-            "converged",
-            "signorini",
-            "coulomb",
-            "dissipation",
-        ];
-        cols.extend(
-            names
-                .iter()
-                .chain(&["velocity_error"])
-                .map(|c| c.to_string()),
-        );
+        cols.extend(ContactStats::SOLVE_COLUMNS.map(String::from));
     }
     if loops {
         cols.extend(["violation_position", "violation_velocity"].map(String::from));
@@ -87,16 +76,9 @@ fn write_row(
         row += &format!(",{},{}", s.active, s.normal_impulse / dt);
     }
     if contacts == Columns::Residuals {
-        let r = s.residuals;
-        row += &format!(
-            ",{},{},{},{},{},{}",
-            s.iterations,
-            u8::from(s.converged),
-            r.signorini,
-            r.coulomb,
-            r.dissipation,
-            r.velocity_error
-        );
+        for x in s.solve_row() {
+            row += &format!(",{x}");
+        }
     }
     if loops {
         let w = sim.violation().map_err(|e| e.to_string())?;
@@ -199,7 +181,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     // the contact solves: (steps with one, their sweeps, those that met the tolerance), and
     // the largest residuals
     let mut solves = (0usize, 0usize, 0usize);
-    let mut residuals = rigid::simulation::contact::ContactResiduals::default();
+    let mut residuals = ContactResiduals::default();
     let mut progress = super::Progress::new(steps)?;
     let mut failure = None;
     for k in 1..=steps {
@@ -214,11 +196,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             solves.0 += 1;
             solves.1 += stats.iterations;
             solves.2 += usize::from(stats.converged);
-            let (r, s) = (&mut residuals, stats.residuals);
-            r.signorini = r.signorini.max(s.signorini);
-            r.coulomb = r.coulomb.max(s.coulomb);
-            r.dissipation = r.dissipation.max(s.dissipation);
-            r.velocity_error = r.velocity_error.max(s.velocity_error);
+            residuals = residuals.max(stats.residuals);
         }
         for (i, x) in sim.v().iter().enumerate() {
             if x.abs() > max_speed.0 {
@@ -349,10 +327,10 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             s.normal_impulse / dt
         );
         if solves.0 > 0 {
-            let (name, unit) = match args.contact_solver {
-                rigid::simulation::contact::Solver::Pgs => ("pgs", "sweeps"),
-                rigid::simulation::contact::Solver::Admm => ("admm", "iterations"),
-            };
+            let (name, unit) = (
+                args.contact_solver.name(),
+                args.contact_solver.iterations_name(),
+            );
             println!(
                 "contact solves ({name}): {} steps, {:.1} {unit} on average, {:.1} % converged",
                 solves.0,

@@ -396,14 +396,21 @@ fn add_under_envelope(
     }
     while keep.len() < MOST_POINTS {
         let mut worst: Option<(f64, usize)> = None;
+        // the envelope is nowhere above the highest kept point: a point not 1 µm below it is
+        // under no triangle, and wanted only if it touches
+        let highest = keep.iter().map(|k| k.1).fold(f64::NEG_INFINITY, f64::max);
         for (i, p) in pts.iter().enumerate() {
-            if p.1 > deepest + RESTING_FACE || keep.iter().any(|k| (k.0 - p.0).norm() <= 1e-4) {
+            let touches = p.1 <= deepest + TOUCHING;
+            if p.1 > deepest + RESTING_FACE
+                || (!touches && p.1 >= highest - 1e-6)
+                || keep.iter().any(|k| (k.0 - p.0).norm() <= 1e-4)
+            {
                 continue;
             }
             // outside every kept triangle: wanted if it touches (it extends the support)
             let under = match envelope(keep, &p.0, n) {
                 Some(held) => held - p.1,
-                None if p.1 <= deepest + TOUCHING => deepest + RESTING_FACE - p.1,
+                None if touches => deepest + RESTING_FACE - p.1,
                 None => continue,
             };
             if under > 1e-6 && worst.is_none_or(|(w, _)| under > w) {

@@ -3,6 +3,7 @@
 use crate::spatial::{Transform, Vec3};
 use parry3d_f64::math::{Pose, Rot3, Vector};
 use parry3d_f64::shape::{PolygonalFeature, SharedShape};
+use parry3d_f64::transformation::try_convex_hull;
 
 /// A collision shape in its own frame: the shapes of URDF `<collision>`, of MJCF geoms and of
 /// `rigid mass` parts, with their conventions (axes along z, centred, a cone's origin at its
@@ -88,6 +89,48 @@ impl Shape {
                 }
             }
         }
+    }
+
+    /// How deep the deepest of a convex hull's points lies inside their hull (m): 0, to
+    /// round-off, for the vertices of a convex mesh, which all lie on its surface; the depth of
+    /// its deepest dent for a non-convex one, whose hull fills the dents (and collides in its
+    /// place). The distance of a point to the surface is `min over the hull's faces of
+    /// (d − n·p)`, `n·x = d` a face's plane, `n` outward. 0 for the other shapes.
+    #[must_use]
+    pub fn concavity(&self) -> f64 {
+        let Self::ConvexHull { points } = self else {
+            return 0.0;
+        };
+        let pts: Vec<Vector> = points.iter().map(to_parry).collect();
+        let Ok((vertices, triangles)) = try_convex_hull(&pts) else {
+            return 0.0;
+        };
+        let vertices: Vec<Vec3> = vertices.into_iter().map(from_parry).collect();
+        let centre = vertices.iter().sum::<Vec3>() / vertices.len().max(1) as f64;
+        let planes: Vec<(Vec3, f64)> = triangles
+            .iter()
+            .filter_map(|t| {
+                let [a, b, c] = t.map(|i| vertices[i as usize]);
+                let n = (b - a).cross(&(c - a)).try_normalize(1e-300)?;
+                let n = if n.dot(&(a - centre)) < 0.0 { -n } else { n };
+                Some((n, n.dot(&a)))
+            })
+            .collect();
+        let mut deepest: f64 = 0.0;
+        for p in points {
+            // the point's depth, no deeper than the deepest so far once a face shows it
+            let mut depth = f64::INFINITY;
+            for (n, d) in &planes {
+                depth = depth.min(d - n.dot(p));
+                if depth <= deepest {
+                    break;
+                }
+            }
+            if depth.is_finite() {
+                deepest = deepest.max(depth);
+            }
+        }
+        deepest
     }
 
     /// The name: `sphere`, `box`, `cylinder`, `capsule`, `cone`, `ellipsoid`, `convex hull`.
@@ -616,5 +659,40 @@ mod tests {
                 assert_eq!(found, all);
             }
         }
+    }
+
+    /// A convex mesh's vertices lie on their hull (depth 0 to round-off); points inside a box
+    /// with its corners lie as deep as their distance to its nearest face, `min(h − |x_i|)`.
+    #[test]
+    fn concavity_is_the_depth_of_the_deepest_point_inside_the_hull() {
+        let mut rng = Rng::new(11);
+        let ball: Vec<Vec3> = (0..200)
+            .map(|_| 0.3 * Vec3::new(rng.normal(), rng.normal(), rng.normal()).normalize())
+            .collect();
+        let ball = Shape::ConvexHull { points: ball }.concavity();
+        assert!(ball < 1e-12, "a ball's surface points: {ball:e}");
+        let h = Vec3::new(0.2, 0.1, 0.05);
+        let mut points: Vec<Vec3> = (0..8)
+            .map(|i| {
+                let s = |b: usize| if i & (1 << b) == 0 { -1.0 } else { 1.0 };
+                Vec3::new(s(0) * h.x, s(1) * h.y, s(2) * h.z)
+            })
+            .collect();
+        let mut expected: f64 = 0.0;
+        for _ in 0..50 {
+            let x = Vec3::new(
+                rng.uniform(-h.x, h.x),
+                rng.uniform(-h.y, h.y),
+                rng.uniform(-h.z, h.z),
+            );
+            expected = expected.max((h - x.abs()).min());
+            points.push(x);
+        }
+        let depth = Shape::ConvexHull { points }.concavity();
+        assert!(
+            (depth - expected).abs() < 1e-12,
+            "{depth} against {expected}"
+        );
+        assert_eq!(Shape::Sphere { radius: 1.0 }.concavity(), 0.0);
     }
 }

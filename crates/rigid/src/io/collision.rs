@@ -49,7 +49,8 @@ fn urdf_shape(shape: &UrdfShape, urdf: Option<&Path>) -> Result<Shape, String> {
 /// moving ancestor, in the world when welded to it), placed at the link frame times the
 /// element's `<origin>`, a mesh as its convex hull. Returns the geometries (named
 /// `link/index`) and the warnings: each element that could not be used (a mesh not found or
-/// unreadable, a degenerate shape), naming the link and line, which is skipped.
+/// unreadable, a degenerate shape), naming the link and line, which is skipped; and one for the
+/// meshes that are not convex, naming them (their hulls fill their dents).
 #[cfg(feature = "urdf")]
 #[must_use]
 pub fn urdf_geometries(robot: &UrdfRobot, model: &Model) -> (Vec<Geometry>, Vec<String>) {
@@ -91,7 +92,55 @@ pub fn urdf_geometries(robot: &UrdfRobot, model: &Model) -> (Vec<Geometry>, Vec<
             }
         }
     }
+    warnings.extend(hull_warning(&out));
     (out, warnings)
+}
+
+/// A mesh whose deepest vertex lies inside its convex hull by more than this share of the
+/// hull's size (the diagonal of its bounding box) is not convex.
+const CONCAVE: f64 = 1e-3;
+
+/// The warning for the meshes among `geometries` that are not convex (a vertex deeper inside
+/// their hull than [`CONCAVE`] of its size, [`Shape::concavity`]): they collide as their
+/// convex hulls, which fill their dents. Names each (at most five, then how many more) with
+/// the depth of its deepest vertex.
+fn hull_warning(geometries: &[Geometry]) -> Option<String> {
+    let concave: Vec<(&str, f64)> = geometries
+        .iter()
+        .filter_map(|g| {
+            let Shape::ConvexHull { points } = &g.shape else {
+                return None;
+            };
+            let (lo, hi) = points.iter().fold(
+                (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)),
+                |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+            );
+            let depth = g.shape.concavity();
+            (depth > CONCAVE * (hi - lo).norm()).then_some((g.name.as_str(), depth))
+        })
+        .collect();
+    if concave.is_empty() {
+        return None;
+    }
+    let mut named: Vec<String> = concave
+        .iter()
+        .take(5)
+        .map(|(name, d)| format!("{name} ({:.2} mm)", 1e3 * d))
+        .collect();
+    if concave.len() > 5 {
+        named.push(format!("and {} more", concave.len() - 5));
+    }
+    let n = concave.len();
+    let (meshes, are) = if n == 1 {
+        ("mesh", "is")
+    } else {
+        ("meshes", "are")
+    };
+    Some(format!(
+        "{n} collision {meshes} {are} not convex: each collides as its convex hull, which fills \
+         its dents (the deepest given): {}",
+        named.join(", ")
+    ))
 }
 
 /// The collision geometry of a body made of parts (a `rigid mass` spec) moved by `body`, whose
@@ -99,7 +148,7 @@ pub fn urdf_geometries(robot: &UrdfRobot, model: &Model) -> (Vec<Geometry>, Vec<
 /// the pivot for a pivoted one): one geometry per part with a volume, at its pose. `meshes`
 /// holds, per part, the vertices of a mesh part (`None` for the others; see
 /// [`spec_mesh_vertices`]); a mesh part without them, points, rods and given inertias do not
-/// collide (a warning each).
+/// collide (a warning each), and the meshes that are not convex are named in one warning.
 #[must_use]
 pub fn compound_geometries(
     compound: &Compound,
@@ -133,6 +182,7 @@ pub fn compound_geometries(
             None => warnings.push(format!("{name}: has no shape to collide with (skipped)")),
         }
     }
+    warnings.extend(hull_warning(&out));
     (out, warnings)
 }
 

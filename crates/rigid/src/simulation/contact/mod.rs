@@ -77,6 +77,26 @@ pub enum Solver {
     Admm,
 }
 
+impl Solver {
+    /// Its name, as [`FromStr`](std::str::FromStr) reads it: `pgs` or `admm`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Pgs => "pgs",
+            Self::Admm => "admm",
+        }
+    }
+
+    /// What one of its [`ContactStats::iterations`] is: `sweeps` (PGS) or `iterations` (ADMM).
+    #[must_use]
+    pub fn iterations_name(self) -> &'static str {
+        match self {
+            Self::Pgs => "sweeps",
+            Self::Admm => "iterations",
+        }
+    }
+}
+
 impl std::str::FromStr for Solver {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
@@ -161,4 +181,32 @@ pub struct ContactStats {
     /// The deepest penetration among the candidates before the step's position correction (m,
     /// positive; 0 when none penetrates).
     pub penetration: f64,
+}
+
+impl ContactStats {
+    /// The names of [`solve_row`](Self::solve_row)'s entries: the CSV columns of `rigid
+    /// simulate --residuals` and the keys of Python's `simulate`.
+    pub const SOLVE_COLUMNS: [&'static str; 6] = [
+        "iterations",
+        "converged",
+        "signorini",
+        "coulomb",
+        "dissipation",
+        "velocity_error",
+    ];
+
+    /// The solve as numbers, in the order of [`SOLVE_COLUMNS`](Self::SOLVE_COLUMNS):
+    /// iterations, converged (1 or 0), then the four [`ContactResiduals`].
+    #[must_use]
+    pub fn solve_row(&self) -> [f64; 6] {
+        let r = &self.residuals;
+        [
+            self.iterations as f64,
+            f64::from(u8::from(self.converged)),
+            r.signorini,
+            r.coulomb,
+            r.dissipation,
+            r.velocity_error,
+        ]
+    }
 }

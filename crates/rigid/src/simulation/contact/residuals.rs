@@ -29,6 +29,17 @@ pub struct ContactResiduals {
 }
 
 impl ContactResiduals {
+    /// The larger of each residual of `self` and `other` (the worst over several steps).
+    #[must_use]
+    pub fn max(self, other: Self) -> Self {
+        Self {
+            signorini: self.signorini.max(other.signorini),
+            coulomb: self.coulomb.max(other.coulomb),
+            dissipation: self.dissipation.max(other.dissipation),
+            velocity_error: self.velocity_error.max(other.velocity_error),
+        }
+    }
+
     /// The residuals of `lambda` with `sigma = σ_f + G λ` and the targets `target` over
     /// `blocks`; `friction`: whether the tangent rows are part of the problem (the position
     /// correction has none).

@@ -245,3 +245,50 @@ fn a_body_with_several_joints_is_one_body_for_the_parent_filter() {
     assert_eq!(cm.excluded, vec![(0, 1), (0, 2)]);
     assert_eq!(CollisionData::new(&mj.model, &cm).unwrap().pairs(), 1);
 }
+
+/// A mesh that is not convex collides as its convex hull, and the loader says so, naming it
+/// with the depth of its dent: a 10 cm cube whose top face is pushed 2 cm in at its centre
+/// (the hull is the cube: the dent's vertex lies 20 mm under its top face); the plain cube
+/// beside it is convex and not named.
+#[test]
+fn a_mesh_that_is_not_convex_is_named_in_a_warning() {
+    use rigid::io::collision::urdf_geometries;
+    use rigid::io::urdf::{load_urdf, parse_urdf_file};
+    let dir = std::env::temp_dir().join(format!("rigid-concave-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let corners =
+        "v -0.05 -0.05 -0.05\nv 0.05 -0.05 -0.05\nv 0.05 0.05 -0.05\nv -0.05 0.05 -0.05\n\
+                   v -0.05 -0.05 0.05\nv 0.05 -0.05 0.05\nv 0.05 0.05 0.05\nv -0.05 0.05 0.05\n";
+    let sides = "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n\
+                 f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+    let cube = format!("{corners}{sides}f 5 6 7\nf 5 7 8\n");
+    let dented = format!("{corners}v 0 0 0.03\n{sides}f 5 6 9\nf 6 7 9\nf 7 8 9\nf 8 5 9\n");
+    std::fs::write(dir.join("cube.obj"), cube).unwrap();
+    std::fs::write(dir.join("dented.obj"), dented).unwrap();
+    let inertial = r#"<inertial><mass value="1"/>
+      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>"#;
+    let urdf = dir.join("two.urdf");
+    std::fs::write(
+        &urdf,
+        format!(
+            r#"<robot name="two">
+  <link name="base">{inertial}<collision><geometry><mesh filename="cube.obj"/></geometry></collision></link>
+  <link name="dented">{inertial}<collision><geometry><mesh filename="dented.obj"/></geometry></collision></link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="dented"/>
+    <origin xyz="0 0 0.2"/><axis xyz="0 0 1"/></joint>
+</robot>"#
+        ),
+    )
+    .unwrap();
+    let model = load_urdf(&urdf, false).unwrap();
+    let robot = parse_urdf_file(&urdf).unwrap();
+    let (geometries, warnings) = urdf_geometries(&robot, &model);
+    assert_eq!(geometries.len(), 2);
+    assert_eq!(
+        warnings,
+        [
+            "1 collision mesh is not convex: each collides as its convex hull, which fills its \
+          dents (the deepest given): dented/0 (20.00 mm)"
+        ]
+    );
+}
