@@ -6,7 +6,7 @@ mod mujoco;
 
 use crate::load::load_printing_warnings;
 use clap::Args;
-use rigid::interop::{MujocoLayout, PinocchioLayout};
+use rigid::interop::{Layout, MujocoLayout, PinocchioLayout};
 use rigid::io::cases::{parse_cases_with, Case};
 use rigid::io::urdf::SiblingOrder;
 use rigid::multibody::{
@@ -37,7 +37,7 @@ pub struct EvalArgs {
     /// `mujoco`: MuJoCo's `qpos`, `qvel`, `qacc`, `qfrc` (hinges from `ref`, quaternions `w`
     /// first, free-joint velocity world-linear then body-angular); `mass_matrix` is `mj_fullM`
     /// and `nonlinear_effects` is `qfrc_bias`.
-    #[arg(long, value_enum, default_value = "rigid")]
+    #[arg(long, default_value = "rigid", value_parser = layout())]
     pub layout: Layout,
     /// Add the analytical derivatives to each result: `rnea_derivatives` (`dtau_dq`, `dtau_dv` at
     /// `(q, v, a)`) and `aba_derivatives` (`dqdd_dq`, `dqdd_dv`, `dqdd_dtau` at `(q, v, tau)`),
@@ -54,17 +54,6 @@ pub struct EvalArgs {
     /// file (`--constraints MODEL.xml`) takes its `<equality>` elements (connect, weld, joint).
     #[arg(long)]
     pub constraints: Option<PathBuf>,
-}
-
-/// The layout of the vectors of `rigid eval` (see `rigid::interop`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Layout {
-    /// rigid's: file order, one angle per continuous joint, angular-first free-flyer.
-    Rigid,
-    /// Pinocchio's.
-    Pinocchio,
-    /// MuJoCo's (`rigid::interop::MujocoLayout`).
-    Mujoco,
 }
 
 #[derive(Serialize)]
@@ -541,4 +530,12 @@ fn print_summary(out: &Output) {
             }
         }
     }
+}
+
+/// `--layout`: rigid's names, listed by clap (`[possible values: rigid, pinocchio, mujoco]`),
+/// read by the library's `Layout`.
+fn layout() -> impl clap::builder::TypedValueParser<Value = Layout> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(Layout::ALL.map(Layout::name))
+        .try_map(|name| name.parse::<Layout>())
 }

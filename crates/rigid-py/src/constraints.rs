@@ -38,16 +38,7 @@ fn kind(func: &str, x: &Bound<'_, PyAny>) -> PyResult<ConstraintKind> {
 }
 
 fn reference(func: &str, x: &Bound<'_, PyAny>) -> PyResult<ReferenceFrame> {
-    match name_of(x)?.as_str() {
-        "local" | "body" => Ok(ReferenceFrame::Body),
-        "local_world_aligned" | "world_aligned" => Ok(ReferenceFrame::WorldAligned),
-        other => Err(value_error(
-            func,
-            format!(
-                "reference_frame must be \"local\" or \"local_world_aligned\", got \"{other}\""
-            ),
-        )),
-    }
+    Inner::reference_named(&name_of(x)?).map_err(|e| value_error(func, e))
 }
 
 /// A placement: `None` (the identity), `(R, p)`, a 4 × 4 homogeneous matrix, or an object with

@@ -274,15 +274,8 @@ pub(crate) fn reference_frame(frame: &Bound<'_, PyAny>) -> PyResult<ReferenceFra
         Ok(s) => s,
         Err(_) => frame.getattr("name")?.extract()?,
     };
-    match name.to_ascii_lowercase().as_str() {
-        "world_aligned" | "local_world_aligned" => Ok(ReferenceFrame::WorldAligned),
-        "body" | "local" => Ok(ReferenceFrame::Body),
-        "spatial" | "world" => Ok(ReferenceFrame::Spatial),
-        _ => Err(PyValueError::new_err(format!(
-            "jacobian: frame must be \"world_aligned\", \"body\" or \"spatial\" (Pinocchio's \
-             LOCAL_WORLD_ALIGNED, LOCAL, WORLD), got \"{name}\""
-        ))),
-    }
+    name.parse()
+        .map_err(|e: String| PyValueError::new_err(format!("jacobian: {e}")))
 }
 
 /// The Jacobian (6 × nv) of a joint's frame or a named frame, `V = J v`: in `frame`

@@ -7,7 +7,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
-use rigid::interop::{LayoutError, MujocoLayout, PinocchioLayout};
+use rigid::interop::{Layout, LayoutError, MujocoLayout, PinocchioLayout};
 use rigid::io::mjcf::{self, MjcfError};
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfError, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, FrameId, JointId, MultibodyError};
@@ -316,23 +316,10 @@ fn policy(inertia: &str) -> PyResult<InertiaPolicy> {
         .map_err(|e: String| PyValueError::new_err(format!("Model.from_urdf: inertia: {e}")))
 }
 
-/// The layouts a model can be read and written in.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Layout {
-    Rigid,
-    Pinocchio,
-    Mujoco,
-}
-
 fn parse_layout(func: &str, layout: &str) -> PyResult<Layout> {
-    match layout {
-        "rigid" => Ok(Layout::Rigid),
-        "pinocchio" => Ok(Layout::Pinocchio),
-        "mujoco" => Ok(Layout::Mujoco),
-        _ => Err(PyValueError::new_err(format!(
-            "{func}: layout must be \"rigid\", \"pinocchio\" or \"mujoco\", got \"{layout}\""
-        ))),
-    }
+    layout
+        .parse()
+        .map_err(|e: String| PyValueError::new_err(format!("{func}: {e}")))
 }
 
 /// Issues each warning as a Python warning of `category`.

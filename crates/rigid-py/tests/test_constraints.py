@@ -167,7 +167,7 @@ def test_rigid_layout_wrench_is_moment_first_and_errors_are_value_errors():
     assert rel_err(lam["rigid"], np.r_[lam["pinocchio"][3:], lam["pinocchio"][:3]]) < TOL
     with pytest.raises(ValueError, match="no joint named"):
         rigid.ConstraintModel(m, "point", "elbow")
-    with pytest.raises(ValueError, match="reference_frame must be"):
+    with pytest.raises(ValueError, match=r'"reference_frame" is "world" \(expected "local" or'):
         rigid.ConstraintModel.on_frames(m, "point", "left_sole_link", reference_frame="world")
     other = rigid.Model.builtin("double_pendulum")
     with pytest.raises(ValueError, match="another model"):

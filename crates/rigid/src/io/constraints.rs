@@ -20,7 +20,7 @@
 use crate::multibody::constraints::{
     Baumgarte, ConstraintKind, ConstraintModel, ProximalSettings, UNIVERSE,
 };
-use crate::multibody::{Model, ReferenceFrame};
+use crate::multibody::Model;
 use crate::spatial::{Mat3, Transform, Vec3};
 use serde_json::Value;
 
@@ -151,15 +151,7 @@ fn constraint(c: &Value, model: &Model) -> Result<ConstraintModel, String> {
             ))
         }
     };
-    let reference = match text("reference_frame", Some("local"))?.as_str() {
-        "local" => ReferenceFrame::Body,
-        "local_world_aligned" => ReferenceFrame::WorldAligned,
-        other => {
-            return Err(format!(
-                "\"reference_frame\" is \"{other}\" (expected \"local\" or \"local_world_aligned\")"
-            ))
-        }
-    };
+    let reference = ConstraintModel::reference_named(&text("reference_frame", Some("local"))?)?;
     let (kp, kd) = match c.get("baumgarte") {
         None => (0.0, 0.0),
         Some(b) if b.is_object() => (

@@ -244,3 +244,44 @@ fn joint_transform_fast_path_for_coordinate_axes_equals_rodrigues() {
         }
     }
 }
+
+/// The frames by name, Pinocchio's and rigid's in any case, as the CLI, the constraint files
+/// and Python read them; a constraint refuses the world's frame; the layouts by name.
+#[test]
+fn reference_frames_and_layouts_are_read_by_name() {
+    use rigid::interop::Layout;
+    use rigid::multibody::constraints::ConstraintModel;
+    for frame in [
+        ReferenceFrame::Body,
+        ReferenceFrame::Spatial,
+        ReferenceFrame::WorldAligned,
+    ] {
+        assert_eq!(frame.pinocchio_name().parse::<ReferenceFrame>(), Ok(frame));
+        let lower = frame.pinocchio_name().to_ascii_lowercase();
+        assert_eq!(lower.parse::<ReferenceFrame>(), Ok(frame));
+    }
+    assert_eq!("body".parse(), Ok(ReferenceFrame::Body));
+    assert_eq!("Spatial".parse(), Ok(ReferenceFrame::Spatial));
+    assert_eq!("world_aligned".parse(), Ok(ReferenceFrame::WorldAligned));
+    let e = "mars".parse::<ReferenceFrame>().unwrap_err();
+    assert!(
+        e.contains("\"local\"") && e.ends_with("got \"mars\""),
+        "{e}"
+    );
+    assert_eq!(
+        ConstraintModel::reference_named("LOCAL_WORLD_ALIGNED"),
+        Ok(ReferenceFrame::WorldAligned)
+    );
+    assert_eq!(
+        ConstraintModel::reference_named("world").unwrap_err(),
+        "\"reference_frame\" is \"world\" (expected \"local\" or \"local_world_aligned\")"
+    );
+    for layout in Layout::ALL {
+        assert_eq!(layout.name().parse(), Ok(layout));
+        assert_eq!(layout.to_string(), layout.name());
+    }
+    assert_eq!(
+        "Pinocchio".parse::<Layout>().unwrap_err(),
+        "layout must be \"rigid\", \"pinocchio\" or \"mujoco\", got \"Pinocchio\""
+    );
+}

@@ -18,6 +18,35 @@ pub enum ReferenceFrame {
     WorldAligned,
 }
 
+impl ReferenceFrame {
+    /// Pinocchio's name of the frame: `LOCAL` (body), `WORLD` (spatial), `LOCAL_WORLD_ALIGNED`.
+    #[must_use]
+    pub fn pinocchio_name(self) -> &'static str {
+        match self {
+            Self::Body => "LOCAL",
+            Self::Spatial => "WORLD",
+            Self::WorldAligned => "LOCAL_WORLD_ALIGNED",
+        }
+    }
+}
+
+impl std::str::FromStr for ReferenceFrame {
+    type Err = String;
+    /// A frame by Pinocchio's name or rigid's, in any case: `local` or `body`, `world` or
+    /// `spatial`, `local_world_aligned` or `world_aligned`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "local" | "body" => Ok(Self::Body),
+            "world" | "spatial" => Ok(Self::Spatial),
+            "local_world_aligned" | "world_aligned" => Ok(Self::WorldAligned),
+            _ => Err(format!(
+                "the reference frame must be \"local\" (or \"body\"), \"world\" (or \"spatial\") \
+                 or \"local_world_aligned\" (or \"world_aligned\"), got \"{s}\""
+            )),
+        }
+    }
+}
+
 /// Column k of the spatial Jacobian: `J_k = [Ad_{oMi}] S_k`, i the joint of dof k.
 /// Fills `data.jacobian` (6 x nv) and `data.placements`.
 ///

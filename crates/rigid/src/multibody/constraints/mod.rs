@@ -226,6 +226,21 @@ impl ConstraintModel {
         )
     }
 
+    /// A constraint's reference frame by its name, as [`ReferenceFrame`]'s `FromStr` reads it
+    /// (`local` or `body`, `local_world_aligned` or `world_aligned`, any case), the world's
+    /// (`WORLD`) refused: `λ` is in the axes of c1 or of the world at c1, as in Pinocchio.
+    ///
+    /// # Errors
+    /// Another name, or `world`: the message names it and the two a constraint takes.
+    pub fn reference_named(name: &str) -> Result<ReferenceFrame, String> {
+        match name.parse() {
+            Ok(ReferenceFrame::Spatial) | Err(_) => Err(format!(
+                "\"reference_frame\" is \"{name}\" (expected \"local\" or \"local_world_aligned\")"
+            )),
+            Ok(frame) => Ok(frame),
+        }
+    }
+
     /// The same with reference frame `reference`.
     #[must_use]
     pub fn with_reference(mut self, reference: ReferenceFrame) -> Self {
