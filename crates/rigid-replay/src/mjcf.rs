@@ -68,12 +68,13 @@ pub(crate) fn nodes(scene: &mut Scene, path: &Path) -> bool {
             MjcfShape::Mesh {
                 name,
                 file,
+                inline,
                 scale,
                 refpos,
                 refrot,
             } => {
                 let index = *meshes.entry(name.clone()).or_insert_with(|| {
-                    match read_trimesh(file) {
+                    match inline.clone().map_or_else(|| read_trimesh(file), Ok) {
                         Ok(mut t) if !t.triangles.is_empty() => {
                             // v ← scale ∘ (Rᵀ (v - refpos)), as the importer places it
                             for v in &mut t.vertices {

@@ -53,6 +53,7 @@ mod turn;
 
 pub use detect::CollisionData;
 pub(crate) use detect::RESTING_FACE;
+pub(crate) use shape::hull_triangles;
 pub use shape::Shape;
 pub(crate) use turn::{Feature, Turn};
 

@@ -404,6 +404,19 @@ fn sphere_points() -> Vec<Vec3> {
     v
 }
 
+/// The convex hull of `points`: its vertices and its triangles (outward, counter-clockwise),
+/// or `None` when the points are flat or degenerate.
+pub(crate) fn hull_triangles(points: &[Vec3]) -> Option<(Vec<Vec3>, Vec<[usize; 3]>)> {
+    let pts: Vec<Vector> = points.iter().map(to_parry).collect();
+    let (vertices, triangles) = try_convex_hull(&pts).ok()?;
+    (triangles.len() >= 4).then(|| {
+        (
+            vertices.into_iter().map(from_parry).collect(),
+            triangles.iter().map(|t| t.map(|i| i as usize)).collect(),
+        )
+    })
+}
+
 impl Parry {
     /// The parry shape of `shape`.
     ///

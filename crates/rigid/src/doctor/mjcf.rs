@@ -98,11 +98,15 @@ fn urdf_geometry(g: &MjcfGeom, to_body: &Transform) -> Option<UrdfGeometry> {
         },
         MjcfShape::Mesh {
             file,
+            inline,
             scale,
             refpos,
             refrot,
             ..
         } => {
+            if inline.is_some() {
+                return None; // no file for a URDF to name
+            }
             let uniform = (scale.x - scale.y).abs() < 1e-12 && (scale.x - scale.z).abs() < 1e-12;
             let turned = (refrot - crate::spatial::Mat3::identity()).norm() > 1e-12;
             if turned && !uniform {

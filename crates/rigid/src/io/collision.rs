@@ -309,11 +309,14 @@ fn mjcf_geoms(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<usize>, Vec<
             MjcfShape::Box { half } => Ok(Shape::Box { size: 2.0 * half }),
             MjcfShape::Mesh {
                 file,
+                inline,
                 scale,
                 refpos,
                 refrot,
                 ..
-            } => read_mesh(file)
+            } => inline
+                .clone()
+                .map_or_else(|| read_mesh(file), Ok)
                 .map(|m| Shape::ConvexHull {
                     points: m
                         .vertices

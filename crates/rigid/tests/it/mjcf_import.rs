@@ -193,6 +193,27 @@ fn errors_name_the_element_and_line() {
             "<mujoco>\n<worldbody>\n<body><joint/><geom size=\"1\" pos=\"0 NaN 0\"/></body></worldbody></mujoco>",
             "line 3: <geom>: attribute \"pos\" is not finite",
         ),
+        // meshes given in the XML
+        (
+            "<mujoco><asset>\n<mesh name=\"m\" vertex=\"0 0 0 1 0 0 0 1 0 0 0\"/></asset></mujoco>",
+            "line 2: mesh \"m\": attribute \"vertex\" has 11 numbers: 3 per vertex, at least 4",
+        ),
+        (
+            "<mujoco><asset>\n<mesh name=\"m\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\" face=\"0 1 4\"/></asset></mujoco>",
+            "line 2: mesh \"m\": attribute \"face\": 3 vertex indices (0 to 3) per triangle",
+        ),
+        (
+            "<mujoco><asset>\n<mesh name=\"m\" vertex=\"0 0 0 1 0 0 0 1 0 2 2 0\"/></asset></mujoco>",
+            "line 2: mesh \"m\": the mesh volume is too small",
+        ),
+        (
+            "<mujoco><asset>\n<mesh file=\"a.stl\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/></asset></mujoco>",
+            "line 2: <mesh>: a mesh has a file or vertices, not both",
+        ),
+        (
+            "<mujoco><asset>\n<mesh vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/></asset></mujoco>",
+            "line 2: <mesh>: a mesh given by vertices needs a name",
+        ),
     ];
     for (text, want) in cases {
         let e = load(text).unwrap_err().to_string();

@@ -18,7 +18,7 @@ pub(super) fn numbers(
     exact: bool,
 ) -> Result<Option<Vec<f64>>, MjcfError> {
     let Some(text) = value else { return Ok(None) };
-    let mut out = Vec::with_capacity(len);
+    let mut out = Vec::with_capacity(len.min(16));
     for word in text.split_whitespace() {
         let x: f64 = word.parse().map_err(|_| {
             r.invalid(

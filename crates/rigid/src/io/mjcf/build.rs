@@ -479,6 +479,14 @@ fn shape(g: &Geom, doc: &Document) -> MjcfShape {
                 Some(m) => MjcfShape::Mesh {
                     name,
                     file: m.file.clone(),
+                    inline: m.inline.as_ref().map(|d| crate::mass::TriMesh {
+                        vertices: d
+                            .vertices
+                            .iter()
+                            .map(|v| Vec3::new(v[0].into(), v[1].into(), v[2].into()))
+                            .collect(),
+                        triangles: d.faces.clone(),
+                    }),
                     scale: Vec3::from(m.scale),
                     refpos: Vec3::from(m.refpos),
                     refrot: orientation::to_mat3(&m.refquat),

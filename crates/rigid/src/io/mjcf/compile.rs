@@ -44,15 +44,21 @@ pub(super) fn meshes(doc: &Document, r: &Reader) -> Result<HashMap<String, MeshP
     let mut out = HashMap::new();
     let mut files: HashMap<std::path::PathBuf, mesh::MeshData> = HashMap::new();
     for m in &doc.meshes {
-        if !files.contains_key(&m.file) {
+        if m.inline.is_none() && !files.contains_key(&m.file) {
             let data = mesh::read(&m.file)
                 .map_err(|e| r.invalid(&m.elem, format!("mesh file {}: {e}", m.file.display())))?;
             files.insert(m.file.clone(), data);
         }
-        let data = &files[&m.file];
+        let data = m.inline.as_ref().unwrap_or_else(|| &files[&m.file]);
         let vert = mesh::transformed(data, &m.refpos, &m.refquat, &m.scale);
-        let props = mesh::props(&vert, &data.faces, m.rule)
-            .map_err(|e| r.invalid(&m.elem, format!("mesh {}: {e}", m.file.display())))?;
+        let props = mesh::props(&vert, &data.faces, m.rule).map_err(|e| {
+            let message = if m.inline.is_some() {
+                e // the element names the mesh
+            } else {
+                format!("mesh {}: {e}", m.file.display())
+            };
+            r.invalid(&m.elem, message)
+        })?;
         if out.insert(m.name.clone(), props).is_some() {
             return Err(r.invalid(&m.elem, format!("mesh name \"{}\" is used twice", m.name)));
         }

@@ -258,8 +258,11 @@ pub enum MjcfShape {
     Mesh {
         /// The asset's name.
         name: String,
-        /// The file.
+        /// The file (empty when the mesh is given in the XML).
         file: PathBuf,
+        /// The mesh given in the XML (`vertex`, `face`; its convex hull's triangles without
+        /// `face`) instead of a file, before `refpos`, `refquat` and `scale`.
+        inline: Option<crate::mass::TriMesh>,
         /// `scale`.
         scale: Vec3,
         /// `refpos`.

@@ -7,7 +7,7 @@ pub(super) use super::attrs::{
     array, boolean, int, keyword, numbers, orientation, own, partial, scalar,
 };
 use super::defaults::{Defaults, MAIN};
-use super::mesh::MeshInertia;
+use super::mesh::{MeshData, MeshInertia};
 use super::orientation::{self, Quat};
 use super::xml::Element;
 use super::{
@@ -70,7 +70,11 @@ impl Default for Compiler {
 #[derive(Clone, Debug)]
 pub(super) struct MeshAsset {
     pub name: String,
+    /// The file (empty for a mesh given in the XML).
     pub file: PathBuf,
+    /// The mesh given by `vertex` (and `face`) instead of a file: float32 vertices as MuJoCo
+    /// stores them, and the triangles (the convex hull's when `face` is absent).
+    pub inline: Option<MeshData>,
     pub scale: [f64; 3],
     pub refpos: [f64; 3],
     pub refquat: Quat,
@@ -362,13 +366,22 @@ fn mesh_asset(e: &Element, r: &mut Reader, doc: &Document) -> Result<MeshAsset, 
             "built-in and plugin meshes are not supported (give a file)".into(),
         ));
     }
-    let Some(file) = a.get("file") else {
-        return Err(r.invalid(
-            e,
-            "a mesh without a file (vertices in the XML) is not supported".into(),
-        ));
+    let inline = match (a.get("file"), a.get("vertex")) {
+        (Some(_), Some(_)) => {
+            return Err(r.invalid(e, "a mesh has a file or vertices, not both".into()))
+        }
+        (None, None) => {
+            return Err(r.invalid(e, "a mesh needs a file or vertices (\"vertex\")".into()))
+        }
+        (None, Some(vertex)) => Some(inline_mesh(r, e, vertex, a.get("face"))?),
+        (Some(_), None) => None,
     };
-    let name = e.attr("name").map_or_else(|| stem(file), str::to_string);
+    let file = a.get("file").unwrap_or_default();
+    let name = match (e.attr("name"), &inline) {
+        (Some(n), _) => n.to_string(),
+        (None, None) => stem(file),
+        (None, Some(_)) => return Err(r.invalid(e, "a mesh given by vertices needs a name".into())),
+    };
     let rule = match keyword(
         r,
         e,
@@ -393,13 +406,96 @@ fn mesh_asset(e: &Element, r: &mut Reader, doc: &Document) -> Result<MeshAsset, 
     };
     Ok(MeshAsset {
         name,
-        file: mesh_path(r, e, file, &doc.compiler),
+        file: if inline.is_some() {
+            PathBuf::new()
+        } else {
+            mesh_path(r, e, file, &doc.compiler)
+        },
+        inline,
         scale: array(r, e, &a, "scale", [1.0; 3])?,
         refpos: array(r, e, &a, "refpos", [0.0; 3])?,
         refquat,
         rule,
         elem: e.clone(),
     })
+}
+
+/// A mesh given in the XML: `vertex` (x y z per vertex, at least 4, stored as float32 as
+/// MuJoCo does) and `face` (three 0-based vertex indices per triangle); without `face`, the
+/// triangles of the vertices' convex hull (MuJoCo's rule for a mesh without faces).
+fn inline_mesh(
+    r: &Reader,
+    e: &Element,
+    vertex: &str,
+    face: Option<&str>,
+) -> Result<MeshData, MjcfError> {
+    let v = numbers(r, e, Some(vertex), "vertex", usize::MAX, false)?.unwrap_or_default();
+    if v.len() % 3 != 0 || v.len() < 12 {
+        return Err(r.invalid(
+            e,
+            format!(
+                "attribute \"vertex\" has {} numbers: 3 per vertex, at least 4 vertices",
+                v.len()
+            ),
+        ));
+    }
+    let vertices: Vec<[f32; 3]> = v
+        .chunks_exact(3)
+        .map(|c| [c[0] as f32, c[1] as f32, c[2] as f32])
+        .collect();
+    let faces = match face {
+        Some(text) => {
+            let f = numbers(r, e, Some(text), "face", usize::MAX, false)?.unwrap_or_default();
+            let index = |x: f64| {
+                (x.fract() == 0.0 && x >= 0.0 && x < vertices.len() as f64).then_some(x as usize)
+            };
+            let faces: Option<Vec<[usize; 3]>> = (f.len() % 3 == 0 && !f.is_empty())
+                .then(|| {
+                    f.chunks_exact(3)
+                        .map(|c| Some([index(c[0])?, index(c[1])?, index(c[2])?]))
+                        .collect()
+                })
+                .flatten();
+            faces.ok_or_else(|| {
+                r.invalid(
+                    e,
+                    format!(
+                        "attribute \"face\": 3 vertex indices (0 to {}) per triangle",
+                        vertices.len() - 1
+                    ),
+                )
+            })?
+        }
+        #[cfg(feature = "collision")]
+        None => {
+            let points: Vec<Vec3> = vertices
+                .iter()
+                .map(|p| Vec3::new(p[0].into(), p[1].into(), p[2].into()))
+                .collect();
+            let (hull, faces) = crate::collision::hull_triangles(&points).ok_or_else(|| {
+                r.invalid(
+                    e,
+                    "the convex hull of its vertices is flat or degenerate".into(),
+                )
+            })?;
+            // the hull's vertices are some of the float32 ones: exact
+            let vertices = hull.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]);
+            return Ok(MeshData {
+                vertices: vertices.collect(),
+                faces,
+            });
+        }
+        #[cfg(not(feature = "collision"))]
+        None => {
+            return Err(r.invalid(
+                e,
+                "a mesh without \"face\" is its vertices' convex hull, which needs the \
+                 `collision` feature"
+                    .into(),
+            ))
+        }
+    };
+    Ok(MeshData { vertices, faces })
 }
 
 /// Where a mesh file is: `meshdir/file` from the main file's folder if it exists there, else
