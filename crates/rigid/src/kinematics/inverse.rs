@@ -296,7 +296,10 @@ fn limited(model: &Model) -> Vec<Limited> {
             JointType::FreeFlyer => (3..7, false),
             JointType::Spherical => (0..4, false),
             JointType::Planar => (0..0, false),
-            _ => (0..0, true),
+            JointType::Revolute { .. }
+            | JointType::Prismatic { .. }
+            | JointType::Helical { .. }
+            | JointType::Universal { .. } => (0..0, true),
         };
         for k in 0..j.nq {
             let i = j.idx_q + k;

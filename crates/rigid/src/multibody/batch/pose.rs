@@ -44,7 +44,10 @@ pub(crate) fn placement<const W: usize>(model: &Model, i: usize, q: &[L<W>]) -> 
                 }
             }
         }
-        _ => {
+        JointType::Spherical
+        | JointType::Planar
+        | JointType::Helical { .. }
+        | JointType::Universal { .. } => {
             let mut out = X::identity();
             let mut ql = [0.0; 7];
             for l in 0..W {
