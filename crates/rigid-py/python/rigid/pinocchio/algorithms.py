@@ -339,6 +339,7 @@ def getFrameAccelerationDerivatives(model, data, frame_id, rf):
 
 
 def isNormalized(model, q, prec=1e-12):
+    """Every quaternion (and cos/sin pair) of ``q`` of unit norm within ``prec``."""
     return bool(np.allclose(_r.normalize(model, q), np.asarray(q, dtype=float).reshape(-1),
                             rtol=0, atol=prec))
 

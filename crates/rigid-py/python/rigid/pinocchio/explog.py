@@ -11,7 +11,7 @@ from .spatial import Motion, SE3, _vec
 
 __all__ = [
     "Quaternion", "AngleAxis", "exp", "log", "exp3", "log3", "exp6", "log6", "Jexp3", "Jlog3",
-    "Jexp6", "Jlog6", "SE3ToXYZQUAT", "SE3ToXYZQUATtuple", "XYZQUATToSE3", "isNormalized", "rpy",
+    "Jexp6", "Jlog6", "SE3ToXYZQUAT", "SE3ToXYZQUATtuple", "XYZQUATToSE3", "rpy",
 ]
 
 
@@ -234,13 +234,6 @@ def SE3ToXYZQUATtuple(M):
 def XYZQUATToSE3(x):
     x = _vec(x, 7, "XYZQUATToSE3")
     return SE3(Quaternion(x[3:]).toRotationMatrix(), x[:3])
-
-
-def isNormalized(model, q, prec=1e-12):
-    """Every quaternion (and cos/sin pair) of ``q`` of unit norm within ``prec``."""
-    from .. import rigid as r  # noqa: PLC0415
-
-    return bool(np.allclose(r.normalize(model, q), q, rtol=0, atol=prec))
 
 
 class _Rpy:
