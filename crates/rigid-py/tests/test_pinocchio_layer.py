@@ -317,6 +317,9 @@ def test_configurations_equal_pinocchio(c):
             r("interpolate", R.interpolate(rm, q0, q1, u), pin.interpolate(pm, q0, q1, u))
         bad = q0 * 1.3
         r("normalize", R.normalize(rm, bad), pin.normalize(pm, bad))
+        for x in (q0, bad, q0 + 1e-9):
+            assert R.isNormalized(rm, x) == pin.isNormalized(pm, x), "isNormalized"
+            assert R.isNormalized(rm, x, 1e-6) == pin.isNormalized(pm, x, 1e-6), "isNormalized"
         r("column vectors (n, 1)", R.integrate(rm, q0[:, None], v[:, None]),
           pin.integrate(pm, q0, v))
     rigid.seed(1)
