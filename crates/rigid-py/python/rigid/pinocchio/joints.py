@@ -96,6 +96,12 @@ def _inertia_of_json(g):
 # ---------------------------------------------------------------- joint models
 
 
+# rigid's number of position coordinates of each kind of joint (the serialised form's "type"):
+# one angle for a continuous joint and the planar one's heading, quaternions x-y-z-w
+NQ_RIGID = {"revolute": 1, "prismatic": 1, "helical": 1, "universal": 2, "spherical": 4,
+            "free_flyer": 7, "planar": 3}
+
+
 class JointModel:
     """A joint type (Pinocchio's ``JointModel*``): the argument of ``addJoint`` and of the root
     joint of the loaders, and the entries of ``model.joints``."""

@@ -10,7 +10,8 @@ import warnings
 import numpy as np
 
 from .. import rigid as _r
-from .joints import JointModel, JointModelFreeFlyer, JointModelRX, JointModelRY, JointModelRZ
+from .joints import (NQ_RIGID, JointModel, JointModelFreeFlyer, JointModelRX, JointModelRY,
+                     JointModelRZ)
 from .model import Model
 from .explog import exp3
 from .spatial import SE3, Inertia, _GEN
@@ -73,9 +74,6 @@ class GeometryModel:
         return 0
 
 
-# rigid's number of position coordinates of each kind of joint
-_NQ_RIGID = {"revolute": 1, "prismatic": 1, "helical": 1, "universal": 2, "spherical": 4,
-             "free_flyer": 7, "planar": 3}
 
 
 def _root(root_joint, func):
@@ -85,7 +83,7 @@ def _root(root_joint, func):
     if isinstance(root_joint, Model):
         raise NotImplementedError(f"{func}(filename, model): pass the root joint or nothing; the "
                                   "model is returned")
-    if isinstance(root_joint, JointModel) and root_joint._kind()["type"] in _NQ_RIGID:
+    if isinstance(root_joint, JointModel) and root_joint._kind()["type"] in NQ_RIGID:
         return True
     raise NotImplementedError(
         f"{func}: root joint {type(root_joint).__name__}: rigid.pinocchio has no such joint")
@@ -96,7 +94,7 @@ def _root_kind(d, root_joint):
     same body; Pinocchio's root joint has no limits)."""
     r = d["joints"][0]
     kind = root_joint._kind()
-    nq, nv = _NQ_RIGID[kind["type"]], root_joint.nv
+    nq, nv = NQ_RIGID[kind["type"]], root_joint.nv
     dq, dv = nq - r["nq"], nv - r["nv"]
     r.update(kind=kind, nq=nq, nv=nv, continuous=bool(root_joint._continuous))
     for j in d["joints"][1:]:

@@ -18,9 +18,9 @@ import numpy as np
 from .. import rigid as _r
 from .data import Data
 from .joints import *  # noqa: F401,F403  (the names Pinocchio's users reach through the model)
-from .joints import (JOINT_MODELS, ArgumentPosition, Frame, FrameType, _KIND_OF_TYPE,  # noqa: F401
-                     _Universe, _frames_of, _inertia_json, _inertia_of_json, _joint_model_of,
-                     _se3_json, _se3_of_json)
+from .joints import (JOINT_MODELS, NQ_RIGID, ArgumentPosition, Frame, FrameType,  # noqa: F401
+                     _KIND_OF_TYPE, _Universe, _frames_of, _inertia_json, _inertia_of_json,
+                     _joint_model_of, _se3_json, _se3_of_json)
 from .spatial import SE3, Inertia, Motion
 
 MAX = np.finfo(float).max
@@ -485,8 +485,7 @@ class Model(_r.Model):
         if joint_name in self.names:
             raise ValueError(f"addJoint: a joint is already called '{joint_name}'")
         kind = joint_model._kind()
-        nq_r = {"revolute": 1, "prismatic": 1, "helical": 1, "universal": 2, "spherical": 4,
-                "free_flyer": 7, "planar": 3}[kind["type"]]
+        nq_r = NQ_RIGID[kind["type"]]
         nv = joint_model.nv
         idx_q = sum(j["nq"] for j in joints)
         idx_v = sum(j["nv"] for j in joints)
