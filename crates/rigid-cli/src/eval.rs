@@ -375,24 +375,23 @@ fn evaluate(
     let nle = nle.as_slice().to_vec();
     let g = gravity_torques(model, data, &c.q).map_err(e("gravity_torques"))?;
     let g = g.as_slice().to_vec();
-    // ABA is defined when M is positive definite: a non-physical inertia loaded as written can
-    // make it indefinite, and then the case still gets every other output
-    let (ddq, aba_error) = match positive_definite(&mass_matrix) {
-        false => (
+    // ABA is defined when M is positive definite (the library's aba says when it is not): a
+    // non-physical inertia loaded as written can make it indefinite, and then the case still
+    // gets every other output
+    let (ddq, aba_error) = match aba(model, data, &c.q, &c.v, &c.tau) {
+        Ok(a) if a.iter().all(|x| x.is_finite()) => (Some(a.as_slice().to_vec()), None),
+        Ok(_) => (
+            None,
+            Some("aba is not finite: the numbers overflow".to_string()),
+        ),
+        Err(MultibodyError::NotPositiveDefinite) => (
             None,
             Some(
                 "mass matrix is not positive definite (a non-physical inertia): ABA is undefined"
                     .to_string(),
             ),
         ),
-        true => match aba(model, data, &c.q, &c.v, &c.tau) {
-            Ok(a) if a.iter().all(|x| x.is_finite()) => (Some(a.as_slice().to_vec()), None),
-            Ok(_) => (
-                None,
-                Some("aba is not finite: the numbers overflow".to_string()),
-            ),
-            Err(err) => (None, Some(format!("aba: {err}"))),
-        },
+        Err(err) => (None, Some(format!("aba: {err}"))),
     };
     let kinetic_energy = kinetic_energy(model, data, &c.q, &c.v).map_err(e("kinetic_energy"))?;
     let potential_energy = potential_energy(model, data, &c.q).map_err(e("potential_energy"))?;
@@ -469,14 +468,6 @@ fn evaluate(
         constraint_dynamics_derivatives: None,
         impulse_dynamics_derivatives: None,
     })
-}
-
-/// Whether the symmetric matrix `m` (rows) is positive definite: a Cholesky factorisation that
-/// never meets a pivot `≤ 0`.
-fn positive_definite(m: &[Vec<f64>]) -> bool {
-    let n = m.len();
-    let a = nalgebra::DMatrix::from_fn(n, n, |r, c| m[r][c]);
-    n == 0 || nalgebra::Cholesky::new(a).is_some()
 }
 
 fn fmt_vec(x: &[f64]) -> String {
