@@ -18,7 +18,7 @@ the host too. Each round times, on the same inputs:
   - `fresh, right after`: with rigid's output cache off (`rigid.set_output_cache(0)`), a
     fresh output just after the previous fresh output was freed;
   - `fresh, after a pause`: the same after `--pause` seconds of sleep;
-  - `fresh, cache: ...`: the same two with the cache on (the default): the fresh output is
+  - `fresh, cache: ...`: the same two with the cache on (opted in, `set_output_cache(1 << 30)`): the fresh output is
     the array the call before returned and the script dropped, so nothing is touched first;
   - numpy alone: the first touch (`a[:] = 1`) of a new array of the same size, right after and
     after the pause, and the same write to an array already touched, right after and after the

@@ -405,7 +405,8 @@ fn sphere_points() -> Vec<Vec3> {
 }
 
 /// The convex hull of `points`: its vertices and its triangles (outward, counter-clockwise),
-/// or `None` when the points are flat or degenerate.
+/// or `None` when parry makes fewer than 4 triangles (fewer than 4 points, or collinear ones);
+/// flat points with 4 or more on their outline give a two-sided polygon (no volume).
 pub(crate) fn hull_triangles(points: &[Vec3]) -> Option<(Vec<Vec3>, Vec<[usize; 3]>)> {
     let pts: Vec<Vector> = points.iter().map(to_parry).collect();
     let (vertices, triangles) = try_convex_hull(&pts).ok()?;

@@ -177,7 +177,7 @@ fn checked_in_models_match_mujocos_dynamics() {
         );
         seen += 1;
     }
-    assert!(seen >= 8, "only {seen} fixtures");
+    assert!(seen >= 9, "only {seen} fixtures");
 }
 
 /// Per package: files, compiled by MuJoCo, loaded by rigid, matching.

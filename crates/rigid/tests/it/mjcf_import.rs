@@ -207,6 +207,10 @@ fn errors_name_the_element_and_line() {
             "line 2: mesh \"m\": the mesh volume is too small",
         ),
         (
+            "<mujoco><asset>\n<mesh name=\"m\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1e39\"/></asset></mujoco>",
+            "line 2: mesh \"m\": attribute \"vertex\": a number beyond float32's range",
+        ),
+        (
             "<mujoco><asset>\n<mesh file=\"a.stl\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/></asset></mujoco>",
             "line 2: <mesh>: a mesh has a file or vertices, not both",
         ),

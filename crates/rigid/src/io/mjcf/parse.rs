@@ -443,6 +443,14 @@ fn inline_mesh(
         .chunks_exact(3)
         .map(|c| [c[0] as f32, c[1] as f32, c[2] as f32])
         .collect();
+    if vertices.iter().flatten().any(|x| !x.is_finite()) {
+        return Err(r.invalid(
+            e,
+            "attribute \"vertex\": a number beyond float32's range (MuJoCo stores vertices as \
+             float32)"
+                .into(),
+        ));
+    }
     let faces = match face {
         Some(text) => {
             let f = numbers(r, e, Some(text), "face", usize::MAX, false)?.unwrap_or_default();
