@@ -36,7 +36,7 @@ pub enum MeshInertia {
     Exact,
     /// A thin shell: areas instead of volumes.
     Shell,
-    /// The convex hull (not computed by rigid: an error when its mass matters).
+    /// The solid bounded by the vertices' convex hull.
     Convex,
 }
 
@@ -223,6 +223,26 @@ pub(super) fn transformed(
         .collect()
 }
 
+/// `inertia="convex"`: the solid bounded by the convex hull of the vertices, its outward
+/// triangles' pyramids with their signed volumes.
+#[cfg(feature = "collision")]
+fn convex(vert: &[[f64; 3]]) -> Result<MeshProps, String> {
+    let points: Vec<crate::spatial::Vec3> = vert.iter().map(|v| (*v).into()).collect();
+    let (hull, faces) = crate::collision::hull_triangles(&points)
+        .ok_or("the convex hull of its vertices is flat or degenerate")?;
+    let hull: Vec<[f64; 3]> = hull.iter().map(|p| [p.x, p.y, p.z]).collect();
+    props(&hull, &faces, MeshInertia::Exact)
+}
+
+#[cfg(not(feature = "collision"))]
+fn convex(_: &[[f64; 3]]) -> Result<MeshProps, String> {
+    Err(
+        "inertia=\"convex\" needs the convex hull, which needs the `collision` feature; use \
+         \"legacy\", \"exact\" or \"shell\""
+            .into(),
+    )
+}
+
 /// The mass properties of the solid (or shell) bounded by `faces` over `vert`, as MuJoCo's
 /// compiler computes them (see the module documentation).
 ///
@@ -235,11 +255,7 @@ pub(super) fn props(
     rule: MeshInertia,
 ) -> Result<MeshProps, String> {
     if rule == MeshInertia::Convex {
-        return Err(
-            "inertia=\"convex\" needs the convex hull, which rigid does not compute; \
-                    use \"legacy\", \"exact\" or \"shell\""
-                .into(),
-        );
+        return convex(vert);
     }
     if vert.len() < 4 {
         return Err("a mesh needs at least 4 vertices".into());
