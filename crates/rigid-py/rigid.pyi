@@ -73,6 +73,14 @@ class Model:
         """The stable serialised form: joints, placements, inertias, frames, limits (null for
         none), armature, damping, friction, gravity, in rigid's layout (JSON)."""
 
+    def save(self, path: str | PathLike[str]) -> list[str]:
+        """Write the model as MJCF (``.xml``) or URDF (``.urdf``, its meshes as OBJ files in
+        ``STEM_meshes/`` beside it), with the collision geometry of the file it was loaded from,
+        as ``rigid convert`` does. Returns the notes on what the format cannot express (velocity
+        limits in MJCF, armature in URDF, ...). ``ValueError`` for a joint the format has no
+        type for (a ball joint in URDF, a planar joint in MJCF), naming it; nothing is written
+        then."""
+
     def with_dynamic_parameters(self, pi: ArrayLike, *, check: bool = True) -> Model:
         """A new model (same layout) whose body inertias are ``pi`` (10·nb, as
         ``dynamic_parameters``), each checked to be physical: finite, mass ≥ 0, inertia about the

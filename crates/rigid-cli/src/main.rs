@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod bench;
+mod convert;
 mod doctor;
 mod eval;
 mod eval_constraints;
@@ -37,6 +38,8 @@ struct Cli {
 enum Command {
     /// Time the multibody algorithms on a model (median ns per call over random states).
     Bench(bench::BenchArgs),
+    /// Write a robot (URDF, MJCF or built-in) as MJCF (`.xml`) or URDF (`.urdf`).
+    Convert(convert::ConvertArgs),
     /// Check a URDF's inertial data: what is wrong, the likely cause, the nearest valid value.
     Doctor(doctor::DoctorArgs),
     /// Mass properties of a body made of parts (a TOML spec): mass, CoM, inertia, G.
@@ -107,6 +110,7 @@ fn main() -> ExitCode {
     };
     match cli.command {
         Command::Bench(args) => report(bench::run(&args)),
+        Command::Convert(args) => report(convert::run(&args)),
         Command::Doctor(args) => report(doctor::run(&args)),
         Command::Mass(args) => mass::run(&args),
         Command::Simulate(args) => report(simulate::run(&args)),

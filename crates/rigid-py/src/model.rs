@@ -384,6 +384,19 @@ impl Model {
         self.inner.model.to_json()
     }
 
+    /// Write the model as MJCF (a `.xml` path) or URDF (`.urdf`, its meshes as OBJ files in
+    /// `STEM_meshes/` beside it), with the collision geometry of the file it was loaded from;
+    /// returns the notes on what the format cannot express (`rigid convert`).
+    fn save(&self, path: PathBuf) -> PyResult<Vec<String>> {
+        let core = &self.inner;
+        rigid::io::write::save(&core.model, core.source.as_deref(), &path).map_err(|e| match &e {
+            rigid::io::write::SaveError::Io { source, .. } => {
+                convert::io_error(source, e.to_string())
+            }
+            _ => PyValueError::new_err(e.to_string()),
+        })
+    }
+
     /// Pickling: `(type(self), (json, layout), {warnings, source, qpos0})`; the copy computes
     /// the same numbers bit for bit and is a new model (a `Data` of the original does not work
     /// with it: pickle the two together, `pickle.dumps((model, data))`, to keep the pair).

@@ -9,6 +9,7 @@
 mod common;
 
 mod bench_cli;
+mod convert_cli;
 mod corpus;
 mod doctor_cli;
 mod eval;

@@ -494,6 +494,33 @@ pub fn file_world(
     }
 }
 
+/// The collision geometry of the robot file at `path` that `model` was built from, with the
+/// warnings of what was skipped: an MJCF file's geoms ([`mjcf_geometries`], by the `.xml`
+/// extension), else a URDF's `<collision>` elements ([`urdf_geometries`]).
+///
+/// # Errors
+/// The file cannot be read or parsed (the message names it).
+#[cfg(all(feature = "urdf", feature = "mjcf"))]
+pub fn file_geometries(
+    path: &Path,
+    model: &Model,
+) -> Result<(Vec<Geometry>, Vec<String>), WorldError> {
+    let unreadable = |e: String| WorldError::File {
+        path: path.display().to_string(),
+        message: e,
+    };
+    let xml = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+    if xml {
+        let m = super::mjcf::load_mjcf(path).map_err(|e| unreadable(e.to_string()))?;
+        Ok(mjcf_geometries(&m))
+    } else {
+        let robot = super::urdf::parse_urdf_file(path).map_err(|e| unreadable(e.to_string()))?;
+        Ok(urdf_geometries(&robot, model))
+    }
+}
+
 /// What a simulation's world adds to a robot file: `rigid simulate`'s `--ground`, `--friction`,
 /// `--restitution` and `--self-collision`, Python's `ground=`, `friction=`, `restitution=`,
 /// `self_collision=`.

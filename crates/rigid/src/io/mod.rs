@@ -1,6 +1,6 @@
 //! Reading files: triangle meshes (STL, OBJ, COLLADA), the body specs of `rigid mass` (TOML),
 //! URDF robots, MuJoCo's MJCF models, constraint files, and finding the robot files of
-//! example-robot-data ([`robots`]).
+//! example-robot-data ([`robots`]); writing MJCF and URDF ([`write`]).
 
 #[cfg(feature = "serde")]
 pub mod cases;
@@ -19,3 +19,5 @@ pub mod robots;
 pub mod spec;
 #[cfg(feature = "urdf")]
 pub mod urdf;
+#[cfg(all(feature = "collision", feature = "mesh"))]
+pub mod write;

@@ -60,3 +60,4 @@ mod shapes;
 mod simulation;
 mod spatial;
 mod urdf_errors;
+mod write;

@@ -1,0 +1,322 @@
+//! The writers (`rigid convert`): a model written as MJCF or URDF and read back by rigid's own
+//! importers has the same joints, limits, armature, damping and friction, and the same M and
+//! bias at random states (to 1e-12: placements pass through a quaternion or roll-pitch-yaw).
+//! The cross-checks against MuJoCo and Pinocchio are in crates/rigid-py/tests/test_convert.py.
+
+use crate::common::{inertia, state, transform, unit};
+use rigid::collision::{Geometry, Shape};
+use rigid::io::mjcf::load_mjcf_str;
+use rigid::io::urdf::load_urdf_str;
+use rigid::io::write::{mjcf::write_mjcf, urdf::write_urdf, WriteError};
+use rigid::multibody::{
+    crba, nonlinear_effects as nle, Data, JointId, JointType, Model, ModelBuilder, Rng,
+};
+use rigid::spatial::{Transform, Vec3};
+
+/// A free-flyer at the world's origin and `n` joints of the `kinds` asked (by index: revolute,
+/// prismatic, spherical, universal, continuous, planar), with limits on the scalar joints,
+/// armature, damping, friction, a welded body and an operational frame.
+fn tree(seed: u64, n: usize, kinds: &[usize]) -> Model {
+    let mut rng = Rng::new(seed);
+    let mut b = ModelBuilder::new("written");
+    b.set_gravity(Vec3::new(0.3, -0.2, -9.81));
+    let root = b
+        .add_joint(
+            None,
+            "root",
+            JointType::FreeFlyer,
+            Transform::identity(),
+            inertia(&mut rng),
+        )
+        .unwrap();
+    let mut stack = vec![root];
+    for k in 0..n {
+        stack.truncate((1 + (rng.next_u64() as usize) % stack.len()).max(1));
+        let pick = kinds[k % kinds.len()];
+        let kind = match pick {
+            0 | 4 => JointType::Revolute {
+                axis: unit(&mut rng),
+            },
+            1 => JointType::Prismatic {
+                axis: unit(&mut rng),
+            },
+            2 => JointType::Spherical,
+            3 => JointType::Universal {
+                axis1: unit(&mut rng),
+                axis2: unit(&mut rng),
+            },
+            _ => JointType::Planar,
+        };
+        let parent = Some(*stack.last().unwrap());
+        let name = format!("j{k}");
+        let id = b
+            .add_joint(parent, &name, kind, transform(&mut rng), inertia(&mut rng))
+            .unwrap();
+        let nv = kind.nv();
+        if kind.nq() == 1 && pick != 4 {
+            let lo = rng.uniform(-2.0, -0.5);
+            b.set_limits(id, &[lo], &[lo + 2.0], &[rng.uniform(1.0, 9.0)], &[3.0])
+                .unwrap();
+        }
+        if pick == 4 {
+            b.set_continuous(id).unwrap();
+        }
+        if kind.nq() == 1 || pick == 3 {
+            let arm: Vec<f64> = (0..nv).map(|_| rng.uniform(0.0, 0.2)).collect();
+            b.set_armature(id, &arm).unwrap();
+        }
+        b.set_joint_dynamics(id, &vec![0.25; nv], &vec![0.5; nv])
+            .unwrap();
+        if k == n / 2 {
+            b.add_fixed_body(parent, "welded", transform(&mut rng), inertia(&mut rng))
+                .unwrap();
+            b.add_frame(Some(id), "tool", transform(&mut rng)).unwrap();
+        }
+        stack.push(id);
+    }
+    b.build().unwrap()
+}
+
+/// max over random states of the relative differences of M and the bias.
+fn dynamics_gap(a: &Model, b: &Model) -> f64 {
+    assert_eq!((a.nq(), a.nv()), (b.nq(), b.nv()));
+    let (mut da, mut db) = (Data::new(a), Data::new(b));
+    let mut rng = Rng::new(3);
+    let mut worst: f64 = 0.0;
+    for _ in 0..4 {
+        let (q, v, _) = state(a, &mut rng);
+        let ma = crba(a, &mut da, &q).unwrap().clone();
+        let mb = crba(b, &mut db, &q).unwrap().clone();
+        let ca = nle(a, &mut da, &q, &v).unwrap().clone();
+        let cb = nle(b, &mut db, &q, &v).unwrap().clone();
+        worst = worst.max((ma - &mb).amax() / mb.amax().max(1.0));
+        worst = worst.max((ca - &cb).amax() / cb.amax().max(1.0));
+    }
+    worst
+}
+
+#[test]
+fn mjcf_written_and_read_back_has_the_same_dynamics_and_joint_data() {
+    for seed in 0..4 {
+        let model = tree(seed, 9, &[0, 1, 2, 3]);
+        let written = write_mjcf(&model, &[]).unwrap();
+        let mjcf = load_mjcf_str(&written.text, ".".as_ref()).unwrap();
+        let back = mjcf.model;
+        let gap = dynamics_gap(&model, &back);
+        assert!(gap < 1e-12, "seed {seed}: M or bias differ by {gap:e}");
+        for (got, want) in [
+            (back.armature(), model.armature()),
+            (back.damping(), model.damping()),
+            (back.friction(), model.friction()),
+            (back.lower_limits(), model.lower_limits()),
+            (back.upper_limits(), model.upper_limits()),
+        ] {
+            assert_eq!(got, want, "seed {seed}");
+        }
+        // MuJoCo has no velocity limit: said, and dropped
+        assert!(written.notes.iter().any(|n| n.contains("velocity limits")));
+        assert!(back.velocity_limits().iter().all(|x| x.is_infinite()));
+        // a universal joint is two hinges named after it
+        let universal = model
+            .joints()
+            .iter()
+            .find(|j| matches!(j.kind, JointType::Universal { .. }))
+            .unwrap();
+        assert!(back.joint_id(&format!("{}_2", universal.name)).is_some());
+        // a welded body is a body; an operational frame a site
+        assert!(back.frame_id("welded").is_ok());
+        assert!(mjcf.sites.iter().any(|s| s.name.as_deref() == Some("tool")));
+    }
+}
+
+#[test]
+fn urdf_written_and_read_back_has_the_same_dynamics_and_joint_data() {
+    for seed in 0..4 {
+        let model = tree(seed, 9, &[0, 1, 4, 5]);
+        let written = write_urdf(&model, &[], "meshes").unwrap();
+        // the free-flyer at the origin is left out, as floating robots' URDFs do
+        assert!(written.notes.iter().any(|n| n.contains("--floating")));
+        // URDF holds no gravity: said; the reader's is the standard one
+        assert!(written.notes.iter().any(|n| n.contains("gravity")));
+        let back = load_urdf_str(&written.text, true)
+            .unwrap()
+            .with_gravity(model.gravity());
+        // ... and no armature: compared without it
+        let mut bare = model.clone();
+        bare.set_armature(&vec![0.0; model.nv()]).unwrap();
+        let gap = dynamics_gap(&bare, &back);
+        assert!(gap < 1e-12, "seed {seed}: M or bias differ by {gap:e}");
+        for (got, want) in [
+            (back.damping(), model.damping()),
+            (back.friction(), model.friction()),
+            (back.lower_limits(), model.lower_limits()),
+            (back.upper_limits(), model.upper_limits()),
+        ] {
+            assert_eq!(got, want, "seed {seed}");
+        }
+        // URDF has no armature: said, and dropped
+        assert!(written.notes.iter().any(|n| n.contains("armature")));
+        let scalar = |m: &Model| -> Vec<f64> {
+            m.joints()
+                .iter()
+                .filter(|j| j.nv == 1 && !j.continuous)
+                .map(|j| m.effort_limits()[j.idx_v])
+                .collect()
+        };
+        assert_eq!(scalar(&back), scalar(&model));
+        for j in model.joints().iter().skip(1) {
+            let k = back.joint_id(&j.name).unwrap();
+            assert_eq!(back.joint(k).continuous, j.continuous, "{}", j.name);
+        }
+        assert!(back.frame_id("welded").is_ok() && back.frame_id("tool").is_ok());
+    }
+}
+
+#[test]
+fn geometry_is_written_as_each_format_can_hold_it() {
+    let model = tree(7, 3, &[0]);
+    let body = Some(JointId(1));
+    let at = Transform::from_translation(Vec3::new(0.1, 0.0, 0.0));
+    let hull: Vec<Vec3> = (0..8)
+        .map(|k| Vec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, (k >> 2) as f64))
+        .chain([Vec3::repeat(0.5)]) // inside: not a hull vertex
+        .collect();
+    let geometries = vec![
+        Geometry::new("ball", body, at, Shape::Sphere { radius: 0.1 }),
+        Geometry::new(
+            "brick",
+            body,
+            at,
+            Shape::Box {
+                size: Vec3::new(0.1, 0.2, 0.3),
+            },
+        ),
+        Geometry::new(
+            "pill",
+            body,
+            at,
+            Shape::Capsule {
+                radius: 0.05,
+                length: 0.2,
+            },
+        ),
+        Geometry::new("cube", body, at, Shape::ConvexHull { points: hull }),
+    ];
+    let mjcf = write_mjcf(&model, &geometries).unwrap();
+    assert!(mjcf.text.contains(r#"type="box" size="0.05 0.1 0.15""#));
+    assert!(mjcf.text.contains(r#"type="capsule" size="0.05 0.1""#));
+    let back = load_mjcf_str(&mjcf.text, ".".as_ref()).unwrap();
+    assert_eq!(back.geoms.len(), 4);
+    // the inline mesh holds the hull's 8 vertices, not the inner point
+    let mesh = mjcf.text.lines().find(|l| l.contains("<mesh")).unwrap();
+    let numbers = mesh.split('"').nth(3).unwrap().split(' ').count();
+    assert_eq!(numbers, 24, "{mesh}");
+
+    let urdf = write_urdf(&model, &geometries, "m").unwrap();
+    assert!(urdf.text.contains(r#"<box size="0.1 0.2 0.3"/>"#));
+    assert!(urdf.text.contains(r#"<sphere radius="0.1"/>"#));
+    // the capsule and the hull as OBJ files; the capsule noted
+    let files: Vec<&str> = urdf.files.iter().map(|f| f.0.as_str()).collect();
+    assert_eq!(files, ["m/pill.obj", "m/cube.obj"]);
+    assert!(urdf.notes.iter().any(|n| n.contains("\"pill\"")));
+    let cube = &urdf.files[1].1;
+    assert_eq!(cube.lines().filter(|l| l.starts_with("v ")).count(), 8);
+    assert_eq!(cube.lines().filter(|l| l.starts_with("f ")).count(), 12);
+}
+
+#[test]
+fn what_a_format_cannot_express_is_an_error_naming_the_joint() {
+    let planar = tree(1, 2, &[5]);
+    let e = write_mjcf(&planar, &[]).unwrap_err();
+    assert_eq!(e.to_string(), "joint \"j0\": MJCF has no planar joint");
+    let ball = tree(1, 2, &[2]);
+    let e = write_urdf(&ball, &[], "m").unwrap_err();
+    assert!(matches!(&e, WriteError::Joint { joint, kind: "spherical", .. } if joint == "j0"));
+    assert_eq!(
+        e.to_string(),
+        "joint \"j0\": URDF has no spherical joint: MJCF has one (rigid convert to .xml)"
+    );
+    // a free-flyer below the root: MuJoCo's free joint moves top-level bodies only
+    let mut b = ModelBuilder::new("nested");
+    let g = rigid::mass::SpatialInertia::from_com(
+        1.0,
+        Vec3::zeros(),
+        rigid::mass::RotationalInertia::diagonal(1.0, 1.0, 1.0),
+    );
+    let r = b
+        .add_joint(
+            None,
+            "hinge",
+            JointType::Revolute { axis: Vec3::z() },
+            Transform::identity(),
+            g,
+        )
+        .unwrap();
+    b.add_joint(
+        Some(r),
+        "free",
+        JointType::FreeFlyer,
+        Transform::identity(),
+        g,
+    )
+    .unwrap();
+    let e = write_mjcf(&b.build().unwrap(), &[]).unwrap_err();
+    assert!(e.to_string().contains("top-level body"), "{e}");
+}
+
+#[test]
+fn a_massless_moving_body_goes_into_its_child_for_mujoco() {
+    // MuJoCo refuses massless moving bodies: a hip of three hinges on two massless links is one
+    // body with three joints (each at its place in it), as MuJoCo's own files write hips
+    let mut rng = Rng::new(5);
+    let mut b = ModelBuilder::new("hip");
+    let zero = rigid::mass::SpatialInertia::zero();
+    let x = b
+        .add_joint(
+            None,
+            "hip_x",
+            JointType::Revolute { axis: Vec3::x() },
+            transform(&mut rng),
+            zero,
+        )
+        .unwrap();
+    let z = b
+        .add_joint(
+            Some(x),
+            "hip_z",
+            JointType::Revolute {
+                axis: unit(&mut rng),
+            },
+            transform(&mut rng),
+            zero,
+        )
+        .unwrap();
+    b.add_joint(
+        Some(z),
+        "hip_y",
+        JointType::Prismatic { axis: Vec3::y() },
+        transform(&mut rng),
+        inertia(&mut rng),
+    )
+    .unwrap();
+    let model = b.build().unwrap();
+    let written = write_mjcf(&model, &[]).unwrap();
+    assert_eq!(
+        written.text.matches("<body ").count(),
+        1,
+        "{}",
+        written.text
+    );
+    assert_eq!(written.text.matches("<joint ").count(), 3);
+    assert_eq!(
+        written
+            .notes
+            .iter()
+            .filter(|n| n.contains("massless body"))
+            .count(),
+        2
+    );
+    let back = load_mjcf_str(&written.text, ".".as_ref()).unwrap().model;
+    let gap = dynamics_gap(&model, &back);
+    assert!(gap < 1e-12, "M or bias differ by {gap:e}");
+}
