@@ -52,6 +52,11 @@ class MjcfWarning(UserWarning):
     """Something in an MJCF file that rigid reads past or tolerates (actuators, sensors, gravity
     compensation, ...): the model loads; the message names the element and the line."""
 
+class SdfWarning(UserWarning):
+    """Something in an SDF file that rigid reads past or leaves out (plugins, a gearbox, a loop a
+    point or a weld cannot close, ...): the model loads; the message names the element and the
+    line."""
+
 class UrdfWarning(UserWarning):
     """Something in a URDF file that was tolerated (a non-physical inertia loaded as written, an
     unknown element, a massless moving link, ...): the message names the element and the line.
@@ -104,10 +109,15 @@ class Model:
         """Load an MJCF file (MuJoCo's XML) with MuJoCo's compiled inertias (mass matrix and bias
         equal MuJoCo's to round-off); what rigid does not model is an ``MjcfWarning``."""
     @staticmethod
+    def from_sdf(path: Path, layout: Layout = "rigid") -> Model:
+        """Load an SDF file (SDFormat 1.4–1.11, one model): links no joint holds float
+        (free-flyers), loops are ``ConstraintModel.from_sdf(model)``; what rigid leaves out
+        (plugins, gearboxes, a loop a point or a weld cannot close) is an ``SdfWarning``."""
+    @staticmethod
     def from_file(path: Path, layout: Layout = "rigid", floating: bool = False,
                   inertia: Literal["strict", "warn", "repair"] = "warn") -> Model:
-        """``from_mjcf`` for a ``.xml`` file, ``from_urdf`` otherwise (``floating`` and
-        ``inertia`` apply to URDF only)."""
+        """``from_mjcf`` for a ``.xml`` file, ``from_sdf`` for ``.sdf``, ``from_urdf``
+        otherwise (``floating`` and ``inertia`` apply to URDF only)."""
     @property
     def qpos0(self) -> Vector | None:
         """MuJoCo's qpos0 (its layout: each body where the file puts it) for a model read from
@@ -663,6 +673,10 @@ class ConstraintModel:
                          kd: float = 0.0) -> ConstraintModel:
         """``q_joint1 = Σ_k polycoef[k] q_joint2^k`` (at most 5 coefficients) for one-dof joints
         (MJCF ``<equality joint>``); ``λ`` the generalised force on joint1."""
+    @staticmethod
+    def from_sdf(model: Model) -> list[ConstraintModel]:
+        """The loops of the SDF file ``model`` was read from: a ball joint a point, a fixed
+        joint a weld, a revolute joint two points on its axis."""
     @staticmethod
     def from_mjcf(model: Model) -> list[ConstraintModel]:
         """The ``<equality>`` elements of the MJCF file ``model`` was read from: ``connect`` a

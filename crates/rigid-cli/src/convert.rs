@@ -24,9 +24,10 @@ pub struct ConvertArgs {
 /// The input cannot be loaded, or as [`save`].
 pub fn run(args: &ConvertArgs) -> Result<(), String> {
     let loaded = load_any(&args.input, &args.load)?;
-    let source = match &loaded.mjcf {
-        Some(m) => m.path.clone(),
-        None => urdf_path(&args.input),
+    let source = match (&loaded.mjcf, &loaded.sdf) {
+        (Some(m), _) => m.path.clone(),
+        (None, Some(s)) => s.path.clone(),
+        (None, None) => urdf_path(&args.input),
     };
     let notes = save(&loaded.model, source.as_deref(), &args.output)
         .map_err(|e| format!("{}: {e}", args.input))?;

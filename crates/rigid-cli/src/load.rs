@@ -5,6 +5,7 @@
 use clap::Args;
 use rigid::io::mjcf::{self, MjcfModel};
 use rigid::io::robots;
+use rigid::io::sdf::{self, SdfModel};
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, Model};
 use std::path::Path;
@@ -38,7 +39,11 @@ impl LoadArgs {
 /// True when `spec` names a file (or looks like a URDF path) rather than a built-in model.
 pub fn is_file(spec: &str) -> bool {
     let p = Path::new(spec);
-    p.exists() || spec.ends_with(".urdf") || spec.ends_with(".xml") || spec.contains('/')
+    p.exists()
+        || spec.ends_with(".urdf")
+        || spec.ends_with(".xml")
+        || spec.ends_with(".sdf")
+        || spec.contains('/')
 }
 
 /// Warnings printed on stderr by the commands that are not about the model itself.
@@ -81,12 +86,17 @@ pub struct Loaded {
     pub warnings: Vec<String>,
     /// The MJCF import, for an `.xml` file (geoms, MuJoCo's layout, ...).
     pub mjcf: Option<MjcfModel>,
+    /// The SDF import, for an `.sdf` file (geometry, loops, home configuration).
+    pub sdf: Option<SdfModel>,
 }
 
 impl Loaded {
     /// The configuration the file describes: MuJoCo's `qpos0` for MJCF (each body where the
     /// file puts it), rigid's neutral configuration otherwise.
     pub fn home(&self) -> Vec<f64> {
+        if let Some(s) = &self.sdf {
+            return s.home.clone();
+        }
         let mut q = rigid::multibody::neutral(&self.model);
         if let Some(m) = &self.mjcf {
             // qpos0 has the model's length and finite entries: the conversion cannot fail
@@ -94,6 +104,13 @@ impl Loaded {
         }
         q
     }
+}
+
+/// True when `spec` names an SDF file: its extension is `.sdf` (any case).
+pub fn is_sdf(spec: &str) -> bool {
+    Path::new(spec)
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("sdf"))
 }
 
 /// True when `spec` names an MJCF file: its extension is `.xml` (any case).
@@ -121,6 +138,22 @@ pub fn load_any(spec: &str, args: &LoadArgs) -> Result<Loaded, String> {
             model: m.model.clone(),
             warnings: m.warnings.iter().map(ToString::to_string).collect(),
             mjcf: Some(m),
+            sdf: None,
+        });
+    }
+    if is_sdf(spec) {
+        if args.floating {
+            return Err(format!(
+                "--floating applies to URDF models; the SDF file \"{spec}\" floats every link \
+                 that no joint holds (and welds them in a <static> model)"
+            ));
+        }
+        let m = sdf::load_sdf(spec).map_err(|e| format!("{spec}: {e}"))?;
+        return Ok(Loaded {
+            model: m.model.clone(),
+            warnings: m.warnings.iter().map(ToString::to_string).collect(),
+            mjcf: None,
+            sdf: Some(m),
         });
     }
     let (model, warnings) = load_urdf_or_builtin(spec, args)?;
@@ -128,6 +161,7 @@ pub fn load_any(spec: &str, args: &LoadArgs) -> Result<Loaded, String> {
         model,
         warnings,
         mjcf: None,
+        sdf: None,
     })
 }
 

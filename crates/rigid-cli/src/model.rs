@@ -5,7 +5,7 @@
 #[path = "model_mjcf.rs"]
 mod mjcf;
 
-use crate::load::{is_file, is_mjcf, load_model, LoadArgs};
+use crate::load::{is_file, is_mjcf, is_sdf, load_any, load_model, LoadArgs};
 use clap::Args;
 use rigid::io::urdf::{self, build_model_with};
 use rigid::multibody::{FrameKind, Model};
@@ -27,6 +27,31 @@ pub struct ModelArgs {
 pub fn run(args: &ModelArgs) -> Result<(), String> {
     if is_mjcf(&args.model) {
         return mjcf::run(args);
+    }
+    if is_sdf(&args.model) {
+        let loaded = load_any(&args.model, &args.load)?;
+        let sdf = loaded.sdf.as_ref().expect("an SDF file");
+        println!(
+            "SDF {} (version {}): {} loop-closing constraints ({}), {} collision geometries",
+            args.model,
+            sdf.version,
+            sdf.constraints.len(),
+            sdf.constraints
+                .iter()
+                .map(|c| format!("{} ({} rows)", c.name, c.dim()))
+                .collect::<Vec<_>>()
+                .join(", "),
+            sdf.geometries.len()
+        );
+        print_model(&loaded.model);
+        println!("{} warning(s)", loaded.warnings.len());
+        for w in &loaded.warnings {
+            println!("  warning: {w}");
+        }
+        let mut issues = body_report(&loaded.model);
+        issues.extend(massless_subtrees(&loaded.model));
+        print_report(&issues, loaded.model.joints().len(), "bodies");
+        return Ok(());
     }
     if !is_file(&args.model) {
         let model = load_model(&args.model, &args.load)?;

@@ -187,6 +187,30 @@ impl ConstraintModel {
             .collect())
     }
 
+    /// The loops of the SDF file `model` was read from: each joint whose child was already in
+    /// the tree (a ball joint a point, a fixed joint a weld, a revolute joint two points on its
+    /// axis; the library's `SdfModel::constraints`).
+    #[staticmethod]
+    fn from_sdf(model: PyRef<'_, Model>) -> PyResult<Vec<Self>> {
+        let f = "ConstraintModel.from_sdf";
+        let core = &model.inner;
+        let path = core
+            .source
+            .as_ref()
+            .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("sdf")))
+            .ok_or_else(|| value_error(f, "the model was not read from an SDF file"))?;
+        let sdf = rigid::io::sdf::load_sdf(path)
+            .map_err(|e| value_error(f, format!("{}: {e}", path.display())))?;
+        Ok(sdf
+            .constraints
+            .into_iter()
+            .map(|inner| Self {
+                inner,
+                model: Arc::clone(core),
+            })
+            .collect())
+    }
+
     /// `q_joint1 = Σ_k polycoef[k] q_joint2^k` for one-dof joints (MJCF `<equality joint>`);
     /// without joint2, `q_joint1 = polycoef[0]`.
     #[staticmethod]

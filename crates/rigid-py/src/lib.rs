@@ -84,6 +84,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::Data>()?;
     m.add("UrdfWarning", m.py().get_type::<model::UrdfWarning>())?;
     m.add("MjcfWarning", m.py().get_type::<model::MjcfWarning>())?;
+    m.add("SdfWarning", m.py().get_type::<model::SdfWarning>())?;
     m.add_function(wrap_pyfunction!(dynamics::rnea, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::aba, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::crba, m)?)?;

@@ -19,6 +19,14 @@ use std::sync::Arc;
 
 pyo3::create_exception!(
     rigid,
+    SdfWarning,
+    pyo3::exceptions::PyUserWarning,
+    "Something in an SDF file that rigid reads past or leaves out (plugins, a gearbox, a loop a \
+     point or a weld cannot close, ...): the file loads, the message names the element and the line."
+);
+
+pyo3::create_exception!(
+    rigid,
     MjcfWarning,
     pyo3::exceptions::PyUserWarning,
     "Something in an MJCF file that rigid reads past or tolerates (actuators, sensors, gravity \
@@ -493,8 +501,28 @@ impl Model {
         })
     }
 
-    /// Load a model file, MJCF for a `.xml` file and URDF otherwise (`floating` and `inertia`
-    /// apply to URDF only).
+    /// Load an SDF file (SDFormat 1.4–1.11, one model): links no joint holds float (free-flyers),
+    /// loops are `ConstraintModel.from_sdf(model)`; what rigid leaves out is an `SdfWarning`.
+    #[staticmethod]
+    #[pyo3(signature = (path, layout = "rigid"))]
+    fn from_sdf(py: Python<'_>, path: PathBuf, layout: &str) -> PyResult<Self> {
+        let kind = parse_layout("Model.from_sdf", layout)?;
+        let shown = path.display().to_string();
+        let m = rigid::io::sdf::load_sdf(&path).map_err(|e| match &e {
+            rigid::io::sdf::SdfError::Io { source, .. } => convert::io_error(source, e.to_string()),
+            _ => PyValueError::new_err(format!("{shown}: {e}")),
+        })?;
+        let warnings: Vec<String> = m.warnings.iter().map(|w| format!("{shown}: {w}")).collect();
+        warn_all(py, &py.get_type::<SdfWarning>(), &warnings)?;
+        let mut core = ModelCore::new(m.model, kind == Layout::Pinocchio, warnings);
+        core.source = Some(path);
+        Ok(Self {
+            inner: Arc::new(core),
+        })
+    }
+
+    /// Load a model file, MJCF for a `.xml` file, SDF for `.sdf`, URDF otherwise (`floating`
+    /// and `inertia` apply to URDF only).
     #[staticmethod]
     #[pyo3(signature = (path, layout = "rigid", floating = false, inertia = "warn"))]
     fn from_file(
@@ -504,16 +532,19 @@ impl Model {
         floating: bool,
         inertia: &str,
     ) -> PyResult<Self> {
-        let mjcf = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-        if !mjcf {
+        let ext = |x: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(x));
+        let (mjcf, sdf) = (ext("xml"), ext("sdf"));
+        if !mjcf && !sdf {
             return Self::from_urdf(py, path, floating, inertia, layout);
         }
         if floating {
             return Err(PyValueError::new_err(
-                "Model.from_file: floating applies to URDF; an MJCF file declares its free joints",
+                "Model.from_file: floating applies to URDF; MJCF and SDF files declare their \
+                 free bodies",
             ));
+        }
+        if sdf {
+            return Self::from_sdf(py, path, layout);
         }
         Self::from_mjcf(py, path, layout)
     }

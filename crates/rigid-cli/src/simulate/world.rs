@@ -7,7 +7,8 @@
 use super::SimulateArgs;
 use crate::load::{load_printing_warnings, urdf_path, Loaded};
 use rigid::io::collision::{
-    mjcf_file_world, spec_body, urdf_file_world, FileWorld, WorldError, WorldOptions,
+    mjcf_file_world, sdf_file_world, spec_body, urdf_file_world, FileWorld, WorldError,
+    WorldOptions,
 };
 use rigid::io::urdf::parse_urdf_file;
 use rigid::simulation::{ConstraintOptions, Scenario, SimulationError, SimulationOptions};
@@ -81,6 +82,7 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
             model,
             warnings: Vec::new(),
             mjcf: None,
+            sdf: None,
         };
         (loaded, world)
     } else {
@@ -150,6 +152,8 @@ fn file_world(
 ) -> Result<FileWorld, String> {
     let world = if let Some(m) = &loaded.mjcf {
         mjcf_file_world(m, options).map_err(|e| format!("{}: {}", args.model, flag_error(e)))?
+    } else if let Some(s) = &loaded.sdf {
+        sdf_file_world(s, options).map_err(flag_error)?
     } else if let Some(path) = urdf_path(&args.model) {
         let robot = parse_urdf_file(&path).map_err(|e| format!("{}: {e}", args.model))?;
         urdf_file_world(&robot, &loaded.model, options).map_err(flag_error)?

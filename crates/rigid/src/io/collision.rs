@@ -466,8 +466,43 @@ pub fn urdf_file_world(
     })
 }
 
+/// The world of an SDF model: its collision geometry on the ground and between its bodies as
+/// `options` ask (as a URDF's, [`urdf_world`]), its loops as constraints, and its home
+/// configuration.
+///
+/// # Errors
+/// As [`ground_model`].
+#[cfg(feature = "urdf")]
+pub fn sdf_file_world(
+    sdf: &super::sdf::SdfModel,
+    options: &WorldOptions,
+) -> Result<FileWorld, WorldError> {
+    options.check()?;
+    let collision = if options.ground.is_none() && !options.self_collision {
+        None
+    } else {
+        let mut cm = ground_model(
+            options.ground,
+            options.friction,
+            options.restitution,
+            sdf.geometries.clone(),
+        )?;
+        cm.self_collision = options.self_collision;
+        Some(cm)
+    };
+    Ok(FileWorld {
+        collision,
+        constraints: sdf.constraints.clone(),
+        constraint_settings: crate::multibody::constraints::ProximalSettings::redundant(),
+        timestep: None,
+        home: Some(sdf.home.clone()),
+        warnings: Vec::new(),
+    })
+}
+
 /// The world of the robot file at `path` that `model` was built from: an MJCF file's
-/// ([`mjcf_file_world`], by the `.xml` extension), else a URDF's ([`urdf_world`]).
+/// ([`mjcf_file_world`], by the `.xml` extension), an SDF file's ([`sdf_file_world`], `.sdf`),
+/// else a URDF's ([`urdf_world`]).
 ///
 /// # Errors
 /// The file cannot be read or parsed (the message names it), or as [`mjcf_world`] and
@@ -482,12 +517,13 @@ pub fn file_world(
         path: path.display().to_string(),
         message: e,
     };
-    let xml = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-    if xml {
+    let ext = |x: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(x));
+    if ext("xml") {
         let m = super::mjcf::load_mjcf(path).map_err(|e| unreadable(e.to_string()))?;
         mjcf_file_world(&m, options)
+    } else if ext("sdf") {
+        let m = super::sdf::load_sdf(path).map_err(|e| unreadable(e.to_string()))?;
+        sdf_file_world(&m, options)
     } else {
         let robot = super::urdf::parse_urdf_file(path).map_err(|e| unreadable(e.to_string()))?;
         urdf_file_world(&robot, model, options)
@@ -509,12 +545,13 @@ pub fn file_geometries(
         path: path.display().to_string(),
         message: e,
     };
-    let xml = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-    if xml {
+    let ext = |x: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(x));
+    if ext("xml") {
         let m = super::mjcf::load_mjcf(path).map_err(|e| unreadable(e.to_string()))?;
         Ok(mjcf_geometries(&m))
+    } else if ext("sdf") {
+        let m = super::sdf::load_sdf(path).map_err(|e| unreadable(e.to_string()))?;
+        Ok((m.geometries, Vec::new()))
     } else {
         let robot = super::urdf::parse_urdf_file(path).map_err(|e| unreadable(e.to_string()))?;
         Ok(urdf_geometries(&robot, model))

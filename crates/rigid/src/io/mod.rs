@@ -1,5 +1,5 @@
 //! Reading files: triangle meshes (STL, OBJ, COLLADA), the body specs of `rigid mass` (TOML),
-//! URDF robots, MuJoCo's MJCF models, constraint files, and finding the robot files of
+//! URDF robots, MuJoCo's MJCF models, SDFormat models ([`sdf`]), constraint files, and finding the robot files of
 //! example-robot-data ([`robots`]); writing MJCF and URDF ([`write`]).
 
 #[cfg(feature = "serde")]
@@ -15,6 +15,8 @@ pub mod mesh_file;
 #[cfg(feature = "mjcf")]
 pub mod mjcf;
 pub mod robots;
+#[cfg(all(feature = "urdf", feature = "collision"))]
+pub mod sdf;
 #[cfg(feature = "spec")]
 pub mod spec;
 #[cfg(feature = "urdf")]

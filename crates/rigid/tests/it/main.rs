@@ -55,6 +55,7 @@ mod multibody_puma560;
 mod pinocchio;
 mod pinocchio_packages;
 mod reference;
+mod sdf;
 mod serialize;
 mod shapes;
 mod simulation;

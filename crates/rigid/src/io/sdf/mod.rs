@@ -1,0 +1,157 @@
+//! SDFormat (Gazebo's format, read by Drake and Pinocchio 4) import: one `<model>` (at the top or
+//! in a `<world>`) read into a [`Model`], its collision geometry and its closed loops as
+//! constraint models.
+//!
+//! # What is read
+//!
+//! - `<link>`: `<pose>`, `<inertial>` (`<pose>`, `<mass>`, `<inertia>` about the centre of mass
+//!   in the inertial frame), `<collision>` (box, sphere, cylinder, capsule, ellipsoid, mesh as its
+//!   convex hull; planes and height maps are skipped with a warning).
+//! - `<joint>`: `revolute`, `continuous`, `prismatic`, `ball`, `universal`, `screw`
+//!   (`<screw_thread_pitch>`, m per revolution), `fixed`; `<parent>`, `<child>`, `<pose>`,
+//!   `<axis>`/`<axis2>` with `<xyz expressed_in>` (1.7+) or `<use_parent_model_frame>` (1.4–1.6),
+//!   `<limit lower upper effort velocity>` (SDFormat's ±1e16 and −1 mean none),
+//!   `<dynamics damping friction>`.
+//! - `<frame name attached_to>`, and every `<pose relative_to>` (1.7+; `frame` in 1.5–1.6) naming
+//!   a link, joint, frame or `__model__`; `degrees="true"` and `rotation_format="quat_xyzw"`.
+//! - `<model><pose>` places the model in the world; `<static>` welds its root links there.
+//!
+//! Not read: nested `<model>` and `<include>` (an error naming the line), `revolute2` and
+//! `gearbox` joints (an error in the tree; a gearbox closing a loop is left out with a warning),
+//! the world's `<gravity>` (rigid's default, `(0, 0, -9.81)`), visuals, sensors and plugins.
+//!
+//! # Semantics (as SDFormat and Drake)
+//!
+//! - Poses: a link's is relative to the model frame by default, a joint's to its child link, a
+//!   frame's to what it is attached to (the model by default). `world` is read as the model
+//!   frame.
+//! - The tree: the joints are walked depth-first from the world, then from every link that is
+//!   no joint's child (the canonical link first), in file order. A root link is floating (a
+//!   free-flyer named [`ROOT_JOINT_NAME`](crate::io::urdf::ROOT_JOINT_NAME), then
+//!   `LINK_root_joint`), unless the model is `<static>`; [`SdfModel::home`] puts it where the
+//!   file does.
+//! - Each moving joint is one rigid joint whose frame is the SDF joint frame; a fixed joint
+//!   welds its child link into the parent body.
+//! - A joint whose child is already in the tree closes a loop: a `ball` joint becomes a point
+//!   constraint at the joint, a `fixed` joint a weld (frame constraint), a `revolute` joint two
+//!   point constraints on its axis 0.1 m apart; any other is left out with a warning.
+
+mod build;
+mod parse;
+
+use crate::collision::Geometry;
+use crate::multibody::constraints::ConstraintModel;
+use crate::multibody::Model;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// An SDF model read and built.
+#[derive(Clone, Debug)]
+pub struct SdfModel {
+    /// The kinematic tree.
+    pub model: Model,
+    /// The joints that close loops, as constraint models named after them.
+    pub constraints: Vec<ConstraintModel>,
+    /// The collision geometry, on the model's bodies.
+    pub geometries: Vec<Geometry>,
+    /// The configuration the file places the model in (floating roots where their links are;
+    /// every joint at zero).
+    pub home: Vec<f64>,
+    /// `<sdf version>`.
+    pub version: String,
+    /// What was tolerated, each with its line.
+    pub warnings: Vec<SdfWarning>,
+    /// The file it was read from (`None` for text).
+    pub path: Option<PathBuf>,
+}
+
+/// Something in an SDF file that was left out or tolerated.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SdfWarning {
+    /// Line (1-based).
+    pub line: u32,
+    /// The element, with its name.
+    pub element: String,
+    /// What was done.
+    pub message: String,
+}
+
+impl std::fmt::Display for SdfWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "line {}: {}: {}", self.line, self.element, self.message)
+    }
+}
+
+/// Why an SDF file could not be read. Every variant says where.
+#[derive(Debug, Error)]
+pub enum SdfError {
+    /// The file cannot be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// Not well-formed XML.
+    #[error("malformed XML: {0}")]
+    Xml(#[from] roxmltree::Error),
+    /// An element that cannot be read.
+    #[error("line {line}: {element}: {message}")]
+    Invalid {
+        /// Line (1-based).
+        line: u32,
+        /// The element.
+        element: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The model the file describes cannot be built.
+    #[error("{0}")]
+    Model(String),
+}
+
+/// Reads the SDF file at `path` (meshes resolved beside it).
+///
+/// # Errors
+/// [`SdfError`], naming the file, or the element and line.
+pub fn load_sdf(path: impl AsRef<Path>) -> Result<SdfModel, SdfError> {
+    let path = path.as_ref();
+    let text = std::fs::read_to_string(path).map_err(|source| SdfError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mut m = load_sdf_str(&text, dir)?;
+    m.path = Some(path.to_path_buf());
+    Ok(m)
+}
+
+/// Reads SDF text, meshes resolved in `dir`.
+///
+/// ```
+/// let m = rigid::io::sdf::load_sdf_str(r#"<sdf version="1.9"><model name="arm">
+///   <link name="base"/>
+///   <joint name="weld" type="fixed"><parent>world</parent><child>base</child></joint>
+///   <link name="upper"><pose>0 0 1 0 0 0</pose>
+///     <inertial><mass>2</mass><pose>0 0 -0.5 0 0 0</pose></inertial></link>
+///   <joint name="shoulder" type="revolute"><parent>base</parent><child>upper</child>
+///     <axis><xyz>0 1 0</xyz><limit><lower>-1</lower><upper>1</upper></limit></axis></joint>
+/// </model></sdf>"#, ".".as_ref()).unwrap();
+/// assert_eq!((m.model.nq(), m.model.joints()[0].name.as_str()), (1, "shoulder"));
+/// assert_eq!(m.model.lower_limits(), &[-1.0]);
+/// ```
+///
+/// # Errors
+/// [`SdfError`], naming the element and line.
+pub fn load_sdf_str(text: &str, dir: &Path) -> Result<SdfModel, SdfError> {
+    let doc = roxmltree::Document::parse(text)?;
+    let mut reader = parse::Reader {
+        doc: &doc,
+        dir,
+        warnings: Vec::new(),
+    };
+    let raw = reader.model()?;
+    let poses = parse::Poses::resolve(&raw)?;
+    build::build(&raw, &poses, reader.warnings, None)
+}

@@ -1,0 +1,252 @@
+//! SDF import: poses resolved through `relative_to`, frames, degrees and quaternions against the
+//! same model built by hand; loops as constraints; floating, static and world-jointed roots; every
+//! refusal naming its element and line. The cross-check against Drake's MultibodyPlant and the
+//! Cassie files are in crates/rigid-py/tests/test_sdf.py.
+
+use crate::common::state;
+use rigid::io::sdf::{load_sdf_str, SdfError};
+use rigid::mass::{RotationalInertia, SpatialInertia};
+use rigid::multibody::constraints::ConstraintKind;
+use rigid::multibody::{crba, nonlinear_effects, Data, JointType, Model, ModelBuilder, Rng};
+use rigid::spatial::{so3, Transform, Vec3};
+use std::f64::consts::FRAC_1_SQRT_2;
+
+fn sdf(body: &str) -> String {
+    format!(r#"<?xml version="1.0"?><sdf version="1.9"><model name="m">{body}</model></sdf>"#)
+}
+
+fn load(body: &str) -> rigid::io::sdf::SdfModel {
+    load_sdf_str(&sdf(body), ".".as_ref()).unwrap()
+}
+
+fn error(body: &str) -> String {
+    load_sdf_str(&sdf(body), ".".as_ref())
+        .unwrap_err()
+        .to_string()
+}
+
+fn gap(a: &Model, b: &Model) -> f64 {
+    let (mut da, mut db) = (Data::new(a), Data::new(b));
+    let mut rng = Rng::new(4);
+    let mut worst: f64 = 0.0;
+    for _ in 0..3 {
+        let (q, v, _) = state(a, &mut rng);
+        let (ma, mb) = (
+            crba(a, &mut da, &q).unwrap().clone(),
+            crba(b, &mut db, &q).unwrap().clone(),
+        );
+        let ca = nonlinear_effects(a, &mut da, &q, &v).unwrap().clone();
+        let cb = nonlinear_effects(b, &mut db, &q, &v).unwrap().clone();
+        worst = worst.max((ma - mb).amax()).max((ca - cb).amax());
+    }
+    worst
+}
+
+const LINK: &str = r#"<inertial><pose>0.1 0 -0.4 0 0 0</pose><mass>2</mass>
+    <inertia><ixx>0.3</ixx><iyy>0.2</iyy><izz>0.1</izz><ixy>0.01</ixy><ixz>0</ixz><iyz>0.02</iyz></inertia></inertial>"#;
+
+fn g() -> SpatialInertia {
+    let i = RotationalInertia::new(0.3, 0.2, 0.1, 0.01, 0.0, 0.02);
+    SpatialInertia::from_com(2.0, Vec3::new(0.1, 0.0, -0.4), i)
+}
+
+#[test]
+fn poses_relative_to_frames_in_degrees_and_quaternions_give_the_hand_built_model() {
+    // upper link at 1 m up, turned 90° about x (degrees); a frame on it; the elbow's pose
+    // relative to that frame (a quaternion); its axis expressed in the model frame
+    let m = load(&format!(
+        r#"<link name="base"/>
+        <joint name="weld" type="fixed"><parent>world</parent><child>base</child></joint>
+        <link name="upper"><pose degrees="true">0 0 1 90 0 0</pose>{LINK}</link>
+        <frame name="tip" attached_to="upper"><pose>0 0 -0.8 0 0 0</pose></frame>
+        <joint name="shoulder" type="revolute"><parent>base</parent><child>upper</child>
+          <axis><xyz>1 0 0</xyz></axis></joint>
+        <link name="lower"><pose relative_to="tip" rotation_format="quat_xyzw">0 0.1 0 0 0 0.7071067811865476 0.7071067811865476</pose>{LINK}</link>
+        <joint name="elbow" type="prismatic"><parent>upper</parent><child>lower</child>
+          <pose>0 0 0.05 0 0 0</pose>
+          <axis><xyz expressed_in="__model__">0 0 1</xyz>
+            <limit><lower>-0.2</lower><upper>0.3</upper><effort>40</effort><velocity>2</velocity></limit>
+            <dynamics><damping>0.5</damping><friction>0.25</friction></dynamics></axis></joint>"#
+    ));
+    let r_upper = so3::from_rpy(std::f64::consts::FRAC_PI_2, 0.0, 0.0);
+    let upper = Transform::new(r_upper, Vec3::new(0.0, 0.0, 1.0));
+    let tip = upper * Transform::from_translation(Vec3::new(0.0, 0.0, -0.8));
+    let r_lower =
+        so3::from_quaternion(0.0, 0.0, FRAC_1_SQRT_2, FRAC_1_SQRT_2, 1e-9).unwrap();
+    let lower = tip * Transform::new(r_lower, Vec3::new(0.0, 0.1, 0.0));
+    let elbow = lower * Transform::from_translation(Vec3::new(0.0, 0.0, 0.05));
+    let mut b = ModelBuilder::new("m");
+    let s = b
+        .add_joint(
+            None,
+            "shoulder",
+            JointType::Revolute { axis: Vec3::x() },
+            upper,
+            g(),
+        )
+        .unwrap();
+    b.set_continuous(s).unwrap();
+    let axis = elbow.rotation.transpose() * Vec3::z();
+    let e = b
+        .add_joint(
+            Some(s),
+            "elbow",
+            JointType::Prismatic { axis },
+            upper.inverse() * elbow,
+            g().transformed(&(elbow.inverse() * lower)),
+        )
+        .unwrap();
+    b.set_limits(e, &[-0.2], &[0.3], &[2.0], &[40.0]).unwrap();
+    let want = b.build().unwrap();
+    assert!(gap(&m.model, &want) < 1e-12, "{:e}", gap(&m.model, &want));
+    let got = &m.model;
+    assert_eq!(got.lower_limits(), &[f64::NEG_INFINITY, -0.2]);
+    assert_eq!(
+        (got.damping(), got.friction()),
+        (&[0.0, 0.5][..], &[0.0, 0.25][..])
+    );
+    assert!(got.joints()[0].continuous);
+    assert!(got.frame_id("lower").is_ok() && got.frame_id("base").is_ok());
+    assert!(m.constraints.is_empty() && m.warnings.is_empty());
+}
+
+#[test]
+fn a_root_no_joint_holds_floats_where_the_file_puts_it_unless_the_model_is_static() {
+    let body = format!(
+        r#"<pose>1 2 3 0 0 0</pose><link name="torso"><pose>0 0 0.5 0 0 0</pose>{LINK}</link>"#
+    );
+    let m = load(&body);
+    assert_eq!(m.model.joints()[0].kind, JointType::FreeFlyer);
+    assert_eq!(m.model.joints()[0].name, "root_joint");
+    assert_eq!(&m.home[..7], &[1.0, 2.0, 3.5, 0.0, 0.0, 0.0, 1.0]);
+    let fixed = load(&format!("<static>true</static>{body}"));
+    assert_eq!(fixed.model.nv(), 0);
+}
+
+#[test]
+fn loops_become_constraints_at_the_closing_joint() {
+    // a four-bar: crank and rocker on the ground, a coupler closed by a ball joint, a revolute
+    // joint, a fixed joint and a prismatic joint (which cannot be closed: a warning)
+    let link =
+        |name: &str, pose: &str| format!(r#"<link name="{name}"><pose>{pose}</pose>{LINK}</link>"#);
+    let joint = |name: &str, kind: &str, p: &str, c: &str| {
+        format!(
+            r#"<joint name="{name}" type="{kind}"><parent>{p}</parent><child>{c}</child><axis><xyz>0 1 0</xyz></axis></joint>"#
+        )
+    };
+    let body = [
+        link("crank", "0 0 0 0 0 0"),
+        link("rocker", "1 0 0 0 0 0"),
+        link("coupler", "0 0 -1 0 0 0"),
+        joint("a", "revolute", "world", "crank"),
+        joint("b", "revolute", "world", "rocker"),
+        joint("c", "revolute", "crank", "coupler"),
+        joint("ball", "ball", "rocker", "coupler"),
+        joint("hinge", "revolute", "rocker", "coupler"),
+        joint("weld", "fixed", "rocker", "coupler"),
+        joint("slide", "prismatic", "rocker", "coupler"),
+    ]
+    .concat();
+    let m = load(&body);
+    assert_eq!(m.model.nv(), 3);
+    let names: Vec<(&str, ConstraintKind)> = m
+        .constraints
+        .iter()
+        .map(|c| (c.name.as_str(), c.kind))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("ball", ConstraintKind::Point),
+            ("hinge", ConstraintKind::Point),
+            ("hinge", ConstraintKind::Point),
+            ("weld", ConstraintKind::Frame),
+        ]
+    );
+    // each closure's two anchors coincide at the file's configuration
+    let mut data = Data::new(&m.model);
+    let q = vec![0.0; m.model.nq()];
+    rigid::multibody::forward_kinematics_q(&m.model, &mut data, &q).unwrap();
+    for c in &m.constraints {
+        let at = |j: Option<rigid::multibody::JointId>, x: &Transform| {
+            j.map_or(Transform::identity(), |j| data.placements[j.0]) * *x
+        };
+        let (w1, w2) = (at(c.joint1, &c.placement1), at(c.joint2, &c.placement2));
+        assert!(
+            (w1.translation - w2.translation).norm() < 1e-15,
+            "{}",
+            c.name
+        );
+    }
+    let hinge: Vec<_> = m.constraints.iter().filter(|c| c.name == "hinge").collect();
+    let span = hinge[1].placement2.translation - hinge[0].placement2.translation;
+    assert!((span - Vec3::new(0.0, 0.1, 0.0)).norm() < 1e-15);
+    assert_eq!(m.warnings.len(), 1);
+    assert!(m.warnings[0]
+        .to_string()
+        .contains("joint \"slide\": closes a loop"));
+}
+
+#[test]
+fn bad_files_are_refused_naming_the_element_and_line() {
+    let cases = [
+        (
+            r#"<link name="a"/>
+<joint name="j" type="revolute"><parent>nowhere</parent><child>a</child></joint>"#,
+            "line 2: joint \"j\": its parent \"nowhere\" is not a link of the model",
+        ),
+        (
+            r#"<link name="a"><pose relative_to="ghost">0 0 0 0 0 0</pose></link>"#,
+            "line 1: \"a\": its pose is relative to \"ghost\", which is not defined",
+        ),
+        (
+            r#"<link name="a"><pose relative_to="b">0 0 0 0 0 0</pose></link>
+<link name="b"><pose relative_to="a">0 0 0 0 0 0</pose></link>"#,
+            "its pose is relative to itself through",
+        ),
+        (
+            r#"<link name="a"/><joint name="j" type="revolute2"><parent>world</parent><child>a</child></joint>"#,
+            "joint \"j\": joint type \"revolute2\" is not supported",
+        ),
+        (
+            r#"<link name="a"><pose>0 0 x 0 0 0</pose></link>"#,
+            "link \"a\" <pose>: \"0 0 x 0 0 0\" is not numbers",
+        ),
+        (
+            r#"<link name="a"><pose>0 0 0 0 0</pose></link>"#,
+            "expected 6 numbers, got 5",
+        ),
+        (
+            r#"<link name="a"><inertial><mass>-1</mass></inertial></link>"#,
+            "link \"a\": negative mass -1",
+        ),
+        (
+            r#"<model name="inner"/>"#,
+            "nested models and includes are not read yet",
+        ),
+        (
+            r#"<link name="a"/><joint name="j" type="screw"><parent>world</parent><child>a</child><axis><xyz>0 0 1</xyz></axis></joint>"#,
+            "a screw joint needs <screw_thread_pitch>",
+        ),
+        (
+            r#"<link name="a"/><joint name="j" type="revolute"><parent>world</parent><child>a</child><axis><xyz>0 0 0</xyz></axis></joint>"#,
+            "the axis is zero",
+        ),
+        (
+            r#"<link name="a"><collision name="c"><geometry><cylinder><radius>0.1</radius></cylinder></geometry></collision></link>"#,
+            "length must be positive and finite",
+        ),
+    ];
+    for (body, want) in cases {
+        let e = error(body);
+        assert!(e.contains(want), "{e}\n  wanted: {want}");
+    }
+    assert!(matches!(
+        load_sdf_str("<robot/>", ".".as_ref()),
+        Err(SdfError::Invalid { .. })
+    ));
+    assert!(matches!(
+        load_sdf_str("<sdf><model", ".".as_ref()),
+        Err(SdfError::Xml(_))
+    ));
+}
