@@ -5,7 +5,7 @@
 #   bash scripts/fuzz.sh merge [TARGET...]         (the working corpus into the committed seeds)
 #
 # Built optimised with debug assertions (overflow checks). Targets (fuzz/fuzz_targets/, entry points in crates/rigid/src/fuzzing.rs): urdf, spec, stl, obj,
-# dae, cases, mjcf. Needs `cargo install cargo-fuzz` (a C++ compiler builds libFuzzer). The corpus grows
+# dae, cases, mjcf, sdf. Needs `cargo install cargo-fuzz` (a C++ compiler builds libFuzzer). The corpus grows
 # in fuzz/corpus/TARGET/ (not committed); `merge` adds to fuzz/seeds/TARGET/ (committed) the
 # inputs of the working corpus that reach code the seeds do not (edge coverage, libFuzzer's
 # `-merge=1 -use_counters=0`: a few hundred files per target instead of thousands); a crash is saved
@@ -17,7 +17,7 @@ cd "$(dirname "$0")/../fuzz"
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(urdf spec stl obj dae cases mjcf)
+[ ${#targets[@]} -eq 0 ] && targets=(urdf spec stl obj dae cases mjcf sdf)
 export RUSTC_BOOTSTRAP=1   # cargo fuzz passes -Z flags; stable rustc accepts them with this
 if [ "$seconds" = merge ]; then
     for t in "${targets[@]}"; do

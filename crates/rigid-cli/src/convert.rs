@@ -10,7 +10,8 @@ use std::path::PathBuf;
 /// Arguments of `rigid convert`.
 #[derive(Args)]
 pub struct ConvertArgs {
-    /// The robot to convert: a URDF file, an MJCF file (`.xml`), or a built-in model name.
+    /// The robot to convert: a URDF file, an MJCF file (`.xml`), an SDF file (`.sdf`), or a
+    /// built-in model name.
     pub input: String,
     /// The file to write: `.xml` for MJCF, `.urdf` for URDF.
     pub output: PathBuf,

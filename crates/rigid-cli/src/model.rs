@@ -13,7 +13,7 @@ use rigid::multibody::{FrameKind, Model};
 /// Arguments of `rigid model`.
 #[derive(Args)]
 pub struct ModelArgs {
-    /// A URDF file, an MJCF file (`.xml`), or a built-in model name (`puma560`, `pendulum`, `double_pendulum`).
+    /// A URDF file, an MJCF file (`.xml`), an SDF file (`.sdf`), or a built-in model name (`puma560`, `pendulum`, `double_pendulum`).
     pub model: String,
     #[command(flatten)]
     pub load: LoadArgs,

@@ -73,6 +73,33 @@ pub fn mjcf(data: &[u8]) {
     let _ = layout.aba(model, &mut d, &q, &v, &v);
 }
 
+/// SDF text through the importer (meshes are looked up in a folder that does not exist), then
+/// RNEA, CRBA and ABA at a state made from the bytes, and the loops' constrained dynamics.
+#[cfg(feature = "collision")]
+pub fn sdf(data: &[u8]) {
+    let Some(t) = text(data) else { return };
+    let Ok(m) = crate::io::sdf::load_sdf_str(t, Path::new("/nonexistent-rigid-fuzz")) else {
+        return;
+    };
+    let model = &m.model;
+    let mut d = Data::new(model);
+    let mut q = m.home.clone();
+    for (x, b) in q.iter_mut().zip(data) {
+        *x += f64::from(*b) * 1e-3;
+    }
+    let _ = crate::multibody::normalize(model, &mut q);
+    let v: Vec<f64> = (0..model.nv()).map(|i| (i as f64).sin()).collect();
+    let _ = rnea(model, &mut d, &q, &v, &v);
+    let _ = crba(model, &mut d, &q);
+    let _ = aba(model, &mut d, &q, &v, &v);
+    if let Ok(mut cd) = crate::multibody::constraints::ConstraintData::new(model, &m.constraints) {
+        let settings = crate::multibody::constraints::ProximalSettings::redundant();
+        let _ = crate::multibody::constraints::constraint_dynamics(
+            model, &mut d, &mut cd, &q, &v, &v, &settings,
+        );
+    }
+}
+
 /// A `rigid mass` body spec (meshes are looked up in a folder that does not exist).
 pub fn spec(data: &[u8]) {
     let Some(t) = text(data) else { return };

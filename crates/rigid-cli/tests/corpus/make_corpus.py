@@ -599,5 +599,52 @@ cli("excite_duration_nan", "excite puma560 --duration nan --out {out}", "error",
 cli("excite_missing_folder", "excite pendulum --iterations 2 --duration 1 --out /no/such/dir/t.csv",
     "error", "/no/such/dir/t.csv")
 
+# ----------------------------------------------------------------------------------------- SDF
+def sdf(name, body, status, *contains, args="model {file}", version="1.9"):
+    text = (f'<?xml version="1.0"?>\n<sdf version="{version}">\n  <model name="m">\n{body}'
+            '  </model>\n</sdf>\n')
+    write("sdf", name, "sdf", text, args, status, *contains)
+
+
+SDF_ARM = ('    <link name="arm"><pose>0 0 1 0 0 0</pose><inertial><mass>1</mass></inertial></link>\n'
+           '    <joint name="hinge" type="revolute"><parent>world</parent><child>arm</child>\n'
+           '      <axis><xyz>0 1 0</xyz></axis></joint>\n')
+sdf("arm", SDF_ARM, "ok", "nq = 1")
+sdf("broken_xml", SDF_ARM.replace("</link>", "</lnk>", 1), "error", "malformed XML")
+sdf("parent_unknown", SDF_ARM.replace("<parent>world", "<parent>ghost"), "error", "line 5",
+    'joint "hinge"', '"ghost" is not a link')
+sdf("child_unknown", SDF_ARM.replace("<child>arm", "<child>ghost"), "error", "line 5",
+    'joint "hinge"', 'its child "ghost" is not a link')
+sdf("axis_zero", SDF_ARM.replace("0 1 0</xyz>", "0 0 0</xyz>"), "error", "line 6", "axis is zero")
+sdf("pose_words", SDF_ARM.replace("0 0 1 0 0 0", "0 0 one 0 0 0"), "error", "line 4",
+    'link "arm" <pose>', "not numbers")
+sdf("pose_short", SDF_ARM.replace("0 0 1 0 0 0", "0 0 1 0 0"), "error", "expected 6 numbers")
+sdf("pose_relative_to_nothing", SDF_ARM.replace("<pose>", '<pose relative_to="ghost">'), "error",
+    '"arm"', '"ghost", which is not defined')
+sdf("pose_cycle", SDF_ARM + '    <frame name="f" attached_to="g"/>\n'
+    '    <frame name="g" attached_to="f"/>\n', "error", "relative to itself")
+sdf("mass_negative", SDF_ARM.replace("<mass>1</mass>", "<mass>-2</mass>"), "error", "line 4",
+    "negative mass")
+sdf("joint_type_unknown", SDF_ARM.replace('type="revolute"', 'type="revolute2"'), "error",
+    '"revolute2" is not supported')
+sdf("screw_without_pitch", SDF_ARM.replace('type="revolute"', 'type="screw"'), "error",
+    "screw_thread_pitch")
+sdf("nested_model", SDF_ARM + '    <model name="inner"/>\n', "error", "line 7",
+    "nested models")
+sdf("loop_prismatic", SDF_ARM + '    <link name="b"><inertial><mass>1</mass></inertial></link>\n'
+    '    <joint name="j2" type="revolute"><parent>world</parent><child>b</child>'
+    '<axis><xyz>1 0 0</xyz></axis></joint>\n'
+    '    <joint name="slide" type="prismatic"><parent>arm</parent><child>b</child>'
+    '<axis><xyz>1 0 0</xyz></axis></joint>\n', "ok", 'joint "slide": closes a loop')
+sdf("loop_only", '    <link name="a"><inertial><mass>1</mass></inertial></link>\n'
+    '    <link name="b"><inertial><mass>1</mass></inertial></link>\n'
+    '    <joint name="ab" type="revolute"><parent>a</parent><child>b</child></joint>\n'
+    '    <joint name="ba" type="revolute"><parent>b</parent><child>a</child></joint>\n', "error",
+    "not reachable")
+sdf("two_models", SDF_ARM + '  </model>\n  <model name="second">\n', "error", "several models")
+sdf("cylinder_no_length", SDF_ARM.replace("<inertial>", '<collision name="c"><geometry>'
+    '<cylinder><radius>0.1</radius></cylinder></geometry></collision><inertial>'), "error",
+    "length must be positive")
+
 print("corpus written:", sum(len([f for f in fs if not f.endswith(".expect")])
                               for _, _, fs in os.walk(HERE)) - 1, "files")

@@ -50,7 +50,9 @@ fn cases() -> Vec<Case> {
     let mut out = Vec::new();
     let tmp = std::env::temp_dir().join(format!("rigid-corpus-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    for kind in ["urdf", "spec", "mesh", "cases", "samples", "cli", "mjcf"] {
+    for kind in [
+        "urdf", "spec", "mesh", "cases", "samples", "cli", "mjcf", "sdf",
+    ] {
         let dir = corpus_dir().join(kind);
         let mut entries: Vec<PathBuf> = std::fs::read_dir(&dir)
             .unwrap()
@@ -177,6 +179,7 @@ fn library(c: &Case) -> Result<Option<bool>, String> {
     let result = std::panic::catch_unwind(move || match kind.as_str() {
         "urdf" if default_model => Some(load_urdf_with(&path, &UrdfOptions::default()).is_err()),
         "mjcf" if default_model => Some(rigid::io::mjcf::load_mjcf(&path).is_err()),
+        "sdf" if default_model => Some(rigid::io::sdf::load_sdf(&path).is_err()),
         "spec" => Some(read_spec(&path).is_err()),
         "mesh" if path.extension().is_some_and(|e| e != "toml") => Some(
             read_mesh(&path)
@@ -338,7 +341,9 @@ fn the_corpus_is_what_its_generator_writes() {
         .unwrap_or_else(|e| panic!("cannot run {py} ({e}): RIGID_CROSSCHECK=1 needs Python 3"));
     assert!(status.success());
     let mut n = 0;
-    for kind in ["urdf", "spec", "mesh", "cases", "samples", "cli", "mjcf"] {
+    for kind in [
+        "urdf", "spec", "mesh", "cases", "samples", "cli", "mjcf", "sdf",
+    ] {
         let mut made: Vec<_> = std::fs::read_dir(out.join(kind))
             .unwrap()
             .flatten()

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 type Target = fn(&[u8]);
 
-const TARGETS: [(&str, Target); 7] = [
+const TARGETS: [(&str, Target); 8] = [
     ("urdf", rigid::fuzzing::urdf),
     ("spec", rigid::fuzzing::spec),
     ("stl", rigid::fuzzing::stl),
@@ -17,6 +17,7 @@ const TARGETS: [(&str, Target); 7] = [
     ("dae", rigid::fuzzing::dae),
     ("cases", rigid::fuzzing::cases),
     ("mjcf", rigid::fuzzing::mjcf),
+    ("sdf", rigid::fuzzing::sdf),
 ];
 
 #[test]

@@ -71,8 +71,7 @@ fn poses_relative_to_frames_in_degrees_and_quaternions_give_the_hand_built_model
     let r_upper = so3::from_rpy(std::f64::consts::FRAC_PI_2, 0.0, 0.0);
     let upper = Transform::new(r_upper, Vec3::new(0.0, 0.0, 1.0));
     let tip = upper * Transform::from_translation(Vec3::new(0.0, 0.0, -0.8));
-    let r_lower =
-        so3::from_quaternion(0.0, 0.0, FRAC_1_SQRT_2, FRAC_1_SQRT_2, 1e-9).unwrap();
+    let r_lower = so3::from_quaternion(0.0, 0.0, FRAC_1_SQRT_2, FRAC_1_SQRT_2, 1e-9).unwrap();
     let lower = tip * Transform::new(r_lower, Vec3::new(0.0, 0.1, 0.0));
     let elbow = lower * Transform::from_translation(Vec3::new(0.0, 0.0, 0.05));
     let mut b = ModelBuilder::new("m");

@@ -13,7 +13,7 @@
 //!   `<limit lower upper effort velocity>` (SDFormat's ±1e16 and −1 mean none),
 //!   `<dynamics damping friction>`.
 //! - `<frame name attached_to>`, and every `<pose relative_to>` (1.7+; `frame` in 1.5–1.6) naming
-//!   a link, joint, frame or `__model__`; `degrees="true"` and `rotation_format="quat_xyzw"`.
+//!   a link, joint, frame or `__model__`; `degrees="true"` and `rotation_format="quat_xyzw"` (a quaternion off unit length by up to 1e-3 is normalised).
 //! - `<model><pose>` places the model in the world; `<static>` welds its root links there.
 //!
 //! Not read: nested `<model>` and `<include>` (an error naming the line), `revolute2` and

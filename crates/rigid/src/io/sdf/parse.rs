@@ -155,7 +155,7 @@ impl<'a> Reader<'a> {
         let quat = p.attribute("rotation_format") == Some("quat_xyzw");
         let v = self.numbers(p, &what, Some(if quat { 7 } else { 6 }))?;
         let rotation = if quat {
-            so3::from_quaternion(v[3], v[4], v[5], v[6], 1e-6)
+            so3::from_quaternion(v[3], v[4], v[5], v[6], 1e-3)
                 .map_err(|e| self.error(p, what.clone(), e.to_string()))?
         } else {
             let k = if p.attribute("degrees") == Some("true") {
@@ -469,6 +469,8 @@ impl Poses {
         for f in &raw.frames {
             written.insert(&f.name, (&f.pose, f.attached_to.as_deref(), 0));
         }
+        let joints: std::collections::HashSet<&str> =
+            raw.joints.iter().map(|j| j.name.as_str()).collect();
         let mut of = HashMap::new();
         of.insert("__model__".to_string(), Transform::identity());
         let names: Vec<&str> = written.keys().copied().collect();
@@ -490,12 +492,19 @@ impl Poses {
                         break;
                     }
                 } else if !written.contains_key(base) {
+                    let joint = joints.contains(top);
                     return Err(SdfError::Invalid {
                         line,
-                        element: format!("\"{top}\""),
-                        message: format!(
-                            "its pose is relative to \"{base}\", which is not defined"
-                        ),
+                        element: if joint {
+                            format!("joint \"{top}\"")
+                        } else {
+                            format!("\"{top}\"")
+                        },
+                        message: if joint && pose.relative_to.is_none() {
+                            format!("its child \"{base}\" is not a link of the model")
+                        } else {
+                            format!("its pose is relative to \"{base}\", which is not defined")
+                        },
                     });
                 } else if chain.contains(&base) {
                     return Err(SdfError::Invalid {

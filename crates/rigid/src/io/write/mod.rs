@@ -337,16 +337,25 @@ pub fn save(
         None => (Vec::new(), Vec::new()),
     };
     if let Some(path) = source {
-        let mjcf = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-        notes.push(if mjcf {
-            "the source's visual geoms (contype and conaffinity 0), planes and height fields \
-             are not written"
-                .into()
+        let ext = |x: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(x));
+        if ext("xml") {
+            notes.push(
+                "the source's visual geoms (contype and conaffinity 0), planes, height fields, \
+                 actuators, tendons and <equality> constraints are not written"
+                    .into(),
+            );
+        } else if ext("sdf") {
+            notes.push("the source's <visual> elements and plugins are not written".into());
+            let loops = super::sdf::load_sdf(path).map_or(0, |m| m.constraints.len());
+            if loops > 0 {
+                notes.push(format!(
+                    "the source's {loops} loop-closing constraints are not written: the file \
+                     holds the tree only"
+                ));
+            }
         } else {
-            "the source's <visual> elements and materials are not written".into()
-        });
+            notes.push("the source's <visual> elements and materials are not written".into());
+        }
     }
     let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("robot");
     let written = format.write(model, &geometries, &format!("{stem}_meshes"))?;
