@@ -1,9 +1,9 @@
 //! `rigid doctor MODEL.urdf [--json] [--fix OUT.urdf]`: the inertial data of every link checked,
 //! the likely cause of each problem, and a repair (see `rigid::doctor`); for an MJCF file
-//! (`.xml`) every body's `<inertial>` against its geoms (no `--fix`).
+//! (`.xml`) every body's `<inertial>` against its geoms, `--fix` writing MJCF.
 
 use clap::Args;
-use rigid::doctor::{fixed_urdf, BodyReport, Doctor, Status};
+use rigid::doctor::{fixed_mjcf, fixed_urdf, BodyReport, Doctor, Status};
 use rigid::io::urdf::parse_urdf_file;
 use std::path::PathBuf;
 
@@ -16,9 +16,9 @@ pub struct DoctorArgs {
     /// [{"code", "message"}], "likely_cause", "explanation", "repair"}]}`.
     #[arg(long)]
     pub json: bool,
-    /// Write a copy of the URDF in which only the `<inertial>` blocks that needed a repair are
-    /// replaced, each with a comment saying what was done and why.
-    #[arg(long, value_name = "OUT.urdf")]
+    /// Write a copy of the file, in its own format, in which only the `<inertial>` elements that
+    /// needed a repair are replaced, each with a comment saying what was done and why.
+    #[arg(long, value_name = "OUT")]
     pub fix: Option<PathBuf>,
 }
 
@@ -28,14 +28,8 @@ pub struct DoctorArgs {
 /// A file that cannot be read or parsed, or an output that cannot be written.
 pub fn run(args: &DoctorArgs) -> Result<(), String> {
     let path = &args.model;
-    let (robot, report) = if crate::load::is_mjcf(&path.to_string_lossy()) {
-        if args.fix.is_some() {
-            return Err(format!(
-                "--fix rewrites a URDF's <inertial> blocks; {} is MJCF (the report says what to \
-                 change)",
-                path.display()
-            ));
-        }
+    let mjcf = crate::load::is_mjcf(&path.to_string_lossy());
+    let (robot, report) = if mjcf {
         let m = rigid::io::mjcf::load_mjcf(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let robot = rigid::doctor::as_robot(&m);
         let report = Doctor::new().examine(&robot);
@@ -47,7 +41,17 @@ pub fn run(args: &DoctorArgs) -> Result<(), String> {
     };
     if let Some(out) = &args.fix {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        crate::util::write_atomic(out, fixed_urdf(&text, &robot, &report).as_bytes())?;
+        let fixed = if mjcf {
+            let (fixed, notes) =
+                fixed_mjcf(&text, &report).map_err(|e| format!("{}: {e}", path.display()))?;
+            for n in notes {
+                eprintln!("note: {}: {n}", path.display());
+            }
+            fixed
+        } else {
+            fixed_urdf(&text, &robot, &report)
+        };
+        crate::util::write_atomic(out, fixed.as_bytes())?;
     }
     if args.json {
         println!(

@@ -49,7 +49,11 @@ pub fn as_robot(m: &MjcfModel) -> UrdfRobot {
         };
         let inertial = b.given.as_ref().map(|i| UrdfInertial {
             origin: i.frame,
-            rpy: [0.0; 3],
+            // the axes the inertia is written in (`quat`, `axisangle`, ..., or `fullinertia`'s)
+            rpy: {
+                let (r, p, y) = crate::spatial::so3::to_rpy(&i.frame.rotation);
+                [r, p, y]
+            },
             mass: i.mass,
             inertia: i.inertia,
             line: i.line,

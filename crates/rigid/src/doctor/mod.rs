@@ -42,7 +42,7 @@ mod mjcf;
 
 pub use checks::{Evaluation, Finding, InertialParams};
 pub use diagnose::{Cause, Diagnosis, Hypothesis};
-pub use fix::fixed_urdf;
+pub use fix::{fixed_mjcf, fixed_urdf};
 #[cfg(feature = "mjcf")]
 pub use mjcf::{as_robot, examine_mjcf};
 

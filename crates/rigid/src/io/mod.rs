@@ -23,3 +23,13 @@ pub mod spec;
 pub mod urdf;
 #[cfg(all(feature = "collision", feature = "mesh"))]
 pub mod write;
+
+/// A number in the shortest form that reads back to the same `f64` (`0` for zero, no `.0`): how
+/// the writers and the doctor's repairs print numbers into files.
+pub(crate) fn shortest(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let s = format!("{x:?}");
+    s.strip_suffix(".0").map_or(s.clone(), str::to_string)
+}

@@ -28,6 +28,7 @@ mod consistency;
 mod constraints;
 mod contact;
 mod doctor;
+mod doctor_mjcf;
 mod explicit_codegen;
 mod explicit_derivation;
 mod explicit_puma560;

@@ -70,7 +70,7 @@ pub fn was_comment(w: &InertialParams) -> String {
 }
 
 /// The whitespace before byte `at` on its line.
-fn indent_at(text: &str, at: usize) -> String {
+pub(crate) fn indent_at(text: &str, at: usize) -> String {
     let line_start = text[..at].rfind('\n').map_or(0, |k| k + 1);
     text[line_start..at]
         .chars()

@@ -55,6 +55,7 @@ mod parse;
 pub use build::{
     build_model, build_model_with, load_urdf, load_urdf_str, load_urdf_with, ROOT_JOINT_NAME,
 };
+pub(crate) use inertials::indent_at;
 pub use inertials::{edit_inertials, was_comment, with_body_inertials, InertialEdit};
 pub use mesh_path::resolve_mesh_path;
 pub use parse::{parse_urdf_file, parse_urdf_str};

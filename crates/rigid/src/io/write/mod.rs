@@ -125,14 +125,7 @@ pub(crate) fn unique(taken: &mut HashSet<String>, name: &str) -> String {
     candidate
 }
 
-/// A number in the shortest form that reads back to the same `f64` (`0` for zero).
-pub(crate) fn num(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let s = format!("{x:?}");
-    s.strip_suffix(".0").map_or(s.clone(), str::to_string)
-}
+pub(crate) use super::shortest as num;
 
 /// Numbers separated by spaces.
 pub(crate) fn nums(xs: impl IntoIterator<Item = f64>) -> String {
