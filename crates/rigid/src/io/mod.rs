@@ -26,6 +26,7 @@ pub mod write;
 
 /// A number in the shortest form that reads back to the same `f64` (`0` for zero, no `.0`): how
 /// the writers and the doctor's repairs print numbers into files.
+#[cfg(any(feature = "urdf", all(feature = "collision", feature = "mesh")))]
 pub(crate) fn shortest(x: f64) -> String {
     if x == 0.0 {
         return "0".into();
