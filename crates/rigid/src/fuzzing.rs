@@ -11,6 +11,26 @@ fn text(data: &[u8]) -> Option<&str> {
     std::str::from_utf8(data).ok()
 }
 
+/// The state the bytes make from `q0` (each coordinate moved by a byte, normalised), and a
+/// velocity; RNEA, CRBA and ABA run there. Returns `(q, v)`.
+fn dynamics_at(
+    model: &crate::multibody::Model,
+    d: &mut Data,
+    q0: &[f64],
+    data: &[u8],
+) -> (Vec<f64>, Vec<f64>) {
+    let mut q = q0.to_vec();
+    for (x, b) in q.iter_mut().zip(data) {
+        *x += f64::from(*b) * 1e-3;
+    }
+    let _ = crate::multibody::normalize(model, &mut q);
+    let v: Vec<f64> = (0..model.nv()).map(|i| (i as f64).sin()).collect();
+    let _ = rnea(model, d, &q, &v, &v);
+    let _ = crba(model, d, &q);
+    let _ = aba(model, d, &q, &v, &v);
+    (q, v)
+}
+
 /// URDF text through the parser, the model builder (all three inertia policies, fixed and
 /// floating) and one `rnea`, `crba` and `aba` call at a state made from the bytes.
 pub fn urdf(data: &[u8]) {
@@ -35,15 +55,7 @@ pub fn urdf(data: &[u8]) {
             continue;
         };
         let mut d = Data::new(&model);
-        let mut q = crate::multibody::neutral(&model);
-        for (x, b) in q.iter_mut().zip(data) {
-            *x += f64::from(*b) * 1e-3;
-        }
-        let _ = crate::multibody::normalize(&model, &mut q);
-        let v: Vec<f64> = (0..model.nv()).map(|i| (i as f64).sin()).collect();
-        let _ = rnea(&model, &mut d, &q, &v, &v);
-        let _ = crba(&model, &mut d, &q);
-        let _ = aba(&model, &mut d, &q, &v, &v);
+        dynamics_at(&model, &mut d, &crate::multibody::neutral(&model), data);
     }
     let _ = crate::doctor::Doctor::new().examine(&robot);
 }
@@ -58,15 +70,7 @@ pub fn mjcf(data: &[u8]) {
     };
     let model = &m.model;
     let mut d = Data::new(model);
-    let mut q = crate::multibody::neutral(model);
-    for (x, b) in q.iter_mut().zip(data) {
-        *x += f64::from(*b) * 1e-3;
-    }
-    let _ = crate::multibody::normalize(model, &mut q);
-    let v: Vec<f64> = (0..model.nv()).map(|i| (i as f64).sin()).collect();
-    let _ = rnea(model, &mut d, &q, &v, &v);
-    let _ = crba(model, &mut d, &q);
-    let _ = aba(model, &mut d, &q, &v, &v);
+    let (q, v) = dynamics_at(model, &mut d, &crate::multibody::neutral(model), data);
     let layout = m.layout();
     let _ = layout.rnea(model, &mut d, &q, &v, &v);
     let _ = layout.mass_matrix(model, &mut d, &q);
@@ -83,15 +87,7 @@ pub fn sdf(data: &[u8]) {
     };
     let model = &m.model;
     let mut d = Data::new(model);
-    let mut q = m.home.clone();
-    for (x, b) in q.iter_mut().zip(data) {
-        *x += f64::from(*b) * 1e-3;
-    }
-    let _ = crate::multibody::normalize(model, &mut q);
-    let v: Vec<f64> = (0..model.nv()).map(|i| (i as f64).sin()).collect();
-    let _ = rnea(model, &mut d, &q, &v, &v);
-    let _ = crba(model, &mut d, &q);
-    let _ = aba(model, &mut d, &q, &v, &v);
+    let (q, v) = dynamics_at(model, &mut d, &m.home, data);
     if let Ok(mut cd) = crate::multibody::constraints::ConstraintData::new(model, &m.constraints) {
         let settings = crate::multibody::constraints::ProximalSettings::redundant();
         let _ = crate::multibody::constraints::constraint_dynamics(

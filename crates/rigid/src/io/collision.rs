@@ -477,19 +477,7 @@ pub fn sdf_file_world(
     sdf: &super::sdf::SdfModel,
     options: &WorldOptions,
 ) -> Result<FileWorld, WorldError> {
-    options.check()?;
-    let collision = if options.ground.is_none() && !options.self_collision {
-        None
-    } else {
-        let mut cm = ground_model(
-            options.ground,
-            options.friction,
-            options.restitution,
-            sdf.geometries.clone(),
-        )?;
-        cm.self_collision = options.self_collision;
-        Some(cm)
-    };
+    let collision = geometries_world(sdf.geometries.clone(), options)?;
     Ok(FileWorld {
         collision,
         constraints: sdf.constraints.clone(),
@@ -843,6 +831,21 @@ pub fn urdf_world(
         return Ok((None, Vec::new()));
     }
     let (geometries, warnings) = urdf_geometries(robot, model);
+    Ok((geometries_world(geometries, options)?, warnings))
+}
+
+/// `geometries` on the ground and between the bodies as `options` ask (`None`: neither asked).
+///
+/// # Errors
+/// As [`ground_model`], and options that are not valid.
+fn geometries_world(
+    geometries: Vec<Geometry>,
+    options: &WorldOptions,
+) -> Result<Option<crate::collision::CollisionModel>, WorldError> {
+    options.check()?;
+    if options.ground.is_none() && !options.self_collision {
+        return Ok(None);
+    }
     let mut cm = ground_model(
         options.ground,
         options.friction,
@@ -850,7 +853,7 @@ pub fn urdf_world(
         geometries,
     )?;
     cm.self_collision = options.self_collision;
-    Ok((Some(cm), warnings))
+    Ok(Some(cm))
 }
 
 /// Excludes from `cm` the pairs of links an SRDF file disables (`<disable_collisions link1

@@ -162,7 +162,13 @@ impl Writer<'_> {
             let (kind, axis) = match model.joints()[k].kind {
                 JointType::Revolute { axis } => ("hinge", axis),
                 JointType::Prismatic { axis } => ("slide", axis),
-                _ => unreachable!("merged_away takes hinges and slides only"),
+                JointType::Spherical
+                | JointType::FreeFlyer
+                | JointType::Planar
+                | JointType::Helical { .. }
+                | JointType::Universal { .. } => {
+                    unreachable!("merged_away takes hinges and slides only")
+                }
             };
             self.dof(k, 0, "", kind, Some(axis), &(inv * f), d);
         }
