@@ -190,3 +190,33 @@ def test_mjcf_to_mjcf_equals_mujoco(name, tmp_path):
         Mb = Mb[np.ix_(vmap, vmap)]
         for x, ref in [(Mb, Ma), (db.qfrc_bias[vmap], da.qfrc_bias)]:
             assert np.max(np.abs(x - ref)) <= TOL * max(1.0, np.max(np.abs(ref)))
+
+
+def test_urdf_to_urdf_equals_pinocchio_on_talos(tmp_path):
+    """TALOS (full v2, 45 joints, 121 frames) written as URDF: Pinocchio loads it with the same
+    joints and frames, and its M and nle equal Pinocchio's on the original."""
+    path, _ = robot_path("talos")
+    out = tmp_path / "talos.urdf"
+    quiet(rigid.Model.from_urdf, path, floating=True).save(out)
+    root = pin.JointModelFreeFlyer()
+    a, b = pin.buildModelFromUrdf(path, root), pin.buildModelFromUrdf(str(out), root)
+    assert (a.nq, a.nv, len(a.frames)) == (b.nq, b.nv, len(b.frames))
+    P, pairs = np.zeros((a.nv, b.nv)), []
+    for j in range(1, a.njoints):
+        ja = a.joints[j]
+        jb = b.joints[1 if a.names[j] == "root_joint" else b.getJointId(a.names[j])]
+        pairs.append((ja, jb))
+        P[ja.idx_v:ja.idx_v + ja.nv, jb.idx_v:jb.idx_v + jb.nv] = np.eye(ja.nv)
+    da, db = a.createData(), b.createData()
+    rng = np.random.default_rng(0)
+    for _ in range(3):
+        q = pin.randomConfiguration(a, -np.ones(a.nq), np.ones(a.nq))
+        v = rng.uniform(-1, 1, a.nv)
+        qb = pin.neutral(b)
+        for ja, jb in pairs:
+            qb[jb.idx_q:jb.idx_q + jb.nq] = q[ja.idx_q:ja.idx_q + ja.nq]
+        Ma, Mb = pin.crba(a, da, q), pin.crba(b, db, qb)
+        Ma, Mb = np.triu(Ma) + np.triu(Ma, 1).T, np.triu(Mb) + np.triu(Mb, 1).T
+        assert np.max(np.abs(Ma - P @ Mb @ P.T)) <= TOL * max(1.0, np.max(np.abs(Ma)))
+        nle_a, nle_b = pin.nle(a, da, q, v), pin.nle(b, db, qb, P.T @ v)
+        assert np.max(np.abs(nle_a - P @ nle_b)) <= TOL * max(1.0, np.max(np.abs(nle_a)))
