@@ -290,7 +290,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     println!(
         "joint damping and friction: {}",
         if passive {
-            "on (URDF <dynamics>)"
+            "on (the file's joint damping and friction)"
         } else {
             "off"
         }

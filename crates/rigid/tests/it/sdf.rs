@@ -249,3 +249,20 @@ fn bad_files_are_refused_naming_the_element_and_line() {
         Err(SdfError::Xml(_))
     ));
 }
+
+#[test]
+fn the_worlds_gravity_is_the_models() {
+    let text = format!(
+        r#"<sdf version="1.6"><world name="moon"><gravity>0 0 -1.62</gravity>
+        <model name="m"><link name="torso">{LINK}</link></model></world></sdf>"#
+    );
+    let m = load_sdf_str(&text, ".".as_ref()).unwrap();
+    assert_eq!(m.model.gravity(), Vec3::new(0.0, 0.0, -1.62));
+    assert_eq!(
+        load(&format!(r#"<link name="t">{LINK}</link>"#))
+            .model
+            .gravity()
+            .z,
+        -9.81
+    );
+}

@@ -293,7 +293,7 @@ pub(super) fn build(
     let model_pose = raw.pose;
     let world_of = |name: &str| model_pose * poses.of[name];
     let mut b = ModelBuilder::new(&raw.name);
-    b.set_gravity(Vec3::new(0.0, 0.0, -9.81));
+    b.set_gravity(raw.gravity.unwrap_or(Vec3::new(0.0, 0.0, -9.81)));
     let mut walk = Walk {
         raw,
         world: raw.links.iter().map(|l| world_of(&l.name)).collect(),

@@ -14,11 +14,12 @@
 //!   `<dynamics damping friction>`.
 //! - `<frame name attached_to>`, and every `<pose relative_to>` (1.7+; `frame` in 1.5–1.6) naming
 //!   a link, joint, frame or `__model__`; `degrees="true"` and `rotation_format="quat_xyzw"` (a quaternion off unit length by up to 1e-3 is normalised).
-//! - `<model><pose>` places the model in the world; `<static>` welds its root links there.
+//! - `<model><pose>` places the model in the world; `<static>` welds its root links there; the
+//!   `<world>`'s `<gravity>` (without a world, `(0, 0, -9.81)`).
 //!
 //! Not read: nested `<model>` and `<include>` (an error naming the line), `revolute2` and
 //! `gearbox` joints (an error in the tree; a gearbox closing a loop is left out with a warning),
-//! the world's `<gravity>` (rigid's default, `(0, 0, -9.81)`), visuals, sensors and plugins.
+//! visuals, sensors and plugins.
 //!
 //! # Semantics (as SDFormat and Drake)
 //!

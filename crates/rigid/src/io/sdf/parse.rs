@@ -70,6 +70,8 @@ pub(super) struct Raw {
     pub canonical: Option<String>,
     /// `<static>true</static>`: the model is fixed in the world.
     pub fixed: bool,
+    /// The `<gravity>` of the `<world>` the model is in, if any.
+    pub gravity: Option<Vec3>,
     pub links: Vec<Link>,
     pub joints: Vec<Joint>,
     pub frames: Vec<Frame>,
@@ -386,8 +388,16 @@ impl<'a> Reader<'a> {
             "1.0" | "1.2" | "1.3" | "1.4" | "1.5" | "1.6"
         );
         let mut models: Vec<Node> = children(root, "model").collect();
+        let mut gravity = None;
         for w in children(root, "world") {
             models.extend(children(w, "model"));
+            if let Some(g) = child(w, "gravity") {
+                gravity = Some(Vec3::from_iterator(self.numbers(
+                    g,
+                    "<world> <gravity>",
+                    Some(3),
+                )?));
+            }
         }
         let m = match models.as_slice() {
             [m] => *m,
@@ -438,6 +448,7 @@ impl<'a> Reader<'a> {
         Ok(Raw {
             pose: self.pose(m, &format!("model \"{name}\""))?.t,
             canonical: m.attribute("canonical_link").map(str::to_string),
+            gravity,
             fixed: child(m, "static")
                 .and_then(|n| n.text())
                 .is_some_and(|t| matches!(t.trim(), "1" | "true")),
