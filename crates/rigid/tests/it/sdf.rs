@@ -220,8 +220,8 @@ fn bad_files_are_refused_naming_the_element_and_line() {
             "link \"a\": negative mass -1",
         ),
         (
-            r#"<model name="inner"/>"#,
-            "nested models and includes are not read yet",
+            r#"<include><uri>model://arm</uri></include>"#,
+            "includes are not read yet",
         ),
         (
             r#"<link name="a"/><joint name="j" type="screw"><parent>world</parent><child>a</child><axis><xyz>0 0 1</xyz></axis></joint>"#,
@@ -265,4 +265,76 @@ fn the_worlds_gravity_is_the_models() {
             .z,
         -9.81
     );
+}
+
+#[test]
+fn a_nested_model_is_its_links_and_joints_in_its_scope_placed_by_its_pose() {
+    // the same arm written flat and with its forearm as a nested model (its pose, its own
+    // __model__, a joint inside it, and the parent joining `fore::upper`)
+    let flat = load(&format!(
+        r#"<link name="base"/>
+        <joint name="weld" type="fixed"><parent>world</parent><child>base</child></joint>
+        <link name="upper"><pose>0.5 0 1 0 0.3 0</pose>{LINK}</link>
+        <joint name="shoulder" type="revolute"><parent>base</parent><child>upper</child>
+          <axis><xyz>0 1 0</xyz></axis></joint>
+        <link name="lower"><pose>0.5 0.2 0.4 0.1 0.3 0</pose>{LINK}</link>
+        <joint name="elbow" type="revolute"><parent>upper</parent><child>lower</child>
+          <axis><xyz expressed_in="__model__">1 0 0</xyz></axis></joint>"#
+    ));
+    let nested = load(&format!(
+        r#"<link name="base"/>
+        <joint name="weld" type="fixed"><parent>world</parent><child>base</child></joint>
+        <model name="fore"><pose>0.5 0 1 0 0 0</pose>
+          <link name="upper"><pose>0 0 0 0 0.3 0</pose>{LINK}</link>
+          <link name="lower"><pose relative_to="__model__">0 0.2 -0.6 0.1 0.3 0</pose>{LINK}</link>
+          <joint name="elbow" type="revolute"><parent>upper</parent><child>lower</child>
+            <axis><xyz expressed_in="__model__">1 0 0</xyz></axis></joint>
+        </model>
+        <joint name="shoulder" type="revolute"><parent>base</parent><child>fore::upper</child>
+          <axis><xyz>0 1 0</xyz></axis></joint>"#
+    ));
+    let names: Vec<&str> = nested
+        .model
+        .joints()
+        .iter()
+        .map(|j| j.name.as_str())
+        .collect();
+    assert_eq!(names, ["shoulder", "fore::elbow"]);
+    assert!(nested.model.frame_id("fore::lower").is_ok());
+    let g = gap(&flat.model, &nested.model);
+    assert!(g < 1e-12, "{g:e}");
+}
+
+#[test]
+fn bodies_below_a_floating_root_are_where_the_file_puts_them_at_home() {
+    let m = load(&format!(
+        r#"<pose>0 0 0.5 0 0 0.3</pose>
+        <link name="torso">{LINK}</link>
+        <link name="leg"><pose>0.1 0 -0.3 0.2 0 0</pose>{LINK}</link>
+        <joint name="hip" type="revolute"><parent>torso</parent><child>leg</child>
+          <axis><xyz>0 1 0</xyz></axis></joint>
+        <link name="foot"><pose>0.1 0 -0.6 0 0 0</pose>{LINK}</link>
+        <joint name="ankle" type="ball"><parent>leg</parent><child>foot</child></joint>"#
+    ));
+    let mut data = Data::new(&m.model);
+    rigid::multibody::forward_kinematics_q(&m.model, &mut data, &m.home).unwrap();
+    let model_pose = Transform::new(so3::from_rpy(0.0, 0.0, 0.3), Vec3::new(0.0, 0.0, 0.5));
+    for (name, pose) in [
+        (
+            "leg",
+            Transform::new(so3::from_rpy(0.2, 0.0, 0.0), Vec3::new(0.1, 0.0, -0.3)),
+        ),
+        (
+            "foot",
+            Transform::from_translation(Vec3::new(0.1, 0.0, -0.6)),
+        ),
+    ] {
+        let f = &m.model.frames()[m.model.frame_id(name).unwrap().0];
+        let at = data.placements[f.parent.unwrap().0] * f.placement;
+        let want = model_pose * pose;
+        assert!((at.translation - want.translation).norm() < 1e-15, "{name}");
+        assert!((at.rotation - want.rotation).amax() < 1e-15, "{name}");
+        // the link is its joint's own frame, exactly
+        assert!(f.placement.is_identity(0.0), "{name}");
+    }
 }

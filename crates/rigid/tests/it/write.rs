@@ -320,3 +320,80 @@ fn a_massless_moving_body_goes_into_its_child_for_mujoco() {
     let gap = dynamics_gap(&model, &back);
     assert!(gap < 1e-12, "M or bias differ by {gap:e}");
 }
+
+#[test]
+fn what_mujoco_or_urdf_would_refuse_is_said_and_names_stay_unique() {
+    let mut rng = Rng::new(9);
+    let mut b = ModelBuilder::new("edge");
+    let j = b
+        .add_joint(
+            None,
+            "j",
+            JointType::Revolute { axis: Vec3::z() },
+            transform(&mut rng),
+            inertia(&mut rng),
+        )
+        .unwrap();
+    b.set_limits(
+        j,
+        &[-1.0],
+        &[f64::INFINITY],
+        &[f64::INFINITY],
+        &[f64::INFINITY],
+    )
+    .unwrap();
+    // a body and a tool frame of one name (two namespaces in rigid, one in URDF)
+    b.add_frame_of_kind(
+        Some(j),
+        "hand",
+        Transform::identity(),
+        rigid::multibody::FrameKind::Body,
+    )
+    .unwrap();
+    b.add_frame(Some(j), "hand", transform(&mut rng)).unwrap();
+    // a massless moving leaf
+    b.add_joint(
+        Some(j),
+        "k",
+        JointType::Prismatic { axis: Vec3::x() },
+        transform(&mut rng),
+        rigid::mass::SpatialInertia::zero(),
+    )
+    .unwrap();
+    let model = b.build().unwrap();
+    let flat = Geometry::new(
+        "flat",
+        Some(JointId(0)),
+        Transform::identity(),
+        Shape::ConvexHull {
+            points: vec![
+                Vec3::zeros(),
+                Vec3::x(),
+                Vec3::y(),
+                Vec3::new(1.0, 1.0, 0.0),
+            ],
+        },
+    );
+    let mjcf = write_mjcf(&model, &[flat]).unwrap();
+    for said in [
+        "one-sided limit",
+        "hull is flat",
+        "\"k_link\" moves and has no mass",
+    ] {
+        assert!(
+            mjcf.notes.iter().any(|n| n.contains(said)),
+            "{said}: {:?}",
+            mjcf.notes
+        );
+    }
+    assert!(!mjcf.text.contains("<mesh"), "{}", mjcf.text);
+    let urdf = write_urdf(&model, &[], "m").unwrap();
+    assert_eq!(
+        urdf.text.matches("<link name=\"hand\"").count(),
+        1,
+        "{}",
+        urdf.text
+    );
+    assert_eq!(urdf.text.matches("<link name=\"hand_2\"").count(), 1);
+    load_urdf_str(&urdf.text, false).unwrap();
+}

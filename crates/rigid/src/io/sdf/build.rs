@@ -133,7 +133,13 @@ impl<'a> Walk<'a> {
             self.at[c] = Some((pb, x));
             return self.walk(c);
         };
-        let link_in_joint = jw.inverse() * self.world[c];
+        // exactly the inverse of the joint's pose on its child by default (no round-off: the
+        // link keeps being the body's own frame)
+        let link_in_joint = if j.pose.relative_to.is_none() {
+            j.pose.t.inverse()
+        } else {
+            jw.inverse() * self.world[c]
+        };
         let id = self
             .b
             .add_joint(
@@ -343,7 +349,8 @@ pub(super) fn build(
             walk.b
                 .add_frame_of_kind(Some(id), &link.name, Transform::identity(), FrameKind::Body)
                 .map_err(at)?;
-            walk.frame_of.insert(Some(id), Transform::identity());
+            // the root's joint frame is its link, where `home` puts it
+            walk.frame_of.insert(Some(id), walk.world[r]);
             walk.at[r] = Some((Some(id), Transform::identity()));
             home_free.push((id, walk.world[r]));
         }

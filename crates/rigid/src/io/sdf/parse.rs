@@ -372,6 +372,87 @@ impl<'a> Reader<'a> {
         })
     }
 
+    /// The links, joints and frames of model `m` and of the models nested in it, whose names
+    /// (and the names they refer to) get the nested model's scope `prefix` (`inner::link`); a
+    /// nested model is a frame `inner::__model__`, placed by its `<pose>` in its parent's.
+    fn collect(
+        &mut self,
+        m: Node,
+        prefix: &str,
+        old: bool,
+        links: &mut Vec<Link>,
+        joints: &mut Vec<Joint>,
+        frames: &mut Vec<Frame>,
+    ) -> Result<(), SdfError> {
+        // a name as seen from this scope: `world` is the world's, the rest is the scope's
+        let scoped = |n: &str| -> String {
+            match n {
+                "world" => n.to_string(),
+                "__model__" | "" => format!("{prefix}__model__"),
+                _ => format!("{prefix}{n}"),
+            }
+        };
+        let scope_pose = |p: &mut Pose| {
+            p.relative_to = Some(scoped(p.relative_to.as_deref().unwrap_or("__model__")));
+        };
+        for n in m.children().filter(Node::is_element) {
+            let tag = n.tag_name().name();
+            match tag {
+                "link" => {
+                    let mut l = self.link(n)?;
+                    l.name = scoped(&l.name);
+                    scope_pose(&mut l.pose);
+                    links.push(l);
+                }
+                "joint" => {
+                    let mut j = self.joint(n, old)?;
+                    j.name = scoped(&j.name);
+                    j.parent = scoped(&j.parent);
+                    j.child = scoped(&j.child);
+                    if let Some(r) = j.pose.relative_to.take() {
+                        j.pose.relative_to = Some(scoped(&r));
+                    }
+                    for a in [&mut j.axis, &mut j.axis2].into_iter().flatten() {
+                        if let Some(e) = a.expressed_in.take() {
+                            a.expressed_in = Some(scoped(&e));
+                        }
+                    }
+                    joints.push(j);
+                }
+                "frame" => {
+                    let name = n.attribute("name").unwrap_or("").to_string();
+                    let mut pose = self.pose(n, &format!("frame \"{name}\""))?;
+                    let attached = scoped(n.attribute("attached_to").unwrap_or(""));
+                    pose.relative_to =
+                        Some(pose.relative_to.map_or(attached.clone(), |r| scoped(&r)));
+                    frames.push(Frame {
+                        name: scoped(&name),
+                        attached_to: Some(attached),
+                        pose,
+                    });
+                }
+                "model" => {
+                    let name = n.attribute("name").unwrap_or("model").to_string();
+                    let inner = format!("{prefix}{name}::");
+                    let mut pose = self.pose(n, &format!("model \"{name}\""))?;
+                    scope_pose(&mut pose);
+                    frames.push(Frame {
+                        name: format!("{inner}__model__"),
+                        attached_to: None,
+                        pose,
+                    });
+                    self.collect(n, &inner, old, links, joints, frames)?;
+                }
+                "pose" | "static" | "self_collide" | "allow_auto_disable" | "enable_wind" => {}
+                "include" => {
+                    return Err(self.error(n, "<include>".into(), "includes are not read yet"))
+                }
+                _ => self.warn(n, format!("<{tag}>"), "not read"),
+            }
+        }
+        Ok(())
+    }
+
     /// The one `<model>` of the file (directly under `<sdf>`, or in its `<world>`).
     pub fn model(&mut self) -> Result<Raw, SdfError> {
         let root = self.doc.root_element();
@@ -411,40 +492,8 @@ impl<'a> Reader<'a> {
             }
         };
         let name = m.attribute("name").unwrap_or("model").to_string();
-        for n in m.children().filter(Node::is_element) {
-            let tag = n.tag_name().name();
-            match tag {
-                "link" | "joint" | "frame" | "pose" | "static" | "self_collide"
-                | "allow_auto_disable" | "enable_wind" => {}
-                "model" | "include" => {
-                    return Err(self.error(
-                        n,
-                        format!("<{tag}>"),
-                        "nested models and includes are not read yet",
-                    ))
-                }
-                _ => self.warn(n, format!("<{tag}>"), "not read"),
-            }
-        }
-        let links = children(m, "link")
-            .map(|l| self.link(l))
-            .collect::<Result<Vec<_>, _>>()?;
-        let joints = children(m, "joint")
-            .map(|j| self.joint(j, old))
-            .collect::<Result<Vec<_>, _>>()?;
-        let frames = children(m, "frame")
-            .map(|f| {
-                let name = f.attribute("name").unwrap_or("").to_string();
-                Ok(Frame {
-                    attached_to: f
-                        .attribute("attached_to")
-                        .filter(|s| !s.is_empty())
-                        .map(str::to_string),
-                    pose: self.pose(f, &format!("frame \"{name}\""))?,
-                    name,
-                })
-            })
-            .collect::<Result<Vec<_>, SdfError>>()?;
+        let (mut links, mut joints, mut frames) = (Vec::new(), Vec::new(), Vec::new());
+        self.collect(m, "", old, &mut links, &mut joints, &mut frames)?;
         Ok(Raw {
             pose: self.pose(m, &format!("model \"{name}\""))?.t,
             canonical: m.attribute("canonical_link").map(str::to_string),

@@ -79,6 +79,11 @@ pub fn write_mjcf(model: &Model, geometries: &[Geometry]) -> Result<Written, Wri
     })
 }
 
+/// True for a body without mass or rotational inertia.
+fn is_zero(g: &crate::mass::SpatialInertia) -> bool {
+    g.mass() == 0.0 && g.inertia_origin().matrix().amax() == 0.0
+}
+
 /// The smallest principal moment of inertia written (kg·m²): MuJoCo refuses a moving body with
 /// one below its `mjMINVAL` (1e-15).
 const MIN_MOMENT: f64 = 1e-12;
@@ -120,7 +125,7 @@ impl Writer<'_> {
             JointType::Revolute { .. } | JointType::Prismatic { .. }
         );
         scalar
-            && model.inertias()[j].mass() == 0.0
+            && is_zero(&model.inertias()[j])
             && self.outline.children[j].len() == 1
             && geometries_of(self.geometries, Some(j)).next().is_none()
             && self.outline.fixed[j]
@@ -247,6 +252,13 @@ impl Writer<'_> {
         let (lo, hi) = (model.lower_limits()[coord], model.upper_limits()[coord]);
         if scalar && lo.is_finite() && hi.is_finite() {
             let _ = write!(s, " range=\"{} {}\"", num(lo), num(hi));
+        } else if scalar && (lo.is_finite() || hi.is_finite()) {
+            self.notes.push(format!(
+                "joint \"{}\": a one-sided limit ({} to {}) is not written: MJCF's range has two",
+                joint.name,
+                num(lo),
+                num(hi)
+            ));
         }
         let dofs = joint.dofs();
         let one = |v: &[f64]| v[dof];
@@ -281,11 +293,27 @@ impl Writer<'_> {
     /// The `<inertial>` of joint `j`'s body (none when it carries no mass).
     fn inertial(&mut self, j: usize, depth: usize) {
         let g = &self.outline.model.inertias()[j];
-        if g.mass() == 0.0 {
+        if is_zero(g) {
+            if !self.outline.children[j].is_empty() || self.outline.model.joints()[j].nv > 0 {
+                self.notes.push(format!(
+                    "body \"{}\" moves and has no mass: MuJoCo refuses it (\"mass and inertia of \
+                     moving bodies must be larger than mjMINVAL\"); give it a mass, or set \
+                     <compiler boundmass boundinertia>",
+                    self.outline.link[j]
+                ));
+            }
             return;
         }
         let mut m = *g.inertia_com().matrix();
         let (moments, axes) = g.inertia_com().principal();
+        if moments.z > moments.x + moments.y + 1e-12 * moments.z {
+            self.notes.push(format!(
+                "body \"{}\": principal moments {} kg·m² violate A + B >= C, which MuJoCo refuses \
+                 (its <compiler balanceinertia=\"true\"> would change them; rigid doctor says why)",
+                self.outline.link[j],
+                vec3(&moments)
+            ));
+        }
         if moments.min() < MIN_MOMENT {
             let raise = moments.map(|l| (MIN_MOMENT - l).max(0.0));
             m += axes * crate::spatial::Mat3::from_diagonal(&raise) * axes.transpose();
@@ -355,7 +383,13 @@ impl Writer<'_> {
                 }
                 // the hull's vertices: MuJoCo collides a mesh as its hull too
                 let points = super::surface_points(&g.shape, 32);
-                let points = crate::collision::hull_triangles(&points).map_or(points, |h| h.0);
+                let Some((points, _)) = super::solid_hull(&points) else {
+                    self.notes.push(format!(
+                        "geometry \"{}\": its hull is flat, which MuJoCo refuses: not written",
+                        g.name
+                    ));
+                    return;
+                };
                 let _ = writeln!(
                     self.assets,
                     "    <mesh name=\"{}\" vertex=\"{}\"/>",

@@ -228,6 +228,21 @@ pub(crate) fn surface_points(shape: &crate::collision::Shape, n: usize) -> Vec<V
     }
 }
 
+/// The convex hull of `points` (vertices and triangles), `None` when it encloses no volume (all
+/// points on a plane or a line: MuJoCo refuses such a mesh, and nothing can rest on it).
+pub(crate) fn solid_hull(points: &[Vec3]) -> Option<(Vec<Vec3>, Vec<[usize; 3]>)> {
+    let (v, t) = crate::collision::hull_triangles(points)?;
+    let volume: f64 = t
+        .iter()
+        .map(|f| v[f[0]].dot(&v[f[1]].cross(&v[f[2]])) / 6.0)
+        .sum();
+    let size = v
+        .iter()
+        .flat_map(|a| v.iter().map(move |b| (a - b).norm()))
+        .fold(0.0, f64::max);
+    (volume.abs() > 1e-9 * size.powi(3)).then_some((v, t))
+}
+
 /// The rotation of `t` as MuJoCo's `w x y z`, `None` for the identity.
 pub(crate) fn quat_wxyz(t: &Transform) -> Option<[f64; 4]> {
     if t.rotation == crate::spatial::Mat3::identity() {

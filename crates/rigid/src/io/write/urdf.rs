@@ -15,8 +15,10 @@
 //! masks: a shape without an element is written as the convex hull of points of its surface in
 //! an OBJ file (in [`Written::files`]), the others are noted.
 
-use super::{esc, geometries_of, num, surface_points, unique, vec3, Outline, WriteError, Written};
-use crate::collision::{hull_triangles, Geometry, Shape};
+use super::{
+    esc, geometries_of, num, solid_hull, surface_points, unique, vec3, Outline, WriteError, Written,
+};
+use crate::collision::{Geometry, Shape};
 use crate::multibody::{FrameKind, JointType, Model};
 use crate::spatial::{so3, Transform};
 use std::collections::HashSet;
@@ -55,6 +57,18 @@ pub fn write_urdf(
         unlimited: 0,
         hulls: Vec::new(),
         masked: Vec::new(),
+        link_names: outline
+            .link
+            .iter()
+            .cloned()
+            .chain(
+                model
+                    .frames()
+                    .iter()
+                    .filter(|f| f.kind == FrameKind::Body)
+                    .map(|f| f.name.clone()),
+            )
+            .collect(),
     };
     let free_root = match outline.roots.as_slice() {
         [r] => {
@@ -151,6 +165,8 @@ struct Writer<'a> {
     mesh_names: HashSet<String>,
     joint_names: HashSet<String>,
     unlimited: usize,
+    /// The link names written or to be written.
+    link_names: HashSet<String>,
     /// Geometries written as hulls for want of their shape.
     hulls: Vec<String>,
     /// Geometries whose contact masks are not the default.
@@ -298,7 +314,7 @@ impl Writer<'_> {
         let mut s = format!("  <link name=\"{}\">\n", esc(name));
         if let Some(j) = body {
             let g = &self.outline.model.inertias()[j];
-            if g.mass() != 0.0 {
+            if g.mass() != 0.0 || g.inertia_origin().matrix().amax() != 0.0 {
                 let m = *g.inertia_com().matrix();
                 let _ = write!(
                     s,
@@ -338,6 +354,11 @@ impl Writer<'_> {
                 continue;
             }
             operational += usize::from(frame.kind == FrameKind::Operational);
+            // an operational frame may share its name with a link (two namespaces in rigid)
+            let lname = match frame.kind {
+                FrameKind::Operational => unique(&mut self.link_names, &frame.name),
+                FrameKind::Body | FrameKind::FixedJoint => frame.name.clone(),
+            };
             let named = frames.iter().map(|&k| &model.frames()[k]).find(|k| {
                 k.kind == FrameKind::FixedJoint
                     && k.placement == frame.placement
@@ -345,16 +366,16 @@ impl Writer<'_> {
             });
             let jname = match named {
                 Some(k) => k.name.clone(),
-                None => format!("{}_joint", frame.name),
+                None => format!("{lname}_joint"),
             };
             let jname = unique(&mut self.joint_names, &jname);
             let _ = write!(
                 self.text,
                 "  <link name=\"{}\"/>\n  <joint name=\"{}\" type=\"fixed\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n{}  </joint>\n",
-                esc(&frame.name),
+                esc(&lname),
                 esc(&jname),
                 esc(link),
-                esc(&frame.name),
+                esc(&lname),
                 origin(&frame.placement, 4)
             );
         }
@@ -380,8 +401,7 @@ impl Writer<'_> {
             | Shape::Cone { .. }
             | Shape::Ellipsoid { .. }
             | Shape::ConvexHull { .. } => {
-                let Some((vertices, triangles)) = hull_triangles(&surface_points(&g.shape, 32))
-                else {
+                let Some((vertices, triangles)) = solid_hull(&surface_points(&g.shape, 32)) else {
                     self.notes.push(format!(
                         "geometry \"{}\": its hull is flat: not written",
                         g.name
