@@ -17,7 +17,11 @@
 //! - `<model><pose>` places the model in the world; `<static>` welds its root links there; the
 //!   `<world>`'s `<gravity>` (without a world, `(0, 0, -9.81)`).
 //!
-//! Not read: nested `<model>` and `<include>` (an error naming the line), `revolute2` and
+//! - Nested `<model>`s: their links, joints and frames named in their scope (`inner::link`), the
+//!   names they refer to read in it, the model placed by its `<pose>` (a frame
+//!   `inner::__model__`).
+//!
+//! Not read: `<include>` (an error naming the line), `revolute2` and
 //! `gearbox` joints (an error in the tree; a gearbox closing a loop is left out with a warning),
 //! visuals, sensors and plugins.
 //!
