@@ -78,15 +78,7 @@ impl InertialParams {
     /// The six inertia entries in URDF order `ixx, iyy, izz, ixy, ixz, iyz`.
     #[must_use]
     pub fn entries(&self) -> [f64; 6] {
-        let m = self.inertia.matrix();
-        [
-            m[(0, 0)],
-            m[(1, 1)],
-            m[(2, 2)],
-            m[(0, 1)],
-            m[(0, 2)],
-            m[(1, 2)],
-        ]
+        self.inertia.entries()
     }
 
     /// The same parameters with the six entries `e` (URDF order).

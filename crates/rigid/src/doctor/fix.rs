@@ -75,7 +75,7 @@ pub fn fixed_mjcf(text: &str, report: &DoctorReport) -> Result<(String, Vec<Stri
         let indent = indent_at(text, range.start);
         // `fullinertia` is in the body frame (MuJoCo allows no `quat` with it): rotate it there
         let rotation = crate::spatial::so3::from_rpy(r.rpy[0], r.rpy[1], r.rpy[2]);
-        let e = rotation * r.inertia.matrix() * rotation.transpose();
+        let e = r.inertia.rotated_by(&rotation).entries();
         let cause = b.likely_cause.map_or("unknown", |c| c.code());
         let element = format!(
             "<!-- rigid doctor: {cause}: {} -->\n{indent}<!-- was: {} -->\n{indent}<inertial \
@@ -84,14 +84,7 @@ pub fn fixed_mjcf(text: &str, report: &DoctorReport) -> Result<(String, Vec<Stri
             text[range.clone()].replace("--", "- -"),
             nums(&[r.com.x, r.com.y, r.com.z]),
             num(r.mass),
-            nums(&[
-                e[(0, 0)],
-                e[(1, 1)],
-                e[(2, 2)],
-                e[(0, 1)],
-                e[(0, 2)],
-                e[(1, 2)]
-            ])
+            nums(&e)
         );
         edits.push((range, element));
     }

@@ -90,6 +90,21 @@ impl RotationalInertia {
         [0, 1, 2].map(|r| [m[(r, 0)], m[(r, 1)], m[(r, 2)]])
     }
 
+    /// The six independent entries `ixx, iyy, izz, ixy, ixz, iyz`: the order of URDF's
+    /// `<inertia>` attributes and of MJCF's `fullinertia`.
+    #[must_use]
+    pub fn entries(&self) -> [f64; 6] {
+        let m = &self.0;
+        [
+            m[(0, 0)],
+            m[(1, 1)],
+            m[(2, 2)],
+            m[(0, 1)],
+            m[(0, 2)],
+            m[(1, 2)],
+        ]
+    }
+
     /// `I ω`.
     #[must_use]
     #[inline]

@@ -284,16 +284,10 @@ impl Inertial {
     pub fn map_moments(&self, f: impl Fn(f64) -> f64) -> Self {
         let (l, r) = self.principal_axes();
         let d = Mat3::from_diagonal(&Vec3::new(f(l[0]), f(l[1]), f(l[2])));
-        let m = r * d * r.transpose();
         Self {
-            full: [
-                m[(0, 0)],
-                m[(1, 1)],
-                m[(2, 2)],
-                m[(0, 1)],
-                m[(0, 2)],
-                m[(1, 2)],
-            ],
+            full: crate::mass::RotationalInertia::from_matrix_unchecked(&d)
+                .rotated_by(&r)
+                .entries(),
             ..*self
         }
     }

@@ -16,6 +16,7 @@
 
 use super::{esc, geometries_of, num, nums, quat_wxyz, unique, vec3, Outline, WriteError, Written};
 use crate::collision::{Geometry, Shape};
+use crate::mass::RotationalInertia;
 use crate::multibody::{FrameKind, JointType, Model};
 use crate::spatial::{Transform, Vec3};
 use std::collections::HashSet;
@@ -324,14 +325,7 @@ impl Writer<'_> {
                 vec3(&moments)
             ));
         }
-        let full = nums([
-            m[(0, 0)],
-            m[(1, 1)],
-            m[(2, 2)],
-            m[(0, 1)],
-            m[(0, 2)],
-            m[(1, 2)],
-        ]);
+        let full = nums(RotationalInertia::from_matrix_unchecked(&m).entries());
         self.line(
             depth,
             &format!(
