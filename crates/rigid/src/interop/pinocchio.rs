@@ -99,25 +99,51 @@ impl PinocchioLayout {
     /// The layout map of `model` (joints in the model's order).
     #[must_use]
     pub fn new(model: &Model) -> Self {
-        let mut joints = Vec::with_capacity(model.njoints());
-        let mut names = Vec::with_capacity(model.njoints());
-        let mut perm: Vec<usize> = (0..model.nv()).collect();
+        let joints = model.joints().iter().map(|j| (j, j.idx_q, j.idx_v));
+        Self::of_joints(joints, model.nv())
+    }
+
+    /// The layout map of a model with mimic joints in its reduced coordinates
+    /// ([`MimicModel`](crate::multibody::MimicModel)): the free joints' coordinates in
+    /// Pinocchio's form, in the model's order, the mimic joints with none (Pinocchio's
+    /// `mimic=True`). [`joint_q`](Self::joint_q) indexes the free joints.
+    #[must_use]
+    pub fn of_mimic(mm: &crate::multibody::MimicModel) -> Self {
+        let model = mm.model();
+        let joints = (0..model.njoints())
+            .map(crate::multibody::JointId)
+            .filter(|&id| mm.mimic_of(id).is_none())
+            .map(|id| {
+                let (iq, iv) = mm.joint_coordinates(id);
+                (model.joint(id), iq, iv)
+            });
+        Self::of_joints(joints, mm.nv())
+    }
+
+    /// The map of these joints at these `(idx_q, idx_v)` in rigid's vectors.
+    fn of_joints<'a>(
+        list: impl Iterator<Item = (&'a crate::multibody::Joint, usize, usize)>,
+        nv: usize,
+    ) -> Self {
+        let mut joints = Vec::new();
+        let mut names = Vec::new();
+        let mut perm: Vec<usize> = (0..nv).collect();
         let mut pin_idx_q = 0;
-        for j in model.joints() {
+        for (j, idx_q, idx_v) in list {
             let coords = j.kind.pinocchio_coords(j.continuous);
             let pin_nq = coords.nq(j.nq);
             if coords == PinocchioCoords::FreeFlyer {
                 for k in 0..3 {
-                    perm.swap(j.idx_v + k, j.idx_v + 3 + k);
+                    perm.swap(idx_v + k, idx_v + 3 + k);
                 }
             }
             joints.push(JointMap {
                 coords,
-                idx_q: j.idx_q,
+                idx_q,
                 nq: j.nq,
                 pin_idx_q,
                 pin_nq,
-                idx_v: j.idx_v,
+                idx_v,
             });
             names.push(j.name.clone());
             pin_idx_q += pin_nq;

@@ -28,6 +28,7 @@
 //! | Pinocchio's `q` (`cos θ, sin θ`) and `v` (linear first) | [`PinocchioLayout`](crate::interop::PinocchioLayout) | URDF models loaded with sibling joints sorted by name |
 //! | `∂τ/∂(q, v)`, `∂q̈/∂(q, v, τ)`, `∂g/∂q`, frame kinematics, `∂(q ⊕ v)`, `∂(q₁ ⊖ q₀)` | [`derivatives`] ([`rnea_derivatives`], [`aba_derivatives`], …; `q` along `q ⊕ δ`) | Carpentier & Mansard, RSS 2018 |
 //! | simulate: `(q, v)` on the manifold, RK4, variational, controllers, batch | [`simulation`](crate::simulation), the layer above this one | ABA; Lynch & Park ch. 9, 11 |
+//! | mimic joints `q_m = k q_s + o`: `τ = Gᵀ τ_full`, `M = Gᵀ M_full G` | [`MimicModel`] | Pinocchio's `mimic=True` |
 //! | many states at once, on every core | [`batch`] (`rnea_batch`, `aba_batch`, `crba_batch`, `crba_lower_batch`; `Batch` keeps the workspaces) | rayon; bit-for-bit single calls |
 //!
 //! No algorithm allocates after [`Data::new`] (tested with a counting allocator), and each
@@ -52,6 +53,7 @@ pub(crate) mod configuration;
 pub mod constraints;
 mod data;
 pub(crate) mod joint;
+mod mimic;
 mod textbook;
 
 mod model;
@@ -73,6 +75,7 @@ pub use joint::lie::{
     so3_jr as so3_right_jacobian, so3_jr_inv as so3_right_jacobian_inverse,
 };
 pub use joint::{column_names, JointType, MujocoCoords, PinocchioCoords};
+pub use mimic::{Mimic, MimicData, MimicError, MimicModel};
 pub use model::{Frame, FrameId, FrameKind, FrameLookupError, Joint, JointId, Model};
 pub use textbook::{from_dh, from_modern_robotics, DhConvention, DhJoint, DhLink};
 

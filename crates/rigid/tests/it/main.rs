@@ -41,6 +41,7 @@ mod identification_packages;
 mod inverse_kinematics;
 mod joints_pinocchio;
 mod mesh;
+mod mimic;
 mod mjcf;
 mod mjcf_import;
 mod mobile;
