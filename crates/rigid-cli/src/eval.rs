@@ -1,6 +1,8 @@
 //! `rigid eval MODEL --cases CASES.json [--floating] [--json] [--derivatives]`: the dynamics of a model at given
 //! states, for scripts and cross-checks (the contract is in `docs/conventions.md`).
 
+#[path = "eval_mimic.rs"]
+mod mimic;
 #[path = "eval_mujoco.rs"]
 mod mujoco;
 
@@ -54,6 +56,11 @@ pub struct EvalArgs {
     /// file (`--constraints MODEL.xml`) takes its `<equality>` elements (connect, weld, joint).
     #[arg(long)]
     pub constraints: Option<PathBuf>,
+    /// Mimic joints as couplings (a URDF's `<mimic>`, an MJCF `<equality joint>` with a linear
+    /// `polycoef`): each follows its source with no coordinate of its own, as Pinocchio's
+    /// `mimic=True`; `nq`, `nv` and every vector and matrix leave them out (docs/mimic.md).
+    #[arg(long)]
+    pub mimic: bool,
 }
 
 #[derive(Serialize)]
@@ -85,6 +92,17 @@ struct JointInfo {
     nq: usize,
     idx_v: usize,
     nv: usize,
+    /// With `--mimic`, what a mimic joint follows (added key).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mimic: Option<MimicInfo>,
+}
+
+/// `q = multiplier · q_joint + offset`.
+#[derive(Serialize)]
+struct MimicInfo {
+    joint: String,
+    multiplier: f64,
+    offset: f64,
 }
 
 #[derive(Serialize)]
@@ -146,6 +164,16 @@ struct Placement {
     rotation: [[f64; 3]; 3],
 }
 
+impl Placement {
+    fn of(t: &rigid::spatial::Transform) -> Self {
+        let r = &t.rotation;
+        Self {
+            translation: [t.translation.x, t.translation.y, t.translation.z],
+            rotation: [0, 1, 2].map(|i| [r[(i, 0)], r[(i, 1)], r[(i, 2)]]),
+        }
+    }
+}
+
 /// Joint name → placement, serialised as a JSON object in joint order.
 struct Placements(Vec<(String, Placement)>);
 
@@ -164,6 +192,9 @@ impl Serialize for Placements {
 /// # Errors
 /// A message naming the model, the case and the field, or the joint.
 pub fn run(args: &EvalArgs) -> Result<(), String> {
+    if args.mimic {
+        return mimic::run(args);
+    }
     let mut load = args.load;
     if args.layout == Layout::Pinocchio {
         load.sibling_order = SiblingOrder::Name;
@@ -325,6 +356,7 @@ fn model_info(model: &Model, layout: Option<&PinocchioLayout>) -> ModelInfo {
                     nq,
                     idx_v: j.idx_v,
                     nv: j.nv,
+                    mimic: None,
                 }
             })
             .collect(),
@@ -375,24 +407,7 @@ fn evaluate(
     let nle = nle.as_slice().to_vec();
     let g = gravity_torques(model, data, &c.q).map_err(e("gravity_torques"))?;
     let g = g.as_slice().to_vec();
-    // ABA is defined when M is positive definite (the library's aba says when it is not): a
-    // non-physical inertia loaded as written can make it indefinite, and then the case still
-    // gets every other output
-    let (ddq, aba_error) = match aba(model, data, &c.q, &c.v, &c.tau) {
-        Ok(a) if a.iter().all(|x| x.is_finite()) => (Some(a.as_slice().to_vec()), None),
-        Ok(_) => (
-            None,
-            Some("aba is not finite: the numbers overflow".to_string()),
-        ),
-        Err(MultibodyError::NotPositiveDefinite) => (
-            None,
-            Some(
-                "mass matrix is not positive definite (a non-physical inertia): ABA is undefined"
-                    .to_string(),
-            ),
-        ),
-        Err(err) => (None, Some(format!("aba: {err}"))),
-    };
+    let (ddq, aba_error) = aba_or_why(aba(model, data, &c.q, &c.v, &c.tau));
     let kinetic_energy = kinetic_energy(model, data, &c.q, &c.v).map_err(e("kinetic_energy"))?;
     let potential_energy = potential_energy(model, data, &c.q).map_err(e("potential_energy"))?;
     let com = center_of_mass(model, data, &c.q).map_err(e("com"))?;
@@ -401,31 +416,8 @@ fn evaluate(
         .joints()
         .iter()
         .zip(&data.placements)
-        .map(|(j, t)| {
-            let r = &t.rotation;
-            let p = Placement {
-                translation: [t.translation.x, t.translation.y, t.translation.z],
-                rotation: [0, 1, 2].map(|i| [r[(i, 0)], r[(i, 1)], r[(i, 2)]]),
-            };
-            (j.name.clone(), p)
-        })
+        .map(|(j, t)| (j.name.clone(), Placement::of(t)))
         .collect();
-    // A result that overflowed (huge masses, huge velocities) is an error, not a JSON `null`.
-    let finite = |what: &'static str, x: &[f64]| {
-        if x.iter().all(|v| v.is_finite()) {
-            Ok(())
-        } else {
-            Err(format!(
-                "{what} is not finite: the numbers overflow (check the masses and the state)"
-            ))
-        }
-    };
-    finite("rnea", &rnea)?;
-    finite("mass_matrix", &mass_matrix.concat())?;
-    finite("nonlinear_effects", &nle)?;
-    finite("gravity_torques", &g)?;
-    finite("kinetic_energy", &[kinetic_energy, potential_energy])?;
-    finite("com", &[com.x, com.y, com.z])?;
     let (rnea_derivatives, aba_derivatives) = if derivatives {
         let d = rnea_derivatives(model, data, &c.q, &c.v, &c.a).map_err(e("rnea_derivatives"))?;
         let r = RneaDerivatives {
@@ -438,18 +430,12 @@ fn evaluate(
             dqdd_dv: rows(d.dqdd_dv),
             dqdd_dtau: rows(d.dqdd_dtau),
         };
-        finite(
-            "rnea_derivatives",
-            &[r.dtau_dq.concat(), r.dtau_dv.concat()].concat(),
-        )?;
-        let all = [f.dqdd_dq.concat(), f.dqdd_dv.concat(), f.dqdd_dtau.concat()].concat();
-        finite("aba_derivatives", &all)?;
         (Some(r), Some(f))
     } else {
         (None, None)
     };
     // `+ 0.0` turns an empty sum's `-0.0` into `0.0`.
-    Ok(CaseResult {
+    let r = CaseResult {
         rnea,
         mass_matrix,
         nonlinear_effects: nle,
@@ -467,7 +453,64 @@ fn evaluate(
         impulse_dynamics: None,
         constraint_dynamics_derivatives: None,
         impulse_dynamics_derivatives: None,
-    })
+    };
+    r.check_finite()?;
+    Ok(r)
+}
+
+/// ABA's result, or why it is undefined: ABA is defined when M is positive definite (the
+/// library's `aba` says when it is not): a non-physical inertia loaded as written can make it
+/// indefinite, and then the case still gets every other output.
+fn aba_or_why(
+    r: Result<&nalgebra::DVector<f64>, rigid::multibody::MultibodyError>,
+) -> (Option<Vec<f64>>, Option<String>) {
+    use rigid::multibody::MultibodyError;
+    match r {
+        Ok(a) if a.iter().all(|x| x.is_finite()) => (Some(a.as_slice().to_vec()), None),
+        Ok(_) => (
+            None,
+            Some("aba is not finite: the numbers overflow".to_string()),
+        ),
+        Err(MultibodyError::NotPositiveDefinite) => (
+            None,
+            Some(
+                "mass matrix is not positive definite (a non-physical inertia): ABA is undefined"
+                    .to_string(),
+            ),
+        ),
+        Err(err) => (None, Some(format!("aba: {err}"))),
+    }
+}
+
+impl CaseResult {
+    /// A result that overflowed (huge masses, huge velocities) is an error, not a JSON `null`.
+    fn check_finite(&self) -> Result<(), String> {
+        let finite = |what: &'static str, x: &[f64]| {
+            if x.iter().all(|v| v.is_finite()) {
+                Ok(())
+            } else {
+                Err(format!(
+                    "{what} is not finite: the numbers overflow (check the masses and the state)"
+                ))
+            }
+        };
+        finite("rnea", &self.rnea)?;
+        finite("mass_matrix", &self.mass_matrix.concat())?;
+        finite("nonlinear_effects", &self.nonlinear_effects)?;
+        finite("gravity_torques", &self.gravity_torques)?;
+        let energies = [self.kinetic_energy, self.potential_energy];
+        finite("kinetic_energy", &energies)?;
+        finite("com", &self.com)?;
+        if let Some(r) = &self.rnea_derivatives {
+            let all = [r.dtau_dq.concat(), r.dtau_dv.concat()].concat();
+            finite("rnea_derivatives", &all)?;
+        }
+        if let Some(f) = &self.aba_derivatives {
+            let all = [f.dqdd_dq.concat(), f.dqdd_dv.concat(), f.dqdd_dtau.concat()].concat();
+            finite("aba_derivatives", &all)?;
+        }
+        Ok(())
+    }
 }
 
 fn fmt_vec(x: &[f64]) -> String {

@@ -7,7 +7,7 @@ use rigid::io::mjcf::{self, MjcfModel};
 use rigid::io::robots;
 use rigid::io::sdf::{self, SdfModel};
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfOptions};
-use rigid::multibody::{builtin, builtin_names, Model};
+use rigid::multibody::{builtin, builtin_names, Mimic, MimicModel, Model};
 use std::path::Path;
 
 /// How to load a URDF: shared by the commands that take a model.
@@ -65,7 +65,12 @@ pub fn load_model(spec: &str, args: &LoadArgs) -> Result<Model, String> {
 /// As [`load_model`].
 pub fn load_printing_warnings(spec: &str, args: &LoadArgs) -> Result<Loaded, String> {
     let loaded = load_any(spec, args)?;
-    let warnings = &loaded.warnings;
+    print_warnings(spec, &loaded.warnings);
+    Ok(loaded)
+}
+
+/// The first few warnings on stderr, then a count.
+fn print_warnings(spec: &str, warnings: &[String]) {
     for w in warnings.iter().take(SHOWN_WARNINGS) {
         eprintln!("warning: {spec}: {w}");
     }
@@ -75,7 +80,31 @@ pub fn load_printing_warnings(spec: &str, args: &LoadArgs) -> Result<Loaded, Str
             warnings.len() - SHOWN_WARNINGS
         );
     }
-    Ok(loaded)
+}
+
+/// The model named by `spec` with its mimic joints as couplings (`--mimic`): a URDF's
+/// `<mimic>` elements, an MJCF file's `<equality joint>` elements whose polynomial is linear;
+/// a model with neither has no couplings. Warnings as [`load_printing_warnings`].
+///
+/// # Errors
+/// As [`load_model`], and a coupling rigid cannot hold (naming the joint and its line).
+pub fn load_mimic(spec: &str, args: &LoadArgs) -> Result<MimicModel, String> {
+    if !is_mjcf(spec) && !is_sdf(spec) {
+        if let Some(path) = urdf_path(spec) {
+            let (mm, warnings) = urdf::load_urdf_mimic(&path, &args.urdf_options())
+                .map_err(|e| format!("{spec}: {e}"))?;
+            let warnings: Vec<String> = warnings.iter().map(ToString::to_string).collect();
+            print_warnings(spec, &warnings);
+            return Ok(mm);
+        }
+    }
+    let loaded = load_printing_warnings(spec, args)?;
+    let mut mimics = Vec::new();
+    if let Some(m) = &loaded.mjcf {
+        let (constraints, _) = m.constraint_models().map_err(|e| format!("{spec}: {e}"))?;
+        mimics.extend(constraints.iter().filter_map(Mimic::from_constraint));
+    }
+    MimicModel::new(loaded.model, &mimics).map_err(|e| format!("{spec}: {e}"))
 }
 
 /// A model as loaded, with what its file says besides the dynamics.

@@ -134,6 +134,12 @@ pub struct SimulateArgs {
     /// violation; the CSV gains `violation_position` and `violation_velocity`.
     #[arg(long)]
     pub constraints: Option<PathBuf>,
+    /// Robot (URDF): mimic joints follow their sources (`<mimic>`), held as joint constraints
+    /// of the full model, whose constrained dynamics are the reduced model's (docs/mimic.md);
+    /// the CSV keeps every joint's column. `--q0`, `--v0` and `--target` may be given in the
+    /// reduced coordinates.
+    #[arg(long)]
+    pub mimic: bool,
     /// Write one row per step to this CSV file. Robot: `t`, then q, v and τ with joint-named
     /// columns, then `energy` (K + U, J); body: `t,px,py,pz,qx,qy,qz,qw,wx,wy,wz,vx,vy,vz` (the
     /// CoM frame's pose and body twist), with --ground then `energy`. When anything can touch,
@@ -260,9 +266,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
                 .into(),
         );
     }
-    if body && (args.constraints.is_some() || args.self_collision) {
+    if body && (args.constraints.is_some() || args.self_collision || args.mimic) {
         let flag = if args.self_collision {
             "--self-collision"
+        } else if args.mimic {
+            "--mimic"
         } else {
             "--constraints"
         };

@@ -5,12 +5,13 @@
 //! reads the flags and names them in errors.
 
 use super::SimulateArgs;
-use crate::load::{load_printing_warnings, urdf_path, Loaded};
+use crate::load::{is_mjcf, is_sdf, load_printing_warnings, urdf_path, Loaded};
 use rigid::io::collision::{
     mjcf_file_world, sdf_file_world, spec_body, urdf_file_world, FileWorld, WorldError,
     WorldOptions,
 };
 use rigid::io::urdf::parse_urdf_file;
+use rigid::multibody::MimicModel;
 use rigid::simulation::{ConstraintOptions, Scenario, SimulationError, SimulationOptions};
 
 /// What `rigid simulate` runs: the scenario, whether the model is a body spec, and the MJCF
@@ -130,6 +131,9 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
         None => (world.constraints, world.constraint_settings),
     };
     s.constraints = constraints;
+    if args.mimic {
+        couple(args, &mut s)?;
+    }
     s.constraint_options = ConstraintOptions {
         settings,
         ..ConstraintOptions::default()
@@ -140,6 +144,78 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
         spec,
         dt,
     })
+}
+
+/// `--mimic`: a URDF's `<mimic>` joints held as joint constraints of the full model (the
+/// constrained dynamics are those of the reduced model, `rigid::multibody::MimicModel`), the
+/// start and the target made consistent with them (each mimic coordinate from its source's; a
+/// `--q0`, `--v0` or `--target` may also be given in the reduced coordinates). An MJCF file's
+/// `<equality joint>` elements are held without the flag.
+fn couple(args: &SimulateArgs, s: &mut Scenario) -> Result<(), String> {
+    let Some(path) =
+        urdf_path(&args.model).filter(|_| !is_mjcf(&args.model) && !is_sdf(&args.model))
+    else {
+        return Ok(());
+    };
+    let robot = parse_urdf_file(&path).map_err(|e| format!("{}: {e}", args.model))?;
+    let mimics =
+        rigid::io::urdf::mimics(&robot, &s.model).map_err(|e| format!("{}: {e}", args.model))?;
+    let mm =
+        MimicModel::new(s.model.clone(), &mimics).map_err(|e| format!("{}: {e}", args.model))?;
+    let consistent = |q: &[f64], what: &str| -> Result<Vec<f64>, String> {
+        let mut reduced = vec![0.0; mm.nq()];
+        if q.len() == mm.nq() {
+            reduced.copy_from_slice(q);
+        } else if q.len() == s.model.nq() {
+            mm.reduce_q(q, &mut reduced);
+        } else {
+            return Err(format!(
+                "--{what} has {} numbers; with --mimic give the reduced coordinates ({}) or \
+                 every joint's ({})",
+                q.len(),
+                mm.nq(),
+                s.model.nq()
+            ));
+        }
+        let mut full = vec![0.0; s.model.nq()];
+        mm.expand_q(&reduced, &mut full);
+        Ok(full)
+    };
+    if let Some(q0) = &s.q0 {
+        s.q0 = Some(consistent(q0, "q0")?);
+    } else if mm.mimics().iter().any(|m| m.offset != 0.0) {
+        let home = s
+            .home
+            .clone()
+            .unwrap_or_else(|| rigid::multibody::neutral(&s.model));
+        s.home = Some(consistent(&home, "q0")?);
+    }
+    if let Some(v0) = &s.v0 {
+        let mut reduced = vec![0.0; mm.nv()];
+        if v0.len() == mm.nv() {
+            reduced.copy_from_slice(v0);
+        } else if v0.len() == s.model.nv() {
+            for (r, &k) in reduced.iter_mut().zip(mm.v_full_indices()) {
+                *r = v0[k];
+            }
+        } else {
+            return Err(format!(
+                "--v0 has {} numbers; with --mimic give the reduced velocities ({}) or every \
+                 joint's ({})",
+                v0.len(),
+                mm.nv(),
+                s.model.nv()
+            ));
+        }
+        let mut full = vec![0.0; s.model.nv()];
+        mm.expand_v(&reduced, &mut full);
+        s.v0 = Some(full);
+    }
+    if let Some(t) = &s.target {
+        s.target = Some(consistent(t, "target")?);
+    }
+    s.constraints.extend(mm.constraints());
+    Ok(())
 }
 
 /// The world of a robot file: an MJCF file's own (floor, geoms, `<contact>`, `<equality>`,

@@ -14,6 +14,7 @@ mod corpus;
 mod doctor_cli;
 mod eval;
 mod eval_constraints;
+mod eval_mimic;
 mod eval_mujoco;
 mod eval_parallel;
 mod eval_pinocchio;

@@ -548,3 +548,55 @@ fn live_baxter_pr2_panda_equal_pinocchio_and_romeo_talos_pass_the_identities() {
         .count();
     assert_eq!((undefined, mm.mimics().len()), (8, 0), "{warnings:?}");
 }
+
+#[test]
+fn simulating_the_full_model_held_by_the_couplings_follows_the_reduced_dynamics() {
+    // rk4 on the full model under the joint constraints (what `rigid simulate --mimic` runs)
+    // against rk4 on the reduced coordinates with MimicModel::aba, 0.3 s of passive motion
+    use rigid::simulation::{ConstraintOptions, Controller, SimulationOptions, Simulator};
+    // TALOS's grippers: sources later in the tree, multipliers other than 1; every joint has
+    // one coordinate, so the reduced state is a vector
+    let mut rng = Rng::new(9);
+    let path = example_robot_data().join("talos_data/robots/talos_full_v2.urdf");
+    let (mm, _) = load_urdf_mimic(&path, &UrdfOptions::default()).unwrap();
+    let model = mm.model().clone();
+    let (q0, v0, _) = reduced_state(&mm, &mut rng);
+    let (dt, steps) = (1e-3, 300);
+    let (mut qf, mut vf) = (vec![0.0; model.nq()], vec![0.0; model.nv()]);
+    mm.expand_q(&q0, &mut qf);
+    mm.expand_v(&v0, &mut vf);
+    let opts = SimulationOptions::conservative(dt, rigid::simulation::Integrator::Rk4);
+    let mut sim = Simulator::new(&model, &qf, &vf, opts, Controller::none(&model))
+        .unwrap()
+        .with_constraints(&mm.constraints(), ConstraintOptions::default())
+        .unwrap();
+    sim.run(steps, |_| {}).unwrap();
+    // the reduced state by classical RK4 (every joint of this tree is a vector space)
+    let mut md = MimicData::new(&mm);
+    let tau = vec![0.0; mm.nv()];
+    let mut f = |q: &[f64], v: &[f64]| mm.aba(&mut md, q, v, &tau).unwrap().as_slice().to_vec();
+    let (mut q, mut v) = (q0.clone(), v0.clone());
+    let axpy =
+        |x: &[f64], a: f64, y: &[f64]| x.iter().zip(y).map(|(x, y)| x + a * y).collect::<Vec<_>>();
+    for _ in 0..steps {
+        let (k1q, k1v) = (v.clone(), f(&q, &v));
+        let (q2, v2) = (axpy(&q, dt / 2.0, &k1q), axpy(&v, dt / 2.0, &k1v));
+        let (k2q, k2v) = (v2.clone(), f(&q2, &v2));
+        let (q3, v3) = (axpy(&q, dt / 2.0, &k2q), axpy(&v, dt / 2.0, &k2v));
+        let (k3q, k3v) = (v3.clone(), f(&q3, &v3));
+        let (q4, v4) = (axpy(&q, dt, &k3q), axpy(&v, dt, &k3v));
+        let k4v = f(&q4, &v4);
+        for i in 0..q.len() {
+            q[i] += dt / 6.0 * (k1q[i] + 2.0 * k2q[i] + 2.0 * k3q[i] + v4[i]);
+            v[i] += dt / 6.0 * (k1v[i] + 2.0 * k2v[i] + 2.0 * k3v[i] + k4v[i]);
+        }
+    }
+    let mut want = vec![0.0; model.nq()];
+    mm.expand_q(&q, &mut want);
+    let e = rel(sim.q(), &want, 1.0);
+    eprintln!("TALOS grippers, 0.3 s: constrained full model vs reduced RK4 {e:.1e}");
+    assert!(
+        e < 1e-8,
+        "constrained full model vs reduced RK4 after 0.3 s: {e:e}"
+    );
+}
