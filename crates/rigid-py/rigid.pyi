@@ -30,7 +30,7 @@ the line.
 """
 
 from os import PathLike
-from typing import Any, Callable, Literal, Sequence, Union
+from typing import Any, Callable, Literal, Sequence, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -93,17 +93,29 @@ class Model:
         body that is not. ``check=False`` takes them as they are (a model whose own bodies are
         not physical, e.g. a massless rotor inertia)."""
 
+    @overload
     @staticmethod
     def from_urdf(path: Path, floating: bool = False,
                   inertia: Literal["strict", "warn", "repair"] = "warn",
-                  layout: Layout = "rigid") -> Model:
+                  layout: Layout = "rigid", mimic: Literal[False] = False) -> Model: ...
+    @overload
+    @staticmethod
+    def from_urdf(path: Path, floating: bool = False,
+                  inertia: Literal["strict", "warn", "repair"] = "warn",
+                  layout: Layout = "rigid", *, mimic: Literal[True]) -> MimicModel: ...
+    @staticmethod
+    def from_urdf(path: Path, floating: bool = False,
+                  inertia: Literal["strict", "warn", "repair"] = "warn",
+                  layout: Layout = "rigid", mimic: bool = False) -> Model | MimicModel:
         """Load a URDF file (Pinocchio's ``buildModelFromUrdf``).
 
         floating: add a free-flyer root joint ``root_joint`` carrying the root link (Pinocchio's
         ``pin.JointModelFreeFlyer()`` root); otherwise the root link is welded to the world.
         inertia: non-physical inertias are refused (``strict``), loaded as written with a
         ``UrdfWarning`` (``warn``), or replaced by the inertia doctor's repair (``repair``).
-        layout: ``"rigid"`` or ``"pinocchio"`` (see the module documentation)."""
+        layout: ``"rigid"`` or ``"pinocchio"`` (see the module documentation).
+        mimic: ``True`` returns a :class:`MimicModel` whose ``<mimic>`` joints follow their
+        sources with no coordinate of their own (Pinocchio's ``mimic=True``)."""
     @staticmethod
     def from_mjcf(path: Path, layout: Layout = "rigid") -> Model:
         """Load an MJCF file (MuJoCo's XML) with MuJoCo's compiled inertias (mass matrix and bias
@@ -176,6 +188,48 @@ class Model:
         ``model.gravity.linear``). Settable: ``model.gravity = [0, 0, -1.62]``."""
     @gravity.setter
     def gravity(self, g: ArrayLike) -> None: ...
+
+class MimicModel:
+    """A robot whose mimic joints follow their sources, ``q_m = multiplier · q_s + offset``, with
+    no coordinate of their own (Pinocchio's ``buildModelFromUrdf(path, mimic=True)``; made by
+    ``Model.from_urdf(path, mimic=True)``): ``nq``, ``nv`` and every vector and matrix leave them
+    out. ``rnea``, ``crba``, ``nle`` are the full model's projected on the reduced coordinates
+    (``τ = Gᵀ τ_full``, ``M = Gᵀ M_full G``); ``aba`` solves ``M q̈ = τ − nle`` (docs/mimic.md).
+
+    >>> mm = rigid.Model.from_urdf("panda.urdf", mimic=True)   # doctest: +SKIP
+    >>> mm.nq, mm.mimics                                        # doctest: +SKIP
+    (8, [('panda_finger_joint2', 'panda_finger_joint1', 1.0, 0.0)])
+    """
+    @property
+    def nq(self) -> int:
+        """Configuration coordinates (mimic joints have none)."""
+    @property
+    def nv(self) -> int:
+        """Degrees of freedom (mimic joints have none)."""
+    @property
+    def mimics(self) -> list[tuple[str, str, float, float]]:
+        """``(joint, source, multiplier, offset)`` by name, chains composed."""
+    @property
+    def names(self) -> list[str]:
+        """Every joint's name (mimics included), in the model's order."""
+    def neutral(self) -> Vector: ...
+    def expand_q(self, q: ArrayLike) -> Vector:
+        """The full configuration (rigid's layout of the full model)."""
+    def expand_v(self, v: ArrayLike) -> Vector:
+        """The full velocity ``G v`` (rigid's layout of the full model)."""
+    def rnea(self, q: ArrayLike, v: ArrayLike, a: ArrayLike) -> Vector: ...
+    def crba(self, q: ArrayLike) -> Matrix: ...
+    def nle(self, q: ArrayLike, v: ArrayLike) -> Vector: ...
+    def aba(self, q: ArrayLike, v: ArrayLike, tau: ArrayLike) -> Vector: ...
+    def rnea_derivatives(self, q: ArrayLike, v: ArrayLike,
+                         a: ArrayLike) -> tuple[Matrix, Matrix, Matrix]:
+        """``(∂τ/∂q, ∂τ/∂v, M)``."""
+    def aba_derivatives(self, q: ArrayLike, v: ArrayLike,
+                        tau: ArrayLike) -> tuple[Matrix, Matrix, Matrix]:
+        """``(∂q̈/∂q, ∂q̈/∂v, M⁻¹)``."""
+    def frame_jacobian(self, q: ArrayLike, frame: str, reference: object = None) -> Matrix:
+        """6 × nv; rows ``(ω, v)``, or ``(v, ω)`` in Pinocchio's layout."""
+
 
 class Data:
     """The workspace of the algorithms for one model (Pinocchio's ``Data``), allocated once.

@@ -31,6 +31,7 @@ mod dynamics;
 mod identification;
 mod inverse_kinematics;
 mod lie;
+mod mimic;
 mod mobile;
 mod mobile_tasks;
 mod model;
@@ -82,6 +83,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("features", pyo3::types::PyTuple::new(m.py(), features)?)?;
     m.add_class::<model::Model>()?;
     m.add_class::<model::Data>()?;
+    m.add_class::<mimic::MimicModel>()?;
     m.add("UrdfWarning", m.py().get_type::<model::UrdfWarning>())?;
     m.add("MjcfWarning", m.py().get_type::<model::MjcfWarning>())?;
     m.add("SdfWarning", m.py().get_type::<model::SdfWarning>())?;

@@ -318,13 +318,13 @@ pub enum Place {
     Frame(FrameId),
 }
 
-fn policy(inertia: &str) -> PyResult<InertiaPolicy> {
+pub(crate) fn policy(inertia: &str) -> PyResult<InertiaPolicy> {
     inertia
         .parse()
         .map_err(|e: String| PyValueError::new_err(format!("Model.from_urdf: inertia: {e}")))
 }
 
-fn parse_layout(func: &str, layout: &str) -> PyResult<Layout> {
+pub(crate) fn parse_layout(func: &str, layout: &str) -> PyResult<Layout> {
     layout
         .parse()
         .map_err(|e: String| PyValueError::new_err(format!("{func}: {e}")))
@@ -436,42 +436,24 @@ impl Model {
     fn __copy__<'py>(slf: &Bound<'py, Self>) -> Bound<'py, Self> {
         slf.clone()
     }
-    /// Load a URDF file (Pinocchio's `buildModelFromUrdf`).
+    /// Load a URDF file (Pinocchio's `buildModelFromUrdf`). With `mimic=True`, a
+    /// `rigid.MimicModel` whose `<mimic>` joints follow their sources with no coordinate of
+    /// their own (Pinocchio's `mimic=True`; `layout` `"rigid"` or `"pinocchio"`).
     #[staticmethod]
-    #[pyo3(signature = (path, floating = false, inertia = "warn", layout = "rigid"))]
+    #[pyo3(signature = (path, floating = false, inertia = "warn", layout = "rigid", mimic = false))]
     fn from_urdf(
         py: Python<'_>,
         path: PathBuf,
         floating: bool,
         inertia: &str,
         layout: &str,
-    ) -> PyResult<Self> {
-        let kind = parse_layout("Model.from_urdf", layout)?;
-        let pinocchio = kind == Layout::Pinocchio;
-        let opts = UrdfOptions {
-            floating,
-            inertia: policy(inertia)?,
-            sibling_order: if pinocchio {
-                SiblingOrder::Name
-            } else {
-                SiblingOrder::File
-            },
-        };
-        let shown = path.display().to_string();
-        let (model, warnings) = urdf::load_urdf_with(&path, &opts).map_err(|e| match &e {
-            UrdfError::Io { source, .. } => convert::io_error(source, e.to_string()),
-            _ => PyValueError::new_err(format!("{shown}: {e}")),
-        })?;
-        let warnings: Vec<String> = warnings.iter().map(|w| format!("{shown}: {w}")).collect();
-        warn_all(py, &py.get_type::<UrdfWarning>(), &warnings)?;
-        let mut core = ModelCore::new(model, pinocchio, warnings);
-        if kind == Layout::Mujoco {
-            core.mujoco = Some(MujocoLayout::new(&core.model));
+        mimic: bool,
+    ) -> PyResult<Py<PyAny>> {
+        if mimic {
+            let m = crate::mimic::MimicModel::from_urdf(py, path, floating, inertia, layout)?;
+            return Ok(Py::new(py, m)?.into_any());
         }
-        core.source = Some(path);
-        Ok(Self {
-            inner: Arc::new(core),
-        })
+        Ok(Py::new(py, Self::load_urdf(py, path, floating, inertia, layout)?)?.into_any())
     }
 
     /// Load an MJCF file (MuJoCo's XML) with MuJoCo's compiled inertias; `layout="mujoco"` reads
@@ -535,7 +517,7 @@ impl Model {
         let ext = |x: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(x));
         let (mjcf, sdf) = (ext("xml"), ext("sdf"));
         if !mjcf && !sdf {
-            return Self::from_urdf(py, path, floating, inertia, layout);
+            return Self::load_urdf(py, path, floating, inertia, layout);
         }
         if floating {
             return Err(PyValueError::new_err(
@@ -838,5 +820,43 @@ impl Data {
 
     fn __repr__(&self) -> String {
         format!("rigid.Data(model='{}')", self.model.model.name())
+    }
+}
+
+impl Model {
+    /// [`Model::from_urdf`] without `mimic`.
+    pub(crate) fn load_urdf(
+        py: Python<'_>,
+        path: PathBuf,
+        floating: bool,
+        inertia: &str,
+        layout: &str,
+    ) -> PyResult<Self> {
+        let kind = parse_layout("Model.from_urdf", layout)?;
+        let pinocchio = kind == Layout::Pinocchio;
+        let opts = UrdfOptions {
+            floating,
+            inertia: policy(inertia)?,
+            sibling_order: if pinocchio {
+                SiblingOrder::Name
+            } else {
+                SiblingOrder::File
+            },
+        };
+        let shown = path.display().to_string();
+        let (model, warnings) = urdf::load_urdf_with(&path, &opts).map_err(|e| match &e {
+            UrdfError::Io { source, .. } => convert::io_error(source, e.to_string()),
+            _ => PyValueError::new_err(format!("{shown}: {e}")),
+        })?;
+        let warnings: Vec<String> = warnings.iter().map(|w| format!("{shown}: {w}")).collect();
+        warn_all(py, &py.get_type::<UrdfWarning>(), &warnings)?;
+        let mut core = ModelCore::new(model, pinocchio, warnings);
+        if kind == Layout::Mujoco {
+            core.mujoco = Some(MujocoLayout::new(&core.model));
+        }
+        core.source = Some(path);
+        Ok(Self {
+            inner: Arc::new(core),
+        })
     }
 }

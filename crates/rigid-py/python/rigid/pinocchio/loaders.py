@@ -135,7 +135,11 @@ def buildModelFromUrdf(filename, root_joint=None, root_joint_name=None, verbose=
         root_joint, root_joint_name = None, root_joint
     floating = _root(root_joint, "buildModelFromUrdf")
     if mimic:
-        raise NotImplementedError("buildModelFromUrdf(mimic=True): rigid has no mimic joints")
+        raise NotImplementedError(
+            "buildModelFromUrdf(mimic=True): the models of rigid.pinocchio have no mimic joints; "
+            "rigid.Model.from_urdf(path, mimic=True, layout='pinocchio') is a rigid.MimicModel "
+            "with rnea, crba, nle, aba, their derivatives and frame_jacobian in Pinocchio's "
+            "mimic=True coordinates")
     path = os.fspath(filename)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", _r.UrdfWarning)

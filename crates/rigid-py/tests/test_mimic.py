@@ -1,0 +1,103 @@
+"""Mimic joints as couplings: `rigid.Model.from_urdf(path, mimic=True)` against Pinocchio 4.1's
+`buildModelFromUrdf(path, mimic=True)` on the example-robot-data robots that have mimic joints,
+both in Pinocchio's layout so that the arrays compare as they are, and the robots Pinocchio
+refuses (a mimic's source later in the tree) against the identities."""
+
+import os
+import warnings
+
+import numpy as np
+import pytest
+
+import rigid
+from conftest import TOL, assert_close, pin, symmetric
+
+# the files' own findings (non-physical inertias, unknown elements) are warned as they load
+pytestmark = [pytest.mark.skipif(pin is None, reason="needs Pinocchio (pip install pin)"),
+              pytest.mark.filterwarnings("ignore::rigid.UrdfWarning")]
+
+if pin is not None:
+    from reference import robots_dir
+
+PINOCCHIO = ["panda_description/urdf/panda.urdf", "baxter_description/urdf/baxter.urdf",
+             "pr2_description/urdf/pr2.urdf", "tiago_pro_description/robots/tiago_pro.urdf"]
+REFUSED = ["talos_data/robots/talos_full_v2.urdf", "romeo_description/urdf/romeo.urdf"]
+
+
+@pytest.mark.parametrize("rel", PINOCCHIO)
+def test_mimic_equals_pinocchio_mimic_true(rel):
+    path = os.path.join(robots_dir(), rel)
+    pm = pin.buildModelFromUrdf(path, mimic=True)
+    pd = pm.createData()
+    mm = rigid.Model.from_urdf(path, mimic=True, layout="pinocchio")
+    assert isinstance(mm, rigid.MimicModel)
+    assert (mm.nq, mm.nv) == (pm.nq, pm.nv)
+    mimic_names = {n for j, n in zip(pm.joints[1:], pm.names[1:]) if "Mimic" in j.shortname()}
+    assert {m[0] for m in mm.mimics} == mimic_names
+    rng = np.random.default_rng(7)
+    for _ in range(3):
+        q = pin.integrate(pm, pin.neutral(pm), rng.uniform(-1, 1, pm.nv))
+        v, a, tau = (rng.uniform(-1, 1, pm.nv) for _ in range(3))
+        M = symmetric(pin.crba(pm, pd, q))
+        nle = pin.nonLinearEffects(pm, pd, q, v)
+        assert_close(mm.rnea(q, v, a), pin.rnea(pm, pd, q, v, a), f"{rel}: rnea")
+        assert_close(mm.crba(q), M, f"{rel}: crba")
+        assert_close(mm.nle(q, v), nle, f"{rel}: nle")
+        # Pinocchio's aba refuses mimic joints: M⁻¹ (τ − nle) from its own M and nle
+        assert_close(mm.aba(q, v, tau), np.linalg.solve(M, tau - nle), f"{rel}: aba")
+        frame = pm.frames[-1].name
+        J = pin.computeFrameJacobian(pm, pd, q, pm.getFrameId(frame), pin.LOCAL_WORLD_ALIGNED)
+        assert_close(mm.frame_jacobian(q, frame), J, f"{rel}: frame Jacobian")
+
+
+@pytest.mark.parametrize("rel", REFUSED)
+def test_sources_later_in_the_tree_load_and_pass_the_identities(rel):
+    path = os.path.join(robots_dir(), rel)
+    with pytest.raises(Exception, match="not in the kinematic tree"):
+        pin.buildModelFromUrdf(path, mimic=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        mm = rigid.Model.from_urdf(path, mimic=True)
+    assert mm.mimics and mm.nv < len(mm.expand_v(np.zeros(mm.nv)))
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        q = mm.neutral() + rng.uniform(-0.5, 0.5, mm.nq)
+        v, tau = rng.uniform(-1, 1, mm.nv), rng.uniform(-1, 1, mm.nv)
+        M = mm.crba(q)
+        assert np.allclose(M, M.T, rtol=0, atol=1e-12 * np.abs(M).max())
+        assert_close(mm.rnea(q, v, tau), M @ tau + mm.nle(q, v), f"{rel}: rnea = M a + nle")
+        if "romeo" in rel:
+            # Romeo's finger links weigh nothing: M is singular with or without the couplings
+            assert np.linalg.eigvalsh(M).min() > -1e-12 * np.abs(M).max()
+            continue
+        assert np.linalg.eigvalsh(M).min() > 0
+        ddq = mm.aba(q, v, tau)
+        assert_close(mm.rnea(q, v, ddq), tau, f"{rel}: rnea(aba(tau))")
+        dq, dv, minv = mm.aba_derivatives(q, v, tau)
+        assert_close(minv @ M, np.eye(mm.nv), f"{rel}: M⁻¹ M")
+
+
+def test_alex_mimics_name_joints_it_does_not_have_and_are_warned():
+    # "index_q1" for "Left_index_q1": the reason Pinocchio refuses the file
+    path = os.path.join(robots_dir(), "alex_description/urdf/alex_psyonic_hands.urdf")
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        mm = rigid.Model.from_urdf(path, mimic=True)
+    assert sum("which is not defined" in str(w.message) for w in record) == 8
+    assert mm.mimics == []
+
+
+def test_mimic_errors_are_named():
+    path = os.path.join(robots_dir(), PINOCCHIO[0])
+    mm = rigid.Model.from_urdf(path, mimic=True)
+    with pytest.raises(ValueError, match="MimicModel.rnea: .*q"):
+        mm.rnea(np.zeros(mm.nq + 1), np.zeros(mm.nv), np.zeros(mm.nv))
+    with pytest.raises(ValueError, match="not finite"):
+        mm.aba(np.full(mm.nq, np.nan), np.zeros(mm.nv), np.zeros(mm.nv))
+
+
+def test_the_pinocchio_layer_points_at_the_mimic_model():
+    import rigid.pinocchio as rpin
+    path = os.path.join(robots_dir(), PINOCCHIO[0])
+    with pytest.raises(NotImplementedError, match="rigid.Model.from_urdf\\(path, mimic=True"):
+        rpin.buildModelFromUrdf(path, mimic=True)
