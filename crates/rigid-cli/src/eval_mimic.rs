@@ -79,7 +79,13 @@ pub(super) fn run(args: &EvalArgs) -> Result<(), String> {
 fn model_info(mm: &MimicModel, layout: Option<&PinocchioLayout>) -> ModelInfo {
     let model = mm.model();
     let g = model.gravity();
+    // each free joint's position among the free joints (the pinocchio layout's joint index)
+    let mut free_index = vec![0; model.njoints()];
     let mut free = 0;
+    for (i, f) in free_index.iter_mut().enumerate() {
+        *f = free;
+        free += usize::from(mm.mimic_of(JointId(i)).is_none());
+    }
     let joints = model
         .joints()
         .iter()
@@ -91,15 +97,14 @@ fn model_info(mm: &MimicModel, layout: Option<&PinocchioLayout>) -> ModelInfo {
                 multiplier: m.multiplier,
                 offset: m.offset,
             });
-            let (idx_q, nq, nv) = match (&mimic, layout) {
-                (Some(_), _) => (idx_q, 0, 0),
-                (None, Some(l)) => {
-                    let (iq, nq) = l.joint_q(free);
-                    (iq, nq, j.nv)
-                }
-                (None, None) => (idx_q, j.nq, j.nv),
+            // a mimic joint sits at its source's indices, with nq = nv = 0
+            let at = mm.mimic_of(JointId(i)).map_or(i, |m| m.source.0);
+            let idx_q = layout.map_or(idx_q, |l| l.joint_q(free_index[at]).0);
+            let (nq, nv) = match (&mimic, layout) {
+                (Some(_), _) => (0, 0),
+                (None, Some(l)) => (l.joint_q(free_index[i]).1, j.nv),
+                (None, None) => (j.nq, j.nv),
             };
-            free += usize::from(mimic.is_none());
             JointInfo {
                 name: j.name.clone(),
                 kind: j.type_name(),

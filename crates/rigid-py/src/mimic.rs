@@ -15,8 +15,9 @@ use std::sync::Mutex;
 
 /// A robot whose mimic joints follow their sources, `q_m = multiplier · q_s + offset`, with no
 /// coordinate of their own: `nq`, `nv` and every vector and matrix leave them out (Pinocchio's
-/// `mimic=True`). `rnea`, `crba`, `nle`, `gravity` are the full model's projected on the
+/// `mimic=True`). `rnea`, `crba`, `nle` are the full model's projected on the
 /// reduced coordinates (`τ = Gᵀ τ_full`, `M = Gᵀ M_full G`); `aba` solves `M q̈ = τ − nle`.
+/// `expand_q` and `expand_v` return the full model's vectors in rigid's layout.
 /// In `layout="pinocchio"`, vectors are in Pinocchio's order and coordinates.
 #[pyclass(module = "rigid", frozen)]
 pub struct MimicModel {

@@ -75,6 +75,10 @@ def test_sources_later_in_the_tree_load_and_pass_the_identities(rel):
         assert_close(mm.rnea(q, v, ddq), tau, f"{rel}: rnea(aba(tau))")
         dq, dv, minv = mm.aba_derivatives(q, v, tau)
         assert_close(minv @ M, np.eye(mm.nv), f"{rel}: M⁻¹ M")
+        # ∂q̈/∂x = −M⁻¹ ∂τ/∂x at a = q̈
+        dtq, dtv, _ = mm.rnea_derivatives(q, v, ddq)
+        assert_close(dq, -minv @ dtq, f"{rel}: ∂q̈/∂q")
+        assert_close(dv, -minv @ dtv, f"{rel}: ∂q̈/∂v")
 
 
 def test_alex_mimics_name_joints_it_does_not_have_and_are_warned():

@@ -11,7 +11,6 @@ use rigid::io::collision::{
     WorldOptions,
 };
 use rigid::io::urdf::parse_urdf_file;
-use rigid::multibody::MimicModel;
 use rigid::simulation::{ConstraintOptions, Scenario, SimulationError, SimulationOptions};
 
 /// What `rigid simulate` runs: the scenario, whether the model is a body spec, and the MJCF
@@ -155,13 +154,23 @@ fn couple(args: &SimulateArgs, s: &mut Scenario) -> Result<(), String> {
     let Some(path) =
         urdf_path(&args.model).filter(|_| !is_mjcf(&args.model) && !is_sdf(&args.model))
     else {
+        let what = if is_mjcf(&args.model) {
+            "an MJCF file's <equality joint> elements are held without it"
+        } else {
+            "the model has no mimic joints"
+        };
+        eprintln!("warning: {}: --mimic: {what}", args.model);
         return Ok(());
     };
     let robot = parse_urdf_file(&path).map_err(|e| format!("{}: {e}", args.model))?;
-    let mimics =
-        rigid::io::urdf::mimics(&robot, &s.model).map_err(|e| format!("{}: {e}", args.model))?;
-    let mm =
-        MimicModel::new(s.model.clone(), &mimics).map_err(|e| format!("{}: {e}", args.model))?;
+    let mm = rigid::io::urdf::mimic_model(&robot, s.model.clone())
+        .map_err(|e| format!("{}: {e}", args.model))?;
+    if mm.mimics().is_empty() {
+        eprintln!(
+            "warning: {}: --mimic: the file has no mimic joints",
+            args.model
+        );
+    }
     let consistent = |q: &[f64], what: &str| -> Result<Vec<f64>, String> {
         let mut reduced = vec![0.0; mm.nq()];
         if q.len() == mm.nq() {
@@ -181,14 +190,12 @@ fn couple(args: &SimulateArgs, s: &mut Scenario) -> Result<(), String> {
         mm.expand_q(&reduced, &mut full);
         Ok(full)
     };
+    // without --q0, the start is the file's home made consistent, or the neutral configuration,
+    // which the scenario closes under the couplings and sets down on a ground
     if let Some(q0) = &s.q0 {
         s.q0 = Some(consistent(q0, "q0")?);
-    } else if mm.mimics().iter().any(|m| m.offset != 0.0) {
-        let home = s
-            .home
-            .clone()
-            .unwrap_or_else(|| rigid::multibody::neutral(&s.model));
-        s.home = Some(consistent(&home, "q0")?);
+    } else if let Some(home) = &s.home {
+        s.home = Some(consistent(home, "q0")?);
     }
     if let Some(v0) = &s.v0 {
         let mut reduced = vec![0.0; mm.nv()];

@@ -623,6 +623,10 @@ sdf("pose_relative_to_nothing", SDF_ARM.replace("<pose>", '<pose relative_to="gh
     '"arm"', '"ghost", which is not defined')
 sdf("pose_cycle", SDF_ARM + '    <frame name="f" attached_to="g"/>\n'
     '    <frame name="g" attached_to="f"/>\n', "error", "relative to itself")
+sdf("name_clash", SDF_ARM + '    <frame name="arm" attached_to="hinge"/>\n', "error", "line 7",
+    'frame "arm"', "already taken by the element at line 4")
+sdf("frame_relative_to_nothing", SDF_ARM + '    <frame name="f" attached_to="ghost"/>\n', "error",
+    "line 7", '"f"', '"ghost", which is not defined')
 sdf("mass_negative", SDF_ARM.replace("<mass>1</mass>", "<mass>-2</mass>"), "error", "line 4",
     "negative mass")
 sdf("joint_type_unknown", SDF_ARM.replace('type="revolute"', 'type="revolute2"'), "error",

@@ -189,3 +189,96 @@ fn simulate_mimic_keeps_panda_s_fingers_together() {
         "{e}"
     );
 }
+
+/// A wheel (continuous: two coordinates in Pinocchio's `q`) before a finger pair, the second
+/// finger following the first with an offset.
+fn wheel_and_fingers(dir: &std::path::Path) -> std::path::PathBuf {
+    let link = |n: &str| {
+        format!(
+            r#"<link name="{n}"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#
+        )
+    };
+    let urdf = format!(
+        r#"<robot name="r">{}{}{}{}
+  <joint name="a_wheel" type="continuous"><parent link="l0"/><child link="l1"/><axis xyz="0 0 1"/></joint>
+  <joint name="b_finger" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0.1 0"/>
+    <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="c_finger" type="revolute"><parent link="l2"/><child link="l3"/><origin xyz="0 0.1 0"/>
+    <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>
+    <mimic joint="b_finger" multiplier="-0.5" offset="0.2"/></joint>
+</robot>"#,
+        link("l0"),
+        link("l1"),
+        link("l2"),
+        link("l3")
+    );
+    let path = dir.join("wheel_fingers.urdf");
+    std::fs::write(&path, urdf).unwrap();
+    path
+}
+
+#[test]
+fn a_mimic_sits_at_its_source_s_index_in_pinocchio_s_q_and_starts_closed_in_simulate() {
+    let dir = std::env::temp_dir().join(format!("rigid-mimic-wheel-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = wheel_and_fingers(&dir);
+    let cases = dir.join("cases.json");
+    std::fs::write(&cases, r#"{"cases": [{"q": [1, 0, 0.3], "tau": [0, 1]}]}"#).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rigid"))
+        .args([
+            "eval",
+            path.to_str().unwrap(),
+            "--mimic",
+            "--layout",
+            "pinocchio",
+            "--json",
+        ])
+        .args(["--derivatives", "--cases", cases.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let got: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let joints = &got["model"]["joints"];
+    let idx = |k: usize| {
+        (
+            joints[k]["idx_q"].as_u64().unwrap(),
+            joints[k]["nq"].as_u64().unwrap(),
+        )
+    };
+    // the wheel's (cos, sin), then the finger; its mimic at the finger's index with nq 0
+    assert_eq!((idx(0), idx(1), idx(2)), ((0, 2), (2, 1), (2, 0)));
+    assert_eq!(got["model"]["nq"].as_u64(), Some(3));
+    let d = &got["results"][0]["aba_derivatives"]["dqdd_dtau"];
+    assert_eq!(d.as_array().unwrap().len(), 2);
+    // simulate from the neutral start: the mimic starts at its offset, the coupling closed
+    let csv = dir.join("sim.csv");
+    let out = Command::new(env!("CARGO_BIN_EXE_rigid"))
+        .args([
+            "simulate",
+            path.to_str().unwrap(),
+            "--mimic",
+            "--duration",
+            "0.1",
+        ])
+        .arg("--csv")
+        .arg(&csv)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (b, c) = (col("q_b_finger"), col("q_c_finger"));
+    for line in text.lines().skip(1) {
+        let x: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
+        assert!((x[c] - (-0.5 * x[b] + 0.2)).abs() < 1e-9, "{line}");
+    }
+}

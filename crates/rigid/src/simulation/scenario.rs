@@ -20,7 +20,7 @@ use super::{
     ConstraintOptions, ControlKind, ControlLaw, Controller, Integrator, JointLimits,
     SimulationError, SimulationOptions, Simulator, TimeScaling,
 };
-use crate::multibody::constraints::ConstraintModel;
+use crate::multibody::constraints::{ConstraintKind, ConstraintModel};
 use crate::multibody::{neutral, Model};
 
 /// What to simulate and how: a model, its world (collision geometry, constraints), its start,
@@ -165,7 +165,7 @@ impl Scenario {
         let mut q0 = match (&self.q0, &target) {
             (Some(q), _) => q.clone(),
             (None, Some(t)) if self.ground() => t.clone(),
-            (None, _) => self.home.clone().unwrap_or_else(|| neutral(m)),
+            (None, _) => self.home.clone().unwrap_or_else(|| self.neutral()),
         };
         length("q0", &q0, nq)?;
         let v0 = self.v0.clone().unwrap_or_else(|| vec![0.0; nv]);
@@ -181,6 +181,22 @@ impl Scenario {
             }
         }
         Ok(Start { q0, v0, target })
+    }
+
+    /// The neutral configuration with each joint that a joint-coordinate constraint holds (an
+    /// MJCF `<equality joint>`, a mimic joint) at its polynomial of the other joint's
+    /// coordinate, `q_1 = Σ c_k q_2^k`, in the constraints' order, so that a coupling with an
+    /// offset starts closed.
+    fn neutral(&self) -> Vec<f64> {
+        let m = &self.model;
+        let mut q = neutral(m);
+        for c in &self.constraints {
+            if let (ConstraintKind::JointCoordinate { polycoef }, Some(j1)) = (c.kind, c.joint1) {
+                let x = c.joint2.map_or(0.0, |j2| q[m.joint(j2).idx_q]);
+                q[m.joint(j1).idx_q] = polycoef.iter().rev().fold(0.0, |p, &k| p * x + k);
+            }
+        }
+        q
     }
 
     /// The control law at the start `q0` towards `target` (see the [module](self)).

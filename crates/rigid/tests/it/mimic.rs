@@ -112,8 +112,16 @@ fn mimic_dynamics_equal_the_full_model_held_by_the_couplings_as_constraints() {
             .unwrap();
             let e = rel(got.as_slice(), &want, 1.0);
             assert!(e < 1e-9, "{}: constrained q̈ vs G q̈: {e:e}", full.name());
-            // and the constraint force is the torque that drives each mimic: τ_full + Jᵀλ reduces to τ
-            assert!(cdata.lambda.iter().all(|x| x.is_finite()));
+            // the constraint force is the torque that drives each mimic: the full model's inverse
+            // dynamics at G q̈, projected by Gᵀ, is τ (the Jᵀλ it holds does no virtual work)
+            let tau_full = rnea(full, &mut data, &qf, &vf, &want).unwrap().clone();
+            let mut back = vec![0.0; mm.nv()];
+            mm.reduce_force(tau_full.as_slice(), &mut back);
+            assert!(
+                rel(&back, &tau, 1.0) < 1e-9,
+                "{}: Gᵀ ID(G q̈) vs τ",
+                full.name()
+            );
         }
     }
 }
@@ -379,6 +387,17 @@ fn compare_with_pinocchio(mm: &MimicModel, rec: &serde_json::Value) {
             "{file}: {} idx_v",
             j["name"]
         );
+        // idx_q in Pinocchio's q (continuous joints take two): a mimic at its source's
+        let at = mm.mimic_of(id).map_or(id, |m| m.source);
+        let free = (0..at.0)
+            .filter(|&k| mm.mimic_of(JointId(k)).is_none())
+            .count();
+        assert_eq!(
+            j["idx_q"].as_u64().unwrap() as usize,
+            layout.joint_q(free).0,
+            "{file}: {} idx_q",
+            j["name"]
+        );
     }
     let mut md = MimicData::new(mm);
     let v = |c: &serde_json::Value, k: &str| -> Vec<f64> {
@@ -599,4 +618,50 @@ fn simulating_the_full_model_held_by_the_couplings_follows_the_reduced_dynamics(
         e < 1e-8,
         "constrained full model vs reduced RK4 after 0.3 s: {e:e}"
     );
+}
+
+#[test]
+fn an_mjcf_linear_joint_equality_is_a_mimic_and_a_polynomial_one_is_not() {
+    // jb = 0.3 − 2 ja (MuJoCo's polycoef "0.3 -2 0 0 0"); a quadratic stays a constraint
+    let xml = |poly: &str| {
+        format!(
+            r#"<mujoco><worldbody>
+              <body name="a"><joint name="ja" axis="0 1 0"/><geom size="0.1" pos="0 0 -1"/>
+                <body name="b" pos="0 0 -1"><joint name="jb" axis="0 1 0"/>
+                  <geom size="0.1" pos="1 0 0"/></body></body></worldbody>
+              <equality><joint joint1="jb" joint2="ja" polycoef="{poly}"/></equality></mujoco>"#
+        )
+    };
+    let dir = std::path::Path::new(".");
+    let mj = rigid::io::mjcf::load_mjcf_str(&xml("0.3 -2 0 0 0"), dir).unwrap();
+    let (constraints, _) = mj.constraint_models().unwrap();
+    let m = Mimic::from_constraint(&constraints[0]).unwrap();
+    assert_eq!(
+        (m.joint, m.source, m.multiplier, m.offset),
+        (JointId(1), JointId(0), -2.0, 0.3)
+    );
+    let mm = MimicModel::new(mj.model.clone(), &[m]).unwrap();
+    assert_eq!(mm.nv(), 1);
+    // the reduced acceleration is the constrained full model's
+    let (mut md, mut data) = (MimicData::new(&mm), Data::new(mm.model()));
+    let mut cdata = ConstraintData::new(mm.model(), &constraints).unwrap();
+    let ddq = mm.aba(&mut md, &[0.4], &[1.0], &[0.5]).unwrap()[0];
+    let mut qf = [0.0; 2];
+    mm.expand_q(&[0.4], &mut qf);
+    let got = constraint_dynamics(
+        mm.model(),
+        &mut data,
+        &mut cdata,
+        &qf,
+        &[1.0, -2.0],
+        &[0.5, 0.0],
+        &ProximalSettings::default(),
+    )
+    .unwrap();
+    assert!(
+        (got[0] - ddq).abs() < 1e-10 && (got[1] + 2.0 * ddq).abs() < 1e-10,
+        "{got} vs {ddq}"
+    );
+    let quad = rigid::io::mjcf::load_mjcf_str(&xml("0 0 1 0 0"), dir).unwrap();
+    assert!(Mimic::from_constraint(&quad.constraint_models().unwrap().0[0]).is_none());
 }

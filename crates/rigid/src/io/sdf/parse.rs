@@ -58,6 +58,7 @@ pub(super) struct Joint {
 /// A `<frame>`.
 pub(super) struct Frame {
     pub name: String,
+    pub line: u32,
     pub attached_to: Option<String>,
     pub pose: Pose,
 }
@@ -427,6 +428,7 @@ impl<'a> Reader<'a> {
                         Some(pose.relative_to.map_or(attached.clone(), |r| scoped(&r)));
                     frames.push(Frame {
                         name: scoped(&name),
+                        line: self.line(n),
                         attached_to: Some(attached),
                         pose,
                     });
@@ -438,6 +440,7 @@ impl<'a> Reader<'a> {
                     scope_pose(&mut pose);
                     frames.push(Frame {
                         name: format!("{inner}__model__"),
+                        line: self.line(n),
                         attached_to: None,
                         pose,
                     });
@@ -519,15 +522,34 @@ pub(super) struct Poses {
 impl Poses {
     pub fn resolve(raw: &Raw) -> Result<Self, SdfError> {
         // name -> (pose as written, what it is relative to by default)
+        // names are unique among a model's links, joints and frames (SDFormat 1.7+, as
+        // libsdformat refuses a clash): a second one would hide the first's pose
         let mut written: HashMap<&str, (&Pose, Option<&str>, u32)> = HashMap::new();
-        for l in &raw.links {
-            written.insert(&l.name, (&l.pose, None, l.line));
-        }
-        for j in &raw.joints {
-            written.insert(&j.name, (&j.pose, Some(j.child.as_str()), j.line));
-        }
-        for f in &raw.frames {
-            written.insert(&f.name, (&f.pose, f.attached_to.as_deref(), 0));
+        let entries = (raw
+            .links
+            .iter()
+            .map(|l| ("link", &l.name, &l.pose, None, l.line)))
+        .chain(
+            raw.joints
+                .iter()
+                .map(|j| ("joint", &j.name, &j.pose, Some(j.child.as_str()), j.line)),
+        )
+        .chain(
+            raw.frames
+                .iter()
+                .map(|f| ("frame", &f.name, &f.pose, f.attached_to.as_deref(), f.line)),
+        );
+        for (kind, name, pose, default, line) in entries {
+            if let Some((_, _, first)) = written.insert(name, (pose, default, line)) {
+                return Err(SdfError::Invalid {
+                    line,
+                    element: format!("{kind} \"{name}\""),
+                    message: format!(
+                        "the name is already taken by the element at line {first}: links, \
+                         joints and frames of a model need distinct names"
+                    ),
+                });
+            }
         }
         let joints: std::collections::HashSet<&str> =
             raw.joints.iter().map(|j| j.name.as_str()).collect();

@@ -1,11 +1,12 @@
 //! URDF `<mimic>` joints as couplings ([`MimicModel`]), Pinocchio's
 //! `buildModelFromUrdf(path, mimic=True)`: each mimic joint follows its source with no
-//! coordinate of its own. A source may come later in the tree than its mimic (TALOS, Romeo and
-//! Alex's hands do this, and Pinocchio 4.1 refuses them: "The parent joint of the mimic joint is
-//! not in the kinematic tree"); a chain of mimics is composed.
+//! coordinate of its own. A source may come later in the tree than its mimic (TALOS and Romeo
+//! do this, and Pinocchio 4.1 refuses them: "The parent joint of the mimic joint is not in the
+//! kinematic tree"); a chain of mimics is composed. A mimic of a joint the file does not define
+//! is a warning of the parser, and the joint stays independent.
 
 use super::{build_model_with, parse_urdf_file, UrdfError, UrdfOptions, UrdfRobot, UrdfWarning};
-use crate::multibody::{Mimic, MimicModel, Model};
+use crate::multibody::{Mimic, MimicError, MimicModel, Model};
 use std::path::Path;
 
 /// The couplings of `robot`'s `<mimic>` elements in `model` (built from `robot`), in the file's
@@ -70,14 +71,26 @@ pub fn load_urdf_mimic(
 ) -> Result<(MimicModel, Vec<UrdfWarning>), UrdfError> {
     let robot = parse_urdf_file(path)?;
     let (model, warnings) = build_model_with(&robot, opts)?;
-    let couplings = mimics(&robot, &model)?;
-    let mm = MimicModel::new(model, &couplings).map_err(|e| {
-        // name the first mimic joint of the message, with its line
-        let j = robot
-            .joints
-            .iter()
-            .filter(|j| j.mimic.is_some())
-            .find(|j| e.to_string().contains(&format!("\"{}\"", j.name)));
+    Ok((mimic_model(&robot, model)?, warnings))
+}
+
+/// `model` (built from `robot`) with the robot's `<mimic>` joints as couplings.
+///
+/// # Errors
+/// [`UrdfError::Invalid`] naming the mimic joint and its line for a coupling rigid cannot hold
+/// ([`mimics`], [`MimicModel::new`]).
+pub fn mimic_model(robot: &UrdfRobot, model: Model) -> Result<MimicModel, UrdfError> {
+    let couplings = mimics(robot, &model)?;
+    MimicModel::new(model, &couplings).map_err(|e| {
+        // the mimic joint the error is about: named by it, or the joint it follows
+        let mut with_mimic = robot.joints.iter().filter(|j| j.mimic.is_some());
+        let j = match &e {
+            MimicError::NotOneDof { joint, .. } | MimicError::NotFinite { joint } => with_mimic
+                .find(|j| &j.name == joint || j.mimic.as_ref().is_some_and(|m| &m.joint == joint)),
+            MimicError::OutOfRange { .. } | MimicError::Invalid(_) => {
+                with_mimic.find(|j| e.to_string().contains(&format!("\"{}\"", j.name)))
+            }
+        };
         match j {
             Some(j) => UrdfError::Invalid {
                 line: j.line,
@@ -86,6 +99,5 @@ pub fn load_urdf_mimic(
             },
             None => UrdfError::Model(e.to_string()),
         }
-    })?;
-    Ok((mm, warnings))
+    })
 }

@@ -59,7 +59,7 @@ pub use build::{
 pub(crate) use inertials::indent_at;
 pub use inertials::{edit_inertials, was_comment, with_body_inertials, InertialEdit};
 pub use mesh_path::resolve_mesh_path;
-pub use mimic::{load_urdf_mimic, mimics};
+pub use mimic::{load_urdf_mimic, mimic_model, mimics};
 pub use parse::{parse_urdf_file, parse_urdf_str};
 
 use crate::error::InertiaError;

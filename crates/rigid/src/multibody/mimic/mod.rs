@@ -274,7 +274,7 @@ impl MimicModel {
     }
     /// Joint `id`'s `(idx_q, idx_v)` in the reduced coordinates; a mimic joint has none of its
     /// own and gets its source's (as Pinocchio's `idx_q`, `idx_v` of a mimic joint, whose `nq`,
-    /// `nv` are 0).
+    /// `nv` are 0). Panics if `id` is out of range.
     #[must_use]
     pub fn joint_coordinates(&self, id: JointId) -> (usize, usize) {
         self.coords[id.0]
@@ -291,7 +291,11 @@ impl MimicModel {
     }
 
     /// `q_full = E(q)`: each mimic coordinate `multiplier · q_source + offset`, the others
-    /// copied. Lengths are not checked (`nq`, the full model's `nq`).
+    /// copied.
+    ///
+    /// # Panics
+    /// If `q` is shorter than [`nq`](Self::nq) or `q_full` than the full model's (the helpers
+    /// below likewise: their lengths are the reduced and the full model's).
     pub fn expand_q(&self, q: &[f64], q_full: &mut [f64]) {
         for (x, &(src, m, o)) in q_full.iter_mut().zip(&self.q_src) {
             *x = m * q[src] + o;
@@ -372,7 +376,7 @@ impl MimicModel {
             return Err(MultibodyError::DataMismatch {
                 njoints: md.data.placements.len(),
                 nq: md.q.len(),
-                nv: md.tau.len(),
+                nv: md.v.len(),
             });
         }
         DimensionError::check("q", self.nq, q.len())?;
