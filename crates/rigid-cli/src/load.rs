@@ -83,7 +83,8 @@ fn print_warnings(spec: &str, warnings: &[String]) {
 }
 
 /// The model named by `spec` with its mimic joints as couplings (`--mimic`): a URDF's
-/// `<mimic>` elements, an MJCF file's `<equality joint>` elements whose polynomial is linear;
+/// `<mimic>` elements, an MJCF file's `<equality joint>` elements whose polynomial is linear,
+/// an SDF file's gearboxes;
 /// a model with neither has no couplings. Warnings as [`load_printing_warnings`].
 ///
 /// # Errors
@@ -103,6 +104,13 @@ pub fn load_mimic(spec: &str, args: &LoadArgs) -> Result<MimicModel, String> {
     if let Some(m) = &loaded.mjcf {
         let (constraints, _) = m.constraint_models().map_err(|e| format!("{spec}: {e}"))?;
         mimics.extend(constraints.iter().filter_map(Mimic::from_constraint));
+    }
+    if let Some(s) = &loaded.sdf {
+        // its gearboxes
+        mimics.extend(s.constraints.iter().filter_map(Mimic::from_constraint));
+    }
+    if mimics.is_empty() {
+        eprintln!("warning: {spec}: --mimic: the model has no mimic joints");
     }
     MimicModel::new(loaded.model, &mimics).map_err(|e| format!("{spec}: {e}"))
 }

@@ -156,6 +156,8 @@ fn couple(args: &SimulateArgs, s: &mut Scenario) -> Result<(), String> {
     else {
         let what = if is_mjcf(&args.model) {
             "an MJCF file's <equality joint> elements are held without it"
+        } else if is_sdf(&args.model) {
+            "an SDF file's gearboxes are held without it"
         } else {
             "the model has no mimic joints"
         };

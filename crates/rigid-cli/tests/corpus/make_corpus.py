@@ -627,6 +627,13 @@ sdf("name_clash", SDF_ARM + '    <frame name="arm" attached_to="hinge"/>\n', "er
     'frame "arm"', "already taken by the element at line 4")
 sdf("frame_relative_to_nothing", SDF_ARM + '    <frame name="f" attached_to="ghost"/>\n', "error",
     "line 7", '"f"', '"ghost", which is not defined')
+sdf("gearbox_not_a_coupling", SDF_ARM + '    <link name="r"><inertial><mass>1</mass></inertial></link>\n'
+    '    <joint name="ir" type="revolute"><parent>world</parent><child>r</child>'
+    '<axis><xyz>0 1 0</xyz></axis></joint>\n'
+    '    <joint name="g" type="gearbox"><parent>r</parent><child>arm</child>'
+    '<gearbox_reference_body>arm</gearbox_reference_body><gearbox_ratio>2</gearbox_ratio>'
+    '<axis><xyz>0 1 0</xyz></axis><axis2><xyz>0 1 0</xyz></axis2></joint>\n', "ok",
+    'joint "g"', '"r" is not turned by a revolute joint from "arm"')
 sdf("mass_negative", SDF_ARM.replace("<mass>1</mass>", "<mass>-2</mass>"), "error", "line 4",
     "negative mass")
 sdf("joint_type_unknown", SDF_ARM.replace('type="revolute"', 'type="revolute2"'), "error",

@@ -665,3 +665,45 @@ fn an_mjcf_linear_joint_equality_is_a_mimic_and_a_polynomial_one_is_not() {
     let quad = rigid::io::mjcf::load_mjcf_str(&xml("0 0 1 0 0"), dir).unwrap();
     assert!(Mimic::from_constraint(&quad.constraint_models().unwrap().0[0]).is_none());
 }
+
+#[test]
+fn live_cassie_s_gearboxes_are_mimics_and_pass_the_identities() {
+    if !live("Cassie's gearboxes as mimic joints") {
+        return;
+    }
+    let root = rigid::io::robots::example_robot_data().expect("example-robot-data");
+    let s = rigid::io::sdf::load_sdf(root.join("cassie_description/robots/cassie.sdf")).unwrap();
+    let mimics: Vec<Mimic> = s
+        .constraints
+        .iter()
+        .filter_map(Mimic::from_constraint)
+        .collect();
+    // 10 gearboxes: 8 couple two joints from their reference body; the feet's output hinges
+    // close loops, so those 2 are left out with a warning
+    assert_eq!(mimics.len(), 8);
+    let left_out = s
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("a gearbox rigid cannot hold"))
+        .count();
+    assert_eq!(left_out, 2);
+    let ratios: Vec<f64> = mimics.iter().map(|m| m.multiplier.abs()).collect();
+    for r in &ratios {
+        assert!(
+            [0.04, 0.0625, 0.02].iter().any(|x| (x - r).abs() < 1e-15),
+            "{ratios:?}"
+        );
+    }
+    let mm = MimicModel::new(s.model.clone(), &mimics).unwrap();
+    assert_eq!((s.model.nv(), mm.nv()), (48, 40));
+    let mut md = MimicData::new(&mm);
+    let mut rng = Rng::new(11);
+    for _ in 0..3 {
+        let (q, v, tau) = reduced_state(&mm, &mut rng);
+        let m = mm.crba(&mut md, &q).unwrap().clone();
+        assert!(m.clone().cholesky().is_some());
+        let ddq = mm.aba(&mut md, &q, &v, &tau).unwrap().clone();
+        let back = mm.rnea(&mut md, &q, &v, ddq.as_slice()).unwrap();
+        assert!(rel(back.as_slice(), &tau, 1.0) < 1e-9);
+    }
+}

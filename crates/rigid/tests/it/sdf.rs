@@ -338,3 +338,57 @@ fn bodies_below_a_floating_root_are_where_the_file_puts_them_at_home() {
         assert!(f.placement.is_identity(0.0), "{name}");
     }
 }
+
+#[test]
+fn a_gearbox_is_a_coupling_of_the_two_joints_that_turn_its_links() {
+    // θ_out = −0.25 θ_rotor about +x; the output joint turns about −x, so q_out = +0.25 q_rotor
+    let link = |name: &str| format!(r#"<link name="{name}"><pose>0 0 0 0 0 0</pose>{LINK}</link>"#);
+    let joint = |name: &str, child: &str, axis: &str| {
+        format!(
+            r#"<joint name="{name}" type="revolute"><parent>world</parent><child>{child}</child><axis><xyz>{axis}</xyz></axis></joint>"#
+        )
+    };
+    let gearbox = |reference: &str| {
+        format!(
+            r#"<joint name="gear" type="gearbox"><parent>rotor</parent><child>out</child>
+            <gearbox_reference_body>{reference}</gearbox_reference_body><gearbox_ratio>0.25</gearbox_ratio>
+            <axis><xyz>1 0 0</xyz></axis><axis2><xyz>1 0 0</xyz></axis2></joint>"#
+        )
+    };
+    let body = [
+        link("rotor"),
+        link("out"),
+        joint("ip", "rotor", "1 0 0"),
+        joint("op", "out", "-1 0 0"),
+    ]
+    .concat();
+    let m = load(&(body.clone() + &gearbox("world")));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let [c] = &m.constraints[..] else {
+        panic!("{:?}", m.constraints)
+    };
+    assert_eq!(
+        (c.name.as_str(), c.joint1, c.joint2),
+        ("gear", m.model.joint_id("op"), m.model.joint_id("ip"))
+    );
+    let ConstraintKind::JointCoordinate { polycoef } = c.kind else {
+        panic!("{:?}", c.kind)
+    };
+    assert_eq!(polycoef, [0.0, 0.25, 0.0, 0.0, 0.0]);
+    // as a mimic: one degree of freedom, the rotor's
+    let mm = rigid::multibody::MimicModel::new(
+        m.model.clone(),
+        &[rigid::multibody::Mimic::from_constraint(c).unwrap()],
+    )
+    .unwrap();
+    assert_eq!(mm.nv(), 1);
+    // a reference body the links are not turned from: left out, saying why
+    let m = load(&(body + &link("base") + &gearbox("base")));
+    assert!(m.constraints.is_empty());
+    let w = m.warnings[0].to_string();
+    assert!(
+        w.contains("joint \"gear\"")
+            && w.contains("\"rotor\" is not turned by a revolute joint from \"base\""),
+        "{w}"
+    );
+}

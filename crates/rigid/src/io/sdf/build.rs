@@ -261,6 +261,89 @@ impl<'a> Walk<'a> {
     }
 }
 
+impl Walk<'_> {
+    /// A gearbox, `θ_2 = −ratio · θ_1` (SDFormat: `θ_1` the parent link's angle about `axis`,
+    /// `θ_2` the child link's about `axis2`, both relative to the `gearbox_reference_body`), as a
+    /// joint-coordinate constraint `q_c = −ratio · s_1 s_2 · q_p` between the two revolute
+    /// joints that turn its links straight from the reference body (`s_k = ±1`: the joint's axis
+    /// along or against the gearbox's); a mimic under `--mimic`. Any other gearbox is left out
+    /// with a warning that says why.
+    fn gearbox(
+        &mut self,
+        j: &Joint,
+        loops: &[&Joint],
+    ) -> Result<Option<ConstraintModel>, SdfError> {
+        let Some((ratio, reference)) = j.gearbox.clone() else {
+            return Err(invalid(
+                j,
+                "a gearbox needs <gearbox_ratio> and <gearbox_reference_body>",
+            ));
+        };
+        let jw = self.poses[&j.name];
+        // the tree joint turning `link` from the reference body, and its axis's sign against
+        // the gearbox axis `a` (world directions)
+        let turn = |w: &Self,
+                    link: &str,
+                    a: &Option<Axis>|
+         -> Result<Result<(JointId, f64), String>, SdfError> {
+            let Some(a) = a else {
+                return Ok(Err("it has no axis for this link".into()));
+            };
+            let along = jw.rotation * w.axis_in_joint(j, a, &jw)?;
+            let by = w.raw.joints.iter().find(|t| {
+                t.child == link && t.kind != "gearbox" && !loops.iter().any(|l| l.name == t.name)
+            });
+            let Some(t) = by.filter(|t| {
+                t.parent == reference && matches!(t.kind.as_str(), "revolute" | "continuous")
+            }) else {
+                return Ok(Err(format!(
+                    "\"{link}\" is not turned by a revolute joint from \"{reference}\""
+                )));
+            };
+            let tw = w.poses[&t.name];
+            let axis = tw.rotation
+                * w.axis_in_joint(
+                    t,
+                    t.axis.as_ref().ok_or_else(|| invalid(t, "no <axis>"))?,
+                    &tw,
+                )?;
+            let s = axis.dot(&along);
+            let Some((Some(id), _)) = w.at[w.by_name[link]] else {
+                return Ok(Err(format!("\"{link}\" is not a moving body")));
+            };
+            if (s.abs() - 1.0).abs() > 1e-9 {
+                return Ok(Err(format!(
+                    "joint \"{}\" turns about another axis",
+                    t.name
+                )));
+            }
+            Ok(Ok((id, s.signum())))
+        };
+        let (p, c) = (
+            turn(self, &j.parent, &j.axis)?,
+            turn(self, &j.child, &j.axis2)?,
+        );
+        match (p, c) {
+            (Ok((jp, s1)), Ok((jc, s2))) => {
+                let poly = [0.0, -ratio * s1 * s2, 0.0, 0.0, 0.0];
+                let c =
+                    ConstraintModel::joint_coordinate(jc, Some(jp), poly).with_name(j.name.clone());
+                Ok(Some(c))
+            }
+            (Err(why), _) | (_, Err(why)) => {
+                self.warnings.push(SdfWarning {
+                    line: j.line,
+                    element: format!("joint \"{}\"", j.name),
+                    message: format!(
+                        "a gearbox rigid cannot hold as a coupling of two joints ({why}): left out"
+                    ),
+                });
+                Ok(None)
+            }
+        }
+    }
+}
+
 /// The model of `raw` (see the module's documentation of [`super`]).
 pub(super) fn build(
     raw: &Raw,
@@ -366,15 +449,10 @@ pub(super) fn build(
         });
     }
     let mut constraints = Vec::new();
-    for j in std::mem::take(&mut walk.loops) {
+    let loops = std::mem::take(&mut walk.loops);
+    for &j in &loops {
         if j.kind == "gearbox" {
-            walk.warnings.push(SdfWarning {
-                line: j.line,
-                element: format!("joint \"{}\"", j.name),
-                message:
-                    "a gearbox couples two joints' angles; rigid has no such coupling yet: left out"
-                        .into(),
-            });
+            constraints.extend(walk.gearbox(j, &loops)?);
             continue;
         }
         if let Some(c) = walk.closure(j)? {

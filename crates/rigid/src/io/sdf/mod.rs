@@ -21,9 +21,12 @@
 //!   names they refer to read in it, the model placed by its `<pose>` (a frame
 //!   `inner::__model__`).
 //!
-//! Not read: `<include>` (an error naming the line), `revolute2` and
-//! `gearbox` joints (an error in the tree; a gearbox closing a loop is left out with a warning),
-//! visuals, sensors and plugins.
+//! - `gearbox` joints: `θ_2 = −ratio · θ_1` as a joint-coordinate constraint between the two
+//!   revolute joints that turn its links from the reference body (a mimic under `--mimic`);
+//!   another gearbox is left out with a warning saying why.
+//!
+//! Not read: `<include>` (an error naming the line), `revolute2` joints (an error), visuals,
+//! sensors and plugins.
 //!
 //! # Semantics (as SDFormat and Drake)
 //!

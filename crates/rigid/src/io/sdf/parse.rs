@@ -53,6 +53,8 @@ pub(super) struct Joint {
     pub axis2: Option<Axis>,
     /// `<screw_thread_pitch>` (m per revolution).
     pub pitch: Option<f64>,
+    /// A gearbox's `<gearbox_ratio>` and `<gearbox_reference_body>`.
+    pub gearbox: Option<(f64, String)>,
 }
 
 /// A `<frame>`.
@@ -360,6 +362,16 @@ impl<'a> Reader<'a> {
             Some(n) => Some(self.numbers(n, &what, Some(1))?[0]),
             None => None,
         };
+        let gearbox = match (
+            child(j, "gearbox_ratio"),
+            child(j, "gearbox_reference_body"),
+        ) {
+            (Some(r), Some(b)) => Some((
+                self.numbers(r, &what, Some(1))?[0],
+                b.text().unwrap_or("").trim().to_string(),
+            )),
+            _ => None,
+        };
         Ok(Joint {
             line: self.line(j),
             kind: j.attribute("type").unwrap_or("").to_string(),
@@ -369,6 +381,7 @@ impl<'a> Reader<'a> {
             axis: axis("axis")?,
             axis2: axis("axis2")?,
             pitch,
+            gearbox,
             name,
         })
     }
@@ -410,6 +423,9 @@ impl<'a> Reader<'a> {
                     j.name = scoped(&j.name);
                     j.parent = scoped(&j.parent);
                     j.child = scoped(&j.child);
+                    if let Some((_, body)) = &mut j.gearbox {
+                        *body = scoped(body);
+                    }
                     if let Some(r) = j.pose.relative_to.take() {
                         j.pose.relative_to = Some(scoped(&r));
                     }
