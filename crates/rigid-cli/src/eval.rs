@@ -151,6 +151,25 @@ struct AbaDerivatives {
     dqdd_dtau: Vec<Vec<f64>>,
 }
 
+impl From<rigid::multibody::RneaDerivatives<'_>> for RneaDerivatives {
+    fn from(d: rigid::multibody::RneaDerivatives<'_>) -> Self {
+        Self {
+            dtau_dq: rows(d.dtau_dq),
+            dtau_dv: rows(d.dtau_dv),
+        }
+    }
+}
+
+impl From<rigid::multibody::AbaDerivatives<'_>> for AbaDerivatives {
+    fn from(d: rigid::multibody::AbaDerivatives<'_>) -> Self {
+        Self {
+            dqdd_dq: rows(d.dqdd_dq),
+            dqdd_dv: rows(d.dqdd_dv),
+            dqdd_dtau: rows(d.dqdd_dtau),
+        }
+    }
+}
+
 /// A matrix as row-major nested arrays.
 fn rows(m: &nalgebra::DMatrix<f64>) -> Vec<Vec<f64>> {
     (0..m.nrows())
@@ -420,17 +439,9 @@ fn evaluate(
         .collect();
     let (rnea_derivatives, aba_derivatives) = if derivatives {
         let d = rnea_derivatives(model, data, &c.q, &c.v, &c.a).map_err(e("rnea_derivatives"))?;
-        let r = RneaDerivatives {
-            dtau_dq: rows(d.dtau_dq),
-            dtau_dv: rows(d.dtau_dv),
-        };
+        let r = RneaDerivatives::from(d);
         let d = aba_derivatives(model, data, &c.q, &c.v, &c.tau).map_err(e("aba_derivatives"))?;
-        let f = AbaDerivatives {
-            dqdd_dq: rows(d.dqdd_dq),
-            dqdd_dv: rows(d.dqdd_dv),
-            dqdd_dtau: rows(d.dqdd_dtau),
-        };
-        (Some(r), Some(f))
+        (Some(r), Some(AbaDerivatives::from(d)))
     } else {
         (None, None)
     };

@@ -167,19 +167,11 @@ fn evaluate(
         let d = mm
             .rnea_derivatives(md, &c.q, &c.v, &c.a)
             .map_err(e("rnea_derivatives"))?;
-        let r = RneaDerivatives {
-            dtau_dq: rows(d.dtau_dq),
-            dtau_dv: rows(d.dtau_dv),
-        };
+        let r = RneaDerivatives::from(d);
         let d = mm
             .aba_derivatives(md, &c.q, &c.v, &c.tau)
             .map_err(e("aba_derivatives"))?;
-        let f = AbaDerivatives {
-            dqdd_dq: rows(d.dqdd_dq),
-            dqdd_dv: rows(d.dqdd_dv),
-            dqdd_dtau: rows(d.dqdd_dtau),
-        };
-        (Some(r), Some(f))
+        (Some(r), Some(AbaDerivatives::from(d)))
     } else {
         (None, None)
     };

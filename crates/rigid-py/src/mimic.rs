@@ -3,12 +3,11 @@
 //! `buildModelFromUrdf(path, mimic=True)`; made by `Model.from_urdf(path, mimic=True)`.
 
 use crate::convert::{array1, array2, value_error, vector};
-use crate::model::{parse_layout, policy, warn_all, UrdfWarning};
+use crate::model::{parse_layout, urdf_error, urdf_options, warn_all, UrdfWarning};
 use numpy::{PyArray1, PyArray2};
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rigid::interop::{Layout, PinocchioLayout};
-use rigid::io::urdf::{self, SiblingOrder, UrdfError, UrdfOptions};
+use rigid::io::urdf;
 use rigid::multibody::{self as mb, JointId, MimicData};
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -45,20 +44,10 @@ impl MimicModel {
             ));
         }
         let pinocchio = kind == Layout::Pinocchio;
-        let opts = UrdfOptions {
-            floating,
-            inertia: policy(inertia)?,
-            sibling_order: if pinocchio {
-                SiblingOrder::Name
-            } else {
-                SiblingOrder::File
-            },
-        };
+        let opts = urdf_options(floating, inertia, pinocchio)?;
         let shown = path.display().to_string();
-        let (mm, warnings) = urdf::load_urdf_mimic(&path, &opts).map_err(|e| match &e {
-            UrdfError::Io { source, .. } => crate::convert::io_error(source, e.to_string()),
-            _ => PyValueError::new_err(format!("{shown}: {e}")),
-        })?;
+        let (mm, warnings) =
+            urdf::load_urdf_mimic(&path, &opts).map_err(|e| urdf_error(&shown, &e))?;
         let warnings: Vec<String> = warnings.iter().map(|w| format!("{shown}: {w}")).collect();
         warn_all(py, &py.get_type::<UrdfWarning>(), &warnings)?;
         Ok(Self::new(mm, pinocchio))

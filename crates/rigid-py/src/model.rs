@@ -318,6 +318,31 @@ pub enum Place {
     Frame(FrameId),
 }
 
+/// The URDF options of `Model.from_urdf`'s arguments (siblings by name in Pinocchio's layout).
+pub(crate) fn urdf_options(
+    floating: bool,
+    inertia: &str,
+    pinocchio: bool,
+) -> PyResult<UrdfOptions> {
+    Ok(UrdfOptions {
+        floating,
+        inertia: policy(inertia)?,
+        sibling_order: if pinocchio {
+            SiblingOrder::Name
+        } else {
+            SiblingOrder::File
+        },
+    })
+}
+
+/// A URDF that could not be loaded: `FileNotFoundError`/`OSError` or `ValueError`, naming the file.
+pub(crate) fn urdf_error(shown: &str, e: &UrdfError) -> PyErr {
+    match e {
+        UrdfError::Io { source, .. } => convert::io_error(source, e.to_string()),
+        _ => PyValueError::new_err(format!("{shown}: {e}")),
+    }
+}
+
 pub(crate) fn policy(inertia: &str) -> PyResult<InertiaPolicy> {
     inertia
         .parse()
@@ -834,20 +859,10 @@ impl Model {
     ) -> PyResult<Self> {
         let kind = parse_layout("Model.from_urdf", layout)?;
         let pinocchio = kind == Layout::Pinocchio;
-        let opts = UrdfOptions {
-            floating,
-            inertia: policy(inertia)?,
-            sibling_order: if pinocchio {
-                SiblingOrder::Name
-            } else {
-                SiblingOrder::File
-            },
-        };
+        let opts = urdf_options(floating, inertia, pinocchio)?;
         let shown = path.display().to_string();
-        let (model, warnings) = urdf::load_urdf_with(&path, &opts).map_err(|e| match &e {
-            UrdfError::Io { source, .. } => convert::io_error(source, e.to_string()),
-            _ => PyValueError::new_err(format!("{shown}: {e}")),
-        })?;
+        let (model, warnings) =
+            urdf::load_urdf_with(&path, &opts).map_err(|e| urdf_error(&shown, &e))?;
         let warnings: Vec<String> = warnings.iter().map(|w| format!("{shown}: {w}")).collect();
         warn_all(py, &py.get_type::<UrdfWarning>(), &warnings)?;
         let mut core = ModelCore::new(model, pinocchio, warnings);

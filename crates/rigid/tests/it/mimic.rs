@@ -707,3 +707,57 @@ fn live_cassie_s_gearboxes_are_mimics_and_pass_the_identities() {
         assert!(rel(back.as_slice(), &tau, 1.0) < 1e-9);
     }
 }
+
+#[test]
+fn energy_rate_equals_power_for_talos_with_its_mimics() {
+    // constant torques on the reduced coordinates: E(T) − E(0) = ∫ τ · q̇ dt (RK4 at 1 ms, the
+    // power integrated by Simpson's rule over the same steps), and without torque E is constant
+    let path = example_robot_data().join("talos_data/robots/talos_full_v2.urdf");
+    let (mm, _) = load_urdf_mimic(&path, &UrdfOptions::default()).unwrap();
+    let mut rng = Rng::new(12);
+    let (q0, v0, tau) = reduced_state(&mm, &mut rng);
+    let tau: Vec<f64> = tau.iter().map(|t| 0.2 * t).collect();
+    let mut md = MimicData::new(&mm);
+    let dt = 1e-3;
+    for torque in [false, true] {
+        let t: Vec<f64> = if torque {
+            tau.clone()
+        } else {
+            vec![0.0; mm.nv()]
+        };
+        let energy = |md: &mut MimicData, q: &[f64], v: &[f64]| {
+            mm.kinetic_energy(md, q, v).unwrap() + mm.potential_energy(md, q).unwrap()
+        };
+        let power = |v: &[f64]| v.iter().zip(&t).map(|(a, b)| a * b).sum::<f64>();
+        let (mut q, mut v) = (q0.clone(), v0.clone());
+        let e0 = energy(&mut md, &q, &v);
+        let mut work = 0.0;
+        let axpy = |x: &[f64], a: f64, y: &[f64]| -> Vec<f64> {
+            x.iter().zip(y).map(|(x, y)| x + a * y).collect()
+        };
+        for _ in 0..200 {
+            let mut f =
+                |q: &[f64], v: &[f64]| mm.aba(&mut md, q, v, &t).unwrap().as_slice().to_vec();
+            let k1 = f(&q, &v);
+            let (q2, v2) = (axpy(&q, dt / 2.0, &v), axpy(&v, dt / 2.0, &k1));
+            let k2 = f(&q2, &v2);
+            let (q3, v3) = (axpy(&q, dt / 2.0, &v2), axpy(&v, dt / 2.0, &k2));
+            let k3 = f(&q3, &v3);
+            let (q4, v4) = (axpy(&q, dt, &v3), axpy(&v, dt, &k3));
+            let k4 = f(&q4, &v4);
+            // Simpson on the RK4 stages: P(v), P(v2), P(v3), P(v4)
+            work += dt / 6.0 * (power(&v) + 2.0 * power(&v2) + 2.0 * power(&v3) + power(&v4));
+            for i in 0..q.len() {
+                q[i] += dt / 6.0 * (v[i] + 2.0 * v2[i] + 2.0 * v3[i] + v4[i]);
+                v[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+            }
+        }
+        let gained = energy(&mut md, &q, &v) - e0;
+        let e = (gained - work).abs() / e0.abs().max(1.0);
+        eprintln!("TALOS with mimics, 0.2 s, torque {torque}: ΔE {gained:.6e} J, work {work:.6e} J, gap {e:.1e} of E");
+        assert!(e < 1e-8, "energy rate vs power: {e:e}");
+        if torque {
+            assert!(work.abs() > 1e-3, "the torques did work");
+        }
+    }
+}
