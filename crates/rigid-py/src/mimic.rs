@@ -292,7 +292,7 @@ impl MimicModel {
             self.m_out(py, d.dqdd_dtau),
         ))
     }
-    /// The Jacobian (6 x nv) of the frame called `frame` in `reference` (as `rigid.jacobian`'s
+    /// The Jacobian (6 x nv) of the frame (or joint) called `frame` in `reference` (as `rigid.jacobian`'s
     /// `frame`; default world-aligned): rows `(ω, v)`, or `(v, ω)` in Pinocchio's layout.
     #[pyo3(signature = (q, frame, reference = None))]
     fn frame_jacobian<'py>(
@@ -308,16 +308,15 @@ impl MimicModel {
             Ok(mb::ReferenceFrame::WorldAligned),
             crate::dynamics::reference_frame,
         )?;
-        let id = self
-            .inner
-            .model()
-            .frame_id(frame)
-            .map_err(|e| value_error(F, e))?;
+        // a named frame, else a joint's moved frame (as rigid.jacobian)
+        let model = self.inner.model();
         let mut md = self.lock();
-        let j = self
-            .inner
-            .frame_jacobian(&mut md, &q, id, rf)
-            .map_err(|e| value_error(F, e))?;
+        let j = match (model.frame_id(frame), model.joint_id(frame)) {
+            (Ok(id), _) => self.inner.frame_jacobian(&mut md, &q, id, rf),
+            (Err(_), Some(id)) => self.inner.joint_jacobian(&mut md, &q, id, rf),
+            (Err(e), None) => return Err(value_error(F, e)),
+        }
+        .map_err(|e| value_error(F, e))?;
         // rows (ω, v) in rigid's layout; (v, ω) and columns permuted in Pinocchio's
         let p = |k: usize| self.layout.as_ref().map_or(k, |l| l.v_index(k));
         let shift = if self.layout.is_some() { 3 } else { 0 };

@@ -48,6 +48,9 @@ def test_mimic_equals_pinocchio_mimic_true(rel):
         frame = pm.frames[-1].name
         J = pin.computeFrameJacobian(pm, pd, q, pm.getFrameId(frame), pin.LOCAL_WORLD_ALIGNED)
         assert_close(mm.frame_jacobian(q, frame), J, f"{rel}: frame Jacobian")
+        joint = pm.names[-1]
+        J = pin.computeJointJacobian(pm, pd, q, pm.getJointId(joint))
+        assert_close(mm.frame_jacobian(q, joint, "body"), J, f"{rel}: joint Jacobian")
 
 
 @pytest.mark.parametrize("rel", REFUSED)

@@ -460,12 +460,20 @@ impl MimicModel {
             .map(|(_, x)| x)
     }
 
+    /// Length `nq`, finite, each free joint's quaternion of unit norm (nothing allocated).
     fn check_q(&self, q: &[f64]) -> Result<(), MultibodyError> {
         DimensionError::check("q", self.nq, q.len())?;
         finite("q", q)?;
-        let mut full = vec![0.0; self.model.nq()];
-        self.expand_q(q, &mut full);
-        super::check_q(&self.model, &full)
+        for (j, &(iq, _)) in self.free_joints() {
+            if let Some(o) = j.kind.quaternion_offset() {
+                let norm = crate::spatial::quat_norm(&q[iq + o..iq + o + 4]);
+                if (norm - 1.0).abs() > super::QUATERNION_TOLERANCE {
+                    let joint = j.name.clone();
+                    return Err(MultibodyError::NotUnitQuaternion { joint, norm });
+                }
+            }
+        }
+        Ok(())
     }
 }
 
