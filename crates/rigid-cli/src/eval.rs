@@ -350,37 +350,50 @@ fn result_to_pinocchio(l: &PinocchioLayout, r: &mut CaseResult) {
     }
 }
 
-fn model_info(model: &Model, layout: Option<&PinocchioLayout>) -> ModelInfo {
-    let g = model.gravity();
-    ModelInfo {
-        name: model.name().to_string(),
-        layout: if layout.is_some() {
-            "pinocchio"
-        } else {
-            "rigid"
-        },
-        qpos0: None,
-        nq: layout.map_or(model.nq(), PinocchioLayout::nq),
-        nv: model.nv(),
-        joints: model
-            .joints()
-            .iter()
-            .enumerate()
-            .map(|(i, j)| {
-                let (idx_q, nq) = layout.map_or((j.idx_q, j.nq), |l| l.joint_q(i));
-                JointInfo {
-                    name: j.name.clone(),
-                    kind: j.type_name(),
-                    idx_q,
-                    nq,
-                    idx_v: j.idx_v,
-                    nv: j.nv,
-                    mimic: None,
-                }
-            })
-            .collect(),
-        gravity: [g.x, g.y, g.z],
+impl ModelInfo {
+    /// The header of `model` with these joints, `nq` and `nv` (in the layout asked for).
+    fn of(
+        model: &Model,
+        layout: Option<&PinocchioLayout>,
+        (nq, nv): (usize, usize),
+        joints: Vec<JointInfo>,
+    ) -> Self {
+        let g = model.gravity();
+        Self {
+            name: model.name().to_string(),
+            layout: if layout.is_some() {
+                "pinocchio"
+            } else {
+                "rigid"
+            },
+            qpos0: None,
+            nq: layout.map_or(nq, PinocchioLayout::nq),
+            nv,
+            joints,
+            gravity: [g.x, g.y, g.z],
+        }
     }
+}
+
+fn model_info(model: &Model, layout: Option<&PinocchioLayout>) -> ModelInfo {
+    let joints = model
+        .joints()
+        .iter()
+        .enumerate()
+        .map(|(i, j)| {
+            let (idx_q, nq) = layout.map_or((j.idx_q, j.nq), |l| l.joint_q(i));
+            JointInfo {
+                name: j.name.clone(),
+                kind: j.type_name(),
+                idx_q,
+                nq,
+                idx_v: j.idx_v,
+                nv: j.nv,
+                mimic: None,
+            }
+        })
+        .collect();
+    ModelInfo::of(model, layout, (model.nq(), model.nv()), joints)
 }
 
 /// Case files of at least this many cases are evaluated on every core.

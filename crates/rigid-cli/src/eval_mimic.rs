@@ -78,7 +78,6 @@ pub(super) fn run(args: &EvalArgs) -> Result<(), String> {
 /// indices (Pinocchio's `idx_q`, `idx_v` of a mimic joint) and says what it follows.
 fn model_info(mm: &MimicModel, layout: Option<&PinocchioLayout>) -> ModelInfo {
     let model = mm.model();
-    let g = model.gravity();
     // each free joint's position among the free joints (the pinocchio layout's joint index)
     let mut free_index = vec![0; model.njoints()];
     let mut free = 0;
@@ -116,19 +115,7 @@ fn model_info(mm: &MimicModel, layout: Option<&PinocchioLayout>) -> ModelInfo {
             }
         })
         .collect();
-    ModelInfo {
-        name: model.name().to_string(),
-        layout: if layout.is_some() {
-            "pinocchio"
-        } else {
-            "rigid"
-        },
-        qpos0: None,
-        nq: layout.map_or(mm.nq(), PinocchioLayout::nq),
-        nv: mm.nv(),
-        joints,
-        gravity: [g.x, g.y, g.z],
-    }
+    ModelInfo::of(model, layout, (mm.nq(), mm.nv()), joints)
 }
 
 fn evaluate(

@@ -173,24 +173,16 @@ fn couple(args: &SimulateArgs, s: &mut Scenario) -> Result<(), String> {
             args.model
         );
     }
-    let consistent = |q: &[f64], what: &str| -> Result<Vec<f64>, String> {
-        let mut reduced = vec![0.0; mm.nq()];
-        if q.len() == mm.nq() {
-            reduced.copy_from_slice(q);
-        } else if q.len() == s.model.nq() {
-            mm.reduce_q(q, &mut reduced);
-        } else {
-            return Err(format!(
+    let (nq, nv) = (s.model.nq(), s.model.nv());
+    let consistent = |q: &[f64], what: &str| {
+        mm.consistent_q(q).ok_or_else(|| {
+            format!(
                 "--{what} has {} numbers; with --mimic give the reduced coordinates ({}) or \
-                 every joint's ({})",
+                 every joint's ({nq})",
                 q.len(),
-                mm.nq(),
-                s.model.nq()
-            ));
-        }
-        let mut full = vec![0.0; s.model.nq()];
-        mm.expand_q(&reduced, &mut full);
-        Ok(full)
+                mm.nq()
+            )
+        })
     };
     // without --q0, the start is the file's home made consistent, or the neutral configuration,
     // which the scenario closes under the couplings and sets down on a ground
@@ -200,25 +192,14 @@ fn couple(args: &SimulateArgs, s: &mut Scenario) -> Result<(), String> {
         s.home = Some(consistent(home, "q0")?);
     }
     if let Some(v0) = &s.v0 {
-        let mut reduced = vec![0.0; mm.nv()];
-        if v0.len() == mm.nv() {
-            reduced.copy_from_slice(v0);
-        } else if v0.len() == s.model.nv() {
-            for (r, &k) in reduced.iter_mut().zip(mm.v_full_indices()) {
-                *r = v0[k];
-            }
-        } else {
-            return Err(format!(
+        s.v0 = Some(mm.consistent_v(v0).ok_or_else(|| {
+            format!(
                 "--v0 has {} numbers; with --mimic give the reduced velocities ({}) or every \
-                 joint's ({})",
+                 joint's ({nv})",
                 v0.len(),
-                mm.nv(),
-                s.model.nv()
-            ));
-        }
-        let mut full = vec![0.0; s.model.nv()];
-        mm.expand_v(&reduced, &mut full);
-        s.v0 = Some(full);
+                mm.nv()
+            )
+        })?);
     }
     if let Some(t) = &s.target {
         s.target = Some(consistent(t, "target")?);

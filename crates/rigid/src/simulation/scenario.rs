@@ -20,6 +20,7 @@ use super::{
     ConstraintOptions, ControlKind, ControlLaw, Controller, Integrator, JointLimits,
     SimulationError, SimulationOptions, Simulator, TimeScaling,
 };
+use crate::multibody::constraints::kinematics::polynomial;
 use crate::multibody::constraints::{ConstraintKind, ConstraintModel};
 use crate::multibody::{neutral, Model};
 
@@ -193,7 +194,7 @@ impl Scenario {
         for c in &self.constraints {
             if let (ConstraintKind::JointCoordinate { polycoef }, Some(j1)) = (c.kind, c.joint1) {
                 let x = c.joint2.map_or(0.0, |j2| q[m.joint(j2).idx_q]);
-                q[m.joint(j1).idx_q] = polycoef.iter().rev().fold(0.0, |p, &k| p * x + k);
+                q[m.joint(j1).idx_q] = polynomial(&polycoef, x).0;
             }
         }
         q

@@ -69,7 +69,7 @@ mod derivatives;
 mod dynamics;
 mod impulse;
 mod inverse;
-mod kinematics;
+pub(crate) mod kinematics;
 mod partials;
 pub(crate) mod solver;
 pub(crate) mod workspace;

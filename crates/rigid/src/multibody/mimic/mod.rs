@@ -313,6 +313,38 @@ impl MimicModel {
             *x = q_full[i];
         }
     }
+    /// The full configuration consistent with the couplings, from `q` in the reduced
+    /// coordinates (`nq` numbers) or in the full model's (each mimic coordinate then recomputed
+    /// from its source's); `None` for another length.
+    #[must_use]
+    pub fn consistent_q(&self, q: &[f64]) -> Option<Vec<f64>> {
+        let mut reduced = vec![0.0; self.nq];
+        if q.len() == self.nq {
+            reduced.copy_from_slice(q);
+        } else if q.len() == self.model.nq() {
+            self.reduce_q(q, &mut reduced);
+        } else {
+            return None;
+        }
+        let mut full = vec![0.0; self.model.nq()];
+        self.expand_q(&reduced, &mut full);
+        Some(full)
+    }
+    /// The full velocity `G v` from `v` in the reduced coordinates (`nv` numbers) or in the
+    /// full model's (its free dofs kept); `None` for another length.
+    #[must_use]
+    pub fn consistent_v(&self, v: &[f64]) -> Option<Vec<f64>> {
+        let reduced: Vec<f64> = if v.len() == self.nv {
+            v.to_vec()
+        } else if v.len() == self.model.nv() {
+            self.v_full_index.iter().map(|&k| v[k]).collect()
+        } else {
+            return None;
+        };
+        let mut full = vec![0.0; self.model.nv()];
+        self.expand_v(&reduced, &mut full);
+        Some(full)
+    }
     /// `τ = Gᵀ τ_full`: the generalised force on the reduced coordinates that does the same
     /// virtual work (a mimic dof's force reaches its source times the multiplier).
     pub fn reduce_force(&self, tau_full: &[f64], tau: &mut [f64]) {
