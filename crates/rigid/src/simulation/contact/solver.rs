@@ -10,6 +10,7 @@
 //! contacts' penetration (`σ*_B = −β e/h`).
 
 use super::admm::Admm;
+use super::polish::Polish;
 use super::residuals::ContactResiduals;
 use super::{ContactSettings, ContactStats, Solver};
 #[cfg(feature = "collision")]
@@ -129,6 +130,8 @@ pub(crate) struct ContactSolver {
     keys: Vec<((usize, usize), Vec3)>,
     /// The second solver's workspace.
     admm: Admm,
+    /// The sweep's active-set polish.
+    polish: Polish,
     /// What the last solve did.
     pub(crate) stats: ContactStats,
 }
@@ -186,6 +189,7 @@ impl ContactSolver {
             next_memory: Vec::new(),
             keys: Vec::new(),
             admm: Admm::default(),
+            polish: Polish::default(),
             stats: ContactStats::default(),
         };
         s.reserve(24);
@@ -587,7 +591,7 @@ impl ContactSolver {
                 &self.target[..m],
                 lambda,
                 sigma,
-                settings,
+                (settings, &mut self.polish),
                 true,
             ),
             Solver::Admm => self.admm.solve(
@@ -746,7 +750,7 @@ impl ContactSolver {
             &self.target_mu[..m],
             lambda,
             sigma,
-            settings,
+            (settings, &mut self.polish),
             false,
         );
         primal_rows(
@@ -779,7 +783,7 @@ fn pgs(
     target: &[f64],
     lambda: &mut [f64],
     sigma: &mut [f64],
-    settings: &ContactSettings,
+    (settings, polish): (&ContactSettings, &mut Polish),
     friction: bool,
 ) -> (usize, bool) {
     let m = lambda.len();
@@ -795,6 +799,7 @@ fn pgs(
     // the block of each bilateral row
     let block_of = |r: usize| blocks.partition_point(|b| b.row + b.dim <= r);
     let mb = step.len();
+    let mut failed = 0;
     for it in 1..=settings.max_iterations {
         let (mut change, mut largest): (f64, f64) = (0.0, 0.0);
         if mb > 0 {
@@ -851,8 +856,21 @@ fn pgs(
         if change <= settings.tolerance * largest {
             return (it, true);
         }
+        if failed < 2
+            && polish_after(it)
+            && !polish.apply(blocks, K, idle, target, lambda, sigma, friction)
+        {
+            failed += 1;
+        }
     }
     (settings.max_iterations, false)
+}
+
+/// Whether the active-set [polish](super::polish) follows sweep `it` (not yet converged): after
+/// sweeps 4, 8, 16, ..., at most twice refused in one solve (each try costs a dense solve of the
+/// active rows, about 20 sweeps' work on a humanoid).
+fn polish_after(it: usize) -> bool {
+    it >= 4 && it.is_power_of_two()
 }
 
 /// The Cholesky factor of `K_BB + ρ I` (`ρ = 10⁻¹⁰ max diag K_BB`) into the leading `mb x mb`

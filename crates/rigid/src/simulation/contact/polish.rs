@@ -1,0 +1,365 @@
+//! The active-set polish of projected Gauss–Seidel: where the sweep has found which contacts
+//! separate, stick or slide but converges to the impulses slowly (a statically indeterminate
+//! stance, a long chain between two contacts: the sweep's linear rate tends to 1), solve the
+//! equations of that active set in one dense step, and keep the result only if it is feasible.
+//!
+//! Per block, a mode read from the current impulses (Silcowitz, Niebe and Erleben 2010,
+//! "Projected Gauss–Seidel subspace minimization for interactive rigid body dynamics", §3; here
+//! with the exact Coulomb cone, whose sliding law is solved by Newton's method):
+//!
+//! ```text
+//! separated   λ_n = 0                   λ = 0
+//! sticking    0 < λ_n, ‖λ_t‖ < μ λ_n     σ = σ*                            (3 equations)
+//! sliding     ‖λ_t‖ = μ λ_n > 0          σ_n = σ*_n, λ_t = −μ λ_n σ_t/‖σ_t‖  (3 equations)
+//! limit       λ > 0                     σ = σ*                            (1)
+//! bilateral   always                    σ = σ*                            (its rows)
+//! ```
+//!
+//! With `σ = σ₀ + K λ` the equations are linear but for the sliding law, linearised at the
+//! current slip `ŝ = σ_t/s`: `δλ_t + μ ŝ δλ_n + (μ λ_n/s)(I − ŝŝᵀ) δσ_t = −(λ_t + μ λ_n ŝ)`.
+//! Each Newton step is one dense solve of the active rows (not symmetric with a sliding
+//! contact): Gaussian elimination with partial pivoting, in place (no allocation once the
+//! workspace has grown; nalgebra's `LU` owns its matrix and permutation), on `A + ε I` with `ε =
+//! 10⁻¹² max |A_ii|` so that redundant rows (four corners of a face) give a bounded solution.
+//! After each step the modes are read again: a negative normal impulse separates, a separated
+//! contact approaching faster than its target is held, a sticking one outside its cone slides, a
+//! sliding one slipping along its friction sticks. The polish is kept when the modes stand and
+//! every sliding law holds (to 10⁻⁸ of `μ λ_n`) within [`TRIES`] steps; otherwise `λ` and `σ`
+//! return to where the sweep left them. Either way the sweep's own test decides convergence, so
+//! the polish changes how soon the solver gets there, never what it accepts.
+
+use super::solver::Block;
+
+/// The workspace, reused from step to step (it grows with the largest problem seen).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Polish {
+    /// Per block, its mode.
+    modes: Vec<Mode>,
+    /// The unknowns' rows (each row's impulse), and the equations' (row, kind).
+    unknowns: Vec<usize>,
+    equations: Vec<(usize, Equation)>,
+    /// `A` (n x n, row-major), and the right-hand side then the solution.
+    a: Vec<f64>,
+    x: Vec<f64>,
+    /// `λ` and `σ` before the polish (restored when it is refused).
+    saved: Vec<f64>,
+}
+
+/// What a block's impulses are held to in the polish.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Mode {
+    /// `λ = 0`.
+    Free,
+    /// `σ = σ*` on every row.
+    Held,
+    /// `σ_n = σ*_n`, `λ_t = −μ λ_n σ_t/‖σ_t‖`.
+    Slide,
+}
+
+/// One equation of the polish.
+#[derive(Clone, Copy, Debug)]
+enum Equation {
+    /// `σ_r = σ*_r`.
+    Velocity,
+    /// Tangent `i` of a sliding contact, Newton's linearisation of
+    /// `λ_t + μ λ_n ŝ = 0` at the current `ŝ = σ_t/s`: `δλ_t + μ ŝ δλ_n + (μ λ_n/s) P δσ_t =
+    /// −(λ_t + μ λ_n ŝ)`, `P = I − ŝ ŝᵀ`; the row is the block's normal row, `(ŝ, s)` given.
+    Slip(usize, [f64; 2], f64),
+}
+
+/// A sliding contact's tangent impulse is on the cone's boundary within this share of `μ λ_n`.
+const ON_CONE: f64 = 1e-9;
+
+/// The most Newton steps (and changes of the active set) in one polish.
+const TRIES: usize = 4;
+
+impl Polish {
+    /// Polishes `λ` and `σ = σ₀ + K λ` (`K` m x m, stride m) for `blocks`' active set, `idle`
+    /// the bilateral rows held at 0, `friction` as the sweep's. Returns whether the polished
+    /// impulses were kept (else `λ` and `σ` are as they came).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn apply(
+        &mut self,
+        blocks: &[Block],
+        K: &[f64],
+        idle: &[bool],
+        target: &[f64],
+        lambda: &mut [f64],
+        sigma: &mut [f64],
+        friction: bool,
+    ) -> bool {
+        self.modes.clear();
+        for b in blocks {
+            let r = b.row;
+            let mode = if b.bilateral {
+                Mode::Held
+            } else if lambda[r] <= 0.0 {
+                Mode::Free
+            } else if slides(b, friction) {
+                let t = len(lambda[r + 1], lambda[r + 2]);
+                if t < b.friction * lambda[r] * (1.0 - ON_CONE) {
+                    Mode::Held
+                } else {
+                    Mode::Slide
+                }
+            } else {
+                Mode::Held
+            };
+            self.modes.push(mode);
+        }
+        self.saved.clear();
+        self.saved.extend_from_slice(lambda);
+        self.saved.extend_from_slice(sigma);
+        for _ in 0..TRIES {
+            if !self.solve(blocks, K, idle, target, lambda, sigma, friction) {
+                break;
+            }
+            if !self.next_modes(blocks, target, lambda, sigma, friction) {
+                return true;
+            }
+        }
+        self.restore(lambda, sigma);
+        false
+    }
+
+    /// One Newton step on the modes' equations from the current `λ`, `σ`. False if the system
+    /// is singular or empty.
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &mut self,
+        blocks: &[Block],
+        K: &[f64],
+        idle: &[bool],
+        target: &[f64],
+        lambda: &mut [f64],
+        sigma: &mut [f64],
+        friction: bool,
+    ) -> bool {
+        let m = lambda.len();
+        let fast = sigma
+            .iter()
+            .chain(target)
+            .fold(0.0f64, |a, s| a.max(s.abs()));
+        self.unknowns.clear();
+        self.equations.clear();
+        for (b, mode) in blocks.iter().zip(&self.modes) {
+            let r = b.row;
+            let rows = r..r + b.dim;
+            let s = if b.dim == 3 {
+                len(sigma[r + 1], sigma[r + 2])
+            } else {
+                0.0
+            };
+            match *mode {
+                Mode::Free => {
+                    for c in rows {
+                        add_column(K, m, c, -lambda[c], lambda, sigma);
+                    }
+                }
+                Mode::Held if b.bilateral => {
+                    self.unknowns.extend(rows.filter(|&r| !idle[r]));
+                }
+                Mode::Held | Mode::Slide if b.dim == 3 && !slides(b, friction) => {
+                    self.unknowns.push(r);
+                }
+                Mode::Slide if s > 1e-12 * fast => {
+                    self.unknowns.extend(rows);
+                    let sh = [sigma[r + 1] / s, sigma[r + 2] / s];
+                    self.equations.push((r, Equation::Velocity));
+                    self.equations.push((r, Equation::Slip(0, sh, s)));
+                    self.equations.push((r, Equation::Slip(1, sh, s)));
+                    continue;
+                }
+                Mode::Held | Mode::Slide => self.unknowns.extend(rows),
+            }
+            let first = self.equations.len();
+            let added = self.unknowns.len() - first;
+            for i in 0..added {
+                self.equations
+                    .push((self.unknowns[first + i], Equation::Velocity));
+            }
+        }
+        let n = self.unknowns.len();
+        if n == 0 {
+            return false;
+        }
+        self.a.clear();
+        self.a.resize(n * n, 0.0);
+        self.x.clear();
+        for (i, &(p, eq)) in self.equations.iter().enumerate() {
+            let row = &mut self.a[i * n..(i + 1) * n];
+            match eq {
+                Equation::Velocity => {
+                    for (a, &c) in row.iter_mut().zip(&self.unknowns) {
+                        *a = K[c * m + p];
+                    }
+                    self.x.push(target[p] - sigma[p]);
+                }
+                Equation::Slip(k, sh, s) => {
+                    let mu = blocks_friction(blocks, p);
+                    let g = mu * lambda[p] / s;
+                    // P's row k
+                    let pk = [
+                        f64::from(u8::from(k == 0)) - sh[k] * sh[0],
+                        f64::from(u8::from(k == 1)) - sh[k] * sh[1],
+                    ];
+                    for (a, &c) in row.iter_mut().zip(&self.unknowns) {
+                        let col = &K[c * m..(c + 1) * m];
+                        let mut v = g * (pk[0] * col[p + 1] + pk[1] * col[p + 2]);
+                        if c == p + 1 + k {
+                            v += 1.0;
+                        }
+                        if c == p {
+                            v += mu * sh[k];
+                        }
+                        *a = v;
+                    }
+                    self.x.push(-(lambda[p + 1 + k] + mu * lambda[p] * sh[k]));
+                }
+            }
+        }
+        let eps = 1e-12 * (0..n).map(|i| self.a[i * n + i].abs()).fold(0.0, f64::max);
+        for i in 0..n {
+            self.a[i * n + i] += eps;
+        }
+        if !lu_solve(&mut self.a, n, &mut self.x) {
+            return false;
+        }
+        for (&c, &d) in self.unknowns.iter().zip(&self.x) {
+            add_column(K, m, c, d, lambda, sigma);
+        }
+        true
+    }
+
+    /// The modes the solution `λ`, `σ` of the current ones calls for; true if any changed or a
+    /// sliding contact has not yet converged (the solution is then not taken yet).
+    fn next_modes(
+        &mut self,
+        blocks: &[Block],
+        target: &[f64],
+        lambda: &[f64],
+        sigma: &[f64],
+        friction: bool,
+    ) -> bool {
+        let big = lambda.iter().fold(0.0f64, |a, l| a.max(l.abs()));
+        let fast = sigma
+            .iter()
+            .chain(target)
+            .fold(0.0f64, |a, s| a.max(s.abs()));
+        let (tiny, slow) = (1e-12 * big, 1e-9 * fast);
+        let mut changed = false;
+        for (b, mode) in blocks.iter().zip(self.modes.iter_mut()) {
+            if b.bilateral {
+                continue;
+            }
+            let r = b.row;
+            let ln = lambda[r];
+            let next = match *mode {
+                Mode::Free if sigma[r] < target[r] - slow => Mode::Held,
+                Mode::Free => continue,
+                _ if !ln.is_finite() || ln < -tiny => Mode::Free,
+                _ if !slides(b, friction) => continue,
+                Mode::Held => {
+                    if len(lambda[r + 1], lambda[r + 2]) <= b.friction * ln * (1.0 + ON_CONE) + tiny
+                    {
+                        continue;
+                    }
+                    Mode::Slide
+                }
+                Mode::Slide => {
+                    // converged: λ_t = −μ λ_n ŝ (or no slip, on the cone's boundary)
+                    let (s1, s2) = (sigma[r + 1], sigma[r + 2]);
+                    let s = len(s1, s2);
+                    let R = b.friction * ln;
+                    let (t1, t2) = (lambda[r + 1], lambda[r + 2]);
+                    let ok = if s <= slow {
+                        len(t1, t2) <= R * (1.0 + ON_CONE) + tiny
+                    } else {
+                        len(t1 + R * s1 / s, t2 + R * s2 / s) <= R * 1e-8 + tiny
+                    };
+                    if ok {
+                        continue;
+                    }
+                    if t1 * s1 + t2 * s2 > 0.0 {
+                        // slipping along its friction: it sticks
+                        *mode = Mode::Held;
+                        changed = true;
+                        continue;
+                    }
+                    Mode::Slide
+                }
+            };
+            *mode = next;
+            changed = true;
+        }
+        changed
+    }
+
+    fn restore(&self, lambda: &mut [f64], sigma: &mut [f64]) {
+        let m = lambda.len();
+        lambda.copy_from_slice(&self.saved[..m]);
+        sigma.copy_from_slice(&self.saved[m..]);
+    }
+}
+
+/// The friction coefficient of the block whose normal row is `r`.
+fn blocks_friction(blocks: &[Block], r: usize) -> f64 {
+    blocks[blocks.partition_point(|b| b.row < r)].friction
+}
+
+/// Whether the block's tangent rows are in the sweep (a contact with friction).
+fn slides(b: &Block, friction: bool) -> bool {
+    b.dim == 3 && friction && b.friction > 0.0 && !b.bilateral
+}
+
+fn len(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
+}
+
+/// `λ_c += d`, `σ += K e_c d`.
+fn add_column(K: &[f64], m: usize, c: usize, d: f64, lambda: &mut [f64], sigma: &mut [f64]) {
+    if d != 0.0 {
+        lambda[c] += d;
+        for (s, k) in sigma.iter_mut().zip(&K[c * m..(c + 1) * m]) {
+            *s += k * d;
+        }
+    }
+}
+
+/// Solves `A x = b` in place (`A` n x n row-major, overwritten by its factors; `b` becomes `x`)
+/// by Gaussian elimination with partial pivoting. Returns false on a zero pivot or a non-finite
+/// solution.
+fn lu_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
+    for k in 0..n {
+        let p = (k..n)
+            .max_by(|&i, &j| a[i * n + k].abs().total_cmp(&a[j * n + k].abs()))
+            .unwrap_or(k);
+        if a[p * n + k] == 0.0 {
+            return false;
+        }
+        if p != k {
+            for j in 0..n {
+                a.swap(k * n + j, p * n + j);
+            }
+            b.swap(k, p);
+        }
+        let pivot = a[k * n + k];
+        for i in k + 1..n {
+            let f = a[i * n + k] / pivot;
+            if f != 0.0 {
+                for j in k + 1..n {
+                    a[i * n + j] -= f * a[k * n + j];
+                }
+                b[i] -= f * b[k];
+            }
+        }
+    }
+    for k in (0..n).rev() {
+        let mut s = b[k];
+        for j in k + 1..n {
+            s -= a[k * n + j] * b[j];
+        }
+        b[k] = s / a[k * n + k];
+    }
+    b.iter().all(|x| x.is_finite())
+}
