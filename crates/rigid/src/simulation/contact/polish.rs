@@ -75,8 +75,9 @@ const TRIES: usize = 4;
 
 impl Polish {
     /// Polishes `λ` and `σ = σ₀ + K λ` (`K` m x m, stride m) for `blocks`' active set, `idle`
-    /// the bilateral rows held at 0, `friction` as the sweep's. Returns whether the polished
-    /// impulses were kept (else `λ` and `σ` are as they came).
+    /// the bilateral rows held at 0, `friction` as the sweep's, `largest` the most active rows
+    /// worth a dense solve. Returns whether the polished impulses were kept (else `λ` and `σ`
+    /// are as they came).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn apply(
         &mut self,
@@ -86,7 +87,7 @@ impl Polish {
         target: &[f64],
         lambda: &mut [f64],
         sigma: &mut [f64],
-        friction: bool,
+        (friction, largest): (bool, usize),
     ) -> bool {
         self.modes.clear();
         for b in blocks {
@@ -111,7 +112,7 @@ impl Polish {
         self.saved.extend_from_slice(lambda);
         self.saved.extend_from_slice(sigma);
         for _ in 0..TRIES {
-            if !self.solve(blocks, K, idle, target, lambda, sigma, friction) {
+            if !self.solve(blocks, K, idle, target, lambda, sigma, (friction, largest)) {
                 break;
             }
             if !self.next_modes(blocks, target, lambda, sigma, friction) {
@@ -123,7 +124,7 @@ impl Polish {
     }
 
     /// One Newton step on the modes' equations from the current `λ`, `σ`. False if the system
-    /// is singular or empty.
+    /// is singular, empty or has more than `largest` rows.
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &mut self,
@@ -133,7 +134,7 @@ impl Polish {
         target: &[f64],
         lambda: &mut [f64],
         sigma: &mut [f64],
-        friction: bool,
+        (friction, largest): (bool, usize),
     ) -> bool {
         let m = lambda.len();
         let fast = sigma
@@ -180,7 +181,7 @@ impl Polish {
             }
         }
         let n = self.unknowns.len();
-        if n == 0 {
+        if n == 0 || n > largest {
             return false;
         }
         self.a.clear();

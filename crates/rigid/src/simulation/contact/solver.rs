@@ -799,6 +799,20 @@ fn pgs(
     // the block of each bilateral row
     let block_of = |r: usize| blocks.partition_point(|b| b.row + b.dim <= r);
     let mb = step.len();
+    // the polish's budget: a dense solve of n rows (n³/3 products a try) worth at most 16
+    // sweeps (one sweep: each row against the rows of the blocks it is coupled to)
+    let sweep: usize = blocks
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            b.dim
+                * coupled[first[i]..first[i + 1]]
+                    .iter()
+                    .map(|(lo, hi)| hi - lo)
+                    .sum::<usize>()
+        })
+        .sum();
+    let polish_rows = (48.0 * sweep as f64).cbrt() as usize;
     let mut failed = 0;
     for it in 1..=settings.max_iterations {
         let (mut change, mut largest): (f64, f64) = (0.0, 0.0);
@@ -858,7 +872,15 @@ fn pgs(
         }
         if failed < 2
             && polish_after(it)
-            && !polish.apply(blocks, K, idle, target, lambda, sigma, friction)
+            && !polish.apply(
+                blocks,
+                K,
+                idle,
+                target,
+                lambda,
+                sigma,
+                (friction, polish_rows),
+            )
         {
             failed += 1;
         }
