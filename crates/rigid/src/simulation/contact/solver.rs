@@ -870,9 +870,8 @@ fn pgs(
         if change <= settings.tolerance * largest {
             return (it, true);
         }
-        if failed < 2
-            && polish_after(it)
-            && !polish.apply(
+        if failed < 2 && polish_after(it) {
+            if polish.apply(
                 blocks,
                 K,
                 idle,
@@ -880,8 +879,9 @@ fn pgs(
                 lambda,
                 sigma,
                 (friction, polish_rows),
-            )
-        {
+            ) {
+                return (it, true);
+            }
             failed += 1;
         }
     }

@@ -171,3 +171,40 @@ fn the_residuals_name_a_solve_cut_short() {
     );
     assert!(a.signorini.max(a.dissipation) > 1e4 * b.signorini.max(b.dissipation).max(1e-20));
 }
+
+/// The sweep's active-set polish (`contact/polish.rs`) ends a solve only at a solution:
+/// gymnasium's ant (a free torso on four two-hinge legs with limits) in its file's world for
+/// 1 s, every solve that converged (by the sweep's test or by an accepted polish) has the
+/// ContactBench residuals of a solution.
+#[test]
+fn every_converged_solve_of_the_ant_is_a_solution() {
+    use rigid::io::collision::{mjcf_file_world, WorldOptions};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mujoco/models/ant.xml");
+    let mj = rigid::io::mjcf::load_mjcf(&path).unwrap();
+    let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
+    let mut sim = rigid::simulation::Scenario::in_world(mj.model.clone(), world)
+        .build()
+        .unwrap();
+    let (mut solves, mut sweeps, mut converged, mut worst) = (0usize, 0usize, 0usize, 0.0f64);
+    for _ in 0..1000 {
+        sim.step().unwrap();
+        let s = sim.contact_stats();
+        if s.iterations > 0 {
+            solves += 1;
+            sweeps += s.iterations;
+            if s.converged {
+                converged += 1;
+                let r = s.residuals;
+                worst = worst
+                    .max(r.signorini)
+                    .max(r.dissipation)
+                    .max(r.velocity_error);
+            }
+        }
+    }
+    let mean = sweeps as f64 / solves as f64;
+    eprintln!("{solves} solves, {converged} converged, {mean:.1} sweeps on average, largest residual {worst:.1e}");
+    assert!(solves > 500, "the ant did not land: {solves} solves");
+    assert!(converged > solves / 2, "{converged} of {solves} converged");
+    assert!(worst <= 1e-9, "largest residual {worst:e}");
+}
