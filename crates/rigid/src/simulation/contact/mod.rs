@@ -125,12 +125,19 @@ pub struct ContactSettings {
     /// The approach speed (m/s) below which an impact is plastic whatever the restitution: a
     /// body resting on another does not bounce on the speed gravity gives it in one step.
     pub restitution_speed: f64,
+    /// PGS: polish the sweep by its active set (`contact/polish.rs`: Newton's method on the
+    /// modes read from the impulses, after sweeps 4, 8, 16, …; a kept polish ends the solve).
+    /// Off by default: it makes the step not smooth in the state where a polish is kept or
+    /// refused, which the step's derivatives and their tests by differences do not allow.
+    pub polish: bool,
 }
 
 impl Default for ContactSettings {
-    /// PGS, 200 sweeps, tolerance `1e-10`, `β = 1`, restitution below 1 cm/s ignored.
+    /// PGS without the polish, 200 sweeps, tolerance `1e-10`, `β = 1`, restitution below
+    /// 1 cm/s ignored.
     fn default() -> Self {
         Self {
+            polish: false,
             solver: Solver::Pgs,
             max_iterations: 200,
             tolerance: 1e-10,

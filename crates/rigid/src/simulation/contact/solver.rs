@@ -870,7 +870,7 @@ fn pgs(
         if change <= settings.tolerance * largest {
             return (it, true);
         }
-        if failed < 2 && polish_after(it) {
+        if settings.polish && failed < 2 && polish_after(it) {
             if polish.apply(
                 blocks,
                 K,

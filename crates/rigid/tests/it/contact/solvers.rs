@@ -182,8 +182,14 @@ fn every_converged_solve_of_the_ant_is_a_solution() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mujoco/models/ant.xml");
     let mj = rigid::io::mjcf::load_mjcf(&path).unwrap();
     let world = mjcf_file_world(&mj, &WorldOptions::default()).unwrap();
-    let mut sim = rigid::simulation::Scenario::in_world(mj.model.clone(), world)
+    let sim = rigid::simulation::Scenario::in_world(mj.model.clone(), world)
         .build()
+        .unwrap();
+    let mut sim = sim
+        .with_contact_settings(ContactSettings {
+            polish: true,
+            ..ContactSettings::default()
+        })
         .unwrap();
     let (mut solves, mut sweeps, mut converged, mut worst) = (0usize, 0usize, 0usize, 0.0f64);
     for _ in 0..1000 {
