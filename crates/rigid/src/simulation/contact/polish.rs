@@ -31,7 +31,7 @@
 //! than 1e-10 of the largest) may not see for many sweeps where redundant contacts leave the
 //! impulses' split free.
 
-use super::solver::Block;
+use super::solver::{len, Block};
 
 /// The workspace, reused from step to step (it grows with the largest problem seen).
 #[derive(Clone, Debug, Default)]
@@ -66,8 +66,8 @@ enum Equation {
     Velocity,
     /// Tangent `i` of a sliding contact, Newton's linearisation of
     /// `λ_t + μ λ_n ŝ = 0` at the current `ŝ = σ_t/s`: `δλ_t + μ ŝ δλ_n + (μ λ_n/s) P δσ_t =
-    /// −(λ_t + μ λ_n ŝ)`, `P = I − ŝ ŝᵀ`; the row is the block's normal row, `(ŝ, s)` given.
-    Slip(usize, [f64; 2], f64),
+    /// −(λ_t + μ λ_n ŝ)`, `P = I − ŝ ŝᵀ`; the row is the block's normal row, `(ŝ, s, μ)` given.
+    Slip(usize, [f64; 2], f64, f64),
 }
 
 /// A sliding contact's tangent impulse is on the cone's boundary within this share of `μ λ_n`.
@@ -161,26 +161,30 @@ impl Polish {
                     }
                 }
                 Mode::Held if b.bilateral => {
-                    self.unknowns.extend(rows.filter(|&r| !idle[r]));
+                    for r in rows.filter(|&r| !idle[r]) {
+                        self.unknowns.push(r);
+                        self.equations.push((r, Equation::Velocity));
+                    }
                 }
                 Mode::Held | Mode::Slide if b.dim == 3 && !slides(b, friction) => {
                     self.unknowns.push(r);
+                    self.equations.push((r, Equation::Velocity));
                 }
                 Mode::Slide if s > 1e-12 * fast => {
                     self.unknowns.extend(rows);
                     let sh = [sigma[r + 1] / s, sigma[r + 2] / s];
                     self.equations.push((r, Equation::Velocity));
-                    self.equations.push((r, Equation::Slip(0, sh, s)));
-                    self.equations.push((r, Equation::Slip(1, sh, s)));
-                    continue;
+                    for k in 0..2 {
+                        let slip = Equation::Slip(k, sh, s, b.friction);
+                        self.equations.push((r, slip));
+                    }
                 }
-                Mode::Held | Mode::Slide => self.unknowns.extend(rows),
-            }
-            let first = self.equations.len();
-            let added = self.unknowns.len() - first;
-            for i in 0..added {
-                self.equations
-                    .push((self.unknowns[first + i], Equation::Velocity));
+                Mode::Held | Mode::Slide => {
+                    for r in rows {
+                        self.unknowns.push(r);
+                        self.equations.push((r, Equation::Velocity));
+                    }
+                }
             }
         }
         let n = self.unknowns.len();
@@ -199,8 +203,7 @@ impl Polish {
                     }
                     self.x.push(target[p] - sigma[p]);
                 }
-                Equation::Slip(k, sh, s) => {
-                    let mu = blocks_friction(blocks, p);
+                Equation::Slip(k, sh, s, mu) => {
                     let g = mu * lambda[p] / s;
                     // P's row k
                     let pk = [
@@ -285,12 +288,10 @@ impl Polish {
                         continue;
                     }
                     if t1 * s1 + t2 * s2 > 0.0 {
-                        // slipping along its friction: it sticks
-                        *mode = Mode::Held;
-                        changed = true;
-                        continue;
+                        Mode::Held // slipping along its friction: it sticks
+                    } else {
+                        Mode::Slide // another Newton step
                     }
-                    Mode::Slide
                 }
             };
             *mode = next;
@@ -306,18 +307,9 @@ impl Polish {
     }
 }
 
-/// The friction coefficient of the block whose normal row is `r`.
-fn blocks_friction(blocks: &[Block], r: usize) -> f64 {
-    blocks[blocks.partition_point(|b| b.row < r)].friction
-}
-
 /// Whether the block's tangent rows are in the sweep (a contact with friction).
 fn slides(b: &Block, friction: bool) -> bool {
     b.dim == 3 && friction && b.friction > 0.0 && !b.bilateral
-}
-
-fn len(x: f64, y: f64) -> f64 {
-    (x * x + y * y).sqrt()
 }
 
 /// `λ_c += d`, `σ += K e_c d`.

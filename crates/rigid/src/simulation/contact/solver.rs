@@ -801,17 +801,21 @@ fn pgs(
     let mb = step.len();
     // the polish's budget: a dense solve of n rows (n³/3 products a try) worth at most 16
     // sweeps (one sweep: each row against the rows of the blocks it is coupled to)
-    let sweep: usize = blocks
-        .iter()
-        .enumerate()
-        .map(|(i, b)| {
-            b.dim
-                * coupled[first[i]..first[i + 1]]
-                    .iter()
-                    .map(|(lo, hi)| hi - lo)
-                    .sum::<usize>()
-        })
-        .sum();
+    let sweep: usize = if !settings.polish {
+        0
+    } else {
+        blocks
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                b.dim
+                    * coupled[first[i]..first[i + 1]]
+                        .iter()
+                        .map(|(lo, hi)| hi - lo)
+                        .sum::<usize>()
+            })
+            .sum()
+    };
     let polish_rows = (48.0 * sweep as f64).cbrt() as usize;
     let mut failed = 0;
     for it in 1..=settings.max_iterations {
@@ -889,8 +893,8 @@ fn pgs(
 }
 
 /// Whether the active-set [polish](super::polish) follows sweep `it` (not yet converged): after
-/// sweeps 4, 8, 16, ..., at most twice refused in one solve (each try costs a dense solve of the
-/// active rows, about 20 sweeps' work on a humanoid).
+/// sweeps 4, 8, 16, ..., at most twice refused in one solve (each Newton step costs a dense
+/// solve of the active rows, at most ~16 sweeps' work by the budget in `pgs`).
 fn polish_after(it: usize) -> bool {
     it >= 4 && it.is_power_of_two()
 }
@@ -986,7 +990,7 @@ fn disc_qp(a: f64, c: f64, e: f64, b1: f64, b2: f64, R: f64) -> (f64, f64) {
 
 /// `√(x² + y²)` (the impulses here are far from overflow: no need of `hypot`'s care, which
 /// costs a tenth of a contact step).
-fn len(x: f64, y: f64) -> f64 {
+pub(super) fn len(x: f64, y: f64) -> f64 {
     (x * x + y * y).sqrt()
 }
 
