@@ -426,7 +426,8 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
              every: int = 1, ground: float | None = None, friction: float | None = None,
              restitution: float | None = None, self_collision: bool = False,
              constraints: list[ConstraintModel] | None = None, srdf: Path | None = None,
-             contact_solver: str = "pgs") -> dict[str, npt.NDArray[np.float64]]:
+             contact_solver: str = "pgs",
+             polish: bool = True) -> dict[str, npt.NDArray[np.float64]]:
     """Simulate the robot from ``(q0, v0)`` (default: its home, at rest) for ``duration`` s with
     a fixed step ``dt`` (default: an MJCF file's ``timestep``, else 1 ms), as ``rigid simulate``
     (the library's ``Scenario``): forward dynamics by ABA, ``integrator`` ``"semi-implicit"``
@@ -452,6 +453,8 @@ def simulate(model: Model, q0: ArrayLike | None = None, v0: ArrayLike | None = N
     ``controller="pd"`` holds that stance on its feet. Loops are held exactly by the same step.
     ``contact_solver``: ``"pgs"`` (projected Gauss-Seidel) or ``"admm"`` (the alternating
     direction method of multipliers, island by island), the same problem to the same tolerance.
+    ``polish``: with ``"pgs"``, end a solve early by Newton's method on the active set the
+    impulses show when it stands (the sweep's own solution, to round-off; docs/contact.md).
 
     Returns ``t`` (N,), ``q`` (N, nq), ``v`` (N, nv), ``tau`` (N, nv; the control torques) and
     ``energy`` (N,; J), one row every ``every`` steps and the last, in the model's layout; when
@@ -469,14 +472,15 @@ class Simulator:
     file's own floor, geom pairs and ``<equality>`` loops; ``ground`` (a height, m) adds the
     plane ``z = ground`` under a URDF's ``<collision>`` geometry, with ``friction`` (default: the
     file's, else 0.8) and ``restitution`` (default 0); ``dt`` defaults to an MJCF file's
-    ``timestep``, else 1 ms; ``contact_solver`` ``"pgs"`` or ``"admm"`` as ``simulate``'s. A model
+    ``timestep``, else 1 ms; ``contact_solver`` ``"pgs"`` or ``"admm"`` and ``polish`` as ``simulate``'s. A model
     with nothing that can touch raises ``ValueError``. The contacts' memory (warm starts, an impact of the last step) is the last ``step``'s: call it in
     sequence along a trajectory (a ``step`` from a state other than the last one's result
     starts its contacts cold)."""
 
     def __init__(self, model: Model, dt: float | None = None, ground: float | None = None,
                  friction: float | None = None, restitution: float | None = None,
-                 self_collision: bool = False, contact_solver: str = "pgs") -> None: ...
+                 self_collision: bool = False, contact_solver: str = "pgs",
+                 polish: bool = True) -> None: ...
     @property
     def dt(self) -> float:
         """The step (s)."""

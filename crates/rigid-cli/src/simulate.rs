@@ -104,11 +104,11 @@ pub struct SimulateArgs {
     /// the summary prints their ContactBench residuals.
     #[arg(long, default_value = "pgs", value_name = "pgs|admm")]
     pub contact_solver: rigid::simulation::contact::Solver,
-    /// With `pgs`: polish the sweep by its active set (Newton's method on the modes the impulses
-    /// show, after sweeps 4, 8, 16, ...; docs/contact.md): the walker and the ant converge in
-    /// 4-5 sweeps instead of 33-56. Not with `rigid step --derivatives`' smoothness.
+    /// With `pgs`: do not polish the sweep by its active set (by default Newton's method on the
+    /// modes the impulses show ends the solve after sweeps 4, 8, 16, ... when they stand;
+    /// docs/contact.md): the walker and the ant then take 33-56 sweeps a step instead of 4-5.
     #[arg(long)]
-    pub polish: bool,
+    pub no_polish: bool,
     /// With --csv, when anything can touch: the contact solve of each step as well, columns
     /// `iterations`, `converged` (1 or 0) and the ContactBench residuals `signorini` (J),
     /// `coulomb` (N·s), `dissipation` (J) and `velocity_error` (m/s).

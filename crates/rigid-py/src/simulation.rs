@@ -168,7 +168,7 @@ pub(crate) fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyRes
 /// `q` (N × nq), `v` (N × nv), `tau` (N × nv, the control law's torques), `energy` (N, kinetic
 /// + potential, J); when anything can touch, `contacts` (N, active contacts) and
 /// `normal_force` (N, their normal force sum, N) and the contact solve of the step (`contact_solver`
-/// `"pgs"` or `"admm"`): `iterations`, `converged` (1 or 0) and its ContactBench residuals
+/// `"pgs"`, by default with its active-set `polish`, or `"admm"`): `iterations`, `converged` (1 or 0) and its ContactBench residuals
 /// `signorini` (J), `coulomb` (N·s), `dissipation` (J), `velocity_error` (m/s); with
 /// constraints, `violation_position` and
 /// `violation_velocity` (N, the largest constraint error and its rate). The world: an MJCF
@@ -187,7 +187,7 @@ pub(crate) fn warn_all(py: Python<'_>, func: &str, warnings: &[String]) -> PyRes
     controller = "none", target = None, move_time = None, profile = "quintic",
     limits = "spring", joint_dynamics = true, control = None, every = 1, ground = None,
     friction = None, restitution = None, self_collision = false, constraints = None,
-    srdf = None, contact_solver = "pgs"
+    srdf = None, contact_solver = "pgs", polish = true
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
@@ -213,6 +213,7 @@ pub fn simulate<'py>(
     constraints: Option<Vec<PyRef<'py, crate::constraints::ConstraintModel>>>,
     srdf: Option<PathBuf>,
     contact_solver: &str,
+    polish: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let func = "simulate";
     let core: &ModelCore = &model.inner;
@@ -253,6 +254,7 @@ pub fn simulate<'py>(
     };
     s.collision = world.collision;
     s.contact.solver = contact_solver.parse().map_err(|e| value_error(func, e))?;
+    s.contact.polish = polish;
     s.constraint_options = ConstraintOptions {
         settings: world.constraint_settings,
         ..ConstraintOptions::default()

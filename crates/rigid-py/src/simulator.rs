@@ -57,7 +57,7 @@ impl Simulator {
 #[pymethods]
 impl Simulator {
     #[new]
-    #[pyo3(signature = (model, dt = None, ground = None, friction = None, restitution = None, self_collision = false, contact_solver = "pgs"))]
+    #[pyo3(signature = (model, dt = None, ground = None, friction = None, restitution = None, self_collision = false, contact_solver = "pgs", polish = true))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -68,6 +68,7 @@ impl Simulator {
         restitution: Option<f64>,
         self_collision: bool,
         contact_solver: &str,
+        polish: bool,
     ) -> PyResult<Self> {
         let func = "Simulator";
         let sim = {
@@ -92,6 +93,7 @@ impl Simulator {
                 scenario.options.dt = dt;
             }
             scenario.contact.solver = contact_solver.parse().map_err(|e| value_error(func, e))?;
+            scenario.contact.polish = polish;
             let nv = core.model.nv();
             scenario
                 .build_with(OpenLoop(vec![0.0; nv]))

@@ -138,7 +138,7 @@ pub fn world(args: &SimulateArgs) -> Result<World, String> {
         ..ConstraintOptions::default()
     };
     s.contact.solver = args.contact_solver;
-    s.contact.polish = args.polish;
+    s.contact.polish = !args.no_polish;
     Ok(World {
         scenario: s,
         spec,

@@ -126,18 +126,17 @@ pub struct ContactSettings {
     /// body resting on another does not bounce on the speed gravity gives it in one step.
     pub restitution_speed: f64,
     /// PGS: polish the sweep by its active set (`contact/polish.rs`: Newton's method on the
-    /// modes read from the impulses, after sweeps 4, 8, 16, …; a kept polish ends the solve).
-    /// Off by default: it makes the step not smooth in the state where a polish is kept or
-    /// refused, which the step's derivatives and their tests by differences do not allow.
+    /// modes read from the impulses, after sweeps 4, 8, 16, …; a kept polish ends the solve
+    /// with the sweep's own solution, to round-off). On by default; ADMM has none.
     pub polish: bool,
 }
 
 impl Default for ContactSettings {
-    /// PGS without the polish, 200 sweeps, tolerance `1e-10`, `β = 1`, restitution below
-    /// 1 cm/s ignored.
+    /// PGS with the polish, 200 sweeps, tolerance `1e-10`, `β = 1`, restitution below 1 cm/s
+    /// ignored.
     fn default() -> Self {
         Self {
-            polish: false,
+            polish: true,
             solver: Solver::Pgs,
             max_iterations: 200,
             tolerance: 1e-10,

@@ -20,7 +20,11 @@
 //! Each Newton step is one dense solve of the active rows (not symmetric with a sliding
 //! contact): Gaussian elimination with partial pivoting, in place (no allocation once the
 //! workspace has grown; nalgebra's `LU` owns its matrix and permutation), on `A + ε I` with `ε =
-//! 10⁻¹² max |A_ii|` so that redundant rows (four corners of a face) give a bounded solution.
+//! 10⁻¹² max |A_ii|` so that redundant rows (four corners of a face) give a bounded solution,
+//! then refined against `A` itself ([`REFINE`] steps). A step larger than [`LARGEST_STEP`] times
+//! the equations' scale solved an inconsistent singular system (four coplanar corners held to
+//! targets no rigid motion meets) and ends the polish: its cancellation would leave round-off
+//! of its size in `σ`.
 //! After each step the modes are read again: a negative normal impulse separates, a separated
 //! contact approaching faster than its target is held, a sticking one outside its cone slides, a
 //! sliding one slipping along its friction sticks. The polish is kept when the modes stand and
@@ -41,9 +45,14 @@ pub(crate) struct Polish {
     /// The unknowns' rows (each row's impulse), and the equations' (row, kind).
     unknowns: Vec<usize>,
     equations: Vec<(usize, Equation)>,
-    /// `A` (n x n, row-major), and the right-hand side then the solution.
+    /// `A` (n x n, row-major), its factors (of `A + ε I`) and their row swaps, the right-hand
+    /// side, the solution and the refinement's residual.
     a: Vec<f64>,
+    lu: Vec<f64>,
+    swaps: Vec<usize>,
+    b: Vec<f64>,
     x: Vec<f64>,
+    r: Vec<f64>,
     /// `λ` and `σ` before the polish (restored when it is refused).
     saved: Vec<f64>,
 }
@@ -75,6 +84,13 @@ const ON_CONE: f64 = 1e-9;
 
 /// The most Newton steps (and changes of the active set) in one polish.
 const TRIES: usize = 4;
+
+/// The largest Newton step taken, `‖δλ‖ max |A_ii| / ‖b‖` (all ∞-norms): a condition this large
+/// in the step's direction leaves at most ~1e-10 of `‖b‖` of round-off in `σ`.
+const LARGEST_STEP: f64 = 1e6;
+
+/// Steps of iterative refinement of each Newton step's solve against the unregularised `A`.
+const REFINE: usize = 2;
 
 impl Polish {
     /// Polishes `λ` and `σ = σ₀ + K λ` (`K` m x m, stride m) for `blocks`' active set, `idle`
@@ -193,7 +209,7 @@ impl Polish {
         }
         self.a.clear();
         self.a.resize(n * n, 0.0);
-        self.x.clear();
+        self.b.clear();
         for (i, &(p, eq)) in self.equations.iter().enumerate() {
             let row = &mut self.a[i * n..(i + 1) * n];
             match eq {
@@ -201,7 +217,7 @@ impl Polish {
                     for (a, &c) in row.iter_mut().zip(&self.unknowns) {
                         *a = K[c * m + p];
                     }
-                    self.x.push(target[p] - sigma[p]);
+                    self.b.push(target[p] - sigma[p]);
                 }
                 Equation::Slip(k, sh, s, mu) => {
                     let g = mu * lambda[p] / s;
@@ -221,15 +237,44 @@ impl Polish {
                         }
                         *a = v;
                     }
-                    self.x.push(-(lambda[p + 1 + k] + mu * lambda[p] * sh[k]));
+                    self.b.push(-(lambda[p + 1 + k] + mu * lambda[p] * sh[k]));
                 }
             }
         }
+        // factor A + ε I (bounded where rows are redundant), then refine against A itself: the
+        // regularisation's bias (ε |x| in the residual) would be amplified where the held rows
+        // are ill-conditioned, and the polish must give the sweep's solution, not a nearby one
         let eps = 1e-12 * (0..n).map(|i| self.a[i * n + i].abs()).fold(0.0, f64::max);
+        self.lu.clear();
+        self.lu.extend_from_slice(&self.a);
         for i in 0..n {
-            self.a[i * n + i] += eps;
+            self.lu[i * n + i] += eps;
         }
-        if !lu_solve(&mut self.a, n, &mut self.x) {
+        if !lu_factor(&mut self.lu, n, &mut self.swaps) {
+            return false;
+        }
+        self.x.clear();
+        self.x.extend_from_slice(&self.b);
+        lu_apply(&self.lu, n, &self.swaps, &mut self.x);
+        for _ in 0..REFINE {
+            self.r.clear();
+            for i in 0..n {
+                let row = &self.a[i * n..(i + 1) * n];
+                let ax: f64 = row.iter().zip(&self.x).map(|(a, x)| a * x).sum();
+                self.r.push(self.b[i] - ax);
+            }
+            lu_apply(&self.lu, n, &self.swaps, &mut self.r);
+            for (x, d) in self.x.iter_mut().zip(&self.r) {
+                *x += d;
+            }
+        }
+        // a step far larger than the equations' scale solved an inconsistent singular system
+        // (four coplanar corners held to targets no rigid motion meets: one must separate);
+        // taken, its cancellation would leave round-off of its size in σ
+        let (b_max, x_max) = (amax(&self.b), amax(&self.x));
+        let a_max = eps * 1e12;
+        let within = x_max * a_max <= LARGEST_STEP * b_max; // false on NaN
+        if !within {
             return false;
         }
         for (&c, &d) in self.unknowns.iter().zip(&self.x) {
@@ -312,6 +357,14 @@ fn slides(b: &Block, friction: bool) -> bool {
     b.dim == 3 && friction && b.friction > 0.0 && !b.bilateral
 }
 
+/// `max |x_i|` (NaN if any is).
+fn amax(x: &[f64]) -> f64 {
+    x.iter().fold(
+        0.0,
+        |a: f64, v| if v.is_nan() { f64::NAN } else { a.max(v.abs()) },
+    )
+}
+
 /// `λ_c += d`, `σ += K e_c d`.
 fn add_column(K: &[f64], m: usize, c: usize, d: f64, lambda: &mut [f64], sigma: &mut [f64]) {
     if d != 0.0 {
@@ -322,40 +375,49 @@ fn add_column(K: &[f64], m: usize, c: usize, d: f64, lambda: &mut [f64], sigma: 
     }
 }
 
-/// Solves `A x = b` in place (`A` n x n row-major, overwritten by its factors; `b` becomes `x`)
-/// by Gaussian elimination with partial pivoting. Returns false on a zero pivot or a non-finite
-/// solution.
-fn lu_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
+/// Factors `A` in place (`A` n x n row-major) as `P A = L U` by Gaussian elimination with
+/// partial pivoting: `U` on and above the diagonal, `L`'s multipliers below it (unit diagonal),
+/// `swaps[k]` the row swapped with row `k` at step `k`. Returns false on a zero pivot.
+fn lu_factor(a: &mut [f64], n: usize, swaps: &mut Vec<usize>) -> bool {
+    swaps.clear();
     for k in 0..n {
         let p = (k..n)
             .max_by(|&i, &j| a[i * n + k].abs().total_cmp(&a[j * n + k].abs()))
             .unwrap_or(k);
-        if a[p * n + k] == 0.0 {
+        if a[p * n + k] == 0.0 || !a[p * n + k].is_finite() {
             return false;
         }
+        swaps.push(p);
         if p != k {
             for j in 0..n {
                 a.swap(k * n + j, p * n + j);
             }
-            b.swap(k, p);
         }
         let pivot = a[k * n + k];
         for i in k + 1..n {
             let f = a[i * n + k] / pivot;
+            a[i * n + k] = f;
             if f != 0.0 {
                 for j in k + 1..n {
                     a[i * n + j] -= f * a[k * n + j];
                 }
-                b[i] -= f * b[k];
             }
         }
     }
-    for k in (0..n).rev() {
-        let mut s = b[k];
-        for j in k + 1..n {
-            s -= a[k * n + j] * b[j];
-        }
-        b[k] = s / a[k * n + k];
+    true
+}
+
+/// `b ← A⁻¹ b` from [`lu_factor`]'s factors: the swaps, `L y = P b`, then `U x = y`.
+fn lu_apply(lu: &[f64], n: usize, swaps: &[usize], b: &mut [f64]) {
+    for (k, &p) in swaps.iter().enumerate() {
+        b.swap(k, p);
     }
-    b.iter().all(|x| x.is_finite())
+    for i in 1..n {
+        let s: f64 = (0..i).map(|j| lu[i * n + j] * b[j]).sum();
+        b[i] -= s;
+    }
+    for k in (0..n).rev() {
+        let s: f64 = (k + 1..n).map(|j| lu[k * n + j] * b[j]).sum();
+        b[k] = (b[k] - s) / lu[k * n + k];
+    }
 }

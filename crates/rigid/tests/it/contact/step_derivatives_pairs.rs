@@ -115,8 +115,9 @@ fn a_ball_on_a_box_and_a_ball_on_a_ball() {
     let bx = Free::cube(2.0, Vec3::new(0.4, 0.4, 0.1));
     let (model, cm) = scene(&[bx, Free::ball(0.5, 0.05)], down(), ground());
     let r = so3::exp(&Vec3::new(0.01, -0.02, 0.1));
-    let mut q = q_of(Vec3::new(0.0, 0.0, 0.05 - 1e-6), &r);
-    let top = r * Vec3::new(0.1, -0.05, 0.05);
+    let centre = Vec3::new(0.0, 0.0, 0.05 - 1e-6);
+    let mut q = q_of(centre, &r);
+    let top = centre + r * Vec3::new(0.1, -0.05, 0.05);
     let n = r * Vec3::z();
     q.extend(q_of(top + n * (0.05 - 2e-6), &so3::exp(&Vec3::zeros())));
     let v = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2.0, -1.0, 0.5, 0.3, 0.1, 0.0];
