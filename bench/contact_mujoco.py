@@ -115,7 +115,8 @@ def mujoco_rate(path):
 
 def rigid_rate(rigid, path):
     out = subprocess.run(
-        [rigid, "simulate", str(path), *RIGID_GROUND, "--duration", str(SECONDS), "--dt", str(DT)],
+        [rigid, "simulate", str(path), *RIGID_GROUND, *RIGID_FLAGS, "--duration", str(SECONDS),
+         "--dt", str(DT)],
         capture_output=True, text=True, check=True,
     ).stdout
     rate = float(re.search(r"\(([0-9.]+) steps/s\)", out).group(1))
@@ -127,6 +128,9 @@ def rigid_rate(rigid, path):
 # `--ground-flag` restores the older call for rigid builds before it (the ground z = 0 against
 # the geoms, no self-contact)
 RIGID_GROUND = []
+
+# `--rigid-flag`: more options for every `rigid simulate` (`--no-polish`, `--contact-solver admm`)
+RIGID_FLAGS = []
 
 STANCE = [0, 0, 0.3, 0, 0, 0, 1, 0.1, 0.8, -1.6, -0.1, 0.8, -1.6, 0.1, -0.8, 1.6, -0.1, -0.8, 1.6]
 
@@ -206,7 +210,7 @@ def solo_rigid_rate(rigid, dropped=False):
     args = solo_args(SECONDS) if not dropped else [
         "solo12", "--floating", "--ground", "--q0", ",".join(map(str, DROP)),
         "--duration", str(SECONDS), "--dt", str(DT)]
-    out = subprocess.run([rigid, "simulate", *args], capture_output=True,
+    out = subprocess.run([rigid, "simulate", *args, *RIGID_FLAGS], capture_output=True,
                          text=True, check=True).stdout
     rate = float(re.search(r"\(([0-9.]+) steps/s\)", out).group(1))
     active = int(re.search(r"contacts at the end: (\d+) active", out).group(1))
@@ -247,7 +251,10 @@ def main():
     ap.add_argument("--only", choices=["solo", "mjcf"])
     ap.add_argument("--ground-flag", action="store_true",
                     help="pass --ground to rigid for the MJCF models (builds before issue 47)")
+    ap.add_argument("--rigid-flag", action="append", default=[], metavar="FLAG",
+                    help="an option for every rigid simulate (repeatable), e.g. --rigid-flag=--no-polish")
     args = ap.parse_args()
+    RIGID_FLAGS.extend(args.rigid_flag)
     if args.ground_flag:
         RIGID_GROUND.append("--ground")
     print(f"mujoco {mujoco.__version__}; {SECONDS} s at dt = {DT} s; median of {args.rounds}")

@@ -243,6 +243,56 @@ fn batch_results_equal_single_calls_for_every_width_and_joint_type() {
     eprintln!("largest relative differences: {}", sci(&largest));
 }
 
+/// The bits a batch gives do not depend on its width (what `RIGID_LANES` relies on for the same
+/// results on two machines): every built-in model, random trees of every joint type, 37 states
+/// (a partial last pack at each width), RNEA, ABA, CRBA and the RNEA derivatives in 2, 4 and 8
+/// lanes, compared bit for bit.
+#[test]
+fn every_width_gives_the_same_bits() {
+    let mut models = common::models();
+    models.push(common::every_joint_tree(3, 14));
+    models.push(common::every_joint_tree(8, 9));
+    models.push(accepted_joint_forest(22, 10, JointType::Planar));
+    let n = 37;
+    for model in &models {
+        let nv = model.nv();
+        let (qs, vs, as_) = states(model, n, 5);
+        let run = |width: usize| {
+            let mut b = batch::Batch::with_lanes(model, width);
+            let (mut tau, mut ddq, mut mass) =
+                (vec![0.0; n * nv], vec![0.0; n * nv], vec![0.0; n * nv * nv]);
+            let (mut dq, mut dv) = (vec![0.0; n * nv * nv], vec![0.0; n * nv * nv]);
+            b.rnea(model, &qs, &vs, &as_, &mut tau).unwrap();
+            let aba = b.aba(model, &qs, &vs, &as_, &mut ddq).is_ok();
+            b.crba(model, &qs, &mut mass).unwrap();
+            let derivatives = b
+                .rnea_derivatives(model, &qs, &vs, &as_, &mut dq, &mut dv)
+                .is_ok();
+            let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<u64>>();
+            (
+                aba,
+                derivatives,
+                [bits(&tau), bits(&ddq), bits(&mass), bits(&dq), bits(&dv)],
+            )
+        };
+        let two = run(2);
+        for width in [4, 8] {
+            let other = run(width);
+            for (k, name) in ["rnea", "aba", "crba", "dtau_dq", "dtau_dv"]
+                .iter()
+                .enumerate()
+            {
+                assert!(
+                    two.2[k] == other.2[k],
+                    "{}: {name} in {width} lanes differs from 2 lanes",
+                    model.name()
+                );
+            }
+            assert_eq!((two.0, two.1), (other.0, other.1), "{}", model.name());
+        }
+    }
+}
+
 /// Joints of these types, as a chain or all on the first joint.
 fn joints_of(chain: bool, kinds: &[JointType], seed: u64) -> Model {
     let mut rng = Rng::new(seed);

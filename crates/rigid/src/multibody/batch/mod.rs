@@ -116,10 +116,12 @@ pub struct Batch {
 
 impl Batch {
     /// Workspaces for `model`, for the current rayon pool (`TASKS_PER_THREAD` per thread), with
-    /// the widest lanes the CPU has (8 with AVX-512, 4 with AVX2, else 2).
+    /// the widest lanes the CPU has (8 with AVX-512, 4 with AVX2, else 2), or the width the
+    /// environment variable `RIGID_LANES` gives (2, 4 or 8: the same lanes, and so the same
+    /// bits, on two machines; docs/simd.md).
     #[must_use]
     pub fn new(model: &Model) -> Self {
-        Self::with_lanes(model, simd::native_width())
+        Self::with_lanes(model, simd::default_width())
     }
 
     /// [`Batch::new`] with `width` lanes (2, 4 or 8; anything else is 2), to compare widths: a

@@ -63,6 +63,35 @@ impl Algo {
     }
 }
 
+/// The lanes a [`Batch::new`](super::Batch::new) uses: `RIGID_LANES` (2, 4 or 8) when the
+/// environment sets it, else [`native_width`]. Read once per process; a value other than 2, 4
+/// or 8 is reported on stderr, naming the variable, and the native width is used.
+pub(crate) fn default_width() -> usize {
+    static WIDTH: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *WIDTH.get_or_init(|| {
+        let value = std::env::var("RIGID_LANES").ok();
+        lanes_from(value.as_deref())
+            .unwrap_or_else(|bad| {
+                eprintln!(
+                    "rigid: RIGID_LANES={bad:?} is not 2, 4 or 8: using the CPU's {} lanes",
+                    native_width()
+                );
+                None
+            })
+            .unwrap_or_else(native_width)
+    })
+}
+
+/// `RIGID_LANES`'s value: `None` when unset or empty, the width for `2`, `4` or `8`
+/// (surrounding blanks allowed), else the value as given.
+pub(crate) fn lanes_from(value: Option<&str>) -> Result<Option<usize>, String> {
+    match value.map(str::trim) {
+        None | Some("") => Ok(None),
+        Some(v @ ("2" | "4" | "8")) => Ok(v.parse().ok()),
+        Some(v) => Err(v.to_string()),
+    }
+}
+
 /// The widest lanes this CPU runs natively: 8 with AVX-512F, 4 with AVX2, else 2.
 #[must_use]
 pub(crate) fn native_width() -> usize {
@@ -294,4 +323,20 @@ fn packs<const W: usize, const A: u8>(
         s += W;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::lanes_from;
+
+    #[test]
+    fn rigid_lanes_reads_two_four_or_eight_and_names_anything_else() {
+        assert_eq!(lanes_from(None), Ok(None));
+        assert_eq!(lanes_from(Some("")), Ok(None));
+        assert_eq!(lanes_from(Some("2")), Ok(Some(2)));
+        assert_eq!(lanes_from(Some(" 4 ")), Ok(Some(4)));
+        assert_eq!(lanes_from(Some("8")), Ok(Some(8)));
+        assert_eq!(lanes_from(Some("16")), Err("16".to_string()));
+        assert_eq!(lanes_from(Some("avx2")), Err("avx2".to_string()));
+    }
 }

@@ -21,8 +21,9 @@
 //! contact): Gaussian elimination with partial pivoting, in place (no allocation once the
 //! workspace has grown; nalgebra's `LU` owns its matrix and permutation), on `A + ε I` with `ε =
 //! 10⁻¹² max |A_ii|` so that redundant rows (four corners of a face) give a bounded solution,
-//! then refined against `A` itself ([`REFINE`] steps). A step larger than [`LARGEST_STEP`] times
-//! the equations' scale solved an inconsistent singular system (four coplanar corners held to
+//! then refined against `A` itself ([`REFINE`] steps). A step whose velocities exceed
+//! [`LARGEST_STEP`] times the problem's (`‖δλ‖ max|A_ii|` against the largest `|σ|`, `|σ*|`)
+//! solved an inconsistent singular system (four coplanar corners held to
 //! targets no rigid motion meets) and ends the polish: its cancellation would leave round-off
 //! of its size in `σ`.
 //! After each step the modes are read again: a negative normal impulse separates, a separated
@@ -85,8 +86,8 @@ const ON_CONE: f64 = 1e-9;
 /// The most Newton steps (and changes of the active set) in one polish.
 const TRIES: usize = 4;
 
-/// The largest Newton step taken, `‖δλ‖ max |A_ii| / ‖b‖` (all ∞-norms): a condition this large
-/// in the step's direction leaves at most ~1e-10 of `‖b‖` of round-off in `σ`.
+/// The largest Newton step taken, `‖δλ‖∞ max|A_ii|` over the largest `|σ|` or `|σ*|`: its
+/// cancellation leaves at most ~1e-10 of that scale of round-off in `σ`.
 const LARGEST_STEP: f64 = 1e6;
 
 /// Steps of iterative refinement of each Newton step's solve against the unregularised `A`.
@@ -268,12 +269,11 @@ impl Polish {
                 *x += d;
             }
         }
-        // a step far larger than the equations' scale solved an inconsistent singular system
-        // (four coplanar corners held to targets no rigid motion meets: one must separate);
-        // taken, its cancellation would leave round-off of its size in σ
-        let (b_max, x_max) = (amax(&self.b), amax(&self.x));
+        // a step whose velocities `A δλ` dwarf the problem's solved an inconsistent singular
+        // system (four coplanar corners held to targets no rigid motion meets: one must
+        // separate); taken, its cancellation would leave ~1e-16 ‖δλ‖ max|A_ii| of round-off in σ
         let a_max = eps * 1e12;
-        let within = x_max * a_max <= LARGEST_STEP * b_max; // false on NaN
+        let within = amax(&self.x) * a_max <= LARGEST_STEP * fast; // false on NaN
         if !within {
             return false;
         }
