@@ -284,3 +284,68 @@ def test_fresh_outputs_from_several_python_threads():
     assert not errors, errors
     for t, rows in enumerate(results):
         assert len(rows) == 25 and all(np.array_equal(r, want[t][7]) for r in rows)
+
+
+_LANES_SCRIPT = """
+import sys
+import numpy as np
+import rigid
+path, floating, out = sys.argv[1], sys.argv[2] == "1", sys.argv[3]
+m = rigid.Model.from_urdf(path, floating=floating)
+rigid.seed(7)
+rng = np.random.default_rng(7)
+Q = np.array([rigid.random_configuration(m) for _ in range(67)])
+V, A = rng.uniform(-1, 1, (67, m.nv)), rng.uniform(-1, 1, (67, m.nv))
+res = {"Q": Q, "V": V, "A": A}
+for t in (1, 2):
+    res[f"rnea{t}"] = rigid.rnea_batch(m, Q, V, A, threads=t)
+    res[f"aba{t}"] = rigid.aba_batch(m, Q, V, A, threads=t)
+    res[f"crba{t}"] = rigid.crba_batch(m, Q, threads=t)
+    res[f"dq{t}"], res[f"dv{t}"] = rigid.rnea_derivatives_batch(m, Q, V, A, threads=t)
+np.savez(out, **res)
+"""
+
+
+def test_rigid_lanes_fixes_the_width_and_never_the_bits(tmp_path):
+    """RIGID_LANES=2|4|8 (docs/simd.md) on Panda (fixed), Solo-12 and TALOS (free-flyers), 67
+    random states (a partial last pack at every width): RNEA, ABA, CRBA and the RNEA derivatives
+    give the same bits at every width on 1 and 2 threads; CRBA and the RNEA derivatives the same
+    bits as a loop of single calls, RNEA within 1e-15 relative (ABA takes other steps: to 1e-11,
+    as test_batch_rows_equal_single_calls); a value other than 2, 4 or 8 is named on stderr."""
+    import os
+    import subprocess
+    import sys
+
+    from conftest import robot_path
+
+    script = tmp_path / "lanes.py"
+    script.write_text(_LANES_SCRIPT)
+    for name in ("panda", "solo12", "talos"):
+        path, floating = robot_path(name)
+        runs = {}
+        for lanes in ("2", "4", "8"):
+            out = tmp_path / f"{name}_{lanes}.npz"
+            env = dict(os.environ, RIGID_LANES=lanes)
+            subprocess.run([sys.executable, str(script), path, "1" if floating else "0", str(out)],
+                           env=env, check=True)
+            runs[lanes] = np.load(out)
+        first = runs["2"]
+        for lanes, r in runs.items():
+            for key in ("rnea", "aba", "crba", "dq", "dv"):
+                for t in (1, 2):
+                    assert np.array_equal(r[f"{key}{t}"], first[f"{key}1"]), (name, lanes, key, t)
+        m = rigid.Model.from_urdf(path, floating=floating)
+        d = m.create_data()
+        Q, V, A = first["Q"], first["V"], first["A"]
+        for k in range(len(Q)):
+            tau = rigid.rnea(m, d, Q[k], V[k], A[k])
+            assert_close(first["rnea1"][k], tau, f"{name} rnea_batch", tol=1e-15)
+            assert_close(first["aba1"][k], rigid.aba(m, d, Q[k], V[k], A[k]), "aba_batch", tol=1e-11)
+            assert np.array_equal(first["crba1"][k], rigid.crba(m, d, Q[k])), (name, "crba", k)
+            dq, dv = rigid.rnea_derivatives(m, d, Q[k], V[k], A[k])[:2]
+            assert np.array_equal(first["dq1"][k], dq) and np.array_equal(first["dv1"][k], dv), (
+                name, "rnea_derivatives", k)
+    env = dict(os.environ, RIGID_LANES="16")
+    bad = subprocess.run([sys.executable, str(script), path, "1", str(tmp_path / "bad.npz")],
+                         env=env, check=True, capture_output=True, text=True)
+    assert "RIGID_LANES" in bad.stderr and "16" in bad.stderr, bad.stderr
