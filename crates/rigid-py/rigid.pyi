@@ -116,15 +116,37 @@ class Model:
         layout: ``"rigid"`` or ``"pinocchio"`` (see the module documentation).
         mimic: ``True`` returns a :class:`MimicModel` whose ``<mimic>`` joints follow their
         sources with no coordinate of their own (Pinocchio's ``mimic=True``)."""
+    @overload
     @staticmethod
-    def from_mjcf(path: Path, layout: Layout = "rigid") -> Model:
+    def from_mjcf(path: Path, layout: Layout = "rigid",
+                  mimic: Literal[False] = False) -> Model: ...
+    @overload
+    @staticmethod
+    def from_mjcf(path: Path, layout: Layout = "rigid", *,
+                  mimic: Literal[True]) -> MimicModel: ...
+    @staticmethod
+    def from_mjcf(path: Path, layout: Layout = "rigid",
+                  mimic: bool = False) -> Model | MimicModel:
         """Load an MJCF file (MuJoCo's XML) with MuJoCo's compiled inertias (mass matrix and bias
-        equal MuJoCo's to round-off); what rigid does not model is an ``MjcfWarning``."""
+        equal MuJoCo's to round-off); what rigid does not model is an ``MjcfWarning``. mimic:
+        ``True`` returns a :class:`MimicModel` whose ``<equality joint>`` elements with a linear
+        polynomial are couplings (``layout`` ``"rigid"`` or ``"pinocchio"``)."""
+    @overload
     @staticmethod
-    def from_sdf(path: Path, layout: Layout = "rigid") -> Model:
+    def from_sdf(path: Path, layout: Layout = "rigid",
+                 mimic: Literal[False] = False) -> Model: ...
+    @overload
+    @staticmethod
+    def from_sdf(path: Path, layout: Layout = "rigid", *,
+                 mimic: Literal[True]) -> MimicModel: ...
+    @staticmethod
+    def from_sdf(path: Path, layout: Layout = "rigid",
+                 mimic: bool = False) -> Model | MimicModel:
         """Load an SDF file (SDFormat 1.4–1.11, one model): links no joint holds float
         (free-flyers), loops are ``ConstraintModel.from_sdf(model)``; what rigid leaves out
-        (plugins, gearboxes, a loop a point or a weld cannot close) is an ``SdfWarning``."""
+        (plugins, gearboxes it cannot hold, a loop a point or a weld cannot close) is an
+        ``SdfWarning``. mimic: ``True`` returns a :class:`MimicModel` whose gearboxes are
+        couplings."""
     @staticmethod
     def from_file(path: Path, layout: Layout = "rigid", floating: bool = False,
                   inertia: Literal["strict", "warn", "repair"] = "warn") -> Model:

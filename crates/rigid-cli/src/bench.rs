@@ -39,9 +39,9 @@ pub struct BenchArgs {
     /// Thread counts for `--batch`, comma separated.
     #[arg(long, value_delimiter = ',', default_value = "1,2")]
     threads: Vec<usize>,
-    /// States side by side in the batch's SIMD lanes (2, 4 or 8; default: as many as the CPU's
-    /// vector unit holds, 8 with AVX-512, 4 with AVX2, else 2). A width wider than the CPU's
-    /// runs the same kernels on narrower instructions.
+    /// States side by side in the batch's SIMD lanes (2, 4 or 8; default: `RIGID_LANES` when
+    /// set, else as many as the CPU's vector unit holds, 8 with AVX-512, 4 with AVX2, else 2). A
+    /// width wider than the CPU's runs the same kernels on narrower instructions.
     #[arg(long, requires = "batch")]
     lanes: Option<usize>,
 }

@@ -7,7 +7,7 @@ use rigid::io::mjcf::{self, MjcfModel};
 use rigid::io::robots;
 use rigid::io::sdf::{self, SdfModel};
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfOptions};
-use rigid::multibody::{builtin, builtin_names, Mimic, MimicModel, Model};
+use rigid::multibody::{builtin, builtin_names, MimicModel, Model};
 use std::path::Path;
 
 /// How to load a URDF: shared by the commands that take a model.
@@ -102,12 +102,10 @@ pub fn load_mimic(spec: &str, args: &LoadArgs) -> Result<MimicModel, String> {
     let loaded = load_printing_warnings(spec, args)?;
     let mut mimics = Vec::new();
     if let Some(m) = &loaded.mjcf {
-        let (constraints, _) = m.constraint_models().map_err(|e| format!("{spec}: {e}"))?;
-        mimics.extend(constraints.iter().filter_map(Mimic::from_constraint));
+        mimics = m.mimics().map_err(|e| format!("{spec}: {e}"))?;
     }
     if let Some(s) = &loaded.sdf {
-        // its gearboxes
-        mimics.extend(s.constraints.iter().filter_map(Mimic::from_constraint));
+        mimics = s.mimics();
     }
     if mimics.is_empty() {
         eprintln!("warning: {spec}: --mimic: the model has no mimic joints");

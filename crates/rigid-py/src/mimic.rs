@@ -53,6 +53,27 @@ impl MimicModel {
         Ok(Self::new(mm, pinocchio))
     }
 
+    /// `Model.from_mjcf`/`from_sdf(path, ..., mimic=True)`: `model` with `mimics` as couplings,
+    /// in the layout `kind` (MuJoCo's refused: it keeps a coordinate for every joint).
+    pub(crate) fn coupled(
+        func: &str,
+        shown: &str,
+        kind: Layout,
+        model: rigid::multibody::Model,
+        mimics: &[mb::Mimic],
+    ) -> PyResult<Self> {
+        if kind == Layout::Mujoco {
+            return Err(value_error(
+                func,
+                "mimic=True with layout=\"mujoco\": not available (MuJoCo keeps a coordinate for \
+                 every joint); use layout=\"rigid\" or \"pinocchio\"",
+            ));
+        }
+        let mm = mb::MimicModel::new(model, mimics)
+            .map_err(|e| value_error(func, format!("{shown}: {e}")))?;
+        Ok(Self::new(mm, kind == Layout::Pinocchio))
+    }
+
     pub(crate) fn new(inner: mb::MimicModel, pinocchio: bool) -> Self {
         let layout = pinocchio.then(|| PinocchioLayout::of_mimic(&inner));
         let data = Mutex::new(MimicData::new(&inner));

@@ -13,7 +13,7 @@ use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfError, UrdfOptions}
 use rigid::multibody::{builtin, builtin_names, FrameId, JointId, MultibodyError};
 use rigid::spatial::Transform;
 use std::ffi::CString;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
@@ -483,49 +483,42 @@ impl Model {
 
     /// Load an MJCF file (MuJoCo's XML) with MuJoCo's compiled inertias; `layout="mujoco"` reads
     /// and writes MuJoCo's `qpos`, `qvel`, `qfrc` (hinges from `ref`, quaternions w first,
-    /// free-joint velocity world-linear then body-angular).
+    /// free-joint velocity world-linear then body-angular). With `mimic=True`, a
+    /// `rigid.MimicModel` whose `<equality joint>` elements with a linear polynomial are
+    /// couplings (the driven joint has no coordinate of its own).
     #[staticmethod]
-    #[pyo3(signature = (path, layout = "rigid"))]
-    fn from_mjcf(py: Python<'_>, path: PathBuf, layout: &str) -> PyResult<Self> {
-        let kind = parse_layout("Model.from_mjcf", layout)?;
-        let shown = path.display().to_string();
-        let m = mjcf::load_mjcf(&path).map_err(|e| match &e {
-            MjcfError::Io { source, .. } => convert::io_error(source, e.to_string()),
-            _ => PyValueError::new_err(format!("{shown}: {e}")),
-        })?;
-        let warnings: Vec<String> = m.warnings.iter().map(|w| format!("{shown}: {w}")).collect();
-        warn_all(py, &py.get_type::<MjcfWarning>(), &warnings)?;
-        let layout = m.layout();
-        let qpos0 = m.qpos0.clone();
-        let mut core = ModelCore::new(m.model, kind == Layout::Pinocchio, warnings);
-        if kind == Layout::Mujoco {
-            core.mujoco = Some(layout);
+    #[pyo3(signature = (path, layout = "rigid", mimic = false))]
+    fn from_mjcf(py: Python<'_>, path: PathBuf, layout: &str, mimic: bool) -> PyResult<Py<PyAny>> {
+        const F: &str = "Model.from_mjcf";
+        let kind = parse_layout(F, layout)?;
+        let (m, warnings) = Self::read_mjcf(py, &path)?;
+        if mimic {
+            let shown = path.display().to_string();
+            let mimics = m
+                .mimics()
+                .map_err(|e| PyValueError::new_err(format!("{shown}: {e}")))?;
+            let mm = crate::mimic::MimicModel::coupled(F, &shown, kind, m.model, &mimics)?;
+            return Ok(Py::new(py, mm)?.into_any());
         }
-        core.qpos0 = Some(qpos0);
-        core.source = Some(path);
-        Ok(Self {
-            inner: Arc::new(core),
-        })
+        Ok(Py::new(py, Self::of_mjcf(m, warnings, kind, path))?.into_any())
     }
 
     /// Load an SDF file (SDFormat 1.4–1.11, one model): links no joint holds float (free-flyers),
     /// loops are `ConstraintModel.from_sdf(model)`; what rigid leaves out is an `SdfWarning`.
+    /// With `mimic=True`, a `rigid.MimicModel` whose gearboxes are couplings.
     #[staticmethod]
-    #[pyo3(signature = (path, layout = "rigid"))]
-    fn from_sdf(py: Python<'_>, path: PathBuf, layout: &str) -> PyResult<Self> {
-        let kind = parse_layout("Model.from_sdf", layout)?;
-        let shown = path.display().to_string();
-        let m = rigid::io::sdf::load_sdf(&path).map_err(|e| match &e {
-            rigid::io::sdf::SdfError::Io { source, .. } => convert::io_error(source, e.to_string()),
-            _ => PyValueError::new_err(format!("{shown}: {e}")),
-        })?;
-        let warnings: Vec<String> = m.warnings.iter().map(|w| format!("{shown}: {w}")).collect();
-        warn_all(py, &py.get_type::<SdfWarning>(), &warnings)?;
-        let mut core = ModelCore::new(m.model, kind == Layout::Pinocchio, warnings);
-        core.source = Some(path);
-        Ok(Self {
-            inner: Arc::new(core),
-        })
+    #[pyo3(signature = (path, layout = "rigid", mimic = false))]
+    fn from_sdf(py: Python<'_>, path: PathBuf, layout: &str, mimic: bool) -> PyResult<Py<PyAny>> {
+        const F: &str = "Model.from_sdf";
+        let kind = parse_layout(F, layout)?;
+        let (m, warnings) = Self::read_sdf(py, &path)?;
+        if mimic {
+            let shown = path.display().to_string();
+            let mimics = m.mimics();
+            let mm = crate::mimic::MimicModel::coupled(F, &shown, kind, m.model, &mimics)?;
+            return Ok(Py::new(py, mm)?.into_any());
+        }
+        Ok(Py::new(py, Self::of_sdf(m, warnings, kind, path))?.into_any())
     }
 
     /// Load a model file, MJCF for a `.xml` file, SDF for `.sdf`, URDF otherwise (`floating`
@@ -550,10 +543,13 @@ impl Model {
                  free bodies",
             ));
         }
+        let kind = parse_layout("Model.from_file", layout)?;
         if sdf {
-            return Self::from_sdf(py, path, layout);
+            let (m, warnings) = Self::read_sdf(py, &path)?;
+            return Ok(Self::of_sdf(m, warnings, kind, path));
         }
-        Self::from_mjcf(py, path, layout)
+        let (m, warnings) = Self::read_mjcf(py, &path)?;
+        Ok(Self::of_mjcf(m, warnings, kind, path))
     }
 
     /// A built-in model: `puma560`, `puma560_armature`, `pendulum`, `double_pendulum`.
@@ -849,6 +845,59 @@ impl Data {
 }
 
 impl Model {
+    /// An MJCF file read, its warnings issued as `MjcfWarning`s (and returned, with the path).
+    fn read_mjcf(py: Python<'_>, path: &Path) -> PyResult<(mjcf::MjcfModel, Vec<String>)> {
+        let shown = path.display().to_string();
+        let m = mjcf::load_mjcf(path).map_err(|e| match &e {
+            MjcfError::Io { source, .. } => convert::io_error(source, e.to_string()),
+            _ => PyValueError::new_err(format!("{shown}: {e}")),
+        })?;
+        let warnings: Vec<String> = m.warnings.iter().map(|w| format!("{shown}: {w}")).collect();
+        warn_all(py, &py.get_type::<MjcfWarning>(), &warnings)?;
+        Ok((m, warnings))
+    }
+
+    /// The model of an MJCF file read by [`Model::read_mjcf`], in the layout `kind`.
+    fn of_mjcf(m: mjcf::MjcfModel, warnings: Vec<String>, kind: Layout, path: PathBuf) -> Self {
+        let layout = m.layout();
+        let qpos0 = m.qpos0.clone();
+        let mut core = ModelCore::new(m.model, kind == Layout::Pinocchio, warnings);
+        if kind == Layout::Mujoco {
+            core.mujoco = Some(layout);
+        }
+        core.qpos0 = Some(qpos0);
+        core.source = Some(path);
+        Self {
+            inner: Arc::new(core),
+        }
+    }
+
+    /// An SDF file read, its warnings issued as `SdfWarning`s (and returned, with the path).
+    fn read_sdf(py: Python<'_>, path: &Path) -> PyResult<(rigid::io::sdf::SdfModel, Vec<String>)> {
+        let shown = path.display().to_string();
+        let m = rigid::io::sdf::load_sdf(path).map_err(|e| match &e {
+            rigid::io::sdf::SdfError::Io { source, .. } => convert::io_error(source, e.to_string()),
+            _ => PyValueError::new_err(format!("{shown}: {e}")),
+        })?;
+        let warnings: Vec<String> = m.warnings.iter().map(|w| format!("{shown}: {w}")).collect();
+        warn_all(py, &py.get_type::<SdfWarning>(), &warnings)?;
+        Ok((m, warnings))
+    }
+
+    /// The model of an SDF file read by [`Model::read_sdf`], in the layout `kind`.
+    fn of_sdf(
+        m: rigid::io::sdf::SdfModel,
+        warnings: Vec<String>,
+        kind: Layout,
+        path: PathBuf,
+    ) -> Self {
+        let mut core = ModelCore::new(m.model, kind == Layout::Pinocchio, warnings);
+        core.source = Some(path);
+        Self {
+            inner: Arc::new(core),
+        }
+    }
+
     /// [`Model::from_urdf`] without `mimic`.
     pub(crate) fn load_urdf(
         py: Python<'_>,

@@ -108,3 +108,64 @@ def test_the_pinocchio_layer_points_at_the_mimic_model():
     path = os.path.join(robots_dir(), PINOCCHIO[0])
     with pytest.raises(NotImplementedError, match="rigid.Model.from_urdf\\(path, mimic=True"):
         rpin.buildModelFromUrdf(path, mimic=True)
+
+
+ARM_MJCF = """<mujoco>
+  <worldbody>
+    <body name="upper">
+      <joint name="a" type="hinge" axis="0 0 1"/>
+      <inertial pos="0.5 0 0" mass="1" diaginertia="0.01 0.1 0.1"/>
+      <body name="lower" pos="1 0 0">
+        <joint name="b" type="hinge" axis="0 1 0"/>
+        <inertial pos="0.4 0 0.1" mass="2" diaginertia="0.02 0.2 0.3"/>
+      </body>
+    </body>
+  </worldbody>
+  <equality><joint joint1="b" joint2="a" polycoef="0.1 2 0 0 0"/></equality>
+</mujoco>"""
+
+GEARBOX_SDF = """<?xml version="1.0"?>
+<sdf version="1.9"><model name="m">
+  <link name="rotor"><pose>0 0 0 0 0 0</pose><inertial><mass>1</mass></inertial></link>
+  <link name="out"><pose>0.1 0 0 0 0 0</pose><inertial><mass>2</mass></inertial></link>
+  <joint name="ip" type="revolute"><parent>world</parent><child>rotor</child>
+    <axis><xyz>1 0 0</xyz></axis></joint>
+  <joint name="op" type="revolute"><parent>world</parent><child>out</child>
+    <axis><xyz>-1 0 0</xyz></axis></joint>
+  <joint name="gear" type="gearbox"><parent>rotor</parent><child>out</child>
+    <gearbox_reference_body>world</gearbox_reference_body><gearbox_ratio>0.25</gearbox_ratio>
+    <axis><xyz>1 0 0</xyz></axis><axis2><xyz>1 0 0</xyz></axis2></joint>
+</model></sdf>"""
+
+
+@pytest.mark.parametrize("kind", ["mjcf", "sdf"])
+def test_mjcf_and_sdf_couplings_with_mimic_true(tmp_path, kind):
+    """`Model.from_mjcf(path, mimic=True)` (an `<equality joint>` with a linear polynomial) and
+    `Model.from_sdf(path, mimic=True)` (a gearbox): one coordinate left, and the reduced dynamics
+    equal the full model's (`mimic=False`, the same file) through the coupling's constant
+    Jacobian `G = ∂q/∂q_r`: `M_r = Gᵀ M G`, `τ_r = Gᵀ rnea(q, G v, G a)`; MuJoCo's layout is
+    refused."""
+    path = tmp_path / ("arm.xml" if kind == "mjcf" else "gear.sdf")
+    path.write_text(ARM_MJCF if kind == "mjcf" else GEARBOX_SDF)
+    load = rigid.Model.from_mjcf if kind == "mjcf" else rigid.Model.from_sdf
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the files' own omissions (no geometry, ...)
+        full, mm = load(path), load(path, mimic=True)
+    assert isinstance(mm, rigid.MimicModel) and (full.nv, mm.nq, mm.nv) == (2, 1, 1)
+    (driven, source, multiplier, offset), = mm.mimics
+    assert (driven, source, multiplier, offset) == (("b", "a", 2.0, 0.1) if kind == "mjcf"
+                                                      else ("op", "ip", 0.25, 0.0))
+    ia, ib = full.names.index(source), full.names.index(driven)
+    G = np.zeros((2, 1))
+    G[ia, 0], G[ib, 0] = 1.0, multiplier
+    d = full.create_data()
+    rng = np.random.default_rng(4)
+    for _ in range(3):
+        qr, vr, ar = rng.uniform(-1, 1, (3, 1))
+        q = mm.expand_q(qr)
+        assert_close(q, G @ qr + np.eye(2)[ib] * offset, "expand_q", tol=1e-15)
+        assert_close(mm.crba(qr), G.T @ rigid.crba(full, d, q) @ G, "M_r", tol=1e-13)
+        assert_close(mm.rnea(qr, vr, ar), G.T @ rigid.rnea(full, d, q, G @ vr, G @ ar), "tau_r",
+                     tol=1e-13)
+    with pytest.raises(ValueError, match="mimic=True with layout=\"mujoco\""):
+        load(path, layout="mujoco", mimic=True)

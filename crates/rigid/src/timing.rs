@@ -376,8 +376,8 @@ pub const BATCH_ALGORITHMS: [&str; 5] = ["rnea", "aba", "crba", "crba_lower", "r
 /// [`BATCH_ALGORITHMS`]; empty: all of them) on each of `threads`, median of `reps` passes
 /// through `states`; a speed-up is the median over passes of the ratio of the two
 /// configurations' times within the pass. The batch computes `lanes` states side by side
-/// ([`batch::Batch::with_lanes`]: 2, 4 or 8; anything else is 2), or as many as the CPU's
-/// vector unit holds ([`batch::Batch::new`]) with `None`.
+/// ([`batch::Batch::with_lanes`]: 2, 4 or 8; anything else is 2), or with `None` those of
+/// [`batch::Batch::new`] (`RIGID_LANES` when set, else as many as the CPU's vector unit holds).
 ///
 /// # Errors
 /// [`TimingError::UnknownAlgorithm`] for a name not in [`BATCH_ALGORITHMS`], an algorithm

@@ -156,3 +156,43 @@ fn bench_batch_only_times_the_named_entry_points() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("minverse"), "{err}");
 }
+
+/// `RIGID_LANES=W` sets the width the batch takes when `--lanes` is not given (the JSON's
+/// `lanes`); a value other than 2, 4 or 8 is named on stderr and the CPU's width is used.
+#[test]
+fn rigid_lanes_sets_the_default_width() {
+    let run = |lanes: &str| {
+        Command::new(env!("CARGO_BIN_EXE_rigid"))
+            .args([
+                "bench",
+                "puma560",
+                "--batch",
+                "--json",
+                "--threads",
+                "1",
+                "--repetitions",
+                "1",
+                "--states",
+                "9",
+                "--only",
+                "rnea",
+            ])
+            .env("RIGID_LANES", lanes)
+            .output()
+            .unwrap()
+    };
+    for w in ["2", "4", "8"] {
+        let out = run(w);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["lanes"].to_string(), w);
+    }
+    let out = run("3");
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("RIGID_LANES=\"3\" is not 2, 4 or 8"), "{err}");
+}

@@ -673,11 +673,7 @@ fn live_cassie_s_gearboxes_are_mimics_and_pass_the_identities() {
     }
     let root = rigid::io::robots::example_robot_data().expect("example-robot-data");
     let s = rigid::io::sdf::load_sdf(root.join("cassie_description/robots/cassie.sdf")).unwrap();
-    let mimics: Vec<Mimic> = s
-        .constraints
-        .iter()
-        .filter_map(Mimic::from_constraint)
-        .collect();
+    let mimics: Vec<Mimic> = s.mimics();
     // 10 gearboxes: 8 couple two joints from their reference body; the feet's output hinges
     // close loops, so those 2 are left out with a warning
     assert_eq!(mimics.len(), 8);

@@ -21,7 +21,7 @@ use super::{MjcfEquality, MjcfEqualityKind, MjcfError, MjcfJointKind, MjcfModel,
 #[cfg(doc)]
 use crate::multibody::constraints::ConstraintKind;
 use crate::multibody::constraints::ConstraintModel;
-use crate::multibody::{forward_kinematics_q, Data, JointId, ReferenceFrame};
+use crate::multibody::{forward_kinematics_q, Data, JointId, Mimic, ReferenceFrame};
 use crate::spatial::{so3, Transform, Vec3};
 
 /// A frame fixed to the model: a joint (`None`: the world) and a placement in its frame.
@@ -234,5 +234,23 @@ fn invalid(eq: &MjcfEquality, message: String) -> MjcfError {
         line: eq.line,
         element: label(eq),
         message,
+    }
+}
+
+impl MjcfModel {
+    /// The couplings among the [`constraint_models`](Self::constraint_models): each `<equality
+    /// joint>` whose polynomial is linear, `q₁ = c₀ + c₁ q₂`, as a [`Mimic`] (the reduced
+    /// model `MimicModel::new(model, &mimics)` has no coordinate for `joint1`; `rigid ...
+    /// --mimic`, Python's `Model.from_mjcf(path, mimic=True)`). The file's other equalities
+    /// are not among them.
+    ///
+    /// # Errors
+    /// As [`constraint_models`](Self::constraint_models).
+    pub fn mimics(&self) -> Result<Vec<Mimic>, MjcfError> {
+        let (constraints, _) = self.constraint_models()?;
+        Ok(constraints
+            .iter()
+            .filter_map(Mimic::from_constraint)
+            .collect())
     }
 }

@@ -73,6 +73,20 @@ pub struct SdfModel {
     pub path: Option<PathBuf>,
 }
 
+impl SdfModel {
+    /// The gearboxes among the [`constraints`](Self::constraints) (a joint coordinate tied
+    /// linearly to another's) as [`Mimic`] couplings: `MimicModel::new(model, &mimics)` has no
+    /// coordinate for the driven joint (`rigid ... --mimic`, Python's `Model.from_sdf(path,
+    /// mimic=True)`).
+    #[must_use]
+    pub fn mimics(&self) -> Vec<crate::multibody::Mimic> {
+        self.constraints
+            .iter()
+            .filter_map(crate::multibody::Mimic::from_constraint)
+            .collect()
+    }
+}
+
 /// Something in an SDF file that was left out or tolerated.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SdfWarning {

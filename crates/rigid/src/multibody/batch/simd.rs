@@ -69,7 +69,7 @@ impl Algo {
 pub(crate) fn default_width() -> usize {
     static WIDTH: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
     *WIDTH.get_or_init(|| {
-        let value = std::env::var("RIGID_LANES").ok();
+        let value = std::env::var_os("RIGID_LANES").map(|v| v.to_string_lossy().into_owned());
         lanes_from(value.as_deref())
             .unwrap_or_else(|bad| {
                 eprintln!(

@@ -127,7 +127,8 @@ pub struct ContactSettings {
     pub restitution_speed: f64,
     /// PGS: polish the sweep by its active set (`contact/polish.rs`: Newton's method on the
     /// modes read from the impulses, after sweeps 4, 8, 16, …; a kept polish ends the solve
-    /// with the sweep's own solution, to round-off). On by default; ADMM has none.
+    /// at a solution of the same problem, every residual at round-off, but where the problem
+    /// has more than one not always the sweep's: docs/contact.md). On by default; ADMM has none.
     pub polish: bool,
 }
 

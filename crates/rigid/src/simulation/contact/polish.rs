@@ -86,8 +86,8 @@ const ON_CONE: f64 = 1e-9;
 /// The most Newton steps (and changes of the active set) in one polish.
 const TRIES: usize = 4;
 
-/// The largest Newton step taken, `‖δλ‖∞ max|A_ii|` over the largest `|σ|` or `|σ*|`: its
-/// cancellation leaves at most ~1e-10 of that scale of round-off in `σ`.
+/// The largest Newton step taken, `‖δλ‖∞ max|A_ii|` (over the velocity rows) over the largest
+/// `|σ|` or `|σ*|`: its cancellation leaves at most ~1e-10 of that scale of round-off in `σ`.
 const LARGEST_STEP: f64 = 1e6;
 
 /// Steps of iterative refinement of each Newton step's solve against the unregularised `A`.
@@ -144,7 +144,8 @@ impl Polish {
     }
 
     /// One Newton step on the modes' equations from the current `λ`, `σ`. False if the system
-    /// is singular, empty or has more than `largest` rows.
+    /// is singular, empty or has more than `largest` rows, or the step is beyond
+    /// [`LARGEST_STEP`] (an inconsistent singular system).
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &mut self,
@@ -272,7 +273,10 @@ impl Polish {
         // a step whose velocities `A δλ` dwarf the problem's solved an inconsistent singular
         // system (four coplanar corners held to targets no rigid motion meets: one must
         // separate); taken, its cancellation would leave ~1e-16 ‖δλ‖ max|A_ii| of round-off in σ
-        let a_max = eps * 1e12;
+        // the velocity rows' scale (a sliding law's rows are dimensionless)
+        let a_max = (self.equations.iter().enumerate())
+            .filter(|(_, (_, e))| matches!(e, Equation::Velocity))
+            .fold(0.0f64, |m, (i, _)| m.max(self.a[i * n + i].abs()));
         let within = amax(&self.x) * a_max <= LARGEST_STEP * fast; // false on NaN
         if !within {
             return false;
@@ -359,10 +363,13 @@ fn slides(b: &Block, friction: bool) -> bool {
 
 /// `max |x_i|` (NaN if any is).
 fn amax(x: &[f64]) -> f64 {
-    x.iter().fold(
-        0.0,
-        |a: f64, v| if v.is_nan() { f64::NAN } else { a.max(v.abs()) },
-    )
+    x.iter().fold(0.0, |a: f64, v| {
+        if a.is_nan() || v.is_nan() {
+            f64::NAN
+        } else {
+            a.max(v.abs())
+        }
+    })
 }
 
 /// `λ_c += d`, `σ += K e_c d`.

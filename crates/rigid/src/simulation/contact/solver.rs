@@ -735,6 +735,11 @@ impl ContactSolver {
         let (lambda, sigma) = (&mut self.mu[..m], &mut self.sigma_mu[..m]);
         lambda.fill(0.0);
         sigma.fill(0.0);
+        // the polish is PGS's: under ADMM the correction's sweep goes without it
+        let correction = ContactSettings {
+            polish: settings.polish && settings.solver == Solver::Pgs,
+            ..*settings
+        };
         // the sweep whichever the solver: without friction the rows are a plain LCP, where it
         // converges in a few sweeps (ADMM's split converges slowly on the tiny targets of a
         // resting stack's redundant corners)
@@ -750,7 +755,7 @@ impl ContactSolver {
             &self.target_mu[..m],
             lambda,
             sigma,
-            (settings, &mut self.polish),
+            (&correction, &mut self.polish),
             false,
         );
         primal_rows(
