@@ -117,7 +117,7 @@ ARM_MJCF = """<mujoco>
       <inertial pos="0.5 0 0" mass="1" diaginertia="0.01 0.1 0.1"/>
       <body name="lower" pos="1 0 0">
         <joint name="b" type="hinge" axis="0 1 0"/>
-        <inertial pos="0.4 0 0.1" mass="2" diaginertia="0.02 0.2 0.3"/>
+        <inertial pos="0.4 0 0.1" mass="2" diaginertia="0.05 0.2 0.22"/>
       </body>
     </body>
   </worldbody>
