@@ -12,7 +12,13 @@ fn rigid(args: &[&str]) -> Output {
 /// `rigid bench puma560 --batch --json` on one thread, one pass over 9 states (a partial last
 /// pack for any width), then `extra`.
 fn quick_batch(extra: &[&str]) -> Output {
-    let mut args = vec![
+    quick_batch_command(extra).output().unwrap()
+}
+
+/// The command of [`quick_batch`], to run with more (an environment).
+fn quick_batch_command(extra: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_rigid"));
+    c.args([
         "bench",
         "puma560",
         "--batch",
@@ -23,9 +29,9 @@ fn quick_batch(extra: &[&str]) -> Output {
         "1",
         "--states",
         "9",
-    ];
-    args.extend_from_slice(extra);
-    rigid(&args)
+    ])
+    .args(extra);
+    c
 }
 
 #[test]
@@ -162,21 +168,7 @@ fn bench_batch_only_times_the_named_entry_points() {
 #[test]
 fn rigid_lanes_sets_the_default_width() {
     let run = |lanes: &str| {
-        Command::new(env!("CARGO_BIN_EXE_rigid"))
-            .args([
-                "bench",
-                "puma560",
-                "--batch",
-                "--json",
-                "--threads",
-                "1",
-                "--repetitions",
-                "1",
-                "--states",
-                "9",
-                "--only",
-                "rnea",
-            ])
+        quick_batch_command(&["--only", "rnea"])
             .env("RIGID_LANES", lanes)
             .output()
             .unwrap()

@@ -38,6 +38,19 @@
 
 use super::solver::{len, Block};
 
+/// The contact problem a polish works on: `σ = σ₀ + K λ` (`K` m x m, stride m) over `blocks`,
+/// `idle` the bilateral rows held at 0, `target` each row's `σ*`, `friction` as the sweep's,
+/// `largest` the most active rows worth a dense solve.
+#[derive(Clone, Copy)]
+pub(crate) struct Problem<'a> {
+    pub(crate) blocks: &'a [Block],
+    pub(crate) K: &'a [f64],
+    pub(crate) idle: &'a [bool],
+    pub(crate) target: &'a [f64],
+    pub(crate) friction: bool,
+    pub(crate) largest: usize,
+}
+
 /// The workspace, reused from step to step (it grows with the largest problem seen).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Polish {
@@ -94,21 +107,10 @@ const LARGEST_STEP: f64 = 1e6;
 const REFINE: usize = 2;
 
 impl Polish {
-    /// Polishes `λ` and `σ = σ₀ + K λ` (`K` m x m, stride m) for `blocks`' active set, `idle`
-    /// the bilateral rows held at 0, `friction` as the sweep's, `largest` the most active rows
-    /// worth a dense solve. Returns whether the polished impulses were kept (else `λ` and `σ`
-    /// are as they came).
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn apply(
-        &mut self,
-        blocks: &[Block],
-        K: &[f64],
-        idle: &[bool],
-        target: &[f64],
-        lambda: &mut [f64],
-        sigma: &mut [f64],
-        (friction, largest): (bool, usize),
-    ) -> bool {
+    /// Polishes `λ` and `σ` for the active set of `p`'s blocks. Returns whether the polished
+    /// impulses were kept (else `λ` and `σ` are as they came).
+    pub(crate) fn apply(&mut self, p: Problem, lambda: &mut [f64], sigma: &mut [f64]) -> bool {
+        let (blocks, friction) = (p.blocks, p.friction);
         self.modes.clear();
         for b in blocks {
             let r = b.row;
@@ -132,10 +134,10 @@ impl Polish {
         self.saved.extend_from_slice(lambda);
         self.saved.extend_from_slice(sigma);
         for _ in 0..TRIES {
-            if !self.solve(blocks, K, idle, target, lambda, sigma, (friction, largest)) {
+            if !self.solve(p, lambda, sigma) {
                 break;
             }
-            if !self.next_modes(blocks, target, lambda, sigma, friction) {
+            if !self.next_modes(blocks, p.target, lambda, sigma, friction) {
                 return true;
             }
         }
@@ -146,17 +148,15 @@ impl Polish {
     /// One Newton step on the modes' equations from the current `λ`, `σ`. False if the system
     /// is singular, empty or has more than `largest` rows, or the step is beyond
     /// [`LARGEST_STEP`] (an inconsistent singular system).
-    #[allow(clippy::too_many_arguments)]
-    fn solve(
-        &mut self,
-        blocks: &[Block],
-        K: &[f64],
-        idle: &[bool],
-        target: &[f64],
-        lambda: &mut [f64],
-        sigma: &mut [f64],
-        (friction, largest): (bool, usize),
-    ) -> bool {
+    fn solve(&mut self, p: Problem, lambda: &mut [f64], sigma: &mut [f64]) -> bool {
+        let Problem {
+            blocks,
+            K,
+            idle,
+            target,
+            friction,
+            largest,
+        } = p;
         let m = lambda.len();
         let fast = sigma
             .iter()
@@ -243,9 +243,31 @@ impl Polish {
                 }
             }
         }
-        // factor A + ε I (bounded where rows are redundant), then refine against A itself: the
-        // regularisation's bias (ε |x| in the residual) would be amplified where the held rows
-        // are ill-conditioned, and the polish must give the sweep's solution, not a nearby one
+        if !self.dense_solve(n) {
+            return false;
+        }
+        // a step whose velocities `A δλ` dwarf the problem's solved an inconsistent singular
+        // system (four coplanar corners held to targets no rigid motion meets: one must
+        // separate); taken, its cancellation would leave ~1e-16 ‖δλ‖ max|A_ii| of round-off in
+        // σ (the scale over the velocity rows: a sliding law's rows are dimensionless)
+        let a_max = (self.equations.iter().enumerate())
+            .filter(|(_, (_, e))| matches!(e, Equation::Velocity))
+            .fold(0.0f64, |m, (i, _)| m.max(self.a[i * n + i].abs()));
+        let within = amax(&self.x) * a_max <= LARGEST_STEP * fast; // false on NaN
+        if !within {
+            return false;
+        }
+        for (&c, &d) in self.unknowns.iter().zip(&self.x) {
+            add_column(K, m, c, d, lambda, sigma);
+        }
+        true
+    }
+
+    /// `x = A⁻¹ b` (`A` n x n row-major): `A + ε I` factored (bounded where rows are redundant),
+    /// then [`REFINE`] steps of refinement against `A` itself, since the regularisation's bias
+    /// (`ε |x|` in the residual) is amplified where the held rows are ill-conditioned. False on
+    /// a zero pivot.
+    fn dense_solve(&mut self, n: usize) -> bool {
         let eps = 1e-12 * (0..n).map(|i| self.a[i * n + i].abs()).fold(0.0, f64::max);
         self.lu.clear();
         self.lu.extend_from_slice(&self.a);
@@ -269,20 +291,6 @@ impl Polish {
             for (x, d) in self.x.iter_mut().zip(&self.r) {
                 *x += d;
             }
-        }
-        // a step whose velocities `A δλ` dwarf the problem's solved an inconsistent singular
-        // system (four coplanar corners held to targets no rigid motion meets: one must
-        // separate); taken, its cancellation would leave ~1e-16 ‖δλ‖ max|A_ii| of round-off in σ
-        // the velocity rows' scale (a sliding law's rows are dimensionless)
-        let a_max = (self.equations.iter().enumerate())
-            .filter(|(_, (_, e))| matches!(e, Equation::Velocity))
-            .fold(0.0f64, |m, (i, _)| m.max(self.a[i * n + i].abs()));
-        let within = amax(&self.x) * a_max <= LARGEST_STEP * fast; // false on NaN
-        if !within {
-            return false;
-        }
-        for (&c, &d) in self.unknowns.iter().zip(&self.x) {
-            add_column(K, m, c, d, lambda, sigma);
         }
         true
     }

@@ -10,7 +10,7 @@
 //! contacts' penetration (`σ*_B = −β e/h`).
 
 use super::admm::Admm;
-use super::polish::Polish;
+use super::polish::{Polish, Problem};
 use super::residuals::ContactResiduals;
 use super::{ContactSettings, ContactStats, Solver};
 #[cfg(feature = "collision")]
@@ -880,15 +880,15 @@ fn pgs(
             return (it, true);
         }
         if settings.polish && failed < 2 && polish_after(it) {
-            if polish.apply(
+            let problem = Problem {
                 blocks,
                 K,
                 idle,
                 target,
-                lambda,
-                sigma,
-                (friction, polish_rows),
-            ) {
+                friction,
+                largest: polish_rows,
+            };
+            if polish.apply(problem, lambda, sigma) {
                 return (it, true);
             }
             failed += 1;
