@@ -534,6 +534,32 @@ def replay_html(model: Model, traj: Any, path: Path, title: str | None = None) -
     as the result of ``simulate``) to one self-contained HTML file (WebGL; the URDF's visual
     geometry, or a stick figure), 60 frames per second; it opens offline, nothing is fetched."""
 
+def urdf_link_geometries(path: Path, kind: str = "collision") -> list[dict[str, Any]]:
+    """The ``<collision>`` (``kind="collision"``) or ``<visual>`` elements of every link of a
+    URDF file, links in file order: one dict each with ``link``, ``index`` (within the link),
+    ``origin`` (4 x 4, link frame), ``shape`` (``"box"``, ``"cylinder"``, ``"sphere"``,
+    ``"capsule"``, ``"mesh"``), ``size``, ``filename`` and ``mesh_path`` (meshes), ``scale``,
+    ``rgba``."""
+
+class Collider:
+    """A collision shape made ready for ``proximity``: ``kind`` ``"sphere"`` (``size =
+    [radius]``), ``"box"`` (edges), ``"cylinder"`` / ``"capsule"`` (``[radius, length]``, along
+    z), ``"cone"`` (``[radius, height]``, origin at the centroid), ``"ellipsoid"`` (semi-axes), or
+    ``"mesh"`` (``path``, ``scale``: its convex hull)."""
+
+    def __init__(self, kind: str, size: ArrayLike | None = None, path: Path | None = None,
+                 scale: ArrayLike | None = None) -> None: ...
+
+def proximity(a: Collider, pose_a: ArrayLike, b: Collider,
+              pose_b: ArrayLike) -> tuple[float, Vector, Vector, Vector]:
+    """``(distance, point_a, point_b, normal)`` of ``a`` at the world pose ``pose_a`` (4 x 4) and
+    ``b`` at ``pose_b``: the signed distance (negative: the penetration's depth), the nearest
+    points, the unit normal out of ``a``."""
+
+def read_srdf(path: Path) -> dict[str, Any]:
+    """An SRDF file: ``{"disabled": [(link1, link2), ...], "group_states": [{"name", "group",
+    "joints": [(joint, values), ...]}, ...]}``."""
+
 def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
                threads: int | None = None, out: Matrix | None = None) -> Matrix:
     """``rnea`` for every row: Q (N, nq), V and A (N, nv) → τ (N, nv), on ``threads`` threads

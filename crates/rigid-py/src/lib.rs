@@ -28,6 +28,7 @@ mod constraints;
 mod convert;
 mod derivatives;
 mod dynamics;
+mod geometry;
 mod identification;
 mod inverse_kinematics;
 mod lie;
@@ -110,6 +111,10 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
     m.add_class::<simulator::Simulator>()?;
     m.add_function(wrap_pyfunction!(simulation::replay_html, m)?)?;
+    m.add_function(wrap_pyfunction!(geometry::urdf_link_geometries, m)?)?;
+    m.add_class::<geometry::Collider>()?;
+    m.add_function(wrap_pyfunction!(geometry::proximity, m)?)?;
+    m.add_function(wrap_pyfunction!(geometry::read_srdf, m)?)?;
     m.add_function(wrap_pyfunction!(batch::rnea_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::aba_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::crba_batch, m)?)?;

@@ -9,6 +9,9 @@ prints one line per global (name, shape, max relative difference) and the larges
 exit 1 if it exceeds 1e-9. The pytest suite (test_pinocchio_scripts.py) runs the scripts of
 `pinocchio_scripts/` with it.
 
+Also compared: a `Model`'s sizes, joint placements, bodies (not the universe's) and frames, and a
+`GeometryModel`'s objects (placements, joints) and pair count.
+
 Same inputs: each run starts with `numpy.random.seed(0)`; the configurations
 `randomConfiguration` draws in the Pinocchio run are replayed, in order, in the rigid run (the
 generators differ); a model of `buildSampleModelHumanoidRandom` (random placements and inertias)
@@ -45,6 +48,22 @@ def _plain(x, depth=0):
             return np.asarray(getattr(x, attr), dtype=float)
     if type(x).__name__ == "Inertia":
         return np.asarray(x.matrix(), dtype=float)
+    if type(x).__name__ == "Model" and hasattr(x, "jointPlacements"):
+        # sizes, joint placements and bodies (not inertias[0], which rigid does not keep)
+        parts = [np.array([x.nq, x.nv, x.njoints, x.nframes], dtype=float)]
+        parts += [np.asarray(x.jointPlacements[i].homogeneous, float).ravel()
+                  for i in range(x.njoints)]
+        parts += [np.asarray(x.inertias[i].matrix(), float).ravel() for i in range(1, x.njoints)]
+        parts += [np.asarray(f.placement.homogeneous, float).ravel() for f in x.frames]
+        parts += [np.array([f.parentJoint for f in x.frames], dtype=float)]
+        return np.concatenate(parts)
+    if type(x).__name__ == "GeometryModel":
+        g = x.geometryObjects
+        return np.concatenate([np.array([x.ngeoms, len(x.collisionPairs)], dtype=float)]
+                              + [np.asarray(o.placement.homogeneous, float).ravel() for o in g]
+                              + [np.array([o.parentJoint for o in g], dtype=float)])
+    if type(x).__name__.startswith("StdVec_"):  # Pinocchio's vectors of its objects
+        x = list(x)
     if isinstance(x, (list, tuple)) and x:
         parts = [_plain(y, depth + 1) for y in x]
         if all(p is not None for p in parts):
@@ -89,6 +108,22 @@ def _rebuild(pin, desc):
     return m
 
 
+def _exec(script, args):
+    """Runs `script` as `__main__` with `args`; its globals, also when it ends by `sys.exit(0)`
+    (Pinocchio's examples leave that way when no viewer is installed)."""
+    sys.argv = [script] + args
+    sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
+    with open(script) as f:
+        code = compile(f.read(), script, "exec")
+    g = {"__name__": "__main__", "__file__": script, "__builtins__": __builtins__}
+    try:
+        exec(code, g)
+    except SystemExit as e:
+        if e.code not in (None, 0):
+            raise
+    return g
+
+
 def _run(side, script, args, record_path):
     """In this process: `side` is "pinocchio" or "rigid"; writes the globals to `out`."""
     np.random.seed(0)
@@ -110,11 +145,7 @@ def _run(side, script, args, record_path):
 
         pin.randomConfiguration = random_configuration
         pin.buildSampleModelHumanoidRandom = humanoid_random
-        sys.argv = [script] + args
-        sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
-        import runpy
-
-        g = runpy.run_path(script, run_name="__main__")
+        g = _exec(script, args)
         with open(record_path, "w") as f:
             json.dump(rec, f)
     else:
@@ -134,17 +165,14 @@ def _run(side, script, args, record_path):
         pin.randomConfiguration = random_configuration
         pin.buildSampleModelHumanoidRandom = humanoid_random
         install()
-        sys.argv = [script] + args
-        sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
-        import runpy
-
-        g = runpy.run_path(script, run_name="__main__")
+        g = _exec(script, args)
         # the rigid run computed with the layer: `pinocchio` is rigid.pinocchio and Pinocchio's
-        # own library was never loaded (else equal numbers would prove nothing)
+        # own library (or hpp-fcl, coal) was never loaded (else equal numbers would prove nothing)
         assert sys.modules["pinocchio"] is pin, sys.modules["pinocchio"]
         loaded = [k for k, m in list(sys.modules.items()) if "pinocchio_pywrap" in k
-                  or f"{os.sep}site-packages{os.sep}pinocchio{os.sep}"
-                  in (getattr(m, "__file__", None) or "")]
+                  or any(f"{os.sep}site-packages{os.sep}{p}{os.sep}"
+                         in (getattr(m, "__file__", None) or "")
+                         for p in ("pinocchio", "hppfcl", "coal"))]
         assert not loaded, f"Pinocchio's own modules were loaded in the rigid run: {loaded}"
     return {k: v for k, v in ((k, _plain(v)) for k, v in g.items() if not k.startswith("_"))
             if v is not None}

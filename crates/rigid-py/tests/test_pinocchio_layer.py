@@ -427,8 +427,14 @@ def test_robot_wrapper_and_loaders_equal_pinocchio():
     r("Jcom", rr.Jcom(q), pr.Jcom(q))
     r.se3("placement", rr.placement(q, 3), pr.placement(q, 3))
     r("velocity", rr.velocity(q, v, 3).vector, pr.velocity(q, v, 3).vector)
+    # (the geometry models against Pinocchio's: test_pinocchio_scripts.py, with the meshes)
+    import xml.etree.ElementTree as ET
+
+    root = ET.parse(path).getroot()
+    counts = tuple(len(root.findall(f"link/{kind}")) for kind in ("collision", "visual"))
     model, cm, vm = R.buildModelsFromUrdf(path)
-    r.same("buildModelsFromUrdf", (model.nq, cm.ngeoms, vm.ngeoms), (pr.model.nq, 0, 0))
+    r.same("buildModelsFromUrdf", (model.nq, cm.ngeoms, vm.ngeoms), (pr.model.nq, *counts))
+    r.same("collision_model", (rr.collision_model.ngeoms, rr.visual_model.ngeoms), counts)
     r.check()
 
 
@@ -536,8 +542,8 @@ def test_model_edits_write_through():
 
 
 def test_what_is_not_covered_raises_not_implemented_naming_it():
-    with pytest.raises(NotImplementedError, match="computeCollisions.*coal"):
-        R.computeCollisions(None, None)
+    with pytest.raises(NotImplementedError, match="computeContactPatches.*coal"):
+        R.computeContactPatches(None, None)
     with pytest.raises(NotImplementedError, match="JointModelSphericalZYX"):
         R.JointModelSphericalZYX()
     with pytest.raises(NotImplementedError, match=r"buildModelFromUrdf\(filename, model\)"):

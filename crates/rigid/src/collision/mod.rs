@@ -48,11 +48,13 @@
 //! ```
 
 mod detect;
+mod proximity;
 mod shape;
 mod turn;
 
 pub use detect::CollisionData;
 pub(crate) use detect::RESTING_FACE;
+pub use proximity::{proximity, Collider, Proximity};
 pub(crate) use shape::hull_triangles;
 pub use shape::Shape;
 pub(crate) use turn::{Feature, Turn};

@@ -868,12 +868,19 @@ pub fn exclude_srdf_pairs(
     cm: &mut crate::collision::CollisionModel,
     srdf: &Path,
 ) -> Result<usize, WorldError> {
-    let file = |message: String| WorldError::File {
-        path: srdf.display().to_string(),
-        message,
-    };
-    let text = std::fs::read_to_string(srdf).map_err(|e| file(e.to_string()))?;
-    let doc = roxmltree::Document::parse(&text).map_err(|e| file(e.to_string()))?;
+    let read = super::srdf::read_srdf(srdf).map_err(|e| match e {
+        super::srdf::SrdfError::File { path, message } => WorldError::File { path, message },
+        super::srdf::SrdfError::Element {
+            element,
+            line,
+            message,
+            ..
+        } => WorldError::Element {
+            element: format!("<{element}>"),
+            line,
+            message,
+        },
+    })?;
     let link_of = |g: &Geometry| {
         g.name
             .rsplit_once('/')
@@ -881,19 +888,8 @@ pub fn exclude_srdf_pairs(
     };
     let links: Vec<String> = cm.geometries.iter().map(link_of).collect();
     let mut n = 0;
-    for e in doc
-        .descendants()
-        .filter(|e| e.has_tag_name("disable_collisions"))
-    {
-        let line = doc.text_pos_at(e.range().start).row;
-        let name = |key: &str| {
-            e.attribute(key).ok_or_else(|| WorldError::Element {
-                element: "<disable_collisions>".into(),
-                line,
-                message: format!("needs \"{key}\""),
-            })
-        };
-        let (l1, l2) = (name("link1")?, name("link2")?);
+    for (l1, l2, _) in &read.disabled {
+        let (l1, l2) = (l1.as_str(), l2.as_str());
         for i in 0..links.len() {
             for j in i + 1..links.len() {
                 let (a, b) = (links[i].as_str(), links[j].as_str());

@@ -1,5 +1,5 @@
 //! Reading files: triangle meshes (STL, OBJ, COLLADA), the body specs of `rigid mass` (TOML),
-//! URDF robots, MuJoCo's MJCF models, SDFormat models ([`sdf`]), constraint files, and finding the robot files of
+//! URDF robots, SRDF files ([`srdf`]), MuJoCo's MJCF models, SDFormat models ([`sdf`]), constraint files, and finding the robot files of
 //! example-robot-data ([`robots`]); writing MJCF and URDF ([`write`]).
 
 #[cfg(feature = "serde")]
@@ -19,6 +19,8 @@ pub mod robots;
 pub mod sdf;
 #[cfg(feature = "spec")]
 pub mod spec;
+#[cfg(feature = "urdf")]
+pub mod srdf;
 #[cfg(feature = "urdf")]
 pub mod urdf;
 #[cfg(all(feature = "collision", feature = "mesh"))]

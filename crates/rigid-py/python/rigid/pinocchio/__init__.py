@@ -11,24 +11,30 @@ or, for a script written for Pinocchio, unchanged: ``python -m rigid.pinocchio s
 Names, signatures, return types and the fields algorithms fill in ``data`` are Pinocchio's
 (4.1); so is the layout: ``Motion``/``Force`` linear first, free-flyer velocity ``(v, ω)``,
 Jacobian rows ``(v, ω)``, continuous joints ``(cos θ, sin θ)``, sibling joints sorted by name.
-Everything is computed by rigid (this module never imports Pinocchio). What is not covered
-(geometry and collisions, viewers, code generation, a few algorithms) raises
+Everything is computed by rigid (this module never imports Pinocchio). Geometry models,
+collisions and distances run on rigid's collision layer (parry; ``rigid.pinocchio.fcl`` holds
+hpp-fcl's shapes, a mesh collides as its convex hull); the viewers are absent and fail as
+Pinocchio's do without their clients (``rigid.pinocchio.visualize``). What is not covered
+(code generation, contact solvers beyond constraintDynamics, a few algorithms) raises
 ``NotImplementedError`` naming the function and what to use instead; ``COVERED`` lists what is.
 """
 
 import sys as _sys
 
 from .. import rigid as _r
-from . import (algorithms, constraints, data, explog, joints, loaders, model,  # noqa: F401
-               spatial, utils)
+from . import (algorithms, compose, constraints, data, explog, fcl, geometry, joints,  # noqa: F401
+               loaders, model, parallel, spatial, utils, visualize)
 from .algorithms import *  # noqa: F401,F403
+from .compose import *  # noqa: F401,F403
 from .constraints import *  # noqa: F401,F403
 from .loaders import *  # noqa: F401,F403
 from .data import *  # noqa: F401,F403
 from .explog import *  # noqa: F401,F403
+from .geometry import *  # noqa: F401,F403
 from .joints import *  # noqa: F401,F403
 from .joints import ArgumentPosition, JOINT_MODELS  # noqa: F401
 from .model import *  # noqa: F401,F403
+from .parallel import *  # noqa: F401,F403
 from .robot_wrapper import RobotWrapper  # noqa: F401
 from .spatial import *  # noqa: F401,F403
 
@@ -38,7 +44,7 @@ PINOCCHIO_MAJOR_VERSION, PINOCCHIO_MINOR_VERSION, PINOCCHIO_PATCH_VERSION = 4, 1
 #: rigid's version.
 rigid_version = _r.__version__
 
-WITH_HPP_FCL = WITH_COLLISION = WITH_HPP_FCL_BINDINGS = False
+WITH_HPP_FCL = WITH_COLLISION = WITH_HPP_FCL_BINDINGS = True  # rigid's collision layer (parry)
 WITH_URDFDOM = True
 WITH_SDFORMAT = WITH_CPPAD = WITH_OPENMP = False
 ScalarType = float
@@ -74,8 +80,8 @@ def inverse_kinematics(model, frame, target_pose, q0=None, **kwargs):
 
 # Pinocchio 4.1's top-level names this layer does not provide, by what to use instead.
 _GEOMETRY = (
-    "rigid.pinocchio has no geometry or collision models (loaders return empty geometry "
-    "models); use Pinocchio with coal for collisions and distances")
+    "rigid.pinocchio's geometry covers GeometryModel, buildGeomFromUrdf, computeCollisions and "
+    "computeDistances (meshes as convex hulls); not this function: use Pinocchio with coal")
 _VIEWER = "rigid.pinocchio has no viewer; draw a motion with rigid.replay_html(model, run, path)"
 _CONSTRAINT = (
     "rigid.pinocchio covers constraintDynamics, impulseDynamics and initConstraintDynamics "
@@ -101,8 +107,6 @@ _HINTS = {
                                      "(rigid::multibody::frame_jacobian_time_variation)",
     "frameJacobianTimeVariation": "rigid's library has it "
                                   "(rigid::multibody::frame_jacobian_time_variation)",
-    "buildReducedModel": "lock the joints in the URDF (type=\"fixed\") and load it",
-    "appendModel": "merge the URDF files and load the result",
     "bodyRegressor": "rigid.regressor (computeJointTorqueRegressor) and rigid.dynamic_parameters",
     "jointBodyRegressor": "rigid.regressor (computeJointTorqueRegressor)",
     "frameBodyRegressor": "rigid.regressor (computeJointTorqueRegressor)",
@@ -111,8 +115,6 @@ _HINTS = {
     "computePotentialEnergyRegressor": "rigid.regressor",
     "contactInverseDynamics": "rigid.contact_inverse_dynamics (a least-norm law, not Pinocchio's "
                               "compliant one)",
-    "abaInParallel": "rigid.aba_batch (every core, GIL released)",
-    "rneaInParallel": "rigid.rnea_batch (every core, GIL released)",
 }
 
 
@@ -144,39 +146,37 @@ DelassusOperatorSparse DistanceResult DualCoulombFrictionCone FrameAnchorConstra
 FrameAnchorConstraintModel FrictionCoefficientMatrix FullSpaceCone GeometryNoMaterial
 GeometryPhongMaterial GeometryPool Hlog3 JointData JointFrictionConstraintData
 JointFrictionConstraintModel JointLimitConstraintData JointLimitConstraintModel
-LanczosDecomposition LieGroup LogCholeskyParameters MeshLoader ModelPool
-NonNegativeOrthantCone PGSConstraintSolver PGSSolverResult PGSSolverSettings PGSSolverStats
-PhysicsMaterial PointAnchorConstraintData PointAnchorConstraintModel
-PointContactConstraintData PointContactConstraintModel PseudoInertia Symmetric3
-TridiagonalSymmetricMatrix ZeroCone abaInParallel appendModel bodyRegressor buildGeomFromMJCF
-buildGeomFromUrdf buildGeomFromUrdfString buildModelAndConstraintsFromMJCF
-buildModelAndLegacyConstraintsFromMJCF buildModelFromMJCFAndRootJoint
-buildModelsAndConstraintsFromMJCF buildModelsAndConstraintsFromSdf buildModelsFromSdf
-buildReducedModel buildSampleGeometryModelHumanoid buildSampleGeometryModelManipulator
-cholesky compactTangentMap computeBodyRadius computeCentroidalDynamicsDerivatives
-computeCentroidalMap computeCentroidalMapTimeVariation computeCentroidalMomentumTimeVariation
-computeCollision computeCollisions computeCollisionsInParallel
-computeConstraintDynamicsDerivatives computeContactPatch computeContactPatches
-computeDampedDelassusMatrixInverse computeDelassusMatrix computeDistance computeDistances
+LanczosDecomposition LieGroup LogCholeskyParameters MeshLoader NonNegativeOrthantCone
+PGSConstraintSolver PGSSolverResult PGSSolverSettings PGSSolverStats PhysicsMaterial
+PointAnchorConstraintData PointAnchorConstraintModel PointContactConstraintData
+PointContactConstraintModel PseudoInertia Symmetric3 TridiagonalSymmetricMatrix ZeroCone
+bodyRegressor buildGeomFromMJCF buildGeomFromUrdfString
+buildModelAndConstraintsFromMJCF buildModelAndLegacyConstraintsFromMJCF
+buildModelFromMJCFAndRootJoint buildModelsAndConstraintsFromMJCF
+buildModelsAndConstraintsFromSdf buildModelsFromSdf 
+buildSampleGeometryModelHumanoid buildSampleGeometryModelManipulator cholesky compactTangentMap
+computeBodyRadius computeCentroidalDynamicsDerivatives computeCentroidalMap
+computeCentroidalMapTimeVariation computeCentroidalMomentumTimeVariation
+computeCollisionsInParallel computeConstraintDynamicsDerivatives computeContactPatch
+computeContactPatches computeDampedDelassusMatrixInverse computeDelassusMatrix
 computeFrameKinematicRegressor computeImpulseDynamicsDerivatives
 computeInverseDynamicsConstraintForces computeJointJacobiansTimeVariation
 computeJointKinematicHessians computeJointKinematicRegressor computeJointMinimalOrdering
 computeKKTContactDynamicMatrixInverse computeKineticEnergyRegressor
 computePotentialEnergyRegressor computeStaticRegressor computeStaticTorque
 computeStaticTorqueDerivatives computeSupportedForceByFrame computeSupportedInertiaByFrame
-contactInverseDynamics convertToRigidConstraintModel createDatas dDifference dIntegrate
-dIntegrateTransport dccrba exp3_quat exp6_quat explog findCommonAncestor frameBodyRegressor
+contactInverseDynamics convertToRigidConstraintModel dDifference dIntegrate dIntegrateTransport
+dccrba exp3_quat exp6_quat explog findCommonAncestor frameBodyRegressor
 frameJacobianTimeVariation getCenterOfMassVelocityDerivatives getCentroidalDynamicsDerivatives
 getConstraintJacobian getConstraintsJacobian getCoriolisMatrix getFrameJacobianTimeVariation
 getFrameKinematicHessian getFrictionCoefficientMatrix getJacobianSubtreeCenterOfMass
 getJointJacobianTimeVariation getJointKinematicHessian getKKTContactDynamicMatrixInverse
 getPointClassicAccelerationDerivatives getPointVelocityDerivatives
 getTangentToConfigurationSparsitySegment jacobianSubtreeCenterOfMass jointBodyRegressor lcaba
-lieGroup liegroups loadReferenceConfigurations loadReferenceConfigurationsFromXML
-loadRotorParameters log6_quat orthogonalization orthonormalization removeCollisionPairs
-removeCollisionPairsFromXML rneaInParallel serialization sharedMemory tangentMap
-tangentMapProduct tangentMapTransposeProduct transformJointIntoMimic updateGeometryPlacements
-updateGlobalPlacements visualize casadi cppad codegen
+lieGroup liegroups loadReferenceConfigurationsFromXML loadRotorParameters log6_quat
+orthogonalization orthonormalization removeCollisionPairsFromXML serialization sharedMemory
+tangentMap tangentMapProduct tangentMapTransposeProduct transformJointIntoMimic
+updateGlobalPlacements casadi cppad codegen
 """.split())
 
 
@@ -207,5 +207,6 @@ def __getattr__(name):
 
 
 COVERED = sorted(n for n in dir(_sys.modules[__name__]) if not n.startswith("_")
-                 and n not in ("algorithms", "constraints", "data", "explog", "joints", "loaders",
-                               "model", "spatial", "utils"))
+                 and n not in ("algorithms", "compose", "constraints", "data", "explog", "fcl", "geometry",
+                               "joints", "loaders", "model", "parallel", "spatial", "utils",
+                               "visualize"))

@@ -4,8 +4,8 @@
 
 An import finder placed first on ``sys.meta_path`` maps the top-level name ``pinocchio`` and its
 submodules to ``rigid.pinocchio`` and its submodules; a submodule the layer does not have
-(``pinocchio.visualize``, ...) is a module whose every attribute raises NotImplementedError when
-used. Then the script runs as ``__main__`` with ``sys.argv = [script, *args]``.
+is a module whose every attribute raises NotImplementedError when used. ``import hppfcl`` and
+``import coal`` give ``rigid.pinocchio.fcl`` (hpp-fcl's shapes, for geometry objects). Then the script runs as ``__main__`` with ``sys.argv = [script, *args]``.
 """
 
 import importlib
@@ -17,6 +17,8 @@ import sys
 import types
 
 LAYER = "rigid.pinocchio"
+#: hpp-fcl's and coal's module names: their shapes are rigid.pinocchio.fcl's
+_FCL = ("hppfcl", "coal")
 _SUBMODULES = {"utils": "utils", "robot_wrapper": "robot_wrapper", "shortcuts": "loaders",
                "explog": "explog", "rpy": None, "deprecated": None, "deprecation": None}
 
@@ -46,7 +48,11 @@ class PinocchioFinder(importlib.abc.MetaPathFinder):
     """Finds ``pinocchio`` and ``pinocchio.*`` in ``rigid.pinocchio``."""
 
     def find_spec(self, fullname, path=None, target=None):
-        if fullname != "pinocchio" and not fullname.startswith("pinocchio."):
+        top = fullname.split(".")[0]
+        if top in _FCL:
+            return importlib.util.spec_from_loader(
+                fullname, _Alias(importlib.import_module(f"{LAYER}.fcl")))
+        if top != "pinocchio":
             return None
         layer = importlib.import_module(LAYER)
         if fullname == "pinocchio":
@@ -78,7 +84,7 @@ def install():
     """Makes ``import pinocchio`` give rigid.pinocchio in this process."""
     if not any(isinstance(f, PinocchioFinder) for f in sys.meta_path):
         sys.meta_path.insert(0, PinocchioFinder())
-    for k in [k for k in sys.modules if k == "pinocchio" or k.startswith("pinocchio.")]:
+    for k in [k for k in sys.modules if k.split(".")[0] in ("pinocchio",) + _FCL]:
         del sys.modules[k]
 
 

@@ -357,13 +357,38 @@ def distance(model, q0, q1):
 
 
 def forwardDynamics(model, data, *args, **kwargs):
-    """``forwardDynamics(model, data, q, v, tau)``: ``aba``. With constraints: see
-    ``constraintDynamics``."""
+    """``forwardDynamics(model, data, q, v, tau)``: ``aba``. With contact Jacobians (Pinocchio's
+    contact dynamics, ``forwardDynamics(model, data, q, v, tau, J, gamma, damping=0)``): the
+    accelerations under the constraints ``J a + γ = 0``, Featherstone's range-space form as
+    Pinocchio's: ``a_f = M⁻¹ (τ − nle)``, ``λ = (J M⁻¹ Jᵀ + damping I)⁻¹ (−γ − J a_f)``,
+    ``a = a_f + M⁻¹ Jᵀ λ``; ``λ`` in ``data.lambda_c``. ``M`` and ``nle`` are rigid's."""
     if len(args) == 3 and not kwargs:
         return _r.aba(model, data, *args)
-    raise NotImplementedError(
-        "forwardDynamics with contact Jacobians: rigid.pinocchio has constraintDynamics "
-        "(RigidConstraintModel) and rigid.constraint_dynamics")
+    names = ("q", "v", "tau", "J", "gamma", "damping")
+    given = dict(zip(names, args))
+    given.update(kwargs)
+    if "J" not in given or len(args) > 6 or any(k not in names for k in kwargs):
+        raise TypeError("forwardDynamics(model, data, q, v, tau[, J, gamma, damping=0.0])")
+    q, v, tau = given["q"], given["v"], np.asarray(given["tau"], dtype=float)
+    J = np.atleast_2d(np.asarray(given["J"], dtype=float))
+    gamma = np.asarray(given.get("gamma", np.zeros(J.shape[0])), dtype=float)
+    if J.shape[1] != model.nv or gamma.shape != (J.shape[0],):
+        raise ValueError(f"forwardDynamics: J must be (m, {model.nv}) and gamma (m,), got "
+                         f"{J.shape} and {gamma.shape}")
+    M = np.triu(_r.crba(model, data, q))
+    M = M + np.triu(M, 1).T
+    nle = _r.nle(model, data, q, v)
+    L = np.linalg.cholesky(M)
+
+    def minv(x):
+        return np.linalg.solve(L.T, np.linalg.solve(L, x))
+
+    a_free = minv(tau - nle)
+    MinvJt = minv(J.T)
+    JMinvJt = J @ MinvJt + float(given.get("damping", 0.0)) * np.eye(J.shape[0])
+    lam = np.linalg.solve(JMinvJt, -gamma - J @ a_free)
+    data.lambda_c = lam
+    return a_free + MinvJt @ lam
 
 
 __all__ = [n for n in dir() if not n.startswith("_")

@@ -13,67 +13,15 @@ from .. import rigid as _r
 from .joints import (NQ_RIGID, JointModel, JointModelFreeFlyer, JointModelRX, JointModelRY,
                      JointModelRZ)
 from .model import Model
+from .geometry import GeometryModel, GeometryType, buildGeomFromUrdf
 from .explog import exp3
 from .spatial import SE3, Inertia, _GEN
 
 __all__ = [
     "buildModelFromUrdf", "buildModelsFromUrdf", "buildModelFromXML", "buildModelFromMJCF",
     "buildModelsFromMJCF", "buildSampleModelManipulator", "buildSampleModelHumanoid",
-    "buildSampleModelHumanoidRandom", "GeometryModel", "GeometryData", "GeometryType",
-    "GeometryObject",
+    "buildSampleModelHumanoidRandom",
 ]
-
-
-class GeometryType:
-    VISUAL = 0
-    COLLISION = 1
-
-
-class GeometryData:
-    """The (empty) workspace of a ``GeometryModel``."""
-
-    def __init__(self, geom_model=None):
-        self.oMg = []
-
-
-class GeometryObject:
-    def __init__(self, *args, **kwargs):
-        raise NotImplementedError(
-            "GeometryObject: rigid.pinocchio has no geometry or collision models (buildModelsFrom"
-            "Urdf returns empty ones); use Pinocchio with coal for collisions, or rigid.replay_html "
-            "to draw a robot")
-
-
-class GeometryModel:
-    """An empty geometry model: rigid.pinocchio loads the kinematics and the dynamics only (no
-    meshes, no collision checking)."""
-
-    def __init__(self):
-        self.geometryObjects = []
-        self.collisionPairs = []
-
-    @property
-    def ngeoms(self):
-        return 0
-
-    def createData(self):
-        return GeometryData(self)
-
-    def addGeometryObject(self, *args, **kwargs):
-        raise NotImplementedError(
-            "GeometryModel.addGeometryObject: rigid.pinocchio has no geometry or collision "
-            "models; use Pinocchio with coal for collisions")
-
-    def addAllCollisionPairs(self):
-        pass
-
-    def removeAllCollisionPairs(self):
-        pass
-
-    def __len__(self):
-        return 0
-
-
 
 
 def _root(root_joint, func):
@@ -160,14 +108,18 @@ def buildModelFromXML(xml, root_joint=None, root_joint_name=None, verbose=False,
 
 def buildModelsFromUrdf(filename, package_dirs=None, root_joint=None, verbose=False,
                         meshLoader=None, geometry_types=None, **kwargs):
-    """``(model, collision_model, visual_model)``: the model, and empty geometry models
-    (rigid.pinocchio reads no meshes). With one ``geometry_types``: ``(model, geometry)``."""
+    """``(model, collision_model, visual_model)``: the model and its geometry models
+    (``buildGeomFromUrdf``); with one ``geometry_types``, ``(model, geometry)``, with a list, one
+    geometry model each. ``package_dirs`` may also be the root joint, as Pinocchio's overloads."""
+    if root_joint is None and isinstance(package_dirs, JointModel):
+        package_dirs, root_joint = None, package_dirs
     model = buildModelFromUrdf(filename, root_joint, kwargs.get("root_joint_name"))
     if geometry_types is None:
-        return model, GeometryModel(), GeometryModel()
-    if isinstance(geometry_types, (list, tuple)):
-        return (model,) + tuple(GeometryModel() for _ in geometry_types)
-    return model, GeometryModel()
+        geometry_types = [GeometryType.COLLISION, GeometryType.VISUAL]
+    elif not isinstance(geometry_types, (list, tuple)):
+        return model, buildGeomFromUrdf(model, filename, geometry_types, package_dirs)
+    return (model,) + tuple(buildGeomFromUrdf(model, filename, t, package_dirs)
+                            for t in geometry_types)
 
 
 def buildModelFromMJCF(filename, root_joint=None, root_joint_name=None, verbose=False):

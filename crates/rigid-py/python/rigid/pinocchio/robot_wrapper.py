@@ -1,18 +1,21 @@
-"""``RobotWrapper``: a model, its data and empty geometry models, with Pinocchio's shortcuts
+"""``RobotWrapper``: a model, its data and its geometry models, with Pinocchio's shortcuts
 (``framePlacement``, ``computeFrameJacobian``, ``com``, ``mass``, ``nle``, ``gravity``, ...)."""
 
 import numpy as np
 
 from . import algorithms as alg
-from .loaders import GeometryModel, buildModelFromMJCF, buildModelFromUrdf
+from .compose import buildReducedModel
+from .geometry import GeometryModel, updateGeometryPlacements
+from .loaders import buildModelFromMJCF, buildModelsFromUrdf
 from .joints import ReferenceFrame
 
 __all__ = ["RobotWrapper"]
 
 
 class RobotWrapper:
-    """A robot: ``model``, ``data``, ``collision_model`` and ``visual_model`` (empty: rigid
-    .pinocchio reads no meshes), ``q0`` (the neutral configuration), and shortcuts."""
+    """A robot: ``model``, ``data``, ``collision_model`` and ``visual_model`` (a URDF's
+    ``<collision>`` and ``<visual>`` elements), ``q0`` (the neutral configuration), and
+    shortcuts."""
 
     @staticmethod
     def BuildFromURDF(filename, package_dirs=None, root_joint=None, verbose=False,
@@ -28,7 +31,7 @@ class RobotWrapper:
 
     def initFromURDF(self, filename, package_dirs=None, root_joint=None, verbose=False,
                      meshLoader=None):
-        self.__init__(buildModelFromUrdf(filename, root_joint))
+        self.__init__(*buildModelsFromUrdf(filename, package_dirs, root_joint))
 
     def __init__(self, model=None, collision_model=None, visual_model=None, verbose=False):
         if model is None:
@@ -41,6 +44,18 @@ class RobotWrapper:
         self.v0 = np.zeros(model.nv)
         self.q0 = alg.neutral(model)
         self.viz = None
+
+    def buildReducedRobot(self, list_of_joints_to_lock, reference_configuration=None):
+        """The robot with those joints (names or indices) locked at ``reference_configuration``
+        (default the neutral one), its geometry models reduced alike."""
+        ids = [self.model.getJointId(j) if isinstance(j, str) else int(j)
+               for j in list_of_joints_to_lock]
+        q = alg.neutral(self.model) if reference_configuration is None \
+            else reference_configuration
+        model, (collision, visual) = buildReducedModel(
+            self.model, list_of_geom_models=[self.collision_model, self.visual_model],
+            list_of_joints_to_lock=ids, reference_configuration=q)
+        return RobotWrapper(model, collision, visual)
 
     def createData(self):
         self.data = self.model.createData()
@@ -156,16 +171,14 @@ class RobotWrapper:
         return alg.computeJointJacobians(self.model, self.data, q)
 
     def updateGeometryPlacements(self, q=None, visual=False):
-        if q is not None:
-            alg.forwardKinematics(self.model, self.data, q)
+        """The collision (or, with ``visual``, the visual) objects' world placements, after the
+        forward kinematics at ``q`` when given."""
+        gm, gd = ((self.visual_model, self.visual_data) if visual
+                  else (self.collision_model, self.collision_data))
+        updateGeometryPlacements(self.model, self.data, gm, gd, q)
 
     def framesForwardKinematics(self, q):
         alg.framesForwardKinematics(self.model, self.data, q)
-
-    def buildReducedRobot(self, *args, **kwargs):
-        raise NotImplementedError(
-            "RobotWrapper.buildReducedRobot: rigid.pinocchio cannot lock joints yet; build the "
-            "reduced URDF (fixed joints) and load it")
 
     def computeFrameJacobian(self, q, frame_id):
         return alg.computeFrameJacobian(self.model, self.data, q, frame_id)

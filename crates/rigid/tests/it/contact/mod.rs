@@ -7,6 +7,7 @@
 
 mod closed_form;
 mod energy;
+mod proximity;
 mod robots;
 mod solvers;
 mod step_derivatives;
