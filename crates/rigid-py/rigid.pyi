@@ -267,6 +267,43 @@ class Data:
         R (3, 3) a rotation, p (3,) in m, ``x_world = R x_frame + p``. A joint name is looked up
         first, then the frames."""
 
+    # The fields (Pinocchio's names), each a fresh array in the model's layout of what the last
+    # algorithm that fills it wrote: poses (n, 4, 4), spatial vectors (n, 6) angular first in
+    # rigid's layout and linear first in Pinocchio's.
+    oMi: Matrix
+    liMi: Matrix
+    oMf: Matrix
+    v: Matrix
+    a: Matrix
+    a_gf: Matrix
+    f: Matrix
+    tau: Vector
+    nle: Vector
+    g: Vector
+    ddq: Vector
+    M: Matrix
+    Minv: Matrix
+    C: Matrix
+    dtau_dq: Matrix
+    dtau_dv: Matrix
+    ddq_dq: Matrix
+    ddq_dv: Matrix
+    J: Matrix
+    Jcom: Matrix
+    Ag: Matrix
+    hg: Vector
+    Ig: tuple[float, Vector, Matrix]
+    com: Vector
+    vcom: Vector
+    acom: Vector
+    mass: float
+    subtree_com: Matrix
+    subtree_vcom: Matrix
+    subtree_acom: Matrix
+    subtree_mass: Vector
+    q_in: Vector
+    v_in: Vector
+
 def rnea(model: Model, data: Data, q: ArrayLike, v: ArrayLike, a: ArrayLike,
          fext: ArrayLike | Sequence[Any] | None = None) -> Vector:
     """Inverse dynamics ``τ = M(q) a + C(q, v) v + g(q)`` (N·m or N, length nv) by the recursive

@@ -1,5 +1,7 @@
 //! Geometry for Python: a URDF's `<visual>` and `<collision>` elements as written
-//! (`urdf_link_geometries`, read by the Pinocchio layer's `buildGeomFromUrdf`), and the signed
+//! (`urdf_link_geometries`, read by the Pinocchio layer's `buildGeomFromUrdf`), the inertia its
+//! fixed-base model welds to the world (`_urdf_welded_inertia`), an SRDF file (`read_srdf`), and
+//! the signed
 //! distance of two shapes at their world poses (`Collider`, `proximity`: its
 //! `computeCollisions` and `computeDistances`).
 
@@ -207,4 +209,26 @@ pub fn read_srdf<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyD
     }
     d.set_item("group_states", states)?;
     Ok(d)
+}
+
+/// The inertia of a URDF's links welded to its root link, in the root's frame
+/// (`UrdfRobot::welded_to_root_inertia`): `(mass, centre of mass (3,), inertia about it (3, 3))`,
+/// Pinocchio's `model.inertias[0]` of the fixed-base model.
+#[pyfunction]
+pub fn _urdf_welded_inertia<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyAny>> {
+    const F: &str = "_urdf_welded_inertia";
+    let robot = parse_urdf_file(&path).map_err(|e| match &e {
+        UrdfError::Io { source, .. } => io_error(source, format!("{F}: {e}")),
+        _ => value_error(F, format!("{}: {e}", path.display())),
+    })?;
+    let g = robot.welded_to_root_inertia();
+    let i = g.inertia_com();
+    let i = i.matrix();
+    Ok((
+        g.mass(),
+        array1(py, g.com().as_slice()),
+        array2(py, 3, 3, |r, c| i[(r, c)]),
+    )
+        .into_pyobject(py)?
+        .into_any())
 }

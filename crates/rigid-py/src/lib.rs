@@ -16,7 +16,7 @@
 //! | `simulator.rs` | `Simulator`: one step at a time from any state with an open-loop torque, and `step_derivatives` |
 //! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, private field accessors |
 //! | `inverse_kinematics.rs` | `inverse_kinematics` (`rigid::kinematics::inverse`: targets in, a dict out) |
-//! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_lie`) |
+//! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_exp6`, `_log6`, `_jexp6`, `_jlog6` and the SO(3) four) |
 //! | `scale.rs` | `threads=` pools, `regressor_batch`, `simulate_batch`, `Model.with_dynamic_parameters`, the refusal of dask arrays |
 //! | `body.rs` | `mass_properties`, shapes, `spatial_inertia`, `simulate_body`, `doctor` |
 //! | `mobile.rs` | `rigid.mobile`: `Base`, `MobileManipulator`, `Feedback`, `pick_and_place`, `capstone`, `fkin_body`/`fkin_space`/`jacobian_body`/`jacobian_space` (the native `_mobile`, re-exported by `python/rigid/mobile.py`); `mobile_tasks.rs` its runs (`pick_and_place`, `capstone`, `drive`) and `fkin_*`/`jacobian_*` |
@@ -26,6 +26,7 @@ mod body;
 mod configuration;
 mod constraints;
 mod convert;
+mod data;
 mod derivatives;
 mod dynamics;
 mod geometry;
@@ -115,6 +116,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<geometry::Collider>()?;
     m.add_function(wrap_pyfunction!(geometry::proximity, m)?)?;
     m.add_function(wrap_pyfunction!(geometry::read_srdf, m)?)?;
+    m.add_function(wrap_pyfunction!(geometry::_urdf_welded_inertia, m)?)?;
     m.add_function(wrap_pyfunction!(batch::rnea_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::aba_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::crba_batch, m)?)?;

@@ -4,7 +4,6 @@
 
 use crate::convert::{self, array1, array2, matrix, value_error, vector};
 use numpy::PyArray2;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rigid::multibody as mb;
 use rigid::spatial::{so3, Mat3, Mat6, Transform, Twist, Vec3};
@@ -34,50 +33,94 @@ fn mat6_linear_first<'py>(py: Python<'py>, m: &Mat6) -> Array2<'py> {
     array2(py, 6, 6, |r, c| m[((r + 3) % 6, (c + 3) % 6)])
 }
 
-/// SE(3) and SO(3) maps for the Pinocchio layer (twists linear first, as Pinocchio's `Motion`):
-/// `("exp6", v)` → 4 x 4, `("log6", R, p)` → (6,), `("Jexp6", v)`, `("Jlog6", R, p)` → 6 x 6,
-/// `("exp3", w)` → 3 x 3, `("log3", R)` → (3,), `("Jexp3", w)`, `("Jlog3", R)` → 3 x 3.
+fn se3_in(r: &Bound<'_, PyAny>, p: &Bound<'_, PyAny>, func: &str) -> PyResult<Transform> {
+    Ok(Transform::new(
+        rotation_in(r, func)?,
+        convert::vec3(p, func, "p")?,
+    ))
+}
+
+fn m3<'py>(py: Python<'py>, m: &Mat3) -> Array2<'py> {
+    array2(py, 3, 3, |r, c| m[(r, c)])
+}
+
+/// `exp6(v)`: the 4 x 4 pose `exp(v̂)` of a twist (6,) (linear first).
 #[pyfunction]
-#[pyo3(signature = (op, x, p = None))]
-pub fn _lie<'py>(
+pub fn _exp6<'py>(py: Python<'py>, v: &Bound<'py, PyAny>) -> PyResult<Array2<'py>> {
+    let h = Transform::exp(&twist_in(v, "exp6")?).to_homogeneous();
+    Ok(array2(py, 4, 4, |r, c| h[(r, c)]))
+}
+
+/// `log6(R, p)`: the twist (6,) (linear first) whose exponential is the pose.
+#[pyfunction]
+pub fn _log6<'py>(
     py: Python<'py>,
-    op: &str,
-    x: &Bound<'py, PyAny>,
-    p: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let se3 = |x: &Bound<'py, PyAny>, p: Option<&Bound<'py, PyAny>>| -> PyResult<Transform> {
-        let r = rotation_in(x, op)?;
-        let p = p.ok_or_else(|| PyValueError::new_err(format!("{op}: needs R and p")))?;
-        Ok(Transform::new(r, convert::vec3(p, op, "p")?))
-    };
-    let m3 = |m: &Mat3| array2(py, 3, 3, |r, c| m[(r, c)]).into_any();
-    Ok(match op {
-        "exp6" => {
-            let t = Transform::exp(&twist_in(x, op)?);
-            let h = t.to_homogeneous();
-            array2(py, 4, 4, |r, c| h[(r, c)]).into_any()
-        }
-        "log6" => {
-            let t = se3(x, p)?.log();
-            array1(py, &[t.v.x, t.v.y, t.v.z, t.w.x, t.w.y, t.w.z]).into_any()
-        }
-        "Jexp6" => mat6_linear_first(py, &mb::se3_right_jacobian(&twist_in(x, op)?)).into_any(),
-        "Jlog6" => {
-            mat6_linear_first(py, &mb::se3_right_jacobian_inverse(&se3(x, p)?.log())).into_any()
-        }
-        "exp3" => m3(&so3::exp(&convert::vec3(x, op, "w")?)),
-        "log3" => {
-            let w = so3::log(&rotation_in(x, op)?);
-            array1(py, &[w.x, w.y, w.z]).into_any()
-        }
-        "Jexp3" => m3(&mb::so3_right_jacobian(&convert::vec3(x, op, "w")?)),
-        "Jlog3" => m3(&mb::so3_right_jacobian_inverse(&so3::log(&rotation_in(
-            x, op,
-        )?))),
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "_lie: unknown operation {op}"
-            )))
-        }
-    })
+    r: &Bound<'py, PyAny>,
+    p: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+    let t = se3_in(r, p, "log6")?.log();
+    Ok(array1(py, &[t.v.x, t.v.y, t.v.z, t.w.x, t.w.y, t.w.z]))
+}
+
+/// `Jexp6(v)`: the right Jacobian of SE(3)'s exponential (6 x 6, linear first).
+#[pyfunction]
+pub fn _jexp6<'py>(py: Python<'py>, v: &Bound<'py, PyAny>) -> PyResult<Array2<'py>> {
+    Ok(mat6_linear_first(
+        py,
+        &mb::se3_right_jacobian(&twist_in(v, "Jexp6")?),
+    ))
+}
+
+/// `Jlog6(R, p)`: the inverse right Jacobian at the pose's log (6 x 6, linear first).
+#[pyfunction]
+pub fn _jlog6<'py>(
+    py: Python<'py>,
+    r: &Bound<'py, PyAny>,
+    p: &Bound<'py, PyAny>,
+) -> PyResult<Array2<'py>> {
+    let t = se3_in(r, p, "Jlog6")?.log();
+    Ok(mat6_linear_first(py, &mb::se3_right_jacobian_inverse(&t)))
+}
+
+/// `exp3(w)`: the rotation `exp(ŵ)` (3 x 3).
+#[pyfunction]
+pub fn _exp3<'py>(py: Python<'py>, w: &Bound<'py, PyAny>) -> PyResult<Array2<'py>> {
+    Ok(m3(py, &so3::exp(&convert::vec3(w, "exp3", "w")?)))
+}
+
+/// `log3(R)`: the rotation vector (3,).
+#[pyfunction]
+pub fn _log3<'py>(
+    py: Python<'py>,
+    r: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+    let w = so3::log(&rotation_in(r, "log3")?);
+    Ok(array1(py, &[w.x, w.y, w.z]))
+}
+
+/// `Jexp3(w)`: the right Jacobian of SO(3)'s exponential (3 x 3).
+#[pyfunction]
+pub fn _jexp3<'py>(py: Python<'py>, w: &Bound<'py, PyAny>) -> PyResult<Array2<'py>> {
+    let w = convert::vec3(w, "Jexp3", "w")?;
+    Ok(m3(py, &mb::so3_right_jacobian(&w)))
+}
+
+/// `Jlog3(R)`: the inverse right Jacobian at the rotation's log (3 x 3).
+#[pyfunction]
+pub fn _jlog3<'py>(py: Python<'py>, r: &Bound<'py, PyAny>) -> PyResult<Array2<'py>> {
+    let w = so3::log(&rotation_in(r, "Jlog3")?);
+    Ok(m3(py, &mb::so3_right_jacobian_inverse(&w)))
+}
+
+/// Registers the maps.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(_exp6, m)?)?;
+    m.add_function(wrap_pyfunction!(_log6, m)?)?;
+    m.add_function(wrap_pyfunction!(_jexp6, m)?)?;
+    m.add_function(wrap_pyfunction!(_jlog6, m)?)?;
+    m.add_function(wrap_pyfunction!(_exp3, m)?)?;
+    m.add_function(wrap_pyfunction!(_log3, m)?)?;
+    m.add_function(wrap_pyfunction!(_jexp3, m)?)?;
+    m.add_function(wrap_pyfunction!(_jlog3, m)?)?;
+    Ok(())
 }

@@ -11,11 +11,12 @@ use rigid::interop::{Layout, LayoutError, MujocoLayout, PinocchioLayout};
 use rigid::io::mjcf::{self, MjcfError};
 use rigid::io::urdf::{self, InertiaPolicy, SiblingOrder, UrdfError, UrdfOptions};
 use rigid::multibody::{builtin, builtin_names, FrameId, JointId, MultibodyError};
-use rigid::spatial::Transform;
 use std::ffi::CString;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
+
+pub use crate::data::Data;
 
 pyo3::create_exception!(
     rigid,
@@ -742,105 +743,6 @@ impl Model {
             Some(l) => (0..joints.len()).map(|i| l.joint_q(i)).collect(),
             None => joints.iter().map(|j| (j.idx_q, j.nq)).collect(),
         }
-    }
-}
-
-/// A world pose `(R, p)` as numpy arrays.
-type Pose<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>);
-
-/// The workspace of the algorithms for one model (Pinocchio's `Data`): every buffer allocated
-/// once. After `forward_kinematics`, `placement(name)` gives a joint's or frame's world pose.
-/// Subclassable; pickled (and copied) as a fresh workspace of its model.
-#[pyclass(module = "rigid", name = "Data", subclass)]
-pub struct Data {
-    pub inner: rigid::multibody::Data,
-    /// The model it was made for (names, layout).
-    pub model: Arc<ModelCore>,
-    /// The Python model it was made for (pickled with it).
-    pub owner: Py<Model>,
-    /// Scratch buffers for the layout conversions.
-    pub q: Vec<f64>,
-    pub v: Vec<f64>,
-    pub a: Vec<f64>,
-}
-
-impl Data {
-    fn of(model: &Bound<'_, Model>) -> Self {
-        let core = &model.borrow().inner;
-        Self {
-            inner: rigid::multibody::Data::new(&core.model),
-            model: Arc::clone(core),
-            owner: model.clone().unbind(),
-            q: Vec::new(),
-            v: Vec::new(),
-            a: Vec::new(),
-        }
-    }
-}
-
-#[pymethods]
-impl Data {
-    /// A workspace for `model` (Pinocchio's `pin.Data(model)`).
-    #[new]
-    fn new(model: &Bound<'_, Model>) -> Self {
-        Self::of(model)
-    }
-
-    /// Pickling and copying: `(type(self), (model,))`, a fresh workspace of the same model (the
-    /// model is pickled with it, once however many data refer to it).
-    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
-        let py = slf.py();
-        let owner = slf.borrow().owner.clone_ref(py);
-        (slf.get_type(), (owner,))
-            .into_pyobject(py)
-            .map(Bound::into_any)
-    }
-
-    /// `copy.copy`: a fresh workspace of the same model.
-    fn __copy__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
-        let owner = slf.borrow().owner.clone_ref(slf.py());
-        slf.get_type().call1((owner,))
-    }
-
-    /// `copy.deepcopy`: a fresh workspace of the same model, or of its copy when the model is
-    /// copied in the same call (`copy.deepcopy((model, data))`).
-    fn __deepcopy__<'py>(
-        slf: &Bound<'py, Self>,
-        memo: &Bound<'py, pyo3::types::PyDict>,
-    ) -> PyResult<Bound<'py, PyAny>> {
-        let py = slf.py();
-        let owner = slf.borrow().owner.clone_ref(py).into_bound(py);
-        let key = owner.as_ptr() as usize;
-        let model = memo.get_item(key)?.unwrap_or_else(|| owner.into_any());
-        slf.get_type().call1((model,))
-    }
-
-    /// The world pose `(R, p)` of a joint's frame (as moved by the joint; Pinocchio's
-    /// `data.oMi[model.getJointId(name)]`) or of a named frame (a link, a fixed joint;
-    /// Pinocchio's `data.oMf[model.getFrameId(name)]`), from the last `forward_kinematics`:
-    /// `R` (3, 3) a rotation matrix, `p` (3,) in metres, `x_world = R x_frame + p`.
-    fn placement<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Pose<'py>> {
-        let core = &self.model;
-        let t: Transform = match core.lookup("Data.placement", name)? {
-            Place::Joint(j) => self.inner.placements[j.0],
-            Place::Frame(f) => {
-                let frame = &core.model.frames()[f.0];
-                match frame.parent {
-                    Some(p) => self.inner.placements[p.0] * frame.placement,
-                    None => frame.placement,
-                }
-            }
-        };
-        let r = &t.rotation;
-        let p = &t.translation;
-        Ok((
-            array2(py, 3, 3, |i, j| r[(i, j)]),
-            array1(py, &[p.x, p.y, p.z]),
-        ))
-    }
-
-    fn __repr__(&self) -> String {
-        format!("rigid.Data(model='{}')", self.model.model.name())
     }
 }
 

@@ -1,8 +1,8 @@
 //! The verbs the Pinocchio layer (`rigid.pinocchio`, Python sources in `python/rigid/pinocchio/`)
 //! needs beyond the others: the spatial Jacobian of all joints, frame placements, the
 //! centre-of-mass Jacobian, the centroidal momentum and its matrix, kinematics derivatives,
-//! `interpolate`, `normalize`; and, private (`_` names), the fields of a `Data` in the model's
-//! layout and the Jacobians already in a `Data`. Inverse kinematics is in inverse_kinematics.rs,
+//! `interpolate`, `normalize`; and, private (`_` names), the Jacobians already in a `Data` (its
+//! fields are `Data`'s getters, data.rs). Inverse kinematics is in inverse_kinematics.rs,
 //! SE(3)/SO(3) `exp`, `log` and their Jacobians in lie.rs. Every number is computed by the
 //! `rigid` crate; this file converts.
 
@@ -25,7 +25,7 @@ fn linear_first(core: &ModelCore) -> bool {
 }
 
 /// The six numbers of a twist in the model's layout: `(v, ω)` in Pinocchio's, `(ω, v)` else.
-fn twist6(core: &ModelCore, t: &Twist) -> [f64; 6] {
+pub(crate) fn twist6(core: &ModelCore, t: &Twist) -> [f64; 6] {
     let (a, b) = if linear_first(core) {
         (t.v, t.w)
     } else {
@@ -35,18 +35,26 @@ fn twist6(core: &ModelCore, t: &Twist) -> [f64; 6] {
 }
 
 /// The six numbers of a wrench in the model's layout: `(f, m)` in Pinocchio's, `(m, f)` else.
-fn wrench6(core: &ModelCore, w: &Wrench) -> [f64; 6] {
+pub(crate) fn wrench6(core: &ModelCore, w: &Wrench) -> [f64; 6] {
     twist6(core, &Twist::new(w.m, w.f))
 }
 
 /// A 6 x nv matrix of rigid's (rows angular first) as a fresh array in the model's layout
 /// ([`ModelCore::jacobian_out`]).
-fn six_by_nv<'py>(py: Python<'py>, core: &ModelCore, m: &nalgebra::DMatrix<f64>) -> Array2<'py> {
+pub(crate) fn six_by_nv<'py>(
+    py: Python<'py>,
+    core: &ModelCore,
+    m: &nalgebra::DMatrix<f64>,
+) -> Array2<'py> {
     core.jacobian_out(py, m)
 }
 
 /// A 3 x nv matrix of rigid's as a fresh array, columns in the model's layout.
-fn three_by_nv<'py>(py: Python<'py>, core: &ModelCore, m: &nalgebra::DMatrix<f64>) -> Array2<'py> {
+pub(crate) fn three_by_nv<'py>(
+    py: Python<'py>,
+    core: &ModelCore,
+    m: &nalgebra::DMatrix<f64>,
+) -> Array2<'py> {
     array2(py, 3, m.ncols(), |r, c| m[(r, core.v_index(c))])
 }
 
@@ -511,7 +519,7 @@ pub fn normalize<'py>(
     Ok(array1(py, &out))
 }
 
-fn transforms<'py>(py: Python<'py>, ts: &[Transform]) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn transforms<'py>(py: Python<'py>, ts: &[Transform]) -> PyResult<Bound<'py, PyAny>> {
     let mut out = Vec::with_capacity(ts.len() * 16);
     for t in ts {
         let (r, p) = (&t.rotation, &t.translation);
@@ -525,93 +533,18 @@ fn transforms<'py>(py: Python<'py>, ts: &[Transform]) -> PyResult<Bound<'py, PyA
         .into_any())
 }
 
-fn rows6<'py>(py: Python<'py>, rows: Vec<[f64; 6]>) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn rows6<'py>(py: Python<'py>, rows: Vec<[f64; 6]>) -> PyResult<Bound<'py, PyAny>> {
     let n = rows.len();
     Ok(PyArray1::from_vec(py, rows.concat())
         .reshape([n, 6])?
         .into_any())
 }
 
-fn vec3s<'py>(py: Python<'py>, xs: &[Vec3]) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn vec3s<'py>(py: Python<'py>, xs: &[Vec3]) -> PyResult<Bound<'py, PyAny>> {
     let flat: Vec<f64> = xs.iter().flat_map(|x| [x.x, x.y, x.z]).collect();
     Ok(PyArray1::from_vec(py, flat)
         .reshape([xs.len(), 3])?
         .into_any())
-}
-
-/// A field of a `Data` as a fresh array in the model's layout (the Pinocchio layer's `Data`
-/// properties): `oMi`, `liMi`, `oMf` (n x 4 x 4, rigid's frames), `v`, `a`, `a_gf` (n x 6
-/// twists), `f` (n x 6 wrenches), `tau`, `nle`, `g`, `ddq`, `M`, `Minv`, `C`, `dtau_dq`,
-/// `dtau_dv`, `ddq_dq`, `ddq_dv`, `J`, `Jcom`, `Ag`, `hg`, `Ig` (mass, lever, inertia about the
-/// centre of mass), `com`, `vcom`, `acom`, `mass`, `subtree_com`, `subtree_vcom`,
-/// `subtree_acom`, `subtree_mass`, `q`, `v_in` (the last `q` and `v` used, in the model's layout).
-#[pyfunction]
-pub fn _data_array<'py>(
-    py: Python<'py>,
-    data: PyRef<'py, Data>,
-    name: &str,
-) -> PyResult<Bound<'py, PyAny>> {
-    let core = &*data.model;
-    let d = &data.inner;
-    let der = &d.derivatives;
-    let v3 = |x: &Vec3| array1(py, &[x.x, x.y, x.z]).into_any();
-    Ok(match name {
-        "oMi" => transforms(py, &d.placements)?,
-        "liMi" => transforms(py, &d.parent_placements)?,
-        "oMf" => transforms(py, &d.frame_placements)?,
-        "v" => rows6(py, d.velocities.iter().map(|t| twist6(core, t)).collect())?,
-        "a" => rows6(
-            py,
-            d.accelerations.iter().map(|t| twist6(core, t)).collect(),
-        )?,
-        "a_gf" => rows6(
-            py,
-            d.accelerations_gravity
-                .iter()
-                .map(|t| twist6(core, t))
-                .collect(),
-        )?,
-        "f" => rows6(py, d.forces.iter().map(|w| wrench6(core, w)).collect())?,
-        "tau" => core.v_out(py, d.tau.as_slice()).into_any(),
-        "nle" => core.v_out(py, d.nle.as_slice()).into_any(),
-        "g" => core.v_out(py, d.g.as_slice()).into_any(),
-        "ddq" => core.v_out(py, d.ddq.as_slice()).into_any(),
-        "M" => core.matrix_out(py, &d.mass_matrix).into_any(),
-        "Minv" => core.matrix_out(py, &d.minv).into_any(),
-        "C" => core.matrix_out(py, &d.coriolis).into_any(),
-        "dtau_dq" => core.matrix_out(py, &der.dtau_dq).into_any(),
-        "dtau_dv" => core.matrix_out(py, &der.dtau_dv).into_any(),
-        "ddq_dq" => core.matrix_out(py, &der.dqdd_dq).into_any(),
-        "ddq_dv" => core.matrix_out(py, &der.dqdd_dv).into_any(),
-        "J" => six_by_nv(py, core, &d.jacobian).into_any(),
-        "Jcom" => three_by_nv(py, core, &d.com_jacobian).into_any(),
-        "Ag" => six_by_nv(py, core, &d.centroidal_map).into_any(),
-        "hg" => array1(py, &wrench6(core, &d.centroidal_momentum)).into_any(),
-        "Ig" => {
-            let g = &d.centroidal_inertia;
-            let i = g.inertia_com();
-            let i = i.matrix();
-            let c = g.com();
-            (g.mass(), v3(&c), array2(py, 3, 3, |r, k| i[(r, k)]))
-                .into_pyobject(py)?
-                .into_any()
-        }
-        "com" => v3(&d.com),
-        "vcom" => v3(&d.com_velocity),
-        "acom" => v3(&d.com_acceleration),
-        "mass" => d.mass.into_pyobject(py)?.into_any(),
-        "subtree_com" => vec3s(py, &d.subtree_coms)?,
-        "subtree_vcom" => vec3s(py, &d.subtree_com_velocities)?,
-        "subtree_acom" => vec3s(py, &d.subtree_com_accelerations)?,
-        "subtree_mass" => array1(py, &d.subtree_masses).into_any(),
-        "q" => core.q_out(py, &data.q).into_any(),
-        "v_in" => core.v_out(py, &data.v).into_any(),
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "_data_array: unknown field {name}"
-            )))
-        }
-    })
 }
 
 /// Registers this file's functions, and Pinocchio's names of the public ones.
@@ -631,8 +564,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     )?)?;
     m.add_function(wrap_pyfunction!(_subtree_centers_of_mass, m)?)?;
     m.add_function(wrap_pyfunction!(_stored_jacobian, m)?)?;
-    m.add_function(wrap_pyfunction!(_data_array, m)?)?;
-    m.add_function(wrap_pyfunction!(crate::lie::_lie, m)?)?;
+    crate::lie::register(m)?;
     m.add_function(wrap_pyfunction!(_model_assign, m)?)?;
     m.add_function(wrap_pyfunction!(_bounds_to_rigid, m)?)?;
     for (alias, name) in [

@@ -10,7 +10,7 @@ exit 1 if it exceeds 1e-9. The pytest suite (test_pinocchio_scripts.py) runs the
 `pinocchio_scripts/` with it.
 
 Also compared: a `Model`'s sizes, joint placements, bodies (not the universe's) and frames, and a
-`GeometryModel`'s objects (placements, joints) and pair count.
+`GeometryModel`'s objects (placements, joints, frames, mesh scales and colours) and pairs.
 
 Same inputs: each run starts with `numpy.random.seed(0)`; the configurations
 `randomConfiguration` draws in the Pinocchio run are replayed, in order, in the rigid run (the
@@ -61,7 +61,12 @@ def _plain(x, depth=0):
         g = x.geometryObjects
         return np.concatenate([np.array([x.ngeoms, len(x.collisionPairs)], dtype=float)]
                               + [np.asarray(o.placement.homogeneous, float).ravel() for o in g]
-                              + [np.array([o.parentJoint for o in g], dtype=float)])
+                              + [np.array([o.parentJoint for o in g], dtype=float),
+                                 np.array([o.parentFrame for o in g], dtype=float)]
+                              + [np.asarray(o.meshScale, float) for o in g]
+                              + [np.asarray(o.meshColor, float) for o in g]
+                              + [np.array([[p.first, p.second] for p in x.collisionPairs],
+                                          dtype=float).reshape(-1)])
     if type(x).__name__.startswith("StdVec_"):  # Pinocchio's vectors of its objects
         x = list(x)
     if isinstance(x, (list, tuple)) and x:

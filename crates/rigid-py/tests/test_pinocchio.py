@@ -50,6 +50,31 @@ def test_dynamics_layout_pinocchio_raw_arrays_equal_pinocchio(robot):
                      "potential_energy")
 
 
+def test_data_fields_are_pinocchios_in_its_layout(robot):
+    """`rigid.Data`'s fields (Pinocchio's names) after each algorithm, in Pinocchio's layout,
+    against Pinocchio's Data (oMi without the universe; M symmetric in rigid)."""
+    pm, pd, m = robot.pm, robot.pd, robot.rp
+    d = m.create_data()
+    q, v, a, tau = robot.states[0]
+    rigid.rnea(m, d, q, v, a)
+    pin.rnea(pm, pd, q, v, a)
+    assert_close(d.tau, pd.tau, "data.tau")
+    assert_close(d.v, np.array([x.vector for x in pd.v[1:]]), "data.v")
+    assert_close(d.f, np.array([x.vector for x in pd.f[1:]]), "data.f")
+    rigid.forward_kinematics(m, d, q)
+    assert_close(d.oMi, np.array([x.homogeneous for x in pd.oMi[1:]]), "data.oMi")
+    assert_close(d.q_in, q, "data.q_in")
+    rigid.crba(m, d, q)
+    assert_close(d.M, symmetric(pin.crba(pm, pd, q)), "data.M")
+    rigid.aba(m, d, q, v, tau)
+    assert_close(d.ddq, pin.aba(pm, pd, q, v, tau), "data.ddq")
+    rigid.nle(m, d, q, v)
+    assert_close(d.nle, pin.nonLinearEffects(pm, pd, q, v), "data.nle")
+    rigid.com(m, d, q)
+    pin.centerOfMass(pm, pd, q)
+    assert_close(d.com, pd.com[0], "data.com")
+
+
 def test_dynamics_rigid_layout_equal_pinocchio_mapped_by_joint_name(robot):
     pm, pd, m = robot.pm, robot.pd, robot.rr
     d = m.create_data()

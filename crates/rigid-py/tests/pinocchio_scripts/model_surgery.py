@@ -1,5 +1,6 @@
 # A URDF (argv[1], meshes under argv[2]) with a spherical pendulum appended at its frame argv[3],
-# and the URDF with its last three joints locked: the models' dynamics and geometry.
+# and with a second URDF (argv[4]; its base link, welded to the world, joins the frame's body);
+# and the first URDF with its last three joints locked: the models' dynamics and geometry.
 import sys
 
 import numpy as np
@@ -29,6 +30,14 @@ frame_parents = np.array([f.parentJoint for f in model.frames], float)
 visual_data = visual.createData()
 pin.updateGeometryPlacements(model, data, visual, visual_data)
 visual_world = list(visual_data.oMg)
+
+model_b = pin.buildModelFromUrdf(sys.argv[4])
+both = pin.appendModel(model1, model_b, model1.getFrameId(sys.argv[3]),
+                       pin.SE3(pin.utils.rotate("z", 0.5), np.array([0.0, 0.1, 0.2])))
+data_both = both.createData()
+q_both = pin.randomConfiguration(both)
+M_both = pin.crba(both, data_both, q_both)
+tau_both = pin.rnea(both, data_both, q_both, np.ones(both.nv), np.ones(both.nv))
 
 lock = list(range(model1.njoints - 3, model1.njoints))
 q1 = pin.randomConfiguration(model1)

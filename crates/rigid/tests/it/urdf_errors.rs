@@ -465,3 +465,34 @@ fn a_fixed_joint_named_like_its_child_link_is_ambiguous_by_name_only() {
         .frame_id_of_kind("tool", FrameKind::FixedJoint)
         .is_some());
 }
+
+/// A visual's colour as urdfdom (and so Pinocchio) reads it: a known material name wins over the
+/// element's own `<color>`, and an element that first names a material defines it for the later
+/// ones (TALOS's `DarkGrey`).
+#[test]
+fn material_colours_follow_urdfdoms_first_definition() {
+    let robot = rigid::io::urdf::parse_urdf_str(
+        r#"<robot name="r">
+  <material name="Top"><color rgba="0.1 0.1 0.1 1"/></material>
+  <link name="a">
+    <visual><geometry><box size="1 1 1"/></geometry>
+      <material name="Dark"><color rgba="0.2 0.2 0.2 1"/></material></visual>
+    <visual><geometry><box size="1 1 1"/></geometry>
+      <material name="Top"><color rgba="0.9 0.9 0.9 1"/></material></visual>
+  </link>
+  <link name="b">
+    <visual><geometry><box size="1 1 1"/></geometry>
+      <material name="Dark"><color rgba="0.5 0.5 0.5 1"/></material></visual>
+    <visual><geometry><box size="1 1 1"/></geometry>
+      <material><color rgba="0.3 0.4 0.5 1"/></material></visual>
+  </link>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>"#,
+    )
+    .unwrap();
+    let colour = |l: usize, k: usize| robot.links[l].visuals[k].rgba.unwrap()[0];
+    assert_eq!(colour(0, 0), 0.2);
+    assert_eq!(colour(0, 1), 0.1);
+    assert_eq!(colour(1, 0), 0.2);
+    assert_eq!(colour(1, 1), 0.3);
+}

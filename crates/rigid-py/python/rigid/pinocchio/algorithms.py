@@ -76,7 +76,7 @@ def _rf(rf):
 
 
 def _last_q(data):
-    q = _r._data_array(data, "q")
+    q = _r.Data.q_in.__get__(data)
     if q.size != data._model.nq:
         raise ValueError("no configuration: call an algorithm with q first (forwardKinematics)")
     return q
@@ -214,7 +214,7 @@ def computeCentroidalMomentum(model, data, q=None, v=None):
     """The centroidal momentum ``h_G`` (a ``Force``: linear, then angular momentum about the
     centre of mass); also ``data.hg``, ``data.com[0]``, ``data.vcom[0]``."""
     if q is None:
-        q, v = _last_q(data), _r._data_array(data, "v_in")
+        q, v = _last_q(data), _r.Data.v_in.__get__(data)
     return Force(_r.centroidal_momentum(model, data, q, v))
 
 
@@ -233,7 +233,7 @@ def computeSubtreeMasses(model, data):
 def computeKineticEnergy(model, data, q=None, v=None):
     """``½ vᵀ M v``, also in ``data.kinetic_energy`` (without ``q``, ``v``: the last ones)."""
     if q is None:
-        q, v = _last_q(data), _r._data_array(data, "v_in")
+        q, v = _last_q(data), _r.Data.v_in.__get__(data)
     data.kinetic_energy = _r.kinetic_energy(model, data, q, v)
     return data.kinetic_energy
 
@@ -358,27 +358,42 @@ def distance(model, q0, q1):
 
 def forwardDynamics(model, data, *args, **kwargs):
     """``forwardDynamics(model, data, q, v, tau)``: ``aba``. With contact Jacobians (Pinocchio's
-    contact dynamics, ``forwardDynamics(model, data, q, v, tau, J, gamma, damping=0)``): the
-    accelerations under the constraints ``J a + γ = 0``, Featherstone's range-space form as
-    Pinocchio's: ``a_f = M⁻¹ (τ − nle)``, ``λ = (J M⁻¹ Jᵀ + damping I)⁻¹ (−γ − J a_f)``,
-    ``a = a_f + M⁻¹ Jᵀ λ``; ``λ`` in ``data.lambda_c``. ``M`` and ``nle`` are rigid's."""
-    if len(args) == 3 and not kwargs:
+    contact dynamics): ``forwardDynamics(model, data, q, v, tau, J, gamma, damping=0)``, or
+    ``forwardDynamics(model, data, tau, J, gamma, damping=0)`` on the ``M`` and ``nle`` of the
+    last ``computeAllTerms``: the accelerations under ``J a + γ = 0``, Featherstone's
+    range-space form as Pinocchio's: ``a_f = M⁻¹ (τ − nle)``, ``λ = (J M⁻¹ Jᵀ + damping I)⁻¹
+    (−γ − J a_f)``, ``a = a_f + M⁻¹ Jᵀ λ``; ``λ`` in ``data.lambda_c``, ``a`` returned (not in
+    ``data.ddq``, which holds what rigid's own algorithms last wrote)."""
+    if len(args) == 3 and not kwargs and np.ndim(args[1]) == 1:
         return _r.aba(model, data, *args)
-    names = ("q", "v", "tau", "J", "gamma", "damping")
+    with_state = len(args) >= 4 and np.ndim(args[3]) == 2 or "J" in kwargs and len(args) == 3
+    names = ("q", "v", "tau", "J", "gamma", "damping") if with_state else \
+        ("tau", "J", "gamma", "damping")
+    if len(args) > len(names) or any(k not in names for k in kwargs):
+        raise TypeError("forwardDynamics(model, data, q, v, tau[, J, gamma, damping=0.0]) or "
+                        "(model, data, tau, J, gamma[, damping=0.0])")
     given = dict(zip(names, args))
     given.update(kwargs)
-    if "J" not in given or len(args) > 6 or any(k not in names for k in kwargs):
-        raise TypeError("forwardDynamics(model, data, q, v, tau[, J, gamma, damping=0.0])")
-    q, v, tau = given["q"], given["v"], np.asarray(given["tau"], dtype=float)
+    if "J" not in given:
+        raise TypeError("forwardDynamics: the contact form needs J (and gamma)")
+    nv = model.nv
+    tau = np.asarray(given["tau"], dtype=float).reshape(-1)
     J = np.atleast_2d(np.asarray(given["J"], dtype=float))
-    gamma = np.asarray(given.get("gamma", np.zeros(J.shape[0])), dtype=float)
-    if J.shape[1] != model.nv or gamma.shape != (J.shape[0],):
-        raise ValueError(f"forwardDynamics: J must be (m, {model.nv}) and gamma (m,), got "
-                         f"{J.shape} and {gamma.shape}")
-    M = np.triu(_r.crba(model, data, q))
+    gamma = np.asarray(given.get("gamma", np.zeros(J.shape[0])), dtype=float).reshape(-1)
+    if tau.shape != (nv,) or J.shape[1] != nv or gamma.shape != (J.shape[0],):
+        raise ValueError(f"forwardDynamics: tau must be ({nv},), J (m, {nv}) and gamma (m,), "
+                         f"got {tau.shape}, {J.shape} and {gamma.shape}")
+    if with_state:
+        M = _r.crba(model, data, given["q"])
+        nle = _r.nle(model, data, given["q"], given["v"])
+    else:  # after computeAllTerms
+        M, nle = data.M, data.nle
+    M = np.triu(M)
     M = M + np.triu(M, 1).T
-    nle = _r.nle(model, data, q, v)
-    L = np.linalg.cholesky(M)
+    try:
+        L = np.linalg.cholesky(M)
+    except np.linalg.LinAlgError:
+        raise ValueError("forwardDynamics: the mass matrix is not positive definite") from None
 
     def minv(x):
         return np.linalg.solve(L.T, np.linalg.solve(L, x))
@@ -386,7 +401,11 @@ def forwardDynamics(model, data, *args, **kwargs):
     a_free = minv(tau - nle)
     MinvJt = minv(J.T)
     JMinvJt = J @ MinvJt + float(given.get("damping", 0.0)) * np.eye(J.shape[0])
-    lam = np.linalg.solve(JMinvJt, -gamma - J @ a_free)
+    try:
+        lam = np.linalg.solve(JMinvJt, -gamma - J @ a_free)
+    except np.linalg.LinAlgError:
+        raise ValueError("forwardDynamics: J M⁻¹ Jᵀ is singular (dependent constraints): give "
+                         "a damping > 0") from None
     data.lambda_c = lam
     return a_free + MinvJt @ lam
 

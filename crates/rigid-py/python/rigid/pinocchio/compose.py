@@ -16,17 +16,29 @@ __all__ = ["appendModel", "buildReducedModel"]
 
 
 def _limits(src, j):
-    """A joint's effort, velocity and position limits, for ``addJoint``."""
+    """A joint's effort, velocity and position limits, friction and damping, for ``addJoint``."""
     iq, iv = src.joints[j].idx_q, src.joints[j].idx_v
     nq, nv = src.joints[j].nq, src.joints[j].nv
     return (src.effortLimit[iv:iv + nv], src.velocityLimit[iv:iv + nv],
-            src.lowerPositionLimit[iq:iq + nq], src.upperPositionLimit[iq:iq + nq])
+            src.lowerPositionLimit[iq:iq + nq], src.upperPositionLimit[iq:iq + nq],
+            src.friction[iv:iv + nv], src.damping[iv:iv + nv])
 
 
 def _add_body(out, joint, Y, placement=None):
-    """``appendBodyToJoint``, but a body on the universe (not in the dynamics) is left out."""
-    if joint != 0 and Y.mass > 0:
-        out.appendBodyToJoint(joint, Y, SE3.Identity() if placement is None else placement)
+    """``appendBodyToJoint``; a body on the universe goes to the world's inertia (Pinocchio's
+    ``inertias[0]``, not in rigid's dynamics)."""
+    M = SE3.Identity() if placement is None else placement
+    if Y.mass <= 0:
+        return
+    if joint == 0:
+        out._world_inertia = out._world_inertia + M.act(Y)
+    else:
+        out.appendBodyToJoint(joint, Y, M)
+
+
+def _world(model):
+    """The inertia welded to the world (``inertias[0]`` in Pinocchio)."""
+    return getattr(model, "_world_inertia", model.inertias[0])
 
 
 def _frame_id(src, out, name, type_):
@@ -55,12 +67,12 @@ def appendModel(modelA, modelB, *args):
                          f"({modelA.nframes} frames)")
     frame = modelA.frames[fid]
     out, gout = Model(), GeometryModel()
-    out.name, out.gravity = modelA.name, modelA.gravity
+    out.gravity = modelA.gravity  # the name stays empty, as Pinocchio 4.1's
 
     def universe(src, gsrc, parent_frame, pfM):
         pframe = out.frames[parent_frame]
         jid = pframe.parentJoint
-        _add_body(out, jid, src.inertias[0], pframe.placement * pfM)
+        _add_body(out, jid, _world(src), pframe.placement * pfM)
         for f in list(src.frames)[1:]:
             if f.parentJoint != 0:
                 continue
@@ -80,7 +92,7 @@ def appendModel(modelA, modelB, *args):
             g.parentJoint = jid
             g.parentFrame = (_frame_id(src, out, src.frames[go.parentFrame].name,
                                        src.frames[go.parentFrame].type)
-                             if go.parentFrame != 0 else parent_frame)
+                             if 0 < go.parentFrame < src.nframes else parent_frame)
             g.placement = pframe.placement * pfM * go.placement
             gout.addGeometryObject(g)
 
@@ -164,6 +176,7 @@ def _reduced(model, locked, q_ref):
     oMi = data.oMi
     out = Model()
     out.name, out.gravity = model.name, model.gravity
+    out._world_inertia = _world(model)
     frames = list(model.frames)
 
     def add_frame(f):

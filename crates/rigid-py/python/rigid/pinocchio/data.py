@@ -70,7 +70,8 @@ class Data(_r.Data):
         self._com_local = False
 
     def _a(self, name):
-        return _r._data_array(self, name)
+        """The field ``name`` as ``rigid.Data`` reads it (an array in the model's layout)."""
+        return getattr(_r.Data, name).__get__(self)
 
     @property
     def mechanical_energy(self):
@@ -118,18 +119,6 @@ class Data(_r.Data):
         rows = self._with_universe("a_gf", zero)
         return _Items(len(rows), lambda i: Motion(rows[i]))
 
-    tau = property(lambda s: s._a("tau"))
-    nle = property(lambda s: s._a("nle"))
-    g = property(lambda s: s._a("g"))
-    ddq = property(lambda s: s._a("ddq"))
-    M = property(lambda s: s._a("M"))
-    Minv = property(lambda s: s._a("Minv"))
-    C = property(lambda s: s._a("C"))
-    J = property(lambda s: s._a("J"))
-    Jcom = property(lambda s: s._a("Jcom"))
-    Ag = property(lambda s: s._a("Ag"))
-    dtau_dq = property(lambda s: s._a("dtau_dq"))
-    dtau_dv = property(lambda s: s._a("dtau_dv"))
     # the constrained or impulse dynamics' derivatives when they were the last computed
     ddq_dq = property(lambda s: s._derivative("ddq_dq", "ddq_dq"))
     ddq_dv = property(lambda s: s._derivative("ddq_dv", "ddq_dv"))

@@ -1,7 +1,7 @@
 """``exp`` and ``log`` of SO(3) and SE(3) and their Jacobians (Pinocchio's ``exp3``, ``log3``,
 ``exp6``, ``log6``, ``Jexp3``, ``Jlog3``, ``Jexp6``, ``Jlog6``, ``exp``, ``log``), computed by rigid
-(``rigid.rigid._lie``: the crate's ``Transform::exp``/``log``, ``so3::exp``/``log`` and the right
-Jacobians of SO(3) and SE(3)); ``Quaternion``, ``AngleAxis``, ``rpy`` and the XYZQUAT forms.
+(``rigid.rigid._exp6``, ``_log6``, ...: the crate's ``Transform::exp``/``log``, ``so3::exp``/
+``log`` and the right Jacobians of SO(3) and SE(3)); ``Quaternion``, ``AngleAxis``, ``rpy`` and the XYZQUAT forms.
 Twists linear first, as Pinocchio's ``Motion``."""
 
 import numpy as np
@@ -149,17 +149,17 @@ def _motion_vec(x, what):
 
 def exp3(w):
     """``exp([ω])`` (3 x 3)."""
-    return _r._lie("exp3", _vec(w, 3, "exp3"))
+    return _r._exp3(_vec(w, 3, "exp3"))
 
 
 def log3(R):
     """``ω`` with ``exp([ω]) = R``, ``|ω| ≤ π``."""
-    return _r._lie("log3", np.asarray(R, dtype=float))
+    return _r._log3(np.asarray(R, dtype=float))
 
 
 def exp6(v):
     """``exp`` of a twist (a ``Motion`` or 6-vector, linear first): an ``SE3``."""
-    return SE3(_r._lie("exp6", _motion_vec(v, "exp6")))
+    return SE3(_r._exp6(_motion_vec(v, "exp6")))
 
 
 def _se3_of(M, what):
@@ -174,7 +174,7 @@ def _se3_of(M, what):
 def log6(M):
     """``log`` of an ``SE3`` (or 4 x 4 matrix): a ``Motion``."""
     M = _se3_of(M, "log6")
-    return Motion(_r._lie("log6", M.rotation, M.translation))
+    return Motion(_r._log6(M.rotation, M.translation))
 
 
 def exp(x):
@@ -203,23 +203,23 @@ def log(x):
 
 def Jexp3(w):
     """The right Jacobian of SO(3) at ``ω``: ``exp(ω + δ) ≈ exp(ω) exp(Jexp3(ω) δ)``."""
-    return _r._lie("Jexp3", _vec(w, 3, "Jexp3"))
+    return _r._jexp3(_vec(w, 3, "Jexp3"))
 
 
 def Jlog3(R):
     """The derivative of ``log3`` in the body frame: ``Jexp3(log3 R)⁻¹``."""
-    return _r._lie("Jlog3", np.asarray(R, dtype=float))
+    return _r._jlog3(np.asarray(R, dtype=float))
 
 
 def Jexp6(v):
     """The right Jacobian of SE(3) at the twist ``v`` (linear first)."""
-    return _r._lie("Jexp6", _motion_vec(v, "Jexp6"))
+    return _r._jexp6(_motion_vec(v, "Jexp6"))
 
 
 def Jlog6(M):
     """The derivative of ``log6`` in the body frame: ``Jexp6(log6 M)⁻¹`` (linear first)."""
     M = _se3_of(M, "Jlog6")
-    return _r._lie("Jlog6", M.rotation, M.translation)
+    return _r._jlog6(M.rotation, M.translation)
 
 
 def SE3ToXYZQUAT(M):

@@ -24,9 +24,12 @@ class CollisionGeometry:
         raise NotImplementedError
 
     def collider(self):
-        if getattr(self, "_made", None) is None:
-            self._made = (_r.Collider(self._kind, self._size()), self._offset())
-        return self._made
+        """The ``rigid.Collider`` of the current dimensions (made again when they changed)."""
+        size = tuple(float(x) for x in self._size())
+        made = getattr(self, "_made", None)
+        if made is None or made[0] != size:
+            self._made = (size, _r.Collider(self._kind, list(size)), self._offset())
+        return self._made[1:]
 
     def _offset(self):
         return None
@@ -96,6 +99,9 @@ class Cone(_Axial):
 
 
 class Ellipsoid(CollisionGeometry):
+    """Collides as the convex hull of 162 points of its surface (rigid's ellipsoid), so its
+    distances are not exact (one of 0.15956 m measured 0.16025 m)."""
+
     _kind = "ellipsoid"
 
     def __init__(self, rx, ry=None, rz=None):
@@ -117,13 +123,14 @@ class BVHModelOBBRSS(CollisionGeometry):
         self.scale = np.ones(3) if scale is None else np.asarray(scale, dtype=float)
 
     def collider(self):
-        if getattr(self, "_made", None) is None:
+        if getattr(self, "_made", None) is None or self._made[0] != (self.path, tuple(self.scale)):
             if self.path is None:
                 raise NotImplementedError(
                     "BVHModelOBBRSS built triangle by triangle (beginModel/addTriangle): "
                     "rigid.pinocchio reads meshes from files only (MeshLoader().load(path))")
-            self._made = (_r.Collider("mesh", path=self.path, scale=self.scale), None)
-        return self._made
+            self._made = ((self.path, tuple(self.scale)),
+                          _r.Collider("mesh", path=self.path, scale=self.scale), None)
+        return self._made[1:]
 
     def __repr__(self):
         return f"BVHModelOBBRSS({self.path!r})"

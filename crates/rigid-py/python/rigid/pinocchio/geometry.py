@@ -29,37 +29,64 @@ class GeometryType:
 
 
 class GeometryObject:
-    """A shape fixed in a joint's body: ``GeometryObject(name, parent_joint, placement, shape)``,
-    ``(name, parent_joint, parent_frame, placement, shape)`` or ``(name, parent_joint, shape,
-    placement)`` as Pinocchio's overloads, with ``meshPath``, ``meshScale``, ``meshColor``."""
+    """A shape fixed in a joint's body, Pinocchio's overloads: ``GeometryObject(name,
+    parent_joint, parent_frame, placement, shape[, mesh_path, mesh_scale, override_material,
+    mesh_color, mesh_texture_path])``, ``(name, parent_joint, placement, shape, ...)``, and the
+    deprecated ``(name, parent_frame, parent_joint, shape, placement, ...)``; keywords as
+    Pinocchio's. A frame not given is ``2**64 - 1`` (none), as in Pinocchio."""
 
-    def __init__(self, name, parent_joint, *args, mesh_path="", mesh_scale=None,
-                 override_material=False, mesh_color=None, mesh_texture_path="", **kwargs):
+    NO_FRAME = 2**64 - 1
+    _OPTIONAL = ("mesh_path", "mesh_scale", "override_material", "mesh_color", "mesh_texture_path")
+
+    def __init__(self, name, *args, **kwargs):
         args = list(args)
-        parent_frame = 0
-        if args and isinstance(args[0], (int, np.integer)):
-            parent_frame = int(args.pop(0))
-        shape = next((a for a in args if not isinstance(a, SE3)), kwargs.get("collision_geometry"))
-        placement = next((a for a in args if isinstance(a, SE3)), kwargs.get("placement"))
-        if shape is None or placement is None:
-            raise TypeError("GeometryObject(name, parent_joint, [parent_frame,] placement, shape)")
+        ints = []
+        while args and isinstance(args[0], (int, np.integer)) and len(ints) < 2:
+            ints.append(int(args.pop(0)))
+        kw = dict(kwargs)
+        joint = kw.pop("parent_joint", None)
+        frame = kw.pop("parent_frame", None)
+        if len(args) >= 2 and not isinstance(args[0], SE3) and isinstance(args[1], SE3):
+            # (name, parent_frame, parent_joint, shape, placement): Pinocchio 3's deprecated form
+            shape, placement = args[0], args[1]
+            if len(ints) == 2:
+                frame, joint = ints
+            args = args[2:]
+        else:
+            placement = args.pop(0) if args and isinstance(args[0], SE3) else kw.pop("placement", None)
+            shape = args.pop(0) if args else kw.pop("collision_geometry", None)
+            if len(ints) == 2:
+                joint, frame = ints
+            elif len(ints) == 1:
+                joint = ints[0]
+        if joint is None or shape is None or placement is None:
+            raise TypeError(f"GeometryObject('{name}'): GeometryObject(name, parent_joint, "
+                            "[parent_frame,] placement, shape, ...)")
+        for key, value in zip(self._OPTIONAL, args):
+            kw.setdefault(key, value)
+        unknown = set(kw) - set(self._OPTIONAL) - {"collision_geometry", "placement"}
+        if unknown:
+            raise TypeError(f"GeometryObject('{name}'): unknown arguments {sorted(unknown)}")
         self.name = name
-        self.parentJoint = int(parent_joint)
-        self.parentFrame = parent_frame
+        self.parentJoint = int(joint)
+        self.parentFrame = self.NO_FRAME if frame is None else int(frame)
         self.placement = SE3(placement)
         self.geometry = shape
-        self.meshPath = mesh_path
-        self.meshScale = np.ones(3) if mesh_scale is None else np.asarray(mesh_scale, float)
-        self.meshColor = (np.array([0.0, 0.0, 0.0, 1.0]) if mesh_color is None
-                          else np.asarray(mesh_color, float))
-        self.overrideMaterial = override_material
-        self.meshTexturePath = mesh_texture_path
+        self.meshPath = kw.get("mesh_path", "")
+        scale, color = kw.get("mesh_scale"), kw.get("mesh_color")
+        self.meshScale = np.ones(3) if scale is None else np.array(scale, dtype=float)
+        self.meshColor = (np.array([0.0, 0.0, 0.0, 1.0]) if color is None
+                          else np.array(color, dtype=float))
+        self.overrideMaterial = bool(kw.get("override_material", False))
+        self.meshTexturePath = kw.get("mesh_texture_path", "")
         self.disableCollision = False
 
     parentJointId = property(lambda s: s.parentJoint)
 
     def copy(self):
-        g = GeometryObject(self.name, self.parentJoint, self.parentFrame, self.placement,
+        """A copy (its own placement, scale and colour; the same shape object, as Pinocchio's
+        shared pointer)."""
+        g = GeometryObject(self.name, self.parentJoint, self.parentFrame, self.placement.copy(),
                            self.geometry, mesh_path=self.meshPath, mesh_scale=self.meshScale,
                            override_material=self.overrideMaterial, mesh_color=self.meshColor,
                            mesh_texture_path=self.meshTexturePath)
@@ -148,7 +175,10 @@ class GeometryModel:
         return len(self.geometryObjects)
 
     def addGeometryObject(self, obj, model=None):
-        if model is not None and obj.parentFrame == 0 and obj.parentJoint != 0:
+        """Adds a copy of ``obj`` (as Pinocchio); with ``model``, an object without a frame
+        gets its joint's frame. Returns its index."""
+        obj = obj.copy()
+        if model is not None and obj.parentFrame == GeometryObject.NO_FRAME:
             obj.parentFrame = next((i for i, f in enumerate(model.frames)
                                     if f.parentJoint == obj.parentJoint
                                     and f.type == FrameType.JOINT), 0)
@@ -199,7 +229,7 @@ class GeometryModel:
     def copy(self):
         c = GeometryModel()
         c.geometryObjects = [g.copy() for g in self.geometryObjects]
-        c.collisionPairs = list(self.collisionPairs)
+        c.collisionPairs = [CollisionPair(p.first, p.second) for p in self.collisionPairs]
         return c
 
     clone = copy
@@ -221,12 +251,12 @@ class GeometryData:
         self.collisionResults = [CollisionResult() for _ in range(p)]
         self.distanceResults = [DistanceResult() for _ in range(p)]
 
-    def _fit(self, geom_model):
-        p = len(geom_model.collisionPairs)
-        if len(self.collisionResults) != p:
-            self.activeCollisionPairs = [True] * p
-            self.collisionResults = [CollisionResult() for _ in range(p)]
-            self.distanceResults = [DistanceResult() for _ in range(p)]
+    def _check(self, geom_model):
+        p, n = len(geom_model.collisionPairs), geom_model.ngeoms
+        if len(self.collisionResults) != p or len(self.oMg) != n:
+            raise ValueError(f"GeometryData: made for {len(self.oMg)} geometries and "
+                             f"{len(self.collisionResults)} pairs, the model has {n} and {p}: "
+                             "make it again (geom_model.createData()) after adding any")
 
 
 def createDatas(model, *geom_models):
@@ -249,16 +279,27 @@ def _pair_proximity(geom_model, geom_data, k):
     pair = geom_model.collisionPairs[k]
     ends = []
     for i in (pair.first, pair.second):
-        collider, offset = geom_model.geometryObjects[i].geometry.collider()
+        g = geom_model.geometryObjects[i]
+        try:
+            collider, offset = g.geometry.collider()
+        except (ValueError, OSError) as e:
+            raise ValueError(f"collision pair {k} {pair}: geometry {i} '{g.name}': {e}") from None
         M = geom_data.oMg[i].homogeneous
         ends.append((collider, M if offset is None else M @ offset))
     return _r.proximity(ends[0][0], ends[0][1], ends[1][0], ends[1][1])
 
 
+def _checked(geom_model, geom_data, k):
+    """Whether pair ``k`` is checked: active, and neither geometry's collisions disabled."""
+    p, g = geom_model.collisionPairs[k], geom_model.geometryObjects
+    return (geom_data.activeCollisionPairs[k] and not g[p.first].disableCollision
+            and not g[p.second].disableCollision)
+
+
 def computeCollision(geom_model, geom_data, pair_index, *args):
     """Whether pair ``pair_index`` touches at ``geom_data.oMg``; ``collisionResults[pair_index]``
     holds its contact."""
-    geom_data._fit(geom_model)
+    geom_data._check(geom_model)
     d, pa, pb, n = _pair_proximity(geom_model, geom_data, pair_index)
     r = geom_data.collisionResults[pair_index]
     r.clear()
@@ -278,10 +319,10 @@ def computeCollisions(*args, stop_at_first_collision=False):
     else:
         geom_model, geom_data = args[:2]
         stop = args[2] if len(args) > 2 else stop_at_first_collision
-    geom_data._fit(geom_model)
+    geom_data._check(geom_model)
     any_ = False
     for k in range(len(geom_model.collisionPairs)):
-        if not geom_data.activeCollisionPairs[k]:
+        if not _checked(geom_model, geom_data, k):
             geom_data.collisionResults[k].clear()
             continue
         if computeCollision(geom_model, geom_data, k):
@@ -294,7 +335,7 @@ def computeCollisions(*args, stop_at_first_collision=False):
 def computeDistance(geom_model, geom_data, pair_index):
     """The ``DistanceResult`` of pair ``pair_index`` at ``geom_data.oMg`` (also stored in
     ``distanceResults``)."""
-    geom_data._fit(geom_model)
+    geom_data._check(geom_model)
     d, pa, pb, n = _pair_proximity(geom_model, geom_data, pair_index)
     geom_data.distanceResults[pair_index] = DistanceResult(d, pa, pb, n)
     return geom_data.distanceResults[pair_index]
@@ -309,9 +350,10 @@ def computeDistances(*args):
                                  args[4] if len(args) > 4 else None)
     else:
         geom_model, geom_data = args[:2]
+    geom_data._check(geom_model)
     best, nearest = np.inf, len(geom_model.collisionPairs)
     for k in range(len(geom_model.collisionPairs)):
-        if geom_data.activeCollisionPairs[k]:
+        if _checked(geom_model, geom_data, k):
             d = computeDistance(geom_model, geom_data, k).min_distance
             if d < best:
                 best, nearest = d, k
@@ -324,36 +366,60 @@ _PRIMITIVE = {"box": ("BOX", lambda s: fcl.Box(*s)),
               "capsule": ("CAPSULE", lambda s: fcl.Capsule(*s))}
 
 
-def buildGeomFromUrdf(model, filename, geom_type, package_dirs=None, mesh_loader=None):
+def _mesh_file(e, package_dirs):
+    """The file of a ``<mesh>``: where rigid finds it (``package://`` against the URDF's folders
+    and ``ROS_PACKAGE_PATH``), else ``package://PKG/rest`` as ``DIR/PKG/rest`` or ``DIR/rest`` of
+    a ``package_dirs`` folder; ValueError naming it, as Pinocchio, when none exists."""
+    if e["mesh_path"]:
+        return e["mesh_path"]
+    name = e["filename"]
+    rest = name[len("package://"):] if name.startswith("package://") else name
+    for d in package_dirs:
+        for candidate in (os.path.join(d, rest), os.path.join(d, rest.split("/", 1)[-1])):
+            if os.path.isfile(candidate):
+                return candidate
+    raise ValueError(f"Mesh {name} could not be found.")
+
+
+def buildGeomFromUrdf(model, filename, geom_type, *args, package_dirs=None, mesh_loader=None):
     """The ``<collision>`` (``GeometryType.COLLISION``) or ``<visual>`` elements of the URDF's
-    links as a ``GeometryModel`` on ``model`` (built from the same file): named
-    ``link_k``, on the link's body frame and its joint, placed at the frame's placement times the
-    element's origin, links in the model's order. Meshes are found as rigid finds them
-    (``package://`` against the URDF's folders, ``ROS_PACKAGE_PATH``); ``package_dirs`` is
-    accepted for Pinocchio's signature."""
-    if isinstance(package_dirs, GeometryModel):  # (model, filename, type, geom_model, ...)
-        package_dirs = None
+    links as a ``GeometryModel`` on ``model`` (built from the same file): named ``link_k``, on the
+    link's body frame and its joint, placed at the frame's placement times the element's origin,
+    links in the model's order; a mesh's ``meshPath`` is its file, a primitive's ``BOX``,
+    ``CYLINDER``, ... Pinocchio's forms: ``(model, filename, type[, package_dirs])`` and
+    ``(model, filename, type, geom_model[, package_dirs])``, which fills ``geom_model``."""
+    out = GeometryModel()
+    args = list(args)
+    if args and isinstance(args[0], GeometryModel):
+        out = args.pop(0)
+    if args:
+        package_dirs = args.pop(0)
+    if isinstance(package_dirs, (str, os.PathLike)):
+        package_dirs = [package_dirs]
+    dirs = [os.fspath(d) for d in (package_dirs or [])]
     kind = "visual" if int(geom_type) == GeometryType.VISUAL else "collision"
     by_link = {}
     for e in _r.urdf_link_geometries(os.fspath(filename), kind):
         by_link.setdefault(e["link"], []).append(e)
-    gm = GeometryModel()
     for fid, f in enumerate(model.frames):
         if f.type != FrameType.BODY or f.name not in by_link:
             continue
         for e in by_link.pop(f.name):
             if e["shape"] == "mesh":
-                path = e["mesh_path"] or e["filename"]
+                path = _mesh_file(e, dirs)
                 shape, mesh_path, scale = fcl.BVHModelOBBRSS(path, e["scale"]), path, e["scale"]
             else:
                 mesh_path, make = _PRIMITIVE[e["shape"]]
                 shape, scale = make(e["size"]), np.ones(3)
+            # Pinocchio: the material's colour on a visual, light grey otherwise
+            color = e["rgba"] if kind == "visual" and e["rgba"] is not None \
+                else np.array([0.9, 0.9, 0.9, 1.0])
             g = GeometryObject(f"{f.name}_{e['index']}", f.parentJoint, fid,
                                f.placement * SE3(e["origin"]), shape, mesh_path=mesh_path,
-                               mesh_scale=scale, mesh_color=e["rgba"],
-                               override_material=e["rgba"] is not None)
-            gm.addGeometryObject(g)
-    return gm
+                               mesh_scale=scale, mesh_color=color,
+                               override_material=kind == "visual" and e["rgba"] is not None)
+            out.addGeometryObject(g)
+    return out
 
 
 def removeCollisionPairs(model, geom_model, srdf_filename, verbose=False):
@@ -387,6 +453,8 @@ def loadReferenceConfigurations(model, srdf_filename, verbose=False):
             if not model.existJointName(name):
                 continue
             j = model.joints[model.getJointId(name)]
+            if len(values) == 1 and j.nq == 2:  # a continuous joint: (cos θ, sin θ)
+                values = [np.cos(values[0]), np.sin(values[0])]
             if len(values) != j.nq:
                 warnings.warn(f"{srdf_filename}: group_state {state['name']}: joint {name} has "
                               f"{j.nq} coordinates, the file gives {len(values)}: skipped")

@@ -92,7 +92,11 @@ def buildModelFromUrdf(filename, root_joint=None, root_joint_name=None, verbose=
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", _r.UrdfWarning)
         m = _r.Model.from_urdf(path, floating=floating, inertia="warn", layout="pinocchio")
-    return _model_of(m, path, floating, root_joint_name, root_joint)
+    model = _model_of(m, path, floating, root_joint_name, root_joint)
+    if root_joint is None:
+        # the links welded to the world (Pinocchio's inertias[0]; not in rigid's dynamics)
+        model._world_inertia = Inertia(*_r._urdf_welded_inertia(path))
+    return model
 
 
 def buildModelFromXML(xml, root_joint=None, root_joint_name=None, verbose=False, mimic=False):

@@ -142,6 +142,9 @@ class Model(_r.Model):
         self._frames = _frames if _frames is not None else _frames_of(self.desc())
         self._set_limits(_limits)
         self.referenceConfigurations = {}
+        #: the inertia of the bodies welded to the world (Pinocchio's ``inertias[0]``), which
+        #: takes no part in rigid's dynamics; ``appendModel`` and ``buildReducedModel`` carry it
+        self._world_inertia = Inertia.Zero()
 
     # ---- the serialised form and edits
     def desc(self):
@@ -462,8 +465,8 @@ class Model(_r.Model):
     # ---- growing the model
     def addJoint(self, parent_id, joint_model, joint_placement, joint_name, *limits, **kw):
         """Adds a joint (a body with no mass until ``appendBodyToJoint``) below ``parent_id``;
-        optional limits ``max_effort, max_velocity, min_config, max_config`` (and, ignored,
-        friction and damping as Pinocchio 3 allows); returns its index. Joints must be added
+        optional limits ``max_effort, max_velocity, min_config, max_config``, then ``friction``
+        and ``damping`` (per velocity coordinate, as Pinocchio); returns its index. Joints must be added
         depth-first (a new joint's parent on the latest branch), as rigid keeps them."""
         d = self.desc()
         joints = d["joints"]
@@ -498,7 +501,7 @@ class Model(_r.Model):
             joints[a]["subtree_end"] = n + 1
             a = joints[a]["parent"]
         d["inertias"].append(_inertia_json(Inertia()))
-        lim = list(limits) + [None] * 4
+        lim = list(limits) + [None] * 6
         eff, vel = kw.get("max_effort", lim[0]), kw.get("max_velocity", lim[1])
         lo, up = kw.get("min_config", lim[2]), kw.get("max_config", lim[3])
         pin_nq = joint_model.nq
@@ -524,8 +527,12 @@ class Model(_r.Model):
         d["velocity_limit"] += per_dof(vel)
         d["effort_limit"] += per_dof(eff)
         d["armature"] += [0.0] * nv
-        d["damping"] += [0.0] * nv
-        d["friction"] += [0.0] * nv
+        for key, given in (("friction", kw.get("friction", lim[4])),
+                           ("damping", kw.get("damping", lim[5]))):
+            x = np.zeros(nv) if given is None else np.asarray(given, dtype=float).reshape(-1)
+            if kind["type"] == "free_flyer":
+                x = x[[(k + 3) % 6 for k in range(6)]]
+            d[key] += [float(v) for v in x]
         self._rebuild(d, keep_id=False)
         self._origins.append("api")
         lo_p, up_p = (np.full(pin_nq, -MAX) if lo is None else np.asarray(lo, float).reshape(-1),
@@ -589,7 +596,8 @@ class Model(_r.Model):
         frames = [(f, src) for f, src in self._frames]
         return (_rebuild_model, (self.to_json(), list(self.warnings), frames,
                                  list(self._origins), (self._lower, self._upper, self._vlim,
-                                                       self._elim)))
+                                                       self._elim), self._world_inertia,
+                                 self.referenceConfigurations))
 
     def __copy__(self):
         return self
@@ -614,6 +622,10 @@ class Model(_r.Model):
         return "\n".join(lines) + "\n"
 
 
-def _rebuild_model(text, warnings, frames, origins, limits):
-    return Model(text, _warnings=warnings, _frames=frames, _origins=origins, _limits=limits)
+def _rebuild_model(text, warnings, frames, origins, limits, world=None, references=None):
+    m = Model(text, _warnings=warnings, _frames=frames, _origins=origins, _limits=limits)
+    if world is not None:
+        m._world_inertia = world
+    m.referenceConfigurations = dict(references or {})
+    return m
 

@@ -351,12 +351,24 @@ impl Parser {
                 return Err(self.invalid(shape, what.into(), msg));
             }
         };
+        // urdfdom's rule: a named material already known (top-level, or given inline by an
+        // earlier element) is that one, whatever colour this element gives; an unknown name is
+        // defined by this element's colour, for the elements after it
         let rgba = match Self::child(g, "material") {
             None => None,
-            Some(m) => self.color(m, what).or_else(|| {
-                m.attribute("name")
-                    .and_then(|n| self.materials.get(n).copied())
-            }),
+            Some(m) => match m.attribute("name").filter(|n| !n.is_empty()) {
+                Some(n) => match self.materials.get(n).copied() {
+                    Some(known) => Some(known),
+                    None => {
+                        let c = self.color(m, what);
+                        if let Some(c) = c {
+                            self.materials.insert(n.to_string(), c);
+                        }
+                        c
+                    }
+                },
+                None => self.color(m, what),
+            },
         };
         Ok(Some(UrdfGeometry {
             origin,

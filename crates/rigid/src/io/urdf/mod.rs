@@ -162,8 +162,9 @@ pub struct UrdfGeometry {
     pub origin: Transform,
     /// The shape.
     pub shape: UrdfShape,
-    /// The colour `rgba` (in `[0, 1]`), from an inline `<material><color>` or a top-level
-    /// `<material>` of that name; `None` when none is given.
+    /// The colour `rgba` (in `[0, 1]`) of its `<material>`, as urdfdom reads it: a material
+    /// name already known (a top-level `<material>`, or one an earlier element gave a colour) is
+    /// that colour, else the element's own `<color>`; `None` when none is given.
     pub rgba: Option<[f64; 4]>,
     /// Line of the `<visual>` or `<collision>` element.
     pub line: u32,
@@ -559,6 +560,38 @@ impl UrdfRobot {
             .inertial
             .as_ref()
             .map_or_else(SpatialInertia::zero, UrdfInertial::spatial_inertia)
+    }
+
+    /// The inertia of the links welded to the root link (the root and every link fixed joints
+    /// attach to it, directly or in a chain), in the root link's frame: what a fixed-base model
+    /// welds to the world (Pinocchio's `model.inertias[0]`; rigid's model leaves it out, as it
+    /// takes no part in the dynamics) and the body of a free-flyer root.
+    ///
+    /// ```
+    /// let robot = rigid::io::urdf::parse_urdf_str(r#"<robot name="r">
+    ///   <link name="base"><inertial><mass value="2"/>
+    ///     <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    ///   <link name="plate"><inertial><mass value="1"/>
+    ///     <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    ///   <joint name="weld" type="fixed"><parent link="base"/><child link="plate"/>
+    ///     <origin xyz="0 0 0.3"/></joint></robot>"#).unwrap();
+    /// let g = robot.welded_to_root_inertia();
+    /// assert!((g.mass() - 3.0).abs() < 1e-12 && (g.com().z - 0.1).abs() < 1e-12);
+    /// ```
+    #[must_use]
+    pub fn welded_to_root_inertia(&self) -> SpatialInertia {
+        let mut total = self.link_inertia(self.root);
+        let mut stack = vec![(self.root, Transform::identity())];
+        while let Some((link, at)) = stack.pop() {
+            for j in &self.joints {
+                if j.parent == link && j.kind == UrdfJointKind::Fixed {
+                    let t = at * j.origin;
+                    total += self.link_inertia(j.child).transformed(&t);
+                    stack.push((j.child, t));
+                }
+            }
+        }
+        total
     }
 
     /// Checks every link's inertial parameters ([`crate::mass::Consistency`]: mass, positive
