@@ -5,7 +5,8 @@
 //! | file | what |
 //! | --- | --- |
 //! | `convert.rs` | array-likes in (zero-copy for contiguous float64), fresh arrays out, errors |
-//! | `model.rs` | `Model`, `Data`, the layouts (rigid's, Pinocchio's) |
+//! | `model.rs` | `Model`, the layouts (rigid's, Pinocchio's, MuJoCo's) |
+//! | `data.rs` | `Data`: the workspace, and its fields (`oMi`, `M`, `nle`, `J`, `com`, ...) in the model's layout |
 //! | `dynamics.rs` | `rnea`, `crba`, `aba`, `nle`, `gravity`, `minverse`, `coriolis_matrix`, `forward_kinematics`, `jacobian`, `com`, energies |
 //! | `configuration.rs` | `neutral`, `random_configuration`, `seed`, `integrate`, `difference` |
 //! | `derivatives.rs` | `rnea_derivatives`, `aba_derivatives`, `gravity_derivatives` |
@@ -14,7 +15,8 @@
 //! | `batch.rs` | `rnea_batch`, `aba_batch`, `crba_batch`, `rnea_derivatives_batch` (all cores, GIL released) |
 //! | `simulation.rs` | `simulate` (robot simulation, built-in or Python control laws), `replay_html` |
 //! | `simulator.rs` | `Simulator`: one step at a time from any state with an open-loop torque, and `step_derivatives` |
-//! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, private field accessors |
+//! | `pinocchio.rs` | what the Pinocchio layer `rigid.pinocchio` needs: `compute_joint_jacobians`, `update_frame_placements`, `com_jacobian`, `centroidal_momentum(_matrix)`, `kinematics_derivatives`, `interpolate`, `normalize`, the Jacobians kept in a `Data` |
+//! | `geometry.rs` | `urdf_link_geometries`, `Collider`, `proximity`, `read_srdf` (the Pinocchio layer's geometry models, collisions and SRDF) |
 //! | `inverse_kinematics.rs` | `inverse_kinematics` (`rigid::kinematics::inverse`: targets in, a dict out) |
 //! | `lie.rs` | SE(3)/SO(3) `exp`, `log` and their Jacobians for `rigid.pinocchio` (`_exp6`, `_log6`, `_jexp6`, `_jlog6` and the SO(3) four) |
 //! | `scale.rs` | `threads=` pools, `regressor_batch`, `simulate_batch`, `Model.with_dynamic_parameters`, the refusal of dask arrays |

@@ -62,6 +62,7 @@ def test_data_fields_are_pinocchios_in_its_layout(robot):
     assert_close(d.v, np.array([x.vector for x in pd.v[1:]]), "data.v")
     assert_close(d.f, np.array([x.vector for x in pd.f[1:]]), "data.f")
     rigid.forward_kinematics(m, d, q)
+    pin.forwardKinematics(pm, pd, q)
     assert_close(d.oMi, np.array([x.homogeneous for x in pd.oMi[1:]]), "data.oMi")
     assert_close(d.q_in, q, "data.q_in")
     rigid.crba(m, d, q)
