@@ -220,3 +220,74 @@ def test_urdf_to_urdf_equals_pinocchio_on_talos(tmp_path):
         assert np.max(np.abs(Ma - P @ Mb @ P.T)) <= TOL * max(1.0, np.max(np.abs(Ma)))
         nle_a, nle_b = pin.nle(a, da, q, v), pin.nle(b, db, qb, P.T @ v)
         assert np.max(np.abs(nle_a - P @ nle_b)) <= TOL * max(1.0, np.max(np.abs(nle_a)))
+
+
+def _support(points, directions):
+    """max over the points of each direction's dot product: the same for any two point sets of
+    one convex hull, whatever their order, duplicates or inner points."""
+    return np.max(points @ directions.T, axis=0)
+
+
+def test_visuals_written_to_mjcf_sit_where_pinocchio_puts_them(tmp_path):
+    """UR5 of example-robot-data (COLLADA visual meshes) to MJCF: MuJoCo compiles its visual
+    geoms (group 1, no contact, no mass; M unchanged), one per URDF <visual>, and at random
+    states each geom's vertices in the world span the same hull as Pinocchio's visual object's
+    (its oMg, hpp-fcl's vertices times meshScale), to MuJoCo's float32 vertices."""
+    from conftest import robots_dir
+
+    path = os.path.join(robots_dir(), "ur_description/urdf/ur5_robot.urdf")
+    meshes = os.path.dirname(os.path.dirname(robots_dir()))
+    out = tmp_path / "ur5_visual.xml"
+    quiet(rigid.Model.from_urdf, path).save(out)
+    m = mujoco.MjModel.from_xml_path(str(out))
+    d = mujoco.MjData(m)
+    pm, _, pv = quiet(pin.buildModelsFromUrdf, path, meshes)
+    pd, pvd = pm.createData(), pv.createData()
+    visual = [g for g in range(m.ngeom) if m.geom_group[g] == 1]
+    assert len(visual) == pv.ngeoms and all(m.geom_contype[g] == 0 for g in visual)
+    assert compare(pm, m, armature=True) <= TOL
+    directions = np.vstack([np.eye(3), -np.eye(3), np.random.default_rng(1).normal(size=(6, 3))])
+    worst = 0.0
+    for qm, vm in states(m, n=3):
+        d.qpos[:] = qm
+        mujoco.mj_forward(m, d)
+        q, _, _, _ = pinocchio_maps(pm, m, qm, vm)
+        pin.updateGeometryPlacements(pm, pd, pv, pvd, q)
+        for g in visual:
+            name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, g)
+            k = pv.getGeometryId(name.replace("/visual/", "_"))
+            obj = pv.geometryObjects[k]
+            mesh = m.geom_dataid[g]
+            a, n = m.mesh_vertadr[mesh], m.mesh_vertnum[mesh]
+            ours = d.geom_xpos[g] + m.mesh_vert[a:a + n].astype(float) @ d.geom_xmat[g].reshape(3, 3).T
+            M = pvd.oMg[k]
+            theirs = (np.array(obj.geometry.vertices()) * obj.meshScale) @ M.rotation.T \
+                + M.translation
+            gap = np.max(np.abs(_support(ours, directions) - _support(theirs, directions)))
+            worst = max(worst, gap)
+    assert worst < 1e-5, worst
+
+
+def test_visuals_written_to_urdf_equal_pinocchios_visual_model(tmp_path):
+    """TALOS (example-robot-data, meshes and materials) to URDF: Pinocchio's visual model of the
+    written file equals the original's, object by object (by name: the writer hangs the links
+    welded to a body directly on its link, which reorders Pinocchio's depth-first walk): joint,
+    placement, mesh file, scale and colour."""
+    from conftest import robots_dir
+
+    path = os.path.join(robots_dir(), "talos_data/robots/talos_reduced.urdf")
+    meshes = os.path.dirname(os.path.dirname(robots_dir()))
+    out = tmp_path / "talos_visual.urdf"
+    quiet(rigid.Model.from_urdf, path, floating=True).save(out)
+    root = pin.JointModelFreeFlyer()
+    _, _, ref = quiet(pin.buildModelsFromUrdf, path, meshes, root)
+    _, _, got = quiet(pin.buildModelsFromUrdf, str(out), [str(tmp_path), meshes], root)
+    assert got.ngeoms == ref.ngeoms > 0
+    ours = {g.name: g for g in got.geometryObjects}
+    assert set(ours) == {g.name for g in ref.geometryObjects}
+    for b in ref.geometryObjects:
+        a = ours[b.name]
+        assert a.parentJoint == b.parentJoint, b.name
+        assert np.max(np.abs(a.placement.homogeneous - b.placement.homogeneous)) < 1e-12, a.name
+        assert os.path.realpath(a.meshPath) == os.path.realpath(b.meshPath), a.name
+        assert np.array_equal(a.meshScale, b.meshScale) and np.allclose(a.meshColor, b.meshColor)

@@ -96,6 +96,66 @@ pub fn urdf_geometries(robot: &UrdfRobot, model: &Model) -> (Vec<Geometry>, Vec<
     (out, warnings)
 }
 
+/// The visual geometry of a URDF robot on its `model` (built from it): every `<visual>` of every
+/// link, on the body the link belongs to, placed at the link frame times the element's
+/// `<origin>`, named `link/visual/k`, with its colour; a mesh by the file it resolves to (as for the
+/// collisions: `package://`, `file://`, relative to the URDF). Returns the visuals and the
+/// warnings: an element whose mesh is not found or whose link is not a body, which is skipped.
+#[cfg(feature = "urdf")]
+#[must_use]
+pub fn urdf_visuals(robot: &UrdfRobot, model: &Model) -> (Vec<super::write::Visual>, Vec<String>) {
+    use super::write::{Visual, VisualShape};
+    let (mut out, mut warnings) = (Vec::new(), Vec::new());
+    for link in robot.links.iter().filter(|l| !l.visuals.is_empty()) {
+        let Some(frame) = model.frame_id_of_kind(&link.name, FrameKind::Body) else {
+            warnings.push(format!(
+                "link \"{}\" (line {}): not a body of the model: its visual geometry is skipped",
+                link.name, link.line
+            ));
+            continue;
+        };
+        let frame = &model.frames()[frame.0];
+        for (k, v) in link.visuals.iter().enumerate() {
+            let shape = match &v.shape {
+                UrdfShape::Mesh { filename, scale } => {
+                    match resolve_mesh_path(filename, robot.path.as_deref()) {
+                        Some(file) => VisualShape::Mesh {
+                            file: std::fs::canonicalize(&file).unwrap_or(file),
+                            scale: *scale,
+                        },
+                        None => {
+                            warnings.push(format!(
+                                "link \"{}\" (line {}): visual skipped: mesh {filename} not found",
+                                link.name, v.line
+                            ));
+                            continue;
+                        }
+                    }
+                }
+                other => match urdf_shape(other, None) {
+                    Ok(s) => VisualShape::Primitive(s),
+                    Err(e) => {
+                        warnings.push(format!(
+                            "link \"{}\" (line {}): visual skipped: {e}",
+                            link.name, v.line
+                        ));
+                        continue;
+                    }
+                },
+            };
+            out.push(Visual {
+                name: format!("{}/visual/{k}", link.name),
+                link: link.name.clone(),
+                body: frame.parent,
+                placement: frame.placement * v.origin,
+                shape,
+                rgba: v.rgba,
+            });
+        }
+    }
+    (out, warnings)
+}
+
 /// A mesh whose deepest vertex lies inside its convex hull by more than this share of the
 /// hull's size (the diagonal of its bounding box) is not convex.
 const CONCAVE: f64 = 1e-3;

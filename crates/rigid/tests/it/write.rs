@@ -99,7 +99,7 @@ fn dynamics_gap(a: &Model, b: &Model) -> f64 {
 fn mjcf_written_and_read_back_has_the_same_dynamics_and_joint_data() {
     for seed in 0..4 {
         let model = tree(seed, 9, &[0, 1, 2, 3]);
-        let written = write_mjcf(&model, &[]).unwrap();
+        let written = write_mjcf(&model, &[], &[]).unwrap();
         let mjcf = load_mjcf_str(&written.text, ".".as_ref()).unwrap();
         let back = mjcf.model;
         let gap = dynamics_gap(&model, &back);
@@ -133,7 +133,7 @@ fn mjcf_written_and_read_back_has_the_same_dynamics_and_joint_data() {
 fn urdf_written_and_read_back_has_the_same_dynamics_and_joint_data() {
     for seed in 0..4 {
         let model = tree(seed, 9, &[0, 1, 4, 5]);
-        let written = write_urdf(&model, &[], "meshes").unwrap();
+        let written = write_urdf(&model, &[], &[], "meshes").unwrap();
         // the free-flyer at the origin is left out, as floating robots' URDFs do
         assert!(written.notes.iter().any(|n| n.contains("--floating")));
         // URDF holds no gravity: said; the reader's is the standard one
@@ -202,7 +202,7 @@ fn geometry_is_written_as_each_format_can_hold_it() {
         ),
         Geometry::new("cube", body, at, Shape::ConvexHull { points: hull }),
     ];
-    let mjcf = write_mjcf(&model, &geometries).unwrap();
+    let mjcf = write_mjcf(&model, &geometries, &[]).unwrap();
     assert!(mjcf.text.contains(r#"type="box" size="0.05 0.1 0.15""#));
     assert!(mjcf.text.contains(r#"type="capsule" size="0.05 0.1""#));
     let back = load_mjcf_str(&mjcf.text, ".".as_ref()).unwrap();
@@ -212,7 +212,7 @@ fn geometry_is_written_as_each_format_can_hold_it() {
     let numbers = mesh.split('"').nth(3).unwrap().split(' ').count();
     assert_eq!(numbers, 24, "{mesh}");
 
-    let urdf = write_urdf(&model, &geometries, "m").unwrap();
+    let urdf = write_urdf(&model, &geometries, &[], "m").unwrap();
     assert!(urdf.text.contains(r#"<box size="0.1 0.2 0.3"/>"#));
     assert!(urdf.text.contains(r#"<sphere radius="0.1"/>"#));
     // the capsule and the hull as OBJ files; the capsule noted
@@ -227,10 +227,10 @@ fn geometry_is_written_as_each_format_can_hold_it() {
 #[test]
 fn what_a_format_cannot_express_is_an_error_naming_the_joint() {
     let planar = tree(1, 2, &[5]);
-    let e = write_mjcf(&planar, &[]).unwrap_err();
+    let e = write_mjcf(&planar, &[], &[]).unwrap_err();
     assert_eq!(e.to_string(), "joint \"j0\": MJCF has no planar joint");
     let ball = tree(1, 2, &[2]);
-    let e = write_urdf(&ball, &[], "m").unwrap_err();
+    let e = write_urdf(&ball, &[], &[], "m").unwrap_err();
     assert!(matches!(&e, WriteError::Joint { joint, kind: "spherical", .. } if joint == "j0"));
     assert_eq!(
         e.to_string(),
@@ -260,7 +260,7 @@ fn what_a_format_cannot_express_is_an_error_naming_the_joint() {
         g,
     )
     .unwrap();
-    let e = write_mjcf(&b.build().unwrap(), &[]).unwrap_err();
+    let e = write_mjcf(&b.build().unwrap(), &[], &[]).unwrap_err();
     assert!(e.to_string().contains("top-level body"), "{e}");
 }
 
@@ -300,7 +300,7 @@ fn a_massless_moving_body_goes_into_its_child_for_mujoco() {
     )
     .unwrap();
     let model = b.build().unwrap();
-    let written = write_mjcf(&model, &[]).unwrap();
+    let written = write_mjcf(&model, &[], &[]).unwrap();
     assert_eq!(
         written.text.matches("<body ").count(),
         1,
@@ -374,7 +374,7 @@ fn what_mujoco_or_urdf_would_refuse_is_said_and_names_stay_unique() {
             ],
         },
     );
-    let mjcf = write_mjcf(&model, &[flat]).unwrap();
+    let mjcf = write_mjcf(&model, &[flat], &[]).unwrap();
     for said in [
         "one-sided limit",
         "hull is flat",
@@ -387,7 +387,7 @@ fn what_mujoco_or_urdf_would_refuse_is_said_and_names_stay_unique() {
         );
     }
     assert!(!mjcf.text.contains("<mesh"), "{}", mjcf.text);
-    let urdf = write_urdf(&model, &[], "m").unwrap();
+    let urdf = write_urdf(&model, &[], &[], "m").unwrap();
     assert_eq!(
         urdf.text.matches("<link name=\"hand\"").count(),
         1,
@@ -396,4 +396,90 @@ fn what_mujoco_or_urdf_would_refuse_is_said_and_names_stay_unique() {
     );
     assert_eq!(urdf.text.matches("<link name=\"hand_2\"").count(), 1);
     load_urdf_str(&urdf.text, false).unwrap();
+}
+
+/// A URDF's visual elements go through `rigid convert` both ways: into URDF as `<visual>`s on
+/// their links (a welded link's on that link) with their origins, primitives, the mesh by its
+/// file and scale, and colours; into MJCF as geoms that neither collide nor weigh (`contype` and
+/// `conaffinity` 0, `inertiafromgeom` false), an OBJ mesh by its file.
+#[test]
+fn visual_geometry_is_written_both_ways() {
+    use rigid::io::write::save;
+    let dir = std::env::temp_dir().join(format!("rigid_visuals_{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("meshes")).unwrap();
+    std::fs::write(
+        dir.join("meshes/tet.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    let urdf = dir.join("arm.urdf");
+    std::fs::write(
+        &urdf,
+        r#"<robot name="arm">
+  <material name="Blue"><color rgba="0 0 1 1"/></material>
+  <link name="base"><visual><geometry><box size="0.2 0.2 0.1"/></geometry>
+    <material name="Blue"/></visual></link>
+  <link name="upper">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><origin xyz="0 0 0.25" rpy="0.1 0 0"/>
+      <geometry><cylinder radius="0.03" length="0.5"/></geometry>
+      <material name="Red"><color rgba="1 0 0 1"/></material></visual>
+    <collision><geometry><sphere radius="0.05"/></geometry></collision>
+  </link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="10" velocity="2"/></joint>
+  <link name="tool"><visual><origin xyz="0.01 0 0"/>
+    <geometry><mesh filename="meshes/tet.obj" scale="0.1 0.1 0.2"/></geometry></visual></link>
+  <joint name="weld" type="fixed"><parent link="upper"/><child link="tool"/>
+    <origin xyz="0 0 0.5"/></joint>
+</robot>"#,
+    )
+    .unwrap();
+    let model = rigid::io::urdf::load_urdf(&urdf, false).unwrap();
+    // URDF: read back, the visuals are where they were
+    let out = dir.join("out.urdf");
+    save(&model, Some(&urdf), &out).unwrap();
+    let back = rigid::io::urdf::parse_urdf_file(&out).unwrap();
+    let link = |n: &str| back.links.iter().find(|l| l.name == n).unwrap();
+    assert_eq!(link("base").visuals.len(), 1);
+    assert_eq!(link("base").visuals[0].rgba, Some([0.0, 0.0, 1.0, 1.0]));
+    let upper = &link("upper").visuals;
+    assert_eq!(
+        upper.len(),
+        1,
+        "the cylinder (the welded tool's mesh is on the tool's link)"
+    );
+    let cylinder = &upper[0];
+    assert!(matches!(
+        cylinder.shape,
+        rigid::io::urdf::UrdfShape::Cylinder { .. }
+    ));
+    assert_eq!(cylinder.rgba, Some([1.0, 0.0, 0.0, 1.0]));
+    assert!((cylinder.origin.translation - Vec3::new(0.0, 0.0, 0.25)).norm() < 1e-15);
+    let tool = &link("tool").visuals;
+    assert_eq!(tool.len(), 1);
+    let mesh = &tool[0];
+    assert!((mesh.origin.translation - Vec3::new(0.01, 0.0, 0.0)).norm() < 1e-15);
+    let rigid::io::urdf::UrdfShape::Mesh { filename, scale } = &mesh.shape else {
+        unreachable!()
+    };
+    assert!(std::path::Path::new(filename).is_absolute() && filename.ends_with("tet.obj"));
+    assert_eq!(*scale, Vec3::new(0.1, 0.1, 0.2));
+    // MJCF: the visuals are geoms that do not collide, the dynamics unchanged
+    let out = dir.join("out.xml");
+    save(&model, Some(&urdf), &out).unwrap();
+    let m = rigid::io::mjcf::load_mjcf(&out).unwrap();
+    let visual: Vec<_> = m
+        .geoms
+        .iter()
+        .filter(|g| g.contype == 0 && g.conaffinity == 0)
+        .collect();
+    assert_eq!(visual.len(), 3, "{:?}", m.geoms);
+    assert!(dynamics_gap(&model, &m.model) < 1e-12);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        text.contains("tet.obj") && text.contains("rgba=\"1 0 0 1\""),
+        "{text}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -14,7 +14,10 @@
 //! makes a written `range` a limit. MuJoCo has no velocity limit (a note says how many were
 //! dropped); an effort limit becomes the joint's `actuatorfrcrange`.
 
-use super::{esc, geometries_of, num, nums, quat_wxyz, unique, vec3, Outline, WriteError, Written};
+use super::{
+    esc, geometries_of, num, nums, quat_wxyz, unique, vec3, Outline, Visual, VisualShape,
+    WriteError, Written,
+};
 use crate::collision::{Geometry, Shape};
 use crate::mass::RotationalInertia;
 use crate::multibody::{FrameKind, JointType, Model};
@@ -22,23 +25,29 @@ use crate::spatial::{Transform, Vec3};
 use std::collections::HashSet;
 use std::fmt::Write;
 
-/// `model` and its collision `geometries` as MJCF text (see the module's documentation).
+/// `model`, its collision `geometries` and its `visuals` as MJCF text (see the module's
+/// documentation).
 ///
 /// ```
 /// use rigid::io::write::mjcf::write_mjcf;
 /// let model = rigid::multibody::double_pendulum();
-/// let written = write_mjcf(&model, &[]).unwrap();
+/// let written = write_mjcf(&model, &[], &[]).unwrap();
 /// let back = rigid::io::mjcf::load_mjcf_str(&written.text, ".".as_ref()).unwrap();
 /// assert_eq!(back.model.nv(), 2);
 /// ```
 ///
 /// # Errors
 /// [`WriteError::Joint`] for a joint MJCF cannot express.
-pub fn write_mjcf(model: &Model, geometries: &[Geometry]) -> Result<Written, WriteError> {
+pub fn write_mjcf(
+    model: &Model,
+    geometries: &[Geometry],
+    visuals: &[Visual],
+) -> Result<Written, WriteError> {
     let outline = Outline::new(model);
     let mut w = Writer {
         outline: &outline,
         geometries,
+        visuals,
         body: String::new(),
         assets: String::new(),
         geom_names: HashSet::new(),
@@ -47,6 +56,9 @@ pub fn write_mjcf(model: &Model, geometries: &[Geometry]) -> Result<Written, Wri
     };
     for g in geometries_of(geometries, None) {
         w.geom(g, 4);
+    }
+    for v in visuals.iter().filter(|v| v.body.is_none()) {
+        w.visual(v, 4);
     }
     for &f in &outline.world {
         // MuJoCo's world body is "world": a link of that name is it
@@ -92,6 +104,7 @@ const MIN_MOMENT: f64 = 1e-12;
 struct Writer<'a> {
     outline: &'a Outline<'a>,
     geometries: &'a [Geometry],
+    visuals: &'a [Visual],
     body: String,
     assets: String,
     geom_names: HashSet<String>,
@@ -129,6 +142,7 @@ impl Writer<'_> {
             && is_zero(&model.inertias()[j])
             && self.outline.children[j].len() == 1
             && geometries_of(self.geometries, Some(j)).next().is_none()
+            && !self.visuals.iter().any(|v| v.body.map(|b| b.0) == Some(j))
             && self.outline.fixed[j]
                 .iter()
                 .all(|&f| model.frames()[f].kind == FrameKind::FixedJoint)
@@ -212,6 +226,13 @@ impl Writer<'_> {
         self.inertial(j, d);
         for g in geometries_of(self.geometries, Some(j)) {
             self.geom(g, d);
+        }
+        for v in self
+            .visuals
+            .iter()
+            .filter(|v| v.body.map(|b| b.0) == Some(j))
+        {
+            self.visual(v, d);
         }
         for f in self.outline.fixed[j].clone() {
             self.fixed_frame(f, d);
@@ -349,10 +370,11 @@ impl Writer<'_> {
         }
     }
 
-    /// A `<geom>` (a mesh's hull as an inline `<mesh vertex>` asset).
-    fn geom(&mut self, g: &Geometry, depth: usize) {
-        let name = unique(&mut self.geom_names, &g.name);
-        let shape = match &g.shape {
+    /// The `type` and `size` (or `mesh`) attributes of `shape`, for a geom named `name` (a
+    /// cone or hull as an inline `<mesh vertex>` asset of that name); `None` when MuJoCo cannot
+    /// take it (a flat hull), with a note.
+    fn shape_attrs(&mut self, name: &str, shape: &Shape) -> Option<String> {
+        Some(match shape {
             Shape::Sphere { radius } => format!("type=\"sphere\" size=\"{}\"", num(*radius)),
             Shape::Box { size } => format!("type=\"box\" size=\"{}\"", vec3(&(size / 2.0))),
             Shape::Cylinder { radius, length } => format!(
@@ -369,29 +391,101 @@ impl Writer<'_> {
                 format!("type=\"ellipsoid\" size=\"{}\"", vec3(semi_axes))
             }
             Shape::Cone { .. } | Shape::ConvexHull { .. } => {
-                if matches!(g.shape, Shape::Cone { .. }) {
+                if matches!(shape, Shape::Cone { .. }) {
                     self.notes.push(format!(
                         "geometry \"{}\": MJCF has no cone: written as the hull of 33 points of it",
-                        g.name
+                        name
                     ));
                 }
                 // the hull's vertices: MuJoCo collides a mesh as its hull too
-                let points = super::surface_points(&g.shape, 32);
+                let points = super::surface_points(shape, 32);
                 let Some((points, _)) = super::solid_hull(&points) else {
                     self.notes.push(format!(
                         "geometry \"{}\": its hull is flat, which MuJoCo refuses: not written",
-                        g.name
+                        name
                     ));
-                    return;
+                    return None;
                 };
                 let _ = writeln!(
                     self.assets,
                     "    <mesh name=\"{}\" vertex=\"{}\"/>",
-                    esc(&name),
+                    esc(name),
                     nums(points.iter().flat_map(|p| p.iter().copied()))
+                );
+                format!("type=\"mesh\" mesh=\"{}\"", esc(name))
+            }
+        })
+    }
+
+    /// A visual `<geom>` (no contact, no mass: `contype="0" conaffinity="0" group="1"`): a
+    /// primitive, or a mesh asset by its file when MuJoCo reads the format (STL, OBJ), else by
+    /// its vertices and faces read by rigid (COLLADA), with its colour.
+    fn visual(&mut self, v: &Visual, depth: usize) {
+        let name = unique(&mut self.geom_names, &v.name);
+        let shape = match &v.shape {
+            VisualShape::Primitive(shape) => match self.shape_attrs(&name, shape) {
+                Some(a) => a,
+                None => return,
+            },
+            VisualShape::Mesh { file, scale } => {
+                let ext = file
+                    .extension()
+                    .and_then(|e| e.to_str())
+                    .map(str::to_ascii_lowercase);
+                let scale = if *scale == Vec3::repeat(1.0) {
+                    String::new()
+                } else {
+                    format!(" scale=\"{}\"", vec3(scale))
+                };
+                let source = if matches!(ext.as_deref(), Some("stl" | "obj")) {
+                    format!("file=\"{}\"", esc(&file.display().to_string()))
+                } else {
+                    match crate::io::mesh_file::read_mesh(file) {
+                        Ok(m) if !m.triangles.is_empty() => format!(
+                            "vertex=\"{}\" face=\"{}\"",
+                            nums(m.vertices.iter().flat_map(|p| p.iter().copied())),
+                            m.triangles
+                                .iter()
+                                .flat_map(|t| t.iter().map(ToString::to_string))
+                                .collect::<Vec<_>>()
+                                .join(" ")
+                        ),
+                        Ok(_) | Err(_) => {
+                            self.notes.push(format!(
+                                "visual \"{}\": its mesh {} cannot be read: not written",
+                                v.name,
+                                file.display()
+                            ));
+                            return;
+                        }
+                    }
+                };
+                // a visual mesh need not bound a volume: MuJoCo's shell inertia accepts it
+                let _ = writeln!(
+                    self.assets,
+                    "    <mesh name=\"{}\" {source}{scale} inertia=\"shell\"/>",
+                    esc(&name)
                 );
                 format!("type=\"mesh\" mesh=\"{}\"", esc(&name))
             }
+        };
+        let mut s = format!(
+            "<geom name=\"{}\" {shape}{} contype=\"0\" conaffinity=\"0\" group=\"1\"",
+            esc(&name),
+            pose(&v.placement)
+        );
+        if let Some(c) = v.rgba {
+            let _ = write!(s, " rgba=\"{}\"", nums(c));
+        }
+        s.push_str("/>");
+        self.line(depth, &s);
+    }
+
+    /// A `<geom>` (a mesh's hull as an inline `<mesh vertex>` asset).
+    fn geom(&mut self, g: &Geometry, depth: usize) {
+        let name = unique(&mut self.geom_names, &g.name);
+        let Some(shape) = self.shape_attrs(&name, &g.shape) else {
+            return;
         };
         let mut s = format!(
             "<geom name=\"{}\" {shape}{}",

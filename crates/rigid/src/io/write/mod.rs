@@ -10,8 +10,12 @@
 //! and the link names. What the target format cannot say is either an error naming the joint
 //! ([`WriteError`]) or a note in [`Written::notes`], never dropped silently.
 //!
-//! A model keeps no visual geometry, no materials and no original mesh files: a mesh is written
-//! as the convex hull rigid collides it as (inline vertices in MJCF, an OBJ file beside a URDF).
+//! A collision mesh is written as the convex hull rigid collides it as (inline vertices in MJCF,
+//! an OBJ file beside a URDF). The visual geometry ([`Visual`], a URDF's `<visual>` elements) is
+//! written as it is: primitives as primitives, a mesh by its file (its absolute path) in URDF and
+//! in MJCF when MuJoCo reads the format (STL, OBJ), else as inline vertices and faces; with its
+//! colour. It takes no part in the dynamics or the collisions (MJCF: `contype="0"
+//! conaffinity="0" group="1"`).
 
 pub mod mjcf;
 pub mod urdf;
@@ -21,6 +25,37 @@ use crate::multibody::{FrameKind, JointId, Model};
 use crate::spatial::{Transform, Vec3};
 use std::collections::HashSet;
 use thiserror::Error;
+
+/// A visual element of a robot file: a shape or a mesh file, fixed in a body, with its colour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Visual {
+    /// Its name (`link/visual/k` for the `k`-th `<visual>` of a URDF link).
+    pub name: String,
+    /// The link it belongs to (a body's own link, or a link welded to it).
+    pub link: String,
+    /// The body it moves with (`None`: the world).
+    pub body: Option<JointId>,
+    /// Its frame in the body's joint frame.
+    pub placement: Transform,
+    /// What it looks like.
+    pub shape: VisualShape,
+    /// Its colour `rgba` in `[0, 1]`, if the file gives one.
+    pub rgba: Option<[f64; 4]>,
+}
+
+/// What a [`Visual`] looks like.
+#[derive(Clone, Debug, PartialEq)]
+pub enum VisualShape {
+    /// A primitive (sphere, box, cylinder, capsule).
+    Primitive(crate::collision::Shape),
+    /// A mesh file (found on disk), scaled.
+    Mesh {
+        /// The file.
+        file: std::path::PathBuf,
+        /// The scale along x, y, z.
+        scale: Vec3,
+    },
+}
 
 /// A written file, with what it could not say.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -282,8 +317,8 @@ impl Format {
         }
     }
 
-    /// `model` and `geometries` in this format ([`mjcf::write_mjcf`], [`urdf::write_urdf`] with
-    /// its meshes in `mesh_dir`).
+    /// `model`, its collision `geometries` and its `visuals` in this format
+    /// ([`mjcf::write_mjcf`], [`urdf::write_urdf`] with its collision hulls in `mesh_dir`).
     ///
     /// # Errors
     /// [`WriteError::Joint`] for a joint the format cannot express.
@@ -291,11 +326,12 @@ impl Format {
         self,
         model: &Model,
         geometries: &[Geometry],
+        visuals: &[Visual],
         mesh_dir: &str,
     ) -> Result<Written, WriteError> {
         match self {
-            Self::Mjcf => mjcf::write_mjcf(model, geometries),
-            Self::Urdf => urdf::write_urdf(model, geometries, mesh_dir),
+            Self::Mjcf => mjcf::write_mjcf(model, geometries, visuals),
+            Self::Urdf => urdf::write_urdf(model, geometries, visuals, mesh_dir),
         }
     }
 }
@@ -324,9 +360,10 @@ pub enum SaveError {
 
 /// Writes `model` to `out` in the format of its extension ([`Format::of_path`]) with the
 /// collision geometry of the file it was loaded from (`source`, a URDF or MJCF file:
-/// [`file_geometries`](super::collision::file_geometries); `None`: no geometry), a URDF's
-/// meshes as OBJ files in the folder `OUT_meshes` beside it. Returns what was not written: the
-/// source's skipped geometry, what the source holds that a model does not keep (visual
+/// [`file_geometries`](super::collision::file_geometries); `None`: no geometry) and a URDF's
+/// visual geometry ([`urdf_visuals`](super::collision::urdf_visuals)), a URDF's collision hulls
+/// as OBJ files in the folder `OUT_meshes` beside it. Returns what was not written: the source's
+/// skipped geometry, what the source holds that is not written (an MJCF or SDF file's visual
 /// geometry), and the writer's [`Written::notes`].
 ///
 /// # Errors
@@ -344,6 +381,7 @@ pub fn save(
         Some(path) => super::collision::file_geometries(path, model)?,
         None => (Vec::new(), Vec::new()),
     };
+    let mut visuals = Vec::new();
     if let Some(path) = source {
         let ext = |x: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(x));
         if ext("xml") {
@@ -362,11 +400,19 @@ pub fn save(
                 ));
             }
         } else {
-            notes.push("the source's <visual> elements and materials are not written".into());
+            let robot = super::urdf::parse_urdf_file(path).map_err(|e| {
+                super::collision::WorldError::File {
+                    path: path.display().to_string(),
+                    message: e.to_string(),
+                }
+            })?;
+            let (v, skipped) = super::collision::urdf_visuals(&robot, model);
+            visuals = v;
+            notes.extend(skipped);
         }
     }
     let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("robot");
-    let written = format.write(model, &geometries, &format!("{stem}_meshes"))?;
+    let written = format.write(model, &geometries, &visuals, &format!("{stem}_meshes"))?;
     let io = |path: &std::path::Path| {
         let path = path.display().to_string();
         move |source| SaveError::Io { path, source }

@@ -16,7 +16,8 @@
 //! an OBJ file (in [`Written::files`]), the others are noted.
 
 use super::{
-    esc, geometries_of, num, solid_hull, surface_points, unique, vec3, Outline, WriteError, Written,
+    esc, geometries_of, num, nums, solid_hull, surface_points, unique, vec3, Outline, Visual,
+    VisualShape, WriteError, Written,
 };
 use crate::collision::{Geometry, Shape};
 use crate::multibody::{FrameKind, JointType, Model};
@@ -30,7 +31,7 @@ use std::fmt::Write;
 /// ```
 /// use rigid::io::write::urdf::write_urdf;
 /// let model = rigid::multibody::double_pendulum();
-/// let written = write_urdf(&model, &[], "meshes").unwrap();
+/// let written = write_urdf(&model, &[], &[], "meshes").unwrap();
 /// let back = rigid::io::urdf::load_urdf_str(&written.text, false).unwrap();
 /// assert_eq!(back.nv(), 2);
 /// ```
@@ -40,6 +41,7 @@ use std::fmt::Write;
 pub fn write_urdf(
     model: &Model,
     geometries: &[Geometry],
+    visuals: &[Visual],
     mesh_dir: &str,
 ) -> Result<Written, WriteError> {
     let outline = Outline::new(model);
@@ -48,6 +50,8 @@ pub fn write_urdf(
     let mut w = Writer {
         outline: &outline,
         geometries,
+        visuals,
+        materials: Vec::new(),
         mesh_dir,
         text: String::new(),
         files: Vec::new(),
@@ -158,6 +162,9 @@ pub fn write_urdf(
 struct Writer<'a> {
     outline: &'a Outline<'a>,
     geometries: &'a [Geometry],
+    visuals: &'a [Visual],
+    /// The colours named so far (`color_k` is the `k`-th).
+    materials: Vec<[f64; 4]>,
     mesh_dir: &'a str,
     text: String,
     files: Vec<(String, String)>,
@@ -332,6 +339,20 @@ impl Writer<'_> {
                 );
             }
         }
+        // the body's visuals but those of the links welded to it (written on those links)
+        let welded = self.welded_links(body);
+        let visuals: Vec<&Visual> = self
+            .visuals
+            .iter()
+            .filter(|v| {
+                v.body.map(|b| b.0) == body && (v.link == name || !welded.contains(&v.link))
+            })
+            .collect();
+        for v in visuals {
+            if let Some(e) = self.visual(v, &Transform::identity()) {
+                s.push_str(&e);
+            }
+        }
         let geometries: Vec<&Geometry> = geometries_of(self.geometries, body).collect();
         for g in geometries {
             if let Some(c) = self.collision(g) {
@@ -369,10 +390,27 @@ impl Writer<'_> {
                 None => format!("{lname}_joint"),
             };
             let jname = unique(&mut self.joint_names, &jname);
+            let mut visuals = String::new();
+            if frame.kind == FrameKind::Body {
+                let mine: Vec<&Visual> = self
+                    .visuals
+                    .iter()
+                    .filter(|v| v.link == frame.name && v.body == frame.parent)
+                    .collect();
+                for v in mine {
+                    if let Some(e) = self.visual(v, &frame.placement) {
+                        visuals.push_str(&e);
+                    }
+                }
+            }
+            let link_element = if visuals.is_empty() {
+                format!("  <link name=\"{}\"/>\n", esc(&lname))
+            } else {
+                format!("  <link name=\"{}\">\n{visuals}  </link>\n", esc(&lname))
+            };
             let _ = write!(
                 self.text,
-                "  <link name=\"{}\"/>\n  <joint name=\"{}\" type=\"fixed\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n{}  </joint>\n",
-                esc(&lname),
+                "{link_element}  <joint name=\"{}\" type=\"fixed\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n{}  </joint>\n",
                 esc(&jname),
                 esc(link),
                 esc(&lname),
@@ -387,9 +425,10 @@ impl Writer<'_> {
         }
     }
 
-    /// A `<collision>` element (a shape URDF lacks as an OBJ mesh of its hull).
-    fn collision(&mut self, g: &Geometry) -> Option<String> {
-        let geometry = match &g.shape {
+    /// The `<geometry>` child of `shape` (named `name` in notes): a shape URDF lacks (capsule,
+    /// cone, ellipsoid, hull) as an OBJ mesh of its hull, written into `mesh_dir`.
+    fn geometry_tag(&mut self, name: &str, shape: &Shape) -> Option<String> {
+        Some(match shape {
             Shape::Sphere { radius } => format!("<sphere radius=\"{}\"/>", num(*radius)),
             Shape::Box { size } => format!("<box size=\"{}\"/>", vec3(size)),
             Shape::Cylinder { radius, length } => format!(
@@ -401,18 +440,17 @@ impl Writer<'_> {
             | Shape::Cone { .. }
             | Shape::Ellipsoid { .. }
             | Shape::ConvexHull { .. } => {
-                let Some((vertices, triangles)) = solid_hull(&surface_points(&g.shape, 32)) else {
+                let Some((vertices, triangles)) = solid_hull(&surface_points(shape, 32)) else {
                     self.notes.push(format!(
                         "geometry \"{}\": its hull is flat: not written",
-                        g.name
+                        name
                     ));
                     return None;
                 };
-                if !matches!(g.shape, Shape::ConvexHull { .. }) {
-                    self.hulls.push(g.name.clone());
+                if !matches!(shape, Shape::ConvexHull { .. }) {
+                    self.hulls.push(name.to_string());
                 }
-                let stem: String = g
-                    .name
+                let stem: String = name
                     .chars()
                     .map(|c| {
                         if c.is_ascii_alphanumeric() || c == '-' {
@@ -437,7 +475,68 @@ impl Writer<'_> {
                 self.files.push((file.clone(), obj));
                 format!("<mesh filename=\"{}\"/>", esc(&file))
             }
+        })
+    }
+
+    /// A `<visual>` element: a primitive, or a mesh by its file's absolute path and its scale,
+    /// with its colour as a material named after it (`color_k`, one name per colour).
+    /// `link_placement` is the pose of the link it is written on in the body's joint frame.
+    fn visual(&mut self, v: &Visual, link_placement: &Transform) -> Option<String> {
+        let geometry = match &v.shape {
+            VisualShape::Primitive(shape) => self.geometry_tag(&v.name, shape)?,
+            VisualShape::Mesh { file, scale } => {
+                let scale = if *scale == crate::spatial::Vec3::repeat(1.0) {
+                    String::new()
+                } else {
+                    format!(" scale=\"{}\"", vec3(scale))
+                };
+                format!(
+                    "<mesh filename=\"{}\"{scale}/>",
+                    esc(&file.display().to_string())
+                )
+            }
         };
+        let material = match v.rgba {
+            None => String::new(),
+            Some(c) => {
+                let k = match self.materials.iter().position(|m| *m == c) {
+                    Some(k) => k,
+                    None => {
+                        self.materials.push(c);
+                        self.materials.len() - 1
+                    }
+                };
+                format!(
+                    "      <material name=\"color_{k}\">\n        <color rgba=\"{}\"/>\n      </material>\n",
+                    nums(c)
+                )
+            }
+        };
+        Some(format!(
+            "    <visual name=\"{}\">\n{}      <geometry>\n        {geometry}\n      </geometry>\n{material}    </visual>\n",
+            esc(&v.name),
+            origin(&(link_placement.inverse() * v.placement), 6)
+        ))
+    }
+
+    /// The links welded to body `body` (`None`: the world) that are written as links of their
+    /// own (its [`FrameKind::Body`] frames but its own link's).
+    fn welded_links(&self, body: Option<usize>) -> Vec<String> {
+        let frames = match body {
+            Some(j) => &self.outline.fixed[j],
+            None => &self.outline.world,
+        };
+        frames
+            .iter()
+            .map(|&f| &self.outline.model.frames()[f])
+            .filter(|f| f.kind == FrameKind::Body)
+            .map(|f| f.name.clone())
+            .collect()
+    }
+
+    /// A `<collision>` element (a shape URDF lacks as an OBJ mesh of its hull).
+    fn collision(&mut self, g: &Geometry) -> Option<String> {
+        let geometry = self.geometry_tag(&g.name, &g.shape)?;
         if g.contype != 1 || g.conaffinity != 1 {
             self.masked.push(g.name.clone());
         }
