@@ -228,20 +228,25 @@ def _support(points, directions):
     return np.max(points @ directions.T, axis=0)
 
 
-def test_visuals_written_to_mjcf_sit_where_pinocchio_puts_them(tmp_path):
-    """UR5 of example-robot-data (COLLADA visual meshes) to MJCF: MuJoCo compiles its visual
-    geoms (group 1, no contact, no mass; M unchanged), one per URDF <visual>, and at random
-    states each geom's vertices in the world span the same hull as Pinocchio's visual object's
-    (its oMg, hpp-fcl's vertices times meshScale), to MuJoCo's float32 vertices."""
+@pytest.mark.parametrize("name,rel,floating", [
+    ("ur5", "ur_description/urdf/ur5_robot.urdf", False),
+    ("talos", "talos_data/robots/talos_reduced.urdf", True)])
+def test_visuals_written_to_mjcf_sit_where_pinocchio_puts_them(name, rel, floating, tmp_path):
+    """UR5 (COLLADA visual meshes) and TALOS (STL, some scaled by -1) of example-robot-data to
+    MJCF: MuJoCo compiles their visual geoms (group 1, no contact, no mass; M unchanged), one per
+    URDF <visual>, and at random states each geom's vertices in the world span the same hull as
+    Pinocchio's visual object's (its oMg, hpp-fcl's vertices, already scaled), to MuJoCo's float32
+    vertices; a primitive geom sits at its object's oMg."""
     from conftest import robots_dir
 
-    path = os.path.join(robots_dir(), "ur_description/urdf/ur5_robot.urdf")
+    path = os.path.join(robots_dir(), rel)
     meshes = os.path.dirname(os.path.dirname(robots_dir()))
-    out = tmp_path / "ur5_visual.xml"
-    quiet(rigid.Model.from_urdf, path).save(out)
+    out = tmp_path / f"{name}_visual.xml"
+    quiet(rigid.Model.from_urdf, path, floating=floating).save(out)
     m = mujoco.MjModel.from_xml_path(str(out))
     d = mujoco.MjData(m)
-    pm, _, pv = quiet(pin.buildModelsFromUrdf, path, meshes)
+    root = (pin.JointModelFreeFlyer(),) if floating else ()
+    pm, _, pv = quiet(pin.buildModelsFromUrdf, path, meshes, *root)
     pd, pvd = pm.createData(), pv.createData()
     visual = [g for g in range(m.ngeom) if m.geom_group[g] == 1]
     assert len(visual) == pv.ngeoms and all(m.geom_contype[g] == 0 for g in visual)
@@ -257,12 +262,16 @@ def test_visuals_written_to_mjcf_sit_where_pinocchio_puts_them(tmp_path):
             name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, g)
             k = pv.getGeometryId(name.replace("/visual/", "_"))
             obj = pv.geometryObjects[k]
+            M = pvd.oMg[k]
+            if m.geom_type[g] != mujoco.mjtGeom.mjGEOM_MESH:  # a primitive: the same frame
+                R = d.geom_xmat[g].reshape(3, 3)
+                worst = max(worst, np.max(np.abs(d.geom_xpos[g] - M.translation)),
+                            np.max(np.abs(R - M.rotation)))
+                continue
             mesh = m.geom_dataid[g]
             a, n = m.mesh_vertadr[mesh], m.mesh_vertnum[mesh]
             ours = d.geom_xpos[g] + m.mesh_vert[a:a + n].astype(float) @ d.geom_xmat[g].reshape(3, 3).T
-            M = pvd.oMg[k]
-            theirs = (np.array(obj.geometry.vertices()) * obj.meshScale) @ M.rotation.T \
-                + M.translation
+            theirs = np.array(obj.geometry.vertices()) @ M.rotation.T + M.translation
             gap = np.max(np.abs(_support(ours, directions) - _support(theirs, directions)))
             worst = max(worst, gap)
     assert worst < 1e-5, worst

@@ -483,3 +483,46 @@ fn visual_geometry_is_written_both_ways() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// What MuJoCo would refuse among visuals is left out with a note, and a massless body with a
+/// visual is still merged into its child (its visual left out, noted): a zero-size box, and a
+/// massless yaw link between two joints.
+#[test]
+fn visuals_mujoco_would_refuse_are_noted_and_left_out() {
+    use rigid::io::write::save;
+    let dir = std::env::temp_dir().join(format!("rigid_visuals_refused_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let urdf = dir.join("h.urdf");
+    std::fs::write(
+        &urdf,
+        r#"<robot name="h">
+  <link name="base"/>
+  <link name="yaw"><visual><geometry><cylinder radius="0.05" length="0.1"/></geometry></visual></link>
+  <joint name="j1" type="continuous"><parent link="base"/><child link="yaw"/><axis xyz="0 0 1"/></joint>
+  <link name="arm">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><geometry><box size="0.1 0.15 0"/></geometry></visual>
+    <visual><geometry><sphere radius="0.02"/></geometry></visual>
+  </link>
+  <joint name="j2" type="continuous"><parent link="yaw"/><child link="arm"/><axis xyz="0 1 0"/></joint>
+</robot>"#,
+    )
+    .unwrap();
+    let model = rigid::io::urdf::load_urdf(&urdf, false).unwrap();
+    let out = dir.join("h.xml");
+    let notes = save(&model, Some(&urdf), &out).unwrap();
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(!text.contains("<body name=\"yaw\""), "{text}");
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("visuals of the merged body \"yaw\"")),
+        "{notes:?}"
+    );
+    assert!(
+        notes.iter().any(|n| n.contains("visual \"arm/visual/0\"")),
+        "{notes:?}"
+    );
+    assert!(text.contains("type=\"sphere\" size=\"0.02\""), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

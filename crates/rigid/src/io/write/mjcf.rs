@@ -142,7 +142,6 @@ impl Writer<'_> {
             && is_zero(&model.inertias()[j])
             && self.outline.children[j].len() == 1
             && geometries_of(self.geometries, Some(j)).next().is_none()
-            && !self.visuals.iter().any(|v| v.body.map(|b| b.0) == Some(j))
             && self.outline.fixed[j]
                 .iter()
                 .all(|&f| model.frames()[f].kind == FrameKind::FixedJoint)
@@ -171,6 +170,18 @@ impl Writer<'_> {
                  (MuJoCo refuses massless moving bodies): the same motion and coordinates",
                 self.outline.link[j], self.outline.link[c], joint.name
             ));
+            let lost = self
+                .visuals
+                .iter()
+                .filter(|v| v.body.map(|b| b.0) == Some(j))
+                .count();
+            if lost > 0 {
+                self.notes.push(format!(
+                    "the {lost} visuals of the merged body \"{}\" are not written (it has no \
+                     body of its own in the file)",
+                    self.outline.link[j]
+                ));
+            }
             return self.joint_body(c, depth, carried, before * joint.placement);
         }
         let name = esc(&self.outline.link[j]);
@@ -418,14 +429,23 @@ impl Writer<'_> {
     }
 
     /// A visual `<geom>` (no contact, no mass: `contype="0" conaffinity="0" group="1"`): a
-    /// primitive, or a mesh asset by its file when MuJoCo reads the format (STL, OBJ), else by
-    /// its vertices and faces read by rigid (COLLADA), with its colour.
+    /// primitive (a degenerate one left out with a note), or a mesh asset by its file for OBJ,
+    /// else by its vertices and faces read by rigid (STL, COLLADA), with its colour.
     fn visual(&mut self, v: &Visual, depth: usize) {
         let name = unique(&mut self.geom_names, &v.name);
         let shape = match &v.shape {
-            VisualShape::Primitive(shape) => match self.shape_attrs(&name, shape) {
-                Some(a) => a,
-                None => return,
+            VisualShape::Primitive(shape) => match shape.check() {
+                Err(e) => {
+                    self.notes.push(format!(
+                        "visual \"{}\": {e}, which MuJoCo refuses: not written",
+                        v.name
+                    ));
+                    return;
+                }
+                Ok(()) => match self.shape_attrs(&name, shape) {
+                    Some(a) => a,
+                    None => return,
+                },
             },
             VisualShape::Mesh { file, scale } => {
                 let ext = file
@@ -437,7 +457,9 @@ impl Writer<'_> {
                 } else {
                     format!(" scale=\"{}\"", vec3(scale))
                 };
-                let source = if matches!(ext.as_deref(), Some("stl" | "obj")) {
+                // MuJoCo reads OBJ; its STL reader takes binary files of at most 200,000 faces
+                // only, so an STL (like a COLLADA file) goes in as its triangles
+                let source = if ext.as_deref() == Some("obj") {
                     format!("file=\"{}\"", esc(&file.display().to_string()))
                 } else {
                     match crate::io::mesh_file::read_mesh(file) {

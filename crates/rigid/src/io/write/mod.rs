@@ -13,8 +13,7 @@
 //! A collision mesh is written as the convex hull rigid collides it as (inline vertices in MJCF,
 //! an OBJ file beside a URDF). The visual geometry ([`Visual`], a URDF's `<visual>` elements) is
 //! written as it is: primitives as primitives, a mesh by its file (its absolute path) in URDF and
-//! in MJCF when MuJoCo reads the format (STL, OBJ), else as inline vertices and faces; with its
-//! colour. It takes no part in the dynamics or the collisions (MJCF: `contype="0"
+//! in MJCF when it is an OBJ file, else as inline vertices and faces; with its colour. It takes no part in the dynamics or the collisions (MJCF: `contype="0"
 //! conaffinity="0" group="1"`).
 
 pub mod mjcf;

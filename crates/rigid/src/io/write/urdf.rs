@@ -88,11 +88,13 @@ pub fn write_urdf(
              with --floating (rigid) or root_joint=JointModelFreeFlyer() (Pinocchio)",
             j.name
         ));
-        let dropped = outline.world.len() + geometries_of(geometries, None).count();
+        let dropped = outline.world.len()
+            + geometries_of(geometries, None).count()
+            + visuals.iter().filter(|v| v.body.is_none()).count();
         if dropped > 0 {
             w.notes.push(format!(
-                "{dropped} frames and geometries fixed in the world are not written: a floating \
-                 robot's URDF has no world link"
+                "{dropped} frames, geometries and visuals fixed in the world are not written: a \
+                 floating robot's URDF has no world link"
             ));
         }
         None
