@@ -24,6 +24,7 @@
 //! redundant rows (four corners of a face) harmless, and it spreads the load over them as the
 //! sweep, which settles on whichever corner it met first, does not.
 
+use super::pgs::Islands;
 use super::solver::Block;
 use super::ContactSettings;
 use crate::multibody::constraints::solver::{cholesky, cholesky_solve};
@@ -32,10 +33,8 @@ use nalgebra::DMatrix;
 /// The workspace, reused from step to step (it grows with the largest island seen).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Admm {
-    /// Per block, its island (scratch), and the islands' blocks in order.
-    island: Vec<usize>,
+    /// The blocks of the island being solved.
     order: Vec<usize>,
-    stack: Vec<usize>,
     /// The rows of the island being solved, and their block's cone per row.
     rows: Vec<usize>,
     /// `G` of the island (n x n, row-major), the factor of `G + ρ I`.
@@ -64,14 +63,14 @@ enum Cone {
 
 impl Admm {
     /// Solves `σ = σ₀ + K λ` (`σ` holds `σ₀ + K λ` of the warm `λ` on entry; `K` m x m, stride
-    /// m) for the blocks' cones, as [`pgs`](super::solver) does, `coupled`/`first` the blocks'
-    /// coupled row ranges, `idle` the bilateral rows held at 0. Returns the largest number of
-    /// iterations of an island and whether every island met the tolerance.
+    /// m) for the blocks' cones, as [`pgs`](super::pgs) does, island by island, `idle` the
+    /// bilateral rows held at 0. Returns the largest number of iterations of an island and
+    /// whether every island met the tolerance.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn solve(
         &mut self,
         blocks: &[Block],
-        (coupled, first): (&[(usize, usize)], &[usize]),
+        islands: &Islands,
         K: &[f64],
         idle: &[bool],
         target: &[f64],
@@ -81,34 +80,10 @@ impl Admm {
         friction: bool,
     ) -> (usize, bool) {
         let m = lambda.len();
-        let nb = blocks.len();
-        // the islands: blocks connected through coupled rows
-        self.island.clear();
-        self.island.resize(nb, usize::MAX);
-        let block_of = |r: usize| blocks.partition_point(|b| b.row + b.dim <= r);
         let (mut most, mut all) = (0, true);
-        for start in 0..nb {
-            if self.island[start] != usize::MAX {
-                continue;
-            }
+        for island in islands.iter() {
             self.order.clear();
-            self.stack.clear();
-            self.stack.push(start);
-            self.island[start] = start;
-            while let Some(b) = self.stack.pop() {
-                self.order.push(b);
-                for &(lo, hi) in &coupled[first[b]..first[b + 1]] {
-                    let mut c = block_of(lo);
-                    while c < nb && blocks[c].row < hi {
-                        if self.island[c] == usize::MAX {
-                            self.island[c] = start;
-                            self.stack.push(c);
-                        }
-                        c += 1;
-                    }
-                }
-            }
-            self.order.sort_unstable();
+            self.order.extend_from_slice(island);
             self.rows.clear();
             for &b in &self.order {
                 self.rows

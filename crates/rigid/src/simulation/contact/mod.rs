@@ -53,6 +53,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod admm;
+mod pgs;
 mod polish;
 mod residuals;
 #[cfg(feature = "collision")]

@@ -36,14 +36,17 @@
 //! than 1e-10 of the largest) may not see for many sweeps where redundant contacts leave the
 //! impulses' split free.
 
-use super::solver::{len, Block};
+use super::pgs::len;
+use super::solver::Block;
 
-/// The contact problem a polish works on: `σ = σ₀ + K λ` (`K` m x m, stride m) over `blocks`,
-/// `idle` the bilateral rows held at 0, `target` each row's `σ*`, `friction` as the sweep's,
+/// The contact problem a polish works on: `σ = σ₀ + K λ` (`K` m x m, stride m) over the blocks
+/// of one island (`island`: indices into `blocks`, whose rows of `K` are zero against the
+/// others'), `idle` the bilateral rows held at 0, `target` each row's `σ*`, `friction` as the sweep's,
 /// `largest` the most active rows worth a dense solve.
 #[derive(Clone, Copy)]
 pub(crate) struct Problem<'a> {
     pub(crate) blocks: &'a [Block],
+    pub(crate) island: &'a [usize],
     pub(crate) K: &'a [f64],
     pub(crate) idle: &'a [bool],
     pub(crate) target: &'a [f64],
@@ -110,9 +113,9 @@ impl Polish {
     /// Polishes `λ` and `σ` for the active set of `p`'s blocks. Returns whether the polished
     /// impulses were kept (else `λ` and `σ` are as they came).
     pub(crate) fn apply(&mut self, p: Problem, lambda: &mut [f64], sigma: &mut [f64]) -> bool {
-        let (blocks, friction) = (p.blocks, p.friction);
+        let friction = p.friction;
         self.modes.clear();
-        for b in blocks {
+        for b in p.island.iter().map(|&i| &p.blocks[i]) {
             let r = b.row;
             let mode = if b.bilateral {
                 Mode::Held
@@ -137,7 +140,7 @@ impl Polish {
             if !self.solve(p, lambda, sigma) {
                 break;
             }
-            if !self.next_modes(blocks, p.target, lambda, sigma, friction) {
+            if !self.next_modes(p, lambda, sigma) {
                 return true;
             }
         }
@@ -151,6 +154,7 @@ impl Polish {
     fn solve(&mut self, p: Problem, lambda: &mut [f64], sigma: &mut [f64]) -> bool {
         let Problem {
             blocks,
+            island,
             K,
             idle,
             target,
@@ -158,13 +162,10 @@ impl Polish {
             largest,
         } = p;
         let m = lambda.len();
-        let fast = sigma
-            .iter()
-            .chain(target)
-            .fold(0.0f64, |a, s| a.max(s.abs()));
+        let fast = scale(p, sigma).max(scale(p, target));
         self.unknowns.clear();
         self.equations.clear();
-        for (b, mode) in blocks.iter().zip(&self.modes) {
+        for (b, mode) in island.iter().map(|&i| &blocks[i]).zip(&self.modes) {
             let r = b.row;
             let rows = r..r + b.dim;
             let s = if b.dim == 3 {
@@ -297,22 +298,14 @@ impl Polish {
 
     /// The modes the solution `λ`, `σ` of the current ones calls for; true if any changed or a
     /// sliding contact has not yet converged (the solution is then not taken yet).
-    fn next_modes(
-        &mut self,
-        blocks: &[Block],
-        target: &[f64],
-        lambda: &[f64],
-        sigma: &[f64],
-        friction: bool,
-    ) -> bool {
-        let big = lambda.iter().fold(0.0f64, |a, l| a.max(l.abs()));
-        let fast = sigma
-            .iter()
-            .chain(target)
-            .fold(0.0f64, |a, s| a.max(s.abs()));
+    fn next_modes(&mut self, p: Problem, lambda: &[f64], sigma: &[f64]) -> bool {
+        let (target, friction) = (p.target, p.friction);
+        let big = scale(p, lambda);
+        let fast = scale(p, sigma).max(scale(p, target));
         let (tiny, slow) = (1e-12 * big, 1e-9 * fast);
         let mut changed = false;
-        for (b, mode) in blocks.iter().zip(self.modes.iter_mut()) {
+        let blocks = p.island.iter().map(|&i| &p.blocks[i]);
+        for (b, mode) in blocks.zip(self.modes.iter_mut()) {
             if b.bilateral {
                 continue;
             }
@@ -367,6 +360,15 @@ impl Polish {
 /// Whether the block's tangent rows are in the sweep (a contact with friction).
 fn slides(b: &Block, friction: bool) -> bool {
     b.dim == 3 && friction && b.friction > 0.0 && !b.bilateral
+}
+
+/// `max |x_r|` over the rows of `p`'s island.
+fn scale(p: Problem, x: &[f64]) -> f64 {
+    let rows = p.island.iter().flat_map(|&i| {
+        let b = &p.blocks[i];
+        b.row..b.row + b.dim
+    });
+    rows.fold(0.0f64, |a, r| a.max(x[r].abs()))
 }
 
 /// `max |x_i|` (NaN if any is).
