@@ -24,6 +24,7 @@ pub(crate) fn delassus(data: &Data, cd: &mut ConstraintData) {
         &cd.rows[..=n],
         &cd.support[..n],
         &cd.jacobian,
+        None,
         cd.z.as_mut_slice(),
         cd.delassus.as_mut_slice(),
     );
@@ -33,12 +34,16 @@ pub(crate) fn delassus(data: &Data, cd: &mut ConstraintData) {
 /// block `c` has rows `rows[c]..rows[c + 1]` of `J` (`J.nrows()` may exceed `m = rows[n]`) and
 /// the support `support[c]` (its dofs, closed under taking parents). Writes `Z = L⁻ᵀ Jᵀ`
 /// column-major into `Z` (column r at `r * nv`; at least `nv m` entries) and `K = Zᵀ Z`, `m x m`
-/// with stride `m`, into `K` (at least `m²` entries).
+/// with stride `m`, into `K` (at least `m²` entries). With `coupled` (per block `c`, the row
+/// ranges `list[first[c]..first[c + 1]]` of the blocks whose supports share a dof with its),
+/// only those entries are computed and the others set to zero, which they are: two rows whose
+/// supports share no dof have `Z_rᵀ Z_s = 0`.
 pub(crate) fn delassus_rows(
     data: &Data,
     rows: &[usize],
     support: &[Support],
     J: &DMatrix<f64>,
+    coupled: Option<(&[(usize, usize)], &[usize])>,
     Z: &mut [f64],
     K: &mut [f64],
 ) {
@@ -77,20 +82,60 @@ pub(crate) fn delassus_rows(
             }
         }
     }
-    // K[r, s] = Z_rᵀ Z_s over the span of r's constraint's support (Z_r is zero outside it)
+    // K[r, s] = Z_rᵀ Z_s over the runs of consecutive dofs of r's constraint's support (Z_r is
+    // zero outside it), for the rows s ≤ r of the blocks `coupled` says may share a dof with it
+    // (every block when it is `None`); zero elsewhere
+    if coupled.is_some() {
+        K[..m * m].fill(0.0);
+    }
     for c in 0..n {
-        let span = match (support[c].cols.first(), support[c].cols.last()) {
-            (Some(a), Some(b)) => a.0..b.0 + 1,
-            _ => 0..0,
+        let runs = Runs::of(&support[c].cols);
+        let ranges = match coupled {
+            Some((list, first)) => &list[first[c]..first[c + 1]],
+            None => &[(0, m)][..],
         };
         for r in rows[c]..rows[c + 1] {
-            let zr = &Z[r * nv..(r + 1) * nv][span.clone()];
-            for s in 0..=r {
-                let x = dot(zr, &Z[s * nv..(s + 1) * nv][span.clone()]);
-                K[s * m + r] = x;
-                K[r * m + s] = x;
+            let zr = &Z[r * nv..(r + 1) * nv];
+            for &(lo, hi) in ranges {
+                for s in lo..hi.min(r + 1) {
+                    let zs = &Z[s * nv..(s + 1) * nv];
+                    let x = runs.iter().map(|(a, b)| dot(&zr[a..b], &zs[a..b])).sum();
+                    K[s * m + r] = x;
+                    K[r * m + s] = x;
+                }
             }
         }
+    }
+}
+
+/// The runs of consecutive dofs of a support (ascending), at most [`Runs::MOST`]; the last
+/// stretches to the support's end when there are more (`Z` is zero in between: the products
+/// are the same).
+struct Runs {
+    runs: [(usize, usize); Runs::MOST],
+    len: usize,
+}
+
+impl Runs {
+    const MOST: usize = 16;
+
+    fn of(cols: &[(usize, bool, bool)]) -> Self {
+        let mut runs = [(0, 0); Self::MOST];
+        let mut len = 0;
+        for &(k, _, _) in cols {
+            match runs[..len].last_mut() {
+                Some(last) if last.1 == k || len == Self::MOST => last.1 = k + 1,
+                _ => {
+                    runs[len] = (k, k + 1);
+                    len += 1;
+                }
+            }
+        }
+        Self { runs, len }
+    }
+
+    fn iter(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.runs[..self.len].iter().copied()
     }
 }
 

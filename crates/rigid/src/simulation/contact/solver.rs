@@ -499,15 +499,16 @@ impl ContactSolver {
         if nblocks == 0 {
             return;
         }
+        self.couple();
         delassus_rows(
             data,
             &self.rows,
             &self.support[..nblocks],
             &self.jacobian,
+            Some((&self.coupled, &self.coupled_first)),
             &mut self.z,
             &mut self.delassus,
         );
-        self.couple();
         self.islands
             .find(&self.blocks, (&self.coupled, &self.coupled_first));
         let mut sigma_free = std::mem::take(&mut self.sigma_free);
