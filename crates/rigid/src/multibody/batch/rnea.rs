@@ -49,9 +49,11 @@ fn forward<const W: usize, P: Pose<W>>(
         Some(par) => (X.inv_act(&p.V[par.0]), X.inv_act(&p.A[par.0])),
         None => (T6::zero(), X.inv_act(a_world)),
     };
+    // the single call's order of additions, for its bits: A + S q̈, then + V × S q̇
+    A += p.joint_twist(model, i, &p.x);
     let vJ = p.joint_twist(model, i, &p.v);
     V += vJ;
-    A += p.joint_twist(model, i, &p.x) + V.cross(&vJ);
+    A += V.cross(&vJ);
     if let Some(cJ) = p.joint_bias(model, i) {
         A += cJ;
     }
