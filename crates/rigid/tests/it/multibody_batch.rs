@@ -7,9 +7,9 @@ use rigid::io::urdf::load_urdf;
 use rigid::multibody::*;
 use rigid::spatial::{Mat3, Vec3};
 
-/// Relative agreement asked of the lanes with the single calls: they take other steps in
-/// another order in places (ABA's inertias in blocks; CRBA through the joint module for the
-/// joints without a lane path), so round-off differs.
+/// Relative agreement asked of the lanes' ABA with the single call: it takes other steps in
+/// another order (its inertias in blocks), so round-off differs (RNEA, CRBA and the RNEA
+/// derivatives are asked bit for bit).
 const TOLERANCE: f64 = 1e-13;
 
 /// Relative agreement asked of the lane RNEA derivatives (`∂τ/∂q`, `∂τ/∂v`) with the single

@@ -10,9 +10,9 @@
 //! (rayon). The kernels compute what the single calls do, mostly in their order of operations
 //! (ABA's articulated inertias in 3x3 blocks in another), so the results equal
 //! [`rnea`](super::rnea), [`aba`](super::aba), [`crba`](super::crba) and
-//! [`rnea_derivatives`](super::rnea_derivatives) to round-off (1e-13 relative; CRBA and the RNEA
-//! derivatives bit for bit wherever the joints are revolute, prismatic or free-flyers; checked on
-//! every robot of example-robot-data). The ABA derivatives are single calls, spread across the
+//! [`rnea_derivatives`](super::rnea_derivatives): RNEA, CRBA and the RNEA derivatives bit for bit
+//! (every joint type; checked on every robot of example-robot-data), ABA to round-off (1e-13
+//! relative). The ABA derivatives are single calls, spread across the
 //! cores.
 //!
 //! Inputs are row-major: state `k`'s configuration is `qs[k nq..(k + 1) nq]`, its velocity

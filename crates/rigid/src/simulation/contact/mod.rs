@@ -115,7 +115,7 @@ impl std::str::FromStr for Solver {
 pub struct ContactSettings {
     /// The algorithm.
     pub solver: Solver,
-    /// The most sweeps (PGS) or iterations (ADMM) per step.
+    /// The most sweeps (PGS) or iterations (ADMM) per island of a step.
     pub max_iterations: usize,
     /// Stop when no impulse changed by more than `tolerance × (largest impulse)` in a sweep (PGS)
     /// or an iteration, with the split `x = z` held to the same (ADMM).
@@ -166,7 +166,8 @@ pub struct ContactStats {
     pub candidates: usize,
     /// Of those, the ones that pushed (`λ_n > 0`).
     pub active: usize,
-    /// Sweeps (PGS) or iterations (ADMM, the most of an island) done.
+    /// Sweeps (PGS) or iterations (ADMM) done: the most of an island (each island of blocks
+    /// that share no dof with another's is solved on its own).
     pub iterations: usize,
     /// Whether the tolerance was met within `max_iterations`.
     pub converged: bool,

@@ -252,7 +252,7 @@ fn sweep_island(
 
 /// Whether the active-set [polish](super::polish) follows sweep `it` (not yet converged): after
 /// sweeps 4, 8, 16, ..., at most twice refused in one solve (each Newton step costs a dense
-/// solve of the active rows, at most ~16 sweeps' work by the budget in `pgs`).
+/// solve of the active rows, at most ~16 sweeps' work by the budget in `sweep_island`).
 fn polish_after(it: usize) -> bool {
     it >= 4 && it.is_power_of_two()
 }

@@ -41,8 +41,8 @@ use super::solver::Block;
 
 /// The contact problem a polish works on: `σ = σ₀ + K λ` (`K` m x m, stride m) over the blocks
 /// of one island (`island`: indices into `blocks`, whose rows of `K` are zero against the
-/// others'), `idle` the bilateral rows held at 0, `target` each row's `σ*`, `friction` as the sweep's,
-/// `largest` the most active rows worth a dense solve.
+/// others'), `idle` the bilateral rows held at 0, `target` each row's `σ*`, `friction` as the
+/// sweep's, `largest` the most active rows worth a dense solve.
 #[derive(Clone, Copy)]
 pub(crate) struct Problem<'a> {
     pub(crate) blocks: &'a [Block],
@@ -57,7 +57,7 @@ pub(crate) struct Problem<'a> {
 /// The workspace, reused from step to step (it grows with the largest problem seen).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Polish {
-    /// Per block, its mode.
+    /// Per block of the island, its mode.
     modes: Vec<Mode>,
     /// The unknowns' rows (each row's impulse), and the equations' (row, kind).
     unknowns: Vec<usize>,

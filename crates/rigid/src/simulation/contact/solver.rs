@@ -1,6 +1,7 @@
 //! The contact problem of one step: rows of `J`, the Delassus operator through the constraint
-//! machinery's kernels, the projected Gauss–Seidel iterations, the energy safeguard and the
-//! position correction (see the [module](super) documentation for the equations).
+//! machinery's kernels, its islands, the solve (projected Gauss–Seidel in [`pgs`](super::pgs),
+//! or ADMM), the energy safeguard and the position correction (see the [module](super)
+//! documentation for the equations).
 //!
 //! Bilateral rows (closed loops, welds, MJCF equalities: a [`ConstraintData`]'s rows) come first
 //! and are one block of the Gauss–Seidel sweep, solved whole at each sweep by the proximal step
@@ -500,12 +501,21 @@ impl ContactSolver {
             return;
         }
         self.couple();
+        // only the coupled pairs of rows where they are fewer than half of all (free bodies
+        // apart, several robots); on one robot's tree every pair is
+        let pairs: usize = (0..nblocks)
+            .map(|b| {
+                let ranges = &self.coupled[self.coupled_first[b]..self.coupled_first[b + 1]];
+                self.blocks[b].dim * ranges.iter().map(|(lo, hi)| hi - lo).sum::<usize>()
+            })
+            .sum();
+        let coupled = (2 * pairs < m * m).then_some((&self.coupled[..], &self.coupled_first[..]));
         delassus_rows(
             data,
             &self.rows,
             &self.support[..nblocks],
             &self.jacobian,
-            Some((&self.coupled, &self.coupled_first)),
+            coupled,
             &mut self.z,
             &mut self.delassus,
         );
