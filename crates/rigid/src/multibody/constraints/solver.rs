@@ -30,6 +30,10 @@ pub(crate) fn delassus(data: &Data, cd: &mut ConstraintData) {
     );
 }
 
+/// Per block `c`, the row ranges `list[first[c]..first[c + 1]]` of the blocks whose supports
+/// share a dof with its: `(list, first)`.
+pub(crate) type Coupled<'a> = (&'a [(usize, usize)], &'a [usize]);
+
 /// The kernel of [`delassus`] on any set of row blocks (constraints, contacts, joint limits):
 /// block `c` has rows `rows[c]..rows[c + 1]` of `J` (`J.nrows()` may exceed `m = rows[n]`) and
 /// the support `support[c]` (its dofs, closed under taking parents). Writes `Z = L⁻ᵀ Jᵀ`
@@ -43,7 +47,7 @@ pub(crate) fn delassus_rows(
     rows: &[usize],
     support: &[Support],
     J: &DMatrix<f64>,
-    coupled: Option<(&[(usize, usize)], &[usize])>,
+    coupled: Option<Coupled>,
     Z: &mut [f64],
     K: &mut [f64],
 ) {
