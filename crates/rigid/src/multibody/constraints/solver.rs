@@ -130,9 +130,9 @@ struct Runs {
 
 impl Runs {
     const MOST: usize = 16;
-    /// The products a dot product of its own costs beyond its length (measured: Solo-12's legs
-    /// 10 % slower as two runs; a heap of 27 free bodies, whose contact pairs span up to 108
-    /// columns for 12, 1.2x faster a step).
+    /// The products a dot product of its own is taken to cost beyond its length (a guess, not
+    /// tuned: Solo-12's legs, two runs of 6 and 3 over a span of up to 18, take one dot product;
+    /// a heap's contact pairs, 12 dofs over a span of up to 108, take the runs).
     const GAP: usize = 16;
 
     fn of(cols: &[(usize, bool, bool)]) -> Self {
