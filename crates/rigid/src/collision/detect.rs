@@ -251,6 +251,25 @@ impl CollisionData {
         self.walks.clone_from(&other.walks);
     }
 
+    /// Keeps the contacts of the last [`contacts`](Self::contacts) (`out`) for which `keep`
+    /// holds, in their order, with what [`turn`](Self::turn) reads of each.
+    pub(crate) fn retain(
+        &mut self,
+        out: &mut Vec<ContactPoint>,
+        mut keep: impl FnMut(&ContactPoint) -> bool,
+    ) {
+        let mut k = 0;
+        for i in 0..out.len() {
+            if keep(&out[i]) {
+                out.swap(k, i);
+                self.sources.swap(k, i);
+                k += 1;
+            }
+        }
+        out.truncate(k);
+        self.sources.truncate(k);
+    }
+
     /// Forgets what past calls carry to the next (parry's persistent manifolds, the hull
     /// walks' starts): the next call starts cold.
     pub(crate) fn forget(&mut self) {
@@ -310,9 +329,13 @@ pub(crate) const RESTING_FACE: f64 = 1e-3;
 /// the resting face (the points within [`RESTING_FACE`] of the deepest) and from the others
 /// only when the face has no point that spreads the set: a flat sole rests on its four widest
 /// points, not on its deepest one and three corners raised by its rounded edges; a box landing
-/// on one corner keeps the other corners as speculative contacts. Then the points of the
-/// resting face under the envelope of those four (at most [`MOST_POINTS`] in all): an uneven
-/// sole settles on points the widest four may miss.
+/// on one corner keeps the other corners as speculative contacts. When the points touching the
+/// plane (within [`TOUCHING`] of the deepest) span a triangle, the body rests on a face of its
+/// hull: the four are taken first from those points, and no other point can be under their
+/// envelope (the hull is convex) — a rounded foot whose hull ends in a small flat facet rests
+/// on four of its corners, not on them and on the rim of its resting face. Otherwise, the
+/// points of the resting face under the envelope of the four (at most [`MOST_POINTS`] in all):
+/// an uneven sole settles on points the widest four may miss.
 ///
 /// Returns whether the resting face alone did not fill the set (points beyond it were wanted).
 fn reduce(pts: &mut Vec<(Vec3, f64, usize)>, n: &Vec3) -> bool {
@@ -326,6 +349,18 @@ fn reduce(pts: &mut Vec<(Vec3, f64, usize)>, n: &Vec3) -> bool {
     let deepest = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let on_face = |p: &(Vec3, f64, usize)| p.1 <= deepest + RESTING_FACE;
     let area = |a: &Vec3, b: &Vec3, c: &Vec3| n.dot(&(b - a).cross(&(c - a)));
+    let touching = |p: &(Vec3, f64, usize)| p.1 <= deepest + TOUCHING;
+    let flat = spans_triangle(pts.iter().filter(|p| touching(p)).map(|p| &p.0), n);
+    // where a point is taken from: 0 the touching face (when flat), 1 the resting face, 2 beyond
+    let tier = |p: &(Vec3, f64, usize)| {
+        if flat && touching(p) {
+            0
+        } else if on_face(p) {
+            1
+        } else {
+            2
+        }
+    };
     let mut keep: Vec<(Vec3, f64, usize)> = Vec::with_capacity(4);
     let mut side = 0.0;
     while keep.len() < 4 {
@@ -336,17 +371,18 @@ fn reduce(pts: &mut Vec<(Vec3, f64, usize)>, n: &Vec3) -> bool {
             2 => area(&keep[0].0, &keep[1].0, &p.0).abs(),
             _ => -side * area(&keep[0].0, &keep[1].0, &p.0),
         };
-        let best = |face: bool| {
-            pts.iter()
-                .filter(|p| on_face(p) == face)
-                .map(|p| (score(p), *p))
-                .max_by(|a, b| a.0.total_cmp(&b.0))
-        };
         // a point spreads the set if it is 0.1 mm away from it (or 1e-8 m² of triangle)
         let spreads = |s: f64| keep.is_empty() || s > if keep.len() == 1 { 1e-4 } else { 1e-8 };
-        let on = best(true).filter(|b| spreads(b.0));
+        let best = |t: u8| {
+            pts.iter()
+                .filter(|p| tier(p) == t)
+                .map(|p| (score(p), *p))
+                .max_by(|a, b| a.0.total_cmp(&b.0))
+                .filter(|b| spreads(b.0))
+        };
+        let on = best(0).or_else(|| best(1));
         beyond |= on.is_none();
-        let Some((_, p)) = on.or_else(|| best(false).filter(|b| spreads(b.0))) else {
+        let Some((_, p)) = on.or_else(|| best(2)) else {
             break;
         };
         if keep.len() == 2 {
@@ -354,7 +390,9 @@ fn reduce(pts: &mut Vec<(Vec3, f64, usize)>, n: &Vec3) -> bool {
         }
         keep.push(p);
     }
-    add_under_envelope(&mut keep, pts, n, deepest);
+    if !flat {
+        add_under_envelope(&mut keep, pts, n, deepest);
+    }
     pts.clear();
     pts.extend(keep);
     beyond
@@ -422,6 +460,20 @@ fn add_under_envelope(
         };
         keep.push(pts[i]);
     }
+}
+
+/// Whether three of `points` span a triangle of 1e-8 m² or more seen along `n`: the first
+/// touching one, the farthest from it, and the one making the largest triangle
+/// with those two.
+fn spans_triangle<'a>(mut points: impl Iterator<Item = &'a Vec3> + Clone, n: &Vec3) -> bool {
+    let Some(a) = points.next() else {
+        return false;
+    };
+    let far = |p: &&Vec3| (*p - a).norm();
+    let Some(b) = points.clone().max_by(|p, q| far(p).total_cmp(&far(q))) else {
+        return false;
+    };
+    (b - a).norm() > 1e-4 && points.any(|c| n.dot(&(b - a).cross(&(c - a))).abs() > 1e-8)
 }
 
 /// The lowest gap at `x` (seen along `n`) of the triangles of kept points that contain it,

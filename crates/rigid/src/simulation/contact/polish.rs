@@ -22,8 +22,9 @@
 //! workspace has grown; nalgebra's `LU` owns its matrix and permutation), on `A + ε I` with `ε =
 //! 10⁻¹² max |A_ii|` so that redundant rows (four corners of a face) give a bounded solution,
 //! then refined against `A` itself ([`REFINE`] steps). A step whose velocities exceed
-//! [`LARGEST_STEP`] times the problem's (`‖δλ‖ max|A_ii|` against the largest `|σ|`, `|σ*|`)
-//! solved an inconsistent singular system (four coplanar corners held to
+//! [`LARGEST_STEP`] times the problem's (`‖δλ‖ max|A_ii|` against the largest `|σ|`, `|σ*|`
+//! and `|K λ|` of the polish's start: at rest `σ` and `σ*` are ~0, and the speed the impulses
+//! cancel, gravity's kick, is the scale) solved an inconsistent singular system (four coplanar corners held to
 //! targets no rigid motion meets) and ends the polish: its cancellation would leave round-off
 //! of its size in `σ`.
 //! After each step the modes are read again: a negative normal impulse separates, a separated
@@ -72,6 +73,8 @@ pub(crate) struct Polish {
     r: Vec<f64>,
     /// `λ` and `σ` before the polish (restored when it is refused).
     saved: Vec<f64>,
+    /// The largest `|K λ|` of the island's rows at the polish's start.
+    kick: f64,
 }
 
 /// What a block's impulses are held to in the polish.
@@ -133,6 +136,21 @@ impl Polish {
             };
             self.modes.push(mode);
         }
+        let rows = || {
+            p.island.iter().flat_map(|&i| {
+                let b = &p.blocks[i];
+                b.row..b.row + b.dim
+            })
+        };
+        let m = lambda.len();
+        self.kick = rows()
+            .map(|r| {
+                rows()
+                    .map(|s| p.K[r * m + s] * lambda[s])
+                    .sum::<f64>()
+                    .abs()
+            })
+            .fold(0.0, f64::max);
         self.saved.clear();
         self.saved.extend_from_slice(lambda);
         self.saved.extend_from_slice(sigma);
@@ -254,7 +272,7 @@ impl Polish {
         let a_max = (self.equations.iter().enumerate())
             .filter(|(_, (_, e))| matches!(e, Equation::Velocity))
             .fold(0.0f64, |m, (i, _)| m.max(self.a[i * n + i].abs()));
-        let within = amax(&self.x) * a_max <= LARGEST_STEP * fast; // false on NaN
+        let within = amax(&self.x) * a_max <= LARGEST_STEP * fast.max(self.kick); // false on NaN
         if !within {
             return false;
         }

@@ -349,6 +349,28 @@ impl ContactSolver {
         self.points.push(*c);
     }
 
+    /// The normal speed of contact `c` at the generalized velocity `x`: `n · (v₁ − v₂)` of its
+    /// point on its two bodies (negative: closing), from the spatial Jacobian `data.jacobian` as
+    /// in [`push_contact`](Self::push_contact).
+    #[cfg(feature = "collision")]
+    pub(crate) fn normal_speed(&self, data: &Data, c: &ContactPoint, x: &[f64]) -> f64 {
+        let (n, pn) = (c.normal, c.point.cross(&c.normal));
+        let speed = |body: Option<JointId>| {
+            body.map_or(0.0, |j| {
+                self.chains[j.0]
+                    .iter()
+                    .map(|&k| {
+                        let col = data.jacobian.column(k);
+                        let w = Vec3::new(col[0], col[1], col[2]);
+                        let v = Vec3::new(col[3], col[4], col[5]);
+                        (n.dot(&v) + pn.dot(&w)) * x[k]
+                    })
+                    .sum::<f64>()
+            })
+        };
+        speed(c.body1) - speed(c.body2)
+    }
+
     /// Adds the limit of the 1-dof joint `joint` (its dof `dof`): `sign = +1` for a lower limit
     /// (`q − lower ≥ 0`), `−1` for an upper one, at the distance `gap` from it.
     pub(crate) fn push_limit(&mut self, joint: JointId, dof: usize, sign: f64, gap: f64) {

@@ -564,16 +564,18 @@ fn a_leg_with_a_loop_on_its_foot() {
     let (d, kinks) = check("leg landing", &mut leg(150, -3e-6), 1e-7, 1e-5);
     assert_eq!(kinks, 0);
     assert_eq!(d.modes, [ContactMode::Sticking; 4]);
-    // tipping over on the foot's edge (0.4 s), two corners lifting, the hip on its limit
-    // exactly (φ = 0: at a switch, each column the side its perturbation moves to)
+    // tipping over on the foot's edge (0.4 s), two corners lifting (out of the problem: their
+    // gaps are more than a step closes), the hip on its limit exactly (φ = 0: at a switch,
+    // each column the side its perturbation moves to), the last block
     let (d, kinks, backward_only) = check_sided("leg tipping", &mut leg(400, 0.0), 1e-7, 1e-5);
     assert!(kinks <= 8, "{kinks}");
     assert_eq!(
         backward_only, 0,
         "the derivative at a switch is the one along +δ"
     );
-    assert_eq!(d.modes[4], ContactMode::Sticking);
-    assert!(d.at_switch.contains(&4), "{:?}", d.at_switch);
+    let limit = d.modes.len() - 1;
+    assert_eq!(d.modes[limit], ContactMode::Sticking);
+    assert!(d.at_switch.contains(&limit), "{:?}", d.at_switch);
     // at rest (2 s) on the hip's limit, pressed 3 µm: the limit, the loop and four corners
     // hold a locked mechanism
     let (d, kinks, backward_only) = check_sided("leg at rest", &mut leg(2000, -3e-6), 1e-7, 1e-5);
