@@ -22,9 +22,10 @@
 //! workspace has grown; nalgebra's `LU` owns its matrix and permutation), on `A + ε I` with `ε =
 //! 10⁻¹² max |A_ii|` so that redundant rows (four corners of a face) give a bounded solution,
 //! then refined against `A` itself ([`REFINE`] steps). A step whose velocities exceed
-//! [`LARGEST_STEP`] times the problem's (`‖δλ‖ max|A_ii|` against the largest `|σ|`, `|σ*|`
-//! and `|K λ|` of the polish's start: at rest `σ` and `σ*` are ~0, and the speed the impulses
-//! cancel, gravity's kick, is the scale) solved an inconsistent singular system (four coplanar corners held to
+//! [`LARGEST_STEP`] times the problem's (`‖δλ‖ max|A_ii|` against its speed: the largest
+//! `|σ|`, `|σ*|` and `|K λ|` of the polish's start, for at rest `σ` and `σ*` are ~0 and the
+//! speed the impulses cancel, gravity's kick, is the scale; the thresholds of slip and approach
+//! below are relative to it too) solved an inconsistent singular system (four coplanar corners held to
 //! targets no rigid motion meets) and ends the polish: its cancellation would leave round-off
 //! of its size in `σ`.
 //! After each step the modes are read again: a negative normal impulse separates, a separated
@@ -180,7 +181,7 @@ impl Polish {
             largest,
         } = p;
         let m = lambda.len();
-        let fast = scale(p, sigma).max(scale(p, target));
+        let fast = scale(p, sigma).max(scale(p, target)).max(self.kick);
         self.unknowns.clear();
         self.equations.clear();
         for (b, mode) in island.iter().map(|&i| &blocks[i]).zip(&self.modes) {
@@ -272,7 +273,7 @@ impl Polish {
         let a_max = (self.equations.iter().enumerate())
             .filter(|(_, (_, e))| matches!(e, Equation::Velocity))
             .fold(0.0f64, |m, (i, _)| m.max(self.a[i * n + i].abs()));
-        let within = amax(&self.x) * a_max <= LARGEST_STEP * fast.max(self.kick); // false on NaN
+        let within = amax(&self.x) * a_max <= LARGEST_STEP * fast; // false on NaN
         if !within {
             return false;
         }
@@ -319,7 +320,7 @@ impl Polish {
     fn next_modes(&mut self, p: Problem, lambda: &[f64], sigma: &[f64]) -> bool {
         let (target, friction) = (p.target, p.friction);
         let big = scale(p, lambda);
-        let fast = scale(p, sigma).max(scale(p, target));
+        let fast = scale(p, sigma).max(scale(p, target)).max(self.kick);
         let (tiny, slow) = (1e-12 * big, 1e-9 * fast);
         let mut changed = false;
         let blocks = p.island.iter().map(|&i| &p.blocks[i]);
