@@ -466,7 +466,8 @@ impl<C: Control> Simulator<C> {
     }
 
     /// The contacts of the last step: every contact point given to the solver (a gap under the
-    /// margin), whether it pushed or not; empty without collision geometry.
+    /// margin that the step may close: at most `2 h |σ_n| + 0.1 mm`, `σ_n` its approach speed),
+    /// whether it pushed or not; empty without collision geometry.
     #[cfg(feature = "collision")]
     #[must_use]
     pub fn contacts(&self) -> &[crate::collision::ContactPoint] {

@@ -162,7 +162,8 @@ impl ContactSettings {
 /// What the last step's contact solve did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ContactStats {
-    /// Contacts and joint limits given to the solver (with a gap under the margin).
+    /// Contacts and joint limits given to the solver (a gap the step may close: see
+    /// `docs/contact.md`).
     pub candidates: usize,
     /// Of those, the ones that pushed (`λ_n > 0`).
     pub active: usize,
