@@ -23,9 +23,9 @@
 //! 10⁻¹² max |A_ii|` so that redundant rows (four corners of a face) give a bounded solution,
 //! then refined against `A` itself ([`REFINE`] steps). A step whose velocities exceed
 //! [`LARGEST_STEP`] times the problem's (`‖δλ‖ max|A_ii|` against its speed: the largest
-//! `|σ|`, `|σ*|` and `|K λ|` of the polish's start, for at rest `σ` and `σ*` are ~0 and the
-//! speed the impulses cancel, gravity's kick, is the scale; the thresholds of slip and approach
-//! below are relative to it too) solved an inconsistent singular system (four coplanar corners held to
+//! `|σ|` and `|σ*|` of the current step and `|K λ|` of the polish's start, for at rest `σ` and
+//! `σ*` are ~0 and the speed the impulses cancel, gravity's kick, is the scale; the thresholds
+//! of slip and approach below are relative to it too) solved an inconsistent singular system (four coplanar corners held to
 //! targets no rigid motion meets) and ends the polish: its cancellation would leave round-off
 //! of its size in `σ`.
 //! After each step the modes are read again: a negative normal impulse separates, a separated
@@ -106,8 +106,9 @@ const ON_CONE: f64 = 1e-9;
 /// The most Newton steps (and changes of the active set) in one polish.
 const TRIES: usize = 4;
 
-/// The largest Newton step taken, `‖δλ‖∞ max|A_ii|` (over the velocity rows) over the largest
-/// `|σ|` or `|σ*|`: its cancellation leaves at most ~1e-10 of that scale of round-off in `σ`.
+/// The largest Newton step taken, `‖δλ‖∞ max|A_ii|` (over the velocity rows) over the problem's
+/// speed (the largest `|σ|`, `|σ*|` or `|K λ|` at the polish's start): its cancellation leaves
+/// at most ~1e-10 of that scale of round-off in `σ`.
 const LARGEST_STEP: f64 = 1e6;
 
 /// Steps of iterative refinement of each Newton step's solve against the unregularised `A`.
@@ -137,6 +138,11 @@ impl Polish {
             };
             self.modes.push(mode);
         }
+        // beyond the dense solve's budget from the start: refused before `|K λ|` is computed
+        let n = self.unknowns(p);
+        if n == 0 || n > p.largest {
+            return false;
+        }
         let rows = || {
             p.island.iter().flat_map(|&i| {
                 let b = &p.blocks[i];
@@ -165,6 +171,20 @@ impl Polish {
         }
         self.restore(lambda, sigma);
         false
+    }
+
+    /// The number of unknowns [`solve`](Self::solve) sets up for the current modes.
+    fn unknowns(&self, p: Problem) -> usize {
+        let blocks = p.island.iter().map(|&i| &p.blocks[i]);
+        blocks
+            .zip(&self.modes)
+            .map(|(b, mode)| match *mode {
+                Mode::Free => 0,
+                Mode::Held if b.bilateral => (b.row..b.row + b.dim).filter(|&r| !p.idle[r]).count(),
+                Mode::Held | Mode::Slide if b.dim == 3 && !slides(b, p.friction) => 1,
+                Mode::Held | Mode::Slide => b.dim,
+            })
+            .sum()
     }
 
     /// One Newton step on the modes' equations from the current `λ`, `σ`. False if the system
