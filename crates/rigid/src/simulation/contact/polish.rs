@@ -25,9 +25,9 @@
 //! [`LARGEST_STEP`] times the problem's (`‖δλ‖ max|A_ii|` against its speed: the largest
 //! `|σ|` and `|σ*|` of the current step and `|K λ|` of the polish's start, for at rest `σ` and
 //! `σ*` are ~0 and the speed the impulses cancel, gravity's kick, is the scale; the thresholds
-//! of slip and approach below are relative to it too) solved an inconsistent singular system (four coplanar corners held to
-//! targets no rigid motion meets) and ends the polish: its cancellation would leave round-off
-//! of its size in `σ`.
+//! of slip and approach below are relative to it too) solved an inconsistent singular system
+//! (four coplanar corners held to targets no rigid motion meets) and ends the polish: its
+//! cancellation would leave round-off of its size in `σ`.
 //! After each step the modes are read again: a negative normal impulse separates, a separated
 //! contact approaching faster than its target is held, a sticking one outside its cone slides, a
 //! sliding one slipping along its friction sticks. The polish is kept when the modes stand and
