@@ -319,6 +319,15 @@ def aba(model: Model, data: Data, q: ArrayLike, v: ArrayLike, tau: ArrayLike,
     (Featherstone 2008, Table 7.1); ``fext`` as in ``rnea``. A singular M is a ValueError.
     Pinocchio: ``aba``."""
 
+def jacobian_dynamics(model: Model, data: Data, q: ArrayLike, v: ArrayLike, tau: ArrayLike,
+                      J: ArrayLike, gamma: ArrayLike,
+                      damping: float = 0.0) -> tuple[Vector, Vector]:
+    """Forward dynamics under constraints given by their Jacobian ``J`` (m × nv, columns in the
+    model's layout) and drift ``γ``: ``(q̈, λ)`` with ``M q̈ + c + g = τ + Jᵀ λ`` and
+    ``J q̈ + γ = −damping λ`` (Featherstone's range-space method); ``q̈`` also in ``data.ddq``.
+    Redundant rows with ``damping = 0`` are a ValueError. Pinocchio: ``forwardDynamics`` with
+    ``J`` and ``gamma``."""
+
 def crba(model: Model, data: Data, q: ArrayLike) -> Matrix:
     """The joint-space mass matrix ``M(q)`` (nv, nv), full and symmetric, armature on the
     diagonal, by the composite rigid-body algorithm (Featherstone 2008, Table 6.2). Pinocchio:

@@ -6,7 +6,7 @@
 #[path = "dynamics_mujoco.rs"]
 mod mujoco;
 
-use crate::convert::{array1, array2, value_error, vector, Vector};
+use crate::convert::{self, array1, array2, value_error, vector, Vector};
 use crate::model::{Data, Model, ModelCore, Place};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
@@ -352,4 +352,59 @@ pub fn potential_energy(
     let d = &mut *data;
     c.load(d, q, &[])?;
     mb::potential_energy(&c.core.model, &mut d.inner, &d.q).map_err(c.err())
+}
+
+/// Two vectors returned together.
+type Pair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// Forward dynamics under constraints given by their Jacobian `J` (m x nv, columns in the
+/// model's layout) and drift `γ`: `q̈` and `λ` with `M q̈ + c + g = τ + Jᵀ λ` and
+/// `J q̈ + γ = −damping λ` (Featherstone's range-space method, as Pinocchio's
+/// `forwardDynamics(model, data, q, v, tau, J, gamma, damping)`). Returns `(q̈, λ)`; `q̈` also
+/// in `data.ddq`.
+#[pyfunction]
+#[pyo3(signature = (model, data, q, v, tau, J, gamma, damping = 0.0))]
+#[allow(clippy::too_many_arguments, non_snake_case)]
+pub fn jacobian_dynamics<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    q: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    tau: &Bound<'py, PyAny>,
+    J: &Bound<'py, PyAny>,
+    gamma: &Bound<'py, PyAny>,
+    damping: f64,
+) -> PyResult<Pair<'py>> {
+    let c = Call::new("jacobian_dynamics", &model, &data)?;
+    let d = &mut *data;
+    c.load(d, q, &[("v", v), ("tau", tau)])?;
+    let nv = c.core.nv();
+    let rows = convert::matrix(J, c.func, "J", "nv", nv)?;
+    let m = rows.rows;
+    let gamma = vector(gamma, c.func, "gamma", "the rows of J", m)?;
+    let mut jac = nalgebra::DMatrix::zeros(m, nv);
+    let mut row = Vec::with_capacity(nv);
+    for (r, x) in rows.as_slice().chunks_exact(nv.max(1)).take(m).enumerate() {
+        c.core
+            .v_into(&Vector::Owned(x.to_vec()), &mut row, c.func, "J")?;
+        for (k, &x) in row.iter().enumerate() {
+            jac[(r, k)] = x;
+        }
+    }
+    let lambda = mb::constraints::jacobian_dynamics(
+        &c.core.model,
+        &mut d.inner,
+        &d.q,
+        &d.v,
+        &d.a,
+        &jac,
+        gamma.as_slice(),
+        damping,
+    )
+    .map_err(|e| value_error(c.func, e))?;
+    Ok((
+        c.core.v_out(py, d.inner.ddq.as_slice()),
+        array1(py, lambda.as_slice()),
+    ))
 }

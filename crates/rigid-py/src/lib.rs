@@ -93,6 +93,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SdfWarning", m.py().get_type::<model::SdfWarning>())?;
     m.add_function(wrap_pyfunction!(dynamics::rnea, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::aba, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::jacobian_dynamics, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::crba, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::nle, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::gravity, m)?)?;

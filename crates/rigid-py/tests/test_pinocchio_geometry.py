@@ -128,13 +128,22 @@ def test_forward_dynamics_with_jacobians_in_both_forms_equals_pinocchio():
         J = np.vstack([lib.computeFrameJacobian(model, data, q, f, lib.LOCAL)[:3] for f in feet])
         gamma = np.linspace(0.1, 0.6, 6)
         a = lib.forwardDynamics(model, data, q, v, tau, J, gamma)
-        lam = np.array(data.lambda_c)
+        lam, ddq = np.array(data.lambda_c), np.array(data.ddq)
         lib.computeAllTerms(model, data, q, v)
         a2 = lib.forwardDynamics(model, data, tau, J, gamma, 1e-4)
-        out[lib] = (a, lam, a2, np.array(data.lambda_c))
+        out[lib] = (a, lam, ddq, a2, np.array(data.lambda_c), np.array(data.ddq))
         if lib is rp:
-            with pytest.raises(ValueError, match="tau must be"):
+            with pytest.raises(ValueError, match="tau has 1 entries"):
                 lib.forwardDynamics(model, data, q, v, tau[:1], J, gamma)
+            with pytest.raises(ValueError, match="gamma has 5 entries"):
+                lib.forwardDynamics(model, data, q, v, tau, J, gamma[:5])
+            with pytest.raises(ValueError, match=r"shape \(N, nv = 18\)"):
+                lib.forwardDynamics(model, data, q, v, tau, J[:, :3], gamma)
+            with pytest.raises(ValueError, match="redundant or singular"):
+                lib.forwardDynamics(model, data, q, v, tau, np.vstack([J, J[:1]]),
+                                    np.append(gamma, 0.0))
+            with pytest.raises(ValueError, match="computeAllTerms"):
+                lib.forwardDynamics(model, model.createData(), tau, J, gamma)
     for x, y in zip(out[rp], out[pin]):
         assert np.max(np.abs(x - y)) < 1e-9 * max(1.0, np.max(np.abs(y)))
 

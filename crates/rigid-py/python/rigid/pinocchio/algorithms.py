@@ -265,6 +265,8 @@ def computeAllTerms(model, data, q, v):
     _r.centroidal_momentum(model, data, q, v)
     data.kinetic_energy = _r.kinetic_energy(model, data, q, v)
     data._com_local = True
+    data._terms_state = (np.array(q, dtype=float).reshape(-1),
+                         np.array(v, dtype=float).reshape(-1))
 
 
 # ---------------------------------------------------------------- kinematics derivatives
@@ -359,11 +361,9 @@ def distance(model, q0, q1):
 def forwardDynamics(model, data, *args, **kwargs):
     """``forwardDynamics(model, data, q, v, tau)``: ``aba``. With contact Jacobians (Pinocchio's
     contact dynamics): ``forwardDynamics(model, data, q, v, tau, J, gamma, damping=0)``, or
-    ``forwardDynamics(model, data, tau, J, gamma, damping=0)`` on the ``M`` and ``nle`` of the
-    last ``computeAllTerms``: the accelerations under ``J a + γ = 0``, Featherstone's
-    range-space form as Pinocchio's: ``a_f = M⁻¹ (τ − nle)``, ``λ = (J M⁻¹ Jᵀ + damping I)⁻¹
-    (−γ − J a_f)``, ``a = a_f + M⁻¹ Jᵀ λ``; ``λ`` in ``data.lambda_c``, ``a`` returned (not in
-    ``data.ddq``, which holds what rigid's own algorithms last wrote)."""
+    ``forwardDynamics(model, data, tau, J, gamma, damping=0)`` at the state of the last
+    ``computeAllTerms``: rigid's ``jacobian_dynamics`` (Featherstone's range-space method, as
+    Pinocchio's); ``λ`` in ``data.lambda_c``, ``a`` in ``data.ddq`` and returned."""
     if len(args) == 3 and not kwargs and np.ndim(args[1]) == 1:
         return _r.aba(model, data, *args)
     with_state = len(args) >= 4 and np.ndim(args[3]) == 2 or "J" in kwargs and len(args) == 3
@@ -376,38 +376,17 @@ def forwardDynamics(model, data, *args, **kwargs):
     given.update(kwargs)
     if "J" not in given:
         raise TypeError("forwardDynamics: the contact form needs J (and gamma)")
-    nv = model.nv
-    tau = np.asarray(given["tau"], dtype=float).reshape(-1)
+    if not with_state:
+        if getattr(data, "_terms_state", None) is None:
+            raise ValueError("forwardDynamics(model, data, tau, J, gamma): call "
+                             "computeAllTerms(model, data, q, v) first (or give q and v)")
+        given["q"], given["v"] = data._terms_state
     J = np.atleast_2d(np.asarray(given["J"], dtype=float))
-    gamma = np.asarray(given.get("gamma", np.zeros(J.shape[0])), dtype=float).reshape(-1)
-    if tau.shape != (nv,) or J.shape[1] != nv or gamma.shape != (J.shape[0],):
-        raise ValueError(f"forwardDynamics: tau must be ({nv},), J (m, {nv}) and gamma (m,), "
-                         f"got {tau.shape}, {J.shape} and {gamma.shape}")
-    if with_state:
-        M = _r.crba(model, data, given["q"])
-        nle = _r.nle(model, data, given["q"], given["v"])
-    else:  # after computeAllTerms
-        M, nle = data.M, data.nle
-    M = np.triu(M)
-    M = M + np.triu(M, 1).T
-    try:
-        L = np.linalg.cholesky(M)
-    except np.linalg.LinAlgError:
-        raise ValueError("forwardDynamics: the mass matrix is not positive definite") from None
-
-    def minv(x):
-        return np.linalg.solve(L.T, np.linalg.solve(L, x))
-
-    a_free = minv(tau - nle)
-    MinvJt = minv(J.T)
-    JMinvJt = J @ MinvJt + float(given.get("damping", 0.0)) * np.eye(J.shape[0])
-    try:
-        lam = np.linalg.solve(JMinvJt, -gamma - J @ a_free)
-    except np.linalg.LinAlgError:
-        raise ValueError("forwardDynamics: J M⁻¹ Jᵀ is singular (dependent constraints): give "
-                         "a damping > 0") from None
+    gamma = given.get("gamma", np.zeros(J.shape[0]))
+    a, lam = _r.jacobian_dynamics(model, data, given["q"], given["v"], given["tau"], J, gamma,
+                                  float(given.get("damping", 0.0)))
     data.lambda_c = lam
-    return a_free + MinvJt @ lam
+    return a
 
 
 __all__ = [n for n in dir() if not n.startswith("_")

@@ -69,6 +69,7 @@ mod derivatives;
 mod dynamics;
 mod impulse;
 mod inverse;
+mod jacobian;
 pub(crate) mod kinematics;
 mod partials;
 pub(crate) mod solver;
@@ -84,6 +85,7 @@ pub use dynamics::constraint_dynamics;
 pub(crate) use dynamics::constraint_rows;
 pub use impulse::impulse_dynamics;
 pub use inverse::contact_inverse_dynamics;
+pub use jacobian::{jacobian_dynamics, jacobian_dynamics_from_terms};
 pub use kinematics::ConstraintPlacement;
 pub use workspace::ConstraintData;
 
@@ -541,4 +543,17 @@ pub enum ConstraintError {
     /// this configuration.
     #[error("the constraints are redundant or singular at this configuration (J M⁻¹ Jᵀ + mu I is not positive definite): use mu > 0 for the proximal solution")]
     Singular,
+    /// A constraint Jacobian of another width than `nv`, a drift `γ` of another length than its
+    /// rows, a non-finite entry, or a negative or non-finite damping.
+    #[error("the constraint Jacobian must be (m, {nv}) and gamma (m,), finite, with a finite damping >= 0: got J ({rows}, {cols}) and gamma ({gamma},)")]
+    BadJacobian {
+        /// Rows of `J`.
+        rows: usize,
+        /// Columns of `J`.
+        cols: usize,
+        /// Length of `γ`.
+        gamma: usize,
+        /// The model's `nv`.
+        nv: usize,
+    },
 }

@@ -6,8 +6,8 @@ use super::{fixtures, load, rel_err};
 use nalgebra::{DMatrix, DVector};
 use rigid::io::constraints::{parse_constraints, ConstraintFile};
 use rigid::multibody::constraints::{
-    constraint_dynamics, contact_inverse_dynamics, impulse_dynamics, ConstraintData,
-    ConstraintError, ConstraintKind, ConstraintModel, ProximalSettings,
+    constraint_dynamics, contact_inverse_dynamics, impulse_dynamics, jacobian_dynamics,
+    ConstraintData, ConstraintError, ConstraintKind, ConstraintModel, ProximalSettings,
 };
 use rigid::multibody::{
     crba, integrate, nonlinear_effects, Data, JointId, Model, MultibodyError, ReferenceFrame,
@@ -120,6 +120,89 @@ fn solutions_satisfy_the_equations_of_motion_and_the_constraints() {
             );
         }
     }
+}
+
+/// `jacobian_dynamics` on each fixture state's own `J` and `γ` (those `constraint_dynamics`
+/// made): `M q̈ + c + g = τ + Jᵀ λ` and `J q̈ + γ = −damping λ`; where `J M⁻¹ Jᵀ` is regular,
+/// `q̈` and `λ` equal the constraint models' converged solve; redundant rows are refused with
+/// `damping = 0` and solved with `damping > 0`. Bad shapes and values are errors.
+#[test]
+fn jacobian_dynamics_meets_its_equations_and_the_constraint_models() {
+    let mut regular = 0;
+    for (name, model, file, states) in cases() {
+        let mut cd = ConstraintData::new(&model, &file.constraints).unwrap();
+        let mut data = Data::new(&model);
+        let converged = ProximalSettings {
+            max_iter: 5000,
+            absolute_accuracy: 1e-14,
+            ..file.settings
+        };
+        for (q, v, tau) in &states {
+            constraint_dynamics(&model, &mut data, &mut cd, q, v, tau, &converged).unwrap();
+            let (J, gamma) = (cd.jacobian.clone(), cd.gamma.clone());
+            let exact = jacobian_dynamics(&model, &mut data, q, v, tau, &J, gamma.as_slice(), 0.0);
+            let damping = match exact {
+                Ok(lambda) => {
+                    regular += 1;
+                    assert!(
+                        rel_err(data.ddq.as_slice(), cd.ddq.as_slice()) < 1e-9,
+                        "{name}: q̈"
+                    );
+                    assert!(
+                        rel_err(lambda.as_slice(), cd.lambda.rows(0, cd.dim()).as_slice()) < 1e-8,
+                        "{name}: λ"
+                    );
+                    0.0
+                }
+                Err(ConstraintError::Singular) => 1e-6,
+                Err(e) => panic!("{name}: {e}"),
+            };
+            let lambda =
+                jacobian_dynamics(&model, &mut data, q, v, tau, &J, gamma.as_slice(), damping)
+                    .unwrap();
+            let ddq = data.ddq.clone();
+            let lhs = crba(&model, &mut data, q).unwrap() * &ddq
+                + nonlinear_effects(&model, &mut data, q, v).unwrap();
+            let rhs = DVector::from_column_slice(tau) + J.transpose() * &lambda;
+            assert!(
+                rel_err(lhs.as_slice(), rhs.as_slice()) < 1e-11,
+                "{name}: dynamics"
+            );
+            let res = &J * &ddq + &gamma + damping * &lambda;
+            assert!(
+                res.amax() < 1e-10 * (1.0 + gamma.amax()),
+                "{name}: J q̈ + γ + damping λ = {:e}",
+                res.amax()
+            );
+        }
+    }
+    assert!(regular > 0, "no fixture state with regular constraints");
+    let (_, model, file, states) = cases().remove(0);
+    let mut data = Data::new(&model);
+    let (q, v, tau) = &states[0];
+    let nv = model.nv();
+    let bad = |J: DMatrix<f64>, gamma: &[f64], damping: f64, data: &mut Data| {
+        let e = jacobian_dynamics(&model, data, q, v, tau, &J, gamma, damping).unwrap_err();
+        assert!(matches!(e, ConstraintError::BadJacobian { .. }), "{e}");
+        assert!(e.to_string().contains(&format!("(m, {nv})")), "{e}");
+    };
+    bad(DMatrix::zeros(2, nv + 1), &[0.0; 2], 0.0, &mut data);
+    bad(DMatrix::zeros(2, nv), &[0.0; 3], 0.0, &mut data);
+    bad(
+        DMatrix::from_element(2, nv, f64::NAN),
+        &[0.0; 2],
+        0.0,
+        &mut data,
+    );
+    bad(DMatrix::zeros(2, nv), &[0.0; 2], -1.0, &mut data);
+    // two equal rows: redundant
+    let row = DMatrix::from_fn(1, nv, |_, c| 1.0 + c as f64);
+    let J = DMatrix::from_fn(2, nv, |_, c| row[(0, c)]);
+    assert_eq!(
+        jacobian_dynamics(&model, &mut data, q, v, tau, &J, &[0.0; 2], 0.0),
+        Err(ConstraintError::Singular)
+    );
+    let _ = file;
 }
 
 /// `J q̇` at `q ⊕ ±h q̇`: the velocity `cdata.velocity` of a solve (regularised, so that any set
