@@ -6,8 +6,9 @@ use crate::multibody::algorithms::{ltl_factor, ltl_solve_lower, ltl_solve_transp
 use crate::multibody::{check_v, crba, nonlinear_effects, Data, Model};
 use nalgebra::{DMatrix, DVector};
 
-/// `q̈` and `λ` with `M q̈ + c + g = τ + Jᵀ λ` and `J q̈ + γ = 0` for a given constraint
-/// Jacobian `J` (m x nv) and drift `γ`: CRBA and RNEA at `(q, v)`, then
+/// `q̈` and `λ` with `M q̈ + c + g = τ + Jᵀ λ` and `J q̈ + γ = 0` (`−damping λ` with a
+/// damping) for a given constraint Jacobian `J` (m x nv) and drift `γ`: CRBA and RNEA at
+/// `(q, v)`, then
 /// [`jacobian_dynamics_from_terms`]. `q̈` in `data.ddq`; returns `λ`.
 ///
 /// ```
