@@ -328,6 +328,12 @@ def jacobian_dynamics(model: Model, data: Data, q: ArrayLike, v: ArrayLike, tau:
     Redundant rows with ``damping = 0`` are a ValueError. Pinocchio: ``forwardDynamics`` with
     ``J`` and ``gamma``."""
 
+def jacobian_dynamics_from_terms(model: Model, data: Data, tau: ArrayLike, J: ArrayLike,
+                                 gamma: ArrayLike, damping: float = 0.0) -> tuple[Vector, Vector]:
+    """``jacobian_dynamics`` on the ``M`` and ``nle`` of the last ``crba`` and ``nle`` on
+    ``data``. Pinocchio: ``forwardDynamics(model, data, tau, J, gamma, damping)`` after
+    ``computeAllTerms``."""
+
 def crba(model: Model, data: Data, q: ArrayLike) -> Matrix:
     """The joint-space mass matrix ``M(q)`` (nv, nv), full and symmetric, armature on the
     diagonal, by the composite rigid-body algorithm (Featherstone 2008, Table 6.2). Pinocchio:

@@ -379,27 +379,16 @@ pub fn jacobian_dynamics<'py>(
     let c = Call::new("jacobian_dynamics", &model, &data)?;
     let d = &mut *data;
     c.load(d, q, &[("v", v), ("tau", tau)])?;
-    let nv = c.core.nv();
-    let rows = convert::matrix(J, c.func, "J", "nv", nv)?;
-    let m = rows.rows;
-    let gamma = vector(gamma, c.func, "gamma", "the rows of J", m)?;
-    let mut jac = nalgebra::DMatrix::zeros(m, nv);
-    let mut row = Vec::with_capacity(nv);
-    for (r, x) in rows.as_slice().chunks_exact(nv.max(1)).take(m).enumerate() {
-        c.core
-            .v_into(&Vector::Owned(x.to_vec()), &mut row, c.func, "J")?;
-        for (k, &x) in row.iter().enumerate() {
-            jac[(r, k)] = x;
-        }
-    }
+    let (jac, gamma) = constraint_rows(&c, J, gamma)?;
+    let m = &c.core.model;
     let lambda = mb::constraints::jacobian_dynamics(
-        &c.core.model,
+        m,
         &mut d.inner,
         &d.q,
         &d.v,
         &d.a,
         &jac,
-        gamma.as_slice(),
+        &gamma,
         damping,
     )
     .map_err(|e| value_error(c.func, e))?;
@@ -407,4 +396,58 @@ pub fn jacobian_dynamics<'py>(
         c.core.v_out(py, d.inner.ddq.as_slice()),
         array1(py, lambda.as_slice()),
     ))
+}
+
+/// [`jacobian_dynamics`] on the mass matrix and bias of the last `crba` and `nle` on `data`
+/// (Pinocchio's `forwardDynamics(model, data, tau, J, gamma, damping)` after
+/// `computeAllTerms`). Returns `(q̈, λ)`; `q̈` also in `data.ddq`.
+#[pyfunction]
+#[pyo3(signature = (model, data, tau, J, gamma, damping = 0.0))]
+#[allow(non_snake_case)]
+pub fn jacobian_dynamics_from_terms<'py>(
+    py: Python<'py>,
+    model: PyRef<'py, Model>,
+    mut data: PyRefMut<'py, Data>,
+    tau: &Bound<'py, PyAny>,
+    J: &Bound<'py, PyAny>,
+    gamma: &Bound<'py, PyAny>,
+    damping: f64,
+) -> PyResult<Pair<'py>> {
+    let c = Call::new("jacobian_dynamics_from_terms", &model, &data)?;
+    let d = &mut *data;
+    let x = c.v(tau, "tau")?;
+    c.core.v_into(&x, &mut d.a, c.func, "tau")?;
+    let (jac, gamma) = constraint_rows(&c, J, gamma)?;
+    let m = &c.core.model;
+    let lambda =
+        mb::constraints::jacobian_dynamics_from_terms(m, &mut d.inner, &d.a, &jac, &gamma, damping)
+            .map_err(|e| value_error(c.func, e))?;
+    Ok((
+        c.core.v_out(py, d.inner.ddq.as_slice()),
+        array1(py, lambda.as_slice()),
+    ))
+}
+
+/// `J` (its columns from the model's layout into rigid's) and `γ`, checked against each other.
+#[allow(non_snake_case)]
+fn constraint_rows(
+    c: &Call<'_>,
+    J: &Bound<'_, PyAny>,
+    gamma: &Bound<'_, PyAny>,
+) -> PyResult<(nalgebra::DMatrix<f64>, Vec<f64>)> {
+    let nv = c.core.nv();
+    let rows = convert::matrix(J, c.func, "J", "nv", nv)?;
+    let m = rows.rows;
+    let gamma = vector(gamma, c.func, "gamma", "the rows of J", m)?;
+    let mut jac = nalgebra::DMatrix::zeros(m, nv);
+    let mut row = Vec::with_capacity(nv);
+    for (r, x) in rows.as_slice().chunks_exact(nv.max(1)).take(m).enumerate() {
+        let name = format!("J[{r}]");
+        c.core
+            .v_into(&Vector::Owned(x.to_vec()), &mut row, c.func, &name)?;
+        for (k, &x) in row.iter().enumerate() {
+            jac[(r, k)] = x;
+        }
+    }
+    Ok((jac, gamma.as_slice().to_vec()))
 }

@@ -94,6 +94,7 @@ fn rigid_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dynamics::rnea, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::aba, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::jacobian_dynamics, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::jacobian_dynamics_from_terms, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::crba, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::nle, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::gravity, m)?)?;

@@ -265,8 +265,6 @@ def computeAllTerms(model, data, q, v):
     _r.centroidal_momentum(model, data, q, v)
     data.kinetic_energy = _r.kinetic_energy(model, data, q, v)
     data._com_local = True
-    data._terms_state = (np.array(q, dtype=float).reshape(-1),
-                         np.array(v, dtype=float).reshape(-1))
 
 
 # ---------------------------------------------------------------- kinematics derivatives
@@ -361,9 +359,10 @@ def distance(model, q0, q1):
 def forwardDynamics(model, data, *args, **kwargs):
     """``forwardDynamics(model, data, q, v, tau)``: ``aba``. With contact Jacobians (Pinocchio's
     contact dynamics): ``forwardDynamics(model, data, q, v, tau, J, gamma, damping=0)``, or
-    ``forwardDynamics(model, data, tau, J, gamma, damping=0)`` at the state of the last
-    ``computeAllTerms``: rigid's ``jacobian_dynamics`` (Featherstone's range-space method, as
-    Pinocchio's); ``λ`` in ``data.lambda_c``, ``a`` in ``data.ddq`` and returned."""
+    ``forwardDynamics(model, data, tau, J, gamma, damping=0)`` on the ``M`` and ``nle`` in
+    ``data`` (of the last ``computeAllTerms``, or ``crba`` and ``nonLinearEffects``): rigid's
+    ``jacobian_dynamics`` and ``jacobian_dynamics_from_terms`` (Featherstone's range-space
+    method, as Pinocchio's); ``λ`` in ``data.lambda_c``, ``a`` in ``data.ddq`` and returned."""
     if len(args) == 3 and not kwargs and np.ndim(args[1]) == 1:
         return _r.aba(model, data, *args)
     with_state = len(args) >= 4 and np.ndim(args[3]) == 2 or "J" in kwargs and len(args) == 3
@@ -376,15 +375,13 @@ def forwardDynamics(model, data, *args, **kwargs):
     given.update(kwargs)
     if "J" not in given:
         raise TypeError("forwardDynamics: the contact form needs J (and gamma)")
-    if not with_state:
-        if getattr(data, "_terms_state", None) is None:
-            raise ValueError("forwardDynamics(model, data, tau, J, gamma): call "
-                             "computeAllTerms(model, data, q, v) first (or give q and v)")
-        given["q"], given["v"] = data._terms_state
     J = np.atleast_2d(np.asarray(given["J"], dtype=float))
-    gamma = given.get("gamma", np.zeros(J.shape[0]))
-    a, lam = _r.jacobian_dynamics(model, data, given["q"], given["v"], given["tau"], J, gamma,
-                                  float(given.get("damping", 0.0)))
+    rest = (given["tau"], J, given.get("gamma", np.zeros(J.shape[0])),
+            float(given.get("damping", 0.0)))
+    if with_state:
+        a, lam = _r.jacobian_dynamics(model, data, given["q"], given["v"], *rest)
+    else:
+        a, lam = _r.jacobian_dynamics_from_terms(model, data, *rest)
     data.lambda_c = lam
     return a
 

@@ -68,7 +68,6 @@ class Data(_r.Data):
         self.kinetic_energy = 0.0
         self.potential_energy = 0.0
         self._com_local = False
-        self._terms_state = None  # (q, v) of the last computeAllTerms
 
     def _a(self, name):
         """The field ``name`` as ``rigid.Data`` reads it (an array in the model's layout)."""

@@ -1,9 +1,10 @@
 //! Forward dynamics under constraints given by their Jacobian (Pinocchio's `forwardDynamics`
 //! with `J` and `γ`, the form before constraint models).
 
+use super::solver::{cholesky, cholesky_solve};
 use super::ConstraintError;
 use crate::multibody::algorithms::{ltl_factor, ltl_solve_lower, ltl_solve_transposed};
-use crate::multibody::{check_v, crba, nonlinear_effects, Data, Model};
+use crate::multibody::{check_data, check_v, crba, nonlinear_effects, Data, Model};
 use nalgebra::{DMatrix, DVector};
 
 /// `q̈` and `λ` with `M q̈ + c + g = τ + Jᵀ λ` and `J q̈ + γ = 0` (`−damping λ` with a
@@ -59,10 +60,11 @@ pub fn jacobian_dynamics(
 /// (redundant constraints), `J q̈ + γ = −damping λ` instead of 0.
 ///
 /// # Errors
-/// [`ConstraintError::BadJacobian`] for a `J` of another width than `nv`, a `γ` of another
-/// length than its rows, a non-finite entry or a negative or non-finite `damping`;
-/// [`ConstraintError::Singular`] when `J M⁻¹ Jᵀ + damping I` is not positive definite;
-/// `M` not positive definite, or a `τ` of the wrong length.
+/// [`ConstraintError::BadJacobian`] naming the fault: a `J` of another width than `nv`, a `γ`
+/// of another length than its rows, a non-finite entry (its row and column) or a negative or
+/// non-finite `damping`; [`ConstraintError::Singular`] when `J M⁻¹ Jᵀ + damping I` is not
+/// positive definite (a pivot at most 1e-14 of its largest diagonal entry: redundant rows);
+/// a `data` of another model, `M` not positive definite, or a `τ` of the wrong length.
 pub fn jacobian_dynamics_from_terms(
     model: &Model,
     data: &mut Data,
@@ -71,16 +73,28 @@ pub fn jacobian_dynamics_from_terms(
     gamma: &[f64],
     damping: f64,
 ) -> Result<DVector<f64>, ConstraintError> {
+    check_data(model, data)?;
     check_v(model, "tau", tau)?;
     let (m, nv) = (J.nrows(), model.nv());
-    let finite = J.iter().chain(gamma).all(|x| x.is_finite());
-    if J.ncols() != nv || gamma.len() != m || !finite || !(damping >= 0.0 && damping.is_finite()) {
-        return Err(ConstraintError::BadJacobian {
-            rows: m,
-            cols: J.ncols(),
-            gamma: gamma.len(),
-            nv,
-        });
+    let bad = |reason: String| Err(ConstraintError::BadJacobian(reason));
+    if J.ncols() != nv {
+        return bad(format!("J has {} columns, the model nv = {nv}", J.ncols()));
+    }
+    if gamma.len() != m {
+        return bad(format!(
+            "gamma has {} entries for the {m} rows of J",
+            gamma.len()
+        ));
+    }
+    if let Some(k) = J.iter().position(|x| !x.is_finite()) {
+        // column-major: entry k is row k % m, column k / m
+        return bad(format!("J[{}, {}] is not finite", k % m, k / m));
+    }
+    if let Some(r) = gamma.iter().position(|x| !x.is_finite()) {
+        return bad(format!("gamma[{r}] is not finite"));
+    }
+    if !(damping >= 0.0 && damping.is_finite()) {
+        return bad(format!("damping {damping} must be finite and >= 0"));
     }
     ltl_factor(model, data)?;
     let (L, parent) = (data.chol.as_slice(), &data.dof_parent);
@@ -99,11 +113,13 @@ pub fn jacobian_dynamics_from_terms(
     for r in 0..m {
         K[(r, r)] += damping;
     }
-    let rhs = DVector::from_iterator(
+    let mut lambda = DVector::from_iterator(
         m,
         (0..m).map(|r| -gamma[r] - J.row(r).iter().zip(&a).map(|(j, x)| j * x).sum::<f64>()),
     );
-    let lambda = K.cholesky().ok_or(ConstraintError::Singular)?.solve(&rhs);
+    // a pivot at most 1e-14 of the largest diagonal entry is redundant rows
+    cholesky(&mut K, m)?;
+    cholesky_solve(&K, m, lambda.as_mut_slice());
     let ddq = &minv_jt * &lambda;
     for (d, (f, c)) in data.ddq.iter_mut().zip(a.iter().zip(ddq.iter())) {
         *d = f + c;

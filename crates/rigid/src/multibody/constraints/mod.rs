@@ -544,16 +544,7 @@ pub enum ConstraintError {
     #[error("the constraints are redundant or singular at this configuration (J M⁻¹ Jᵀ + mu I is not positive definite): use mu > 0 for the proximal solution")]
     Singular,
     /// A constraint Jacobian of another width than `nv`, a drift `γ` of another length than its
-    /// rows, a non-finite entry, or a negative or non-finite damping.
-    #[error("the constraint Jacobian must be (m, {nv}) and gamma (m,), finite, with a finite damping >= 0: got J ({rows}, {cols}) and gamma ({gamma},)")]
-    BadJacobian {
-        /// Rows of `J`.
-        rows: usize,
-        /// Columns of `J`.
-        cols: usize,
-        /// Length of `γ`.
-        gamma: usize,
-        /// The model's `nv`.
-        nv: usize,
-    },
+    /// rows, a non-finite entry, or a negative or non-finite damping: the fault, named.
+    #[error("jacobian_dynamics: {0}")]
+    BadJacobian(String),
 }
