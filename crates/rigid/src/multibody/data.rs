@@ -93,12 +93,13 @@ pub struct Data {
     /// constant columns set once here, the others rewritten by each algorithm
     /// (`update_subspaces`).
     pub(crate) S: Vec<Twist>,
+    /// Articulated inertias (`M⁻¹`, in the world frame).
     pub(crate) ia: Vec<Mat6>,
-    pub(crate) pa: Vec<Wrench>,
     pub(crate) c_bias: Vec<Twist>,
-    pub(crate) u_cols: Vec<Wrench>,
-    pub(crate) d_inv: Vec<Mat6>,
+    /// ABA: `D⁻¹` of each one-dof joint, per dof.
     pub(crate) d_inv_1: Vec<f64>,
+    /// ABA's workspace: the batch kernel's pack of one state (`batch::aba_one`).
+    pub(crate) one: super::batch::Pack<1>,
     pub(crate) crba_forces: Vec<Wrench>,
     /// Placements `rMi` in the frame of each tree's root body (CRBA, `M⁻¹`).
     pub(crate) root_placements: Vec<Transform>,
@@ -108,7 +109,6 @@ pub struct Data {
     pub(crate) sin_cos: Vec<[f64; 2]>,
     /// The joints of the model this was made for (`Plan::joints_key`), checked by every call.
     pub(crate) joints_key: u64,
-    pub(crate) u: DVector<f64>,
     pub(crate) spatial_velocities: Vec<Twist>,
     /// Composite inertias in the world frame (the Coriolis matrix).
     pub(crate) world_inertias: Vec<SpatialInertia>,
@@ -171,17 +171,14 @@ impl Data {
             derivatives: super::Derivatives::new(model),
             S: (0..nv).map(|k| model.motion_subspace(k)).collect(),
             ia: vec![Mat6::zeros(); n],
-            pa: vec![Wrench::zero(); n],
             c_bias: vec![Twist::zero(); n],
-            u_cols: vec![Wrench::zero(); nv],
-            d_inv: vec![Mat6::zeros(); n],
             d_inv_1: vec![0.0; nv],
+            one: super::batch::Pack::new(model),
             crba_forces: vec![Wrench::zero(); nv],
             root_placements: vec![Transform::identity(); n],
             dof_J: vec![Twist::zero(); nv],
             sin_cos: vec![[0.0; 2]; model.nq()],
             joints_key: model.plan().joints_key,
-            u: DVector::zeros(nv),
             spatial_velocities: vec![Twist::zero(); n],
             world_inertias: vec![SpatialInertia::zero(); n],
             root_frame_inertias: vec![SpatialInertia::zero(); n],

@@ -8,14 +8,15 @@
 //! | `R x`, `Rᵀ x`, `R_a R_b`, `T_a T_b` | [`mat3_vec`], [`mat3_tr_vec`], [`mat3_mul`], [`compose`] |
 //! | `R exp([a] q)` (Rodrigues; two columns for a coordinate axis) | [`rotate_about`], [`rotate_about_sc`], [`rodrigues`] |
 //! | `R x` for a constant model vector on a coordinate axis | [`ModelVec3`] |
-//! | `I V` for a 6x6 inertia, `I -= s u uᵀ` | [`mat6_twist`], [`sub_outer`] |
-//! | `Xᵀ I X`, `X = [Ad_{T⁻¹}]`, for a general symmetric 6x6 `I` (articulated inertias) | [`congruence`], and [`congruence_about_axis`] when `T` turns about one coordinate axis |
+//! | `I V` for a 6x6 inertia | [`mat6_twist`] |
 //!
-//! The same congruence for a *spatial inertia* `G` (structured `(m, h, I_O)`) is
+//! The congruence `Xᵀ I X` (`X = [Ad_{T⁻¹}]`) of a general symmetric 6x6 `I` (ABA's articulated
+//! inertias) is the lane kernels' `I6::add_congruence` (`multibody/batch/aba.rs`); for a
+//! *spatial inertia* `G` (structured `(m, h, I_O)`) it is
 //! [`SpatialInertia::transformed`](crate::mass::SpatialInertia::transformed), with its one
 //! specialised variant [`PrincipalForm::transformed`](crate::mass::PrincipalForm::transformed).
 
-use super::{skew, Mat3, Mat6, Transform, Twist, Vec3, Wrench};
+use super::{Mat3, Mat6, Transform, Twist, Vec3, Wrench};
 
 /// `R x` written out on the column-major storage (nalgebra's generic product is not always
 /// unrolled on the hot paths of the multibody algorithms).
@@ -170,145 +171,10 @@ pub(crate) fn mat6_twist(m: &Mat6, t: &Twist) -> Wrench {
     Wrench::new(Vec3::new(y[0], y[1], y[2]), Vec3::new(y[3], y[4], y[5]))
 }
 
-/// `I -= s u uᵀ` (symmetric rank-one update), in place.
-#[inline]
-pub(crate) fn sub_outer(m: &mut Mat6, u: &Wrench, s: f64) {
-    let u = [u.m.x, u.m.y, u.m.z, u.f.x, u.f.y, u.f.z];
-    let a: &mut [f64; 36] = m.as_mut_slice().try_into().expect("6x6");
-    for c in 0..6 {
-        let uc = u[c] * s;
-        for r in 0..6 {
-            a[c * 6 + r] -= u[r] * uc;
-        }
-    }
-}
-
-/// `Xᵀ I X` with `X = [Ad_{T⁻¹}]`, `T = liMi = (R, p)`: an inertia of the child expressed in the
-/// parent frame, by 3x3 blocks `I = [[A, B], [Bᵀ, C]]`: first rotate
-/// (`A' = R A Rᵀ`, `B' = R B Rᵀ`, `C' = R C Rᵀ`), then shift the origin by `p`:
-/// `A'' = A' - B'[p] + [p]B'ᵀ - [p]C'[p]`, `B'' = B' + [p]C'`, `C'' = C'`.
-#[inline]
-pub(crate) fn congruence(I: &Mat6, T: &Transform) -> Mat6 {
-    let R = &T.rotation;
-    let A: Mat3 = I.fixed_view::<3, 3>(0, 0).into();
-    let B: Mat3 = I.fixed_view::<3, 3>(0, 3).into();
-    let C: Mat3 = I.fixed_view::<3, 3>(3, 3).into();
-    let A1 = R * A * R.transpose();
-    let B1 = R * B * R.transpose();
-    let C1 = R * C * R.transpose();
-    let P = skew(&T.translation);
-    let B1P = B1 * P;
-    let PC = P * C1;
-    let A2 = A1 - B1P - B1P.transpose() - PC * P;
-    let B2 = B1 + PC;
-    let mut out = Mat6::zeros();
-    out.fixed_view_mut::<3, 3>(0, 0).copy_from(&A2);
-    out.fixed_view_mut::<3, 3>(0, 3).copy_from(&B2);
-    out.fixed_view_mut::<3, 3>(3, 0).copy_from(&B2.transpose());
-    out.fixed_view_mut::<3, 3>(3, 3).copy_from(&C1);
-    out
-}
-
-/// [`congruence`] for `T = (R, p)` with `R` a rotation about the coordinate axis `k` (an
-/// unrotated `X_T` times a revolute `X_J` about `±e_k`): `diag(R, R)` mixes only the rows and
-/// columns of the two other axes (a plane rotation, read from `R`), and the shift by `p` is
-/// `I ↦ Pᵀ I P` with `P = [[1, 0], [-[p], 1]]`: columns `0..3` gain `I[:, 3..6] (-[p])`, then rows
-/// `0..3` gain `[p] I[3..6, :]`. ≈ 170 multiplications against ≈ 240 for the general path.
-#[inline]
-pub(crate) fn congruence_about_axis(I: &Mat6, T: &Transform, k: usize) -> Mat6 {
-    match k {
-        0 => congruence_plane::<1, 2>(I, T),
-        1 => congruence_plane::<2, 0>(I, T),
-        _ => congruence_plane::<0, 1>(I, T),
-    }
-}
-
-/// The rotation mixes axes `A` and `B` (`(A, B, k)` cyclic): `R_AA = R_BB = c`, `R_BA = s`.
-#[inline(always)]
-fn congruence_plane<const A: usize, const B: usize>(I: &Mat6, T: &Transform) -> Mat6 {
-    let r = T.rotation.as_slice(); // column-major
-    let (c, s) = (r[3 * A + A], r[3 * A + B]);
-    let mut m = [0.0; 36];
-    m.copy_from_slice(I.as_slice()); // column-major: m[6 col + row]
-                                     // diag(R, R) I: rows A, B (and A + 3, B + 3) of every column
-    for col in 0..6 {
-        for o in [0, 3] {
-            let (x, y) = (m[6 * col + o + A], m[6 * col + o + B]);
-            m[6 * col + o + A] = c * x - s * y;
-            m[6 * col + o + B] = s * x + c * y;
-        }
-    }
-    // (·) diag(R, R)ᵀ: columns A, B (and A + 3, B + 3)
-    for o in [0, 3] {
-        for row in 0..6 {
-            let (x, y) = (m[6 * (o + A) + row], m[6 * (o + B) + row]);
-            m[6 * (o + A) + row] = c * x - s * y;
-            m[6 * (o + B) + row] = s * x + c * y;
-        }
-    }
-    let p = [T.translation.x, T.translation.y, T.translation.z];
-    // I P: column j < 3 += Σ_l I[:, 3 + l] (-[p])_lj, i.e. row-wise vᵀ (-[p]) = (p × v)ᵀ
-    for row in 0..6 {
-        let v = [m[18 + row], m[24 + row], m[30 + row]];
-        m[row] += p[1] * v[2] - p[2] * v[1];
-        m[6 + row] += p[2] * v[0] - p[0] * v[2];
-        m[12 + row] += p[0] * v[1] - p[1] * v[0];
-    }
-    // Pᵀ (·): row i < 3 += ([p] I[3..6, :])_i, column-wise p × v
-    for col in 0..6 {
-        let v = [m[6 * col + 3], m[6 * col + 4], m[6 * col + 5]];
-        m[6 * col] += p[1] * v[2] - p[2] * v[1];
-        m[6 * col + 1] += p[2] * v[0] - p[0] * v[2];
-        m[6 * col + 2] += p[0] * v[1] - p[1] * v[0];
-    }
-    Mat6::from_column_slice(&m)
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{congruence, congruence_about_axis, ModelVec3};
-    use crate::spatial::{so3, Mat6, Transform, Vec3};
-
-    /// A symmetric positive-definite 6x6 with no block structure (as an articulated inertia).
-    fn symmetric(seed: usize) -> Mat6 {
-        let A = Mat6::from_fn(|r, c| ((r * 7 + c * 3 + seed) % 5) as f64 * 0.1 - 0.2);
-        A * A.transpose() + Mat6::identity()
-    }
-
-    /// The written-out congruence equals `[Ad_{T⁻¹}]ᵀ I [Ad_{T⁻¹}]` with the dense adjoint, on a
-    /// general symmetric 6x6 (an articulated inertia has no spatial-inertia structure).
-    #[test]
-    fn congruence_equals_the_dense_product() {
-        let T = Transform::new(
-            so3::exp(&Vec3::new(0.3, -1.1, 0.7)),
-            Vec3::new(0.4, -0.2, 0.9),
-        );
-        let I = symmetric(0);
-        let X = T.inverse().adjoint();
-        let dense = X.transpose() * I * X;
-        let fast = congruence(&I, &T);
-        assert!(
-            (dense - fast).amax() < 1e-12 * dense.amax(),
-            "{}",
-            dense - fast
-        );
-    }
-
-    /// The plane-rotation path equals the general one for rotations about each axis (±angle).
-    #[test]
-    fn congruence_about_an_axis_equals_the_general_one() {
-        let I = symmetric(3);
-        for k in 0..3 {
-            for angle in [0.7, -2.3] {
-                let T = Transform::new(
-                    so3::exp(&(Vec3::ith(k, 1.0) * angle)),
-                    Vec3::new(0.3, -0.5, 0.2),
-                );
-                let (a, b) = (congruence(&I, &T), congruence_about_axis(&I, &T, k));
-                assert!((a - b).amax() < 1e-12 * a.amax(), "axis {k}: {}", a - b);
-            }
-        }
-    }
+    use super::ModelVec3;
+    use crate::spatial::Vec3;
 
     /// `R x` by the axis path equals the full product, for each axis, the zero vector and a
     /// general vector (which keeps the full product).

@@ -5,7 +5,8 @@ use super::lanes::{L, M3, T6, V3};
 use super::pack::{momentum, s_dot, Pack, I6};
 use super::pose::{fresh_pose, kept_pose, Pose};
 use crate::mass::SpatialInertia;
-use crate::multibody::{Model, MultibodyError};
+use crate::multibody::{Data, Model, MultibodyError};
+use crate::spatial::{Transform, Twist, Wrench};
 
 /// `q̈ = FD(q, v, τ)` for the pack's states: `q`, `v`, `x = τ` in, `out = q̈`.
 ///
@@ -17,11 +18,19 @@ use crate::multibody::{Model, MultibodyError};
 /// 3. i = 1..n: `a_i = [Ad_{liMi⁻¹}] a_λ + c_i` (`a_0 = -g`), `q̈_i = D_i⁻¹ (u_i − U_iᵀ a_i)`,
 ///    `a_i += S_i q̈_i`.
 ///
+/// With `fext`, the wrench `fext[i]` (body i's frame, the same in every lane) acts on body i:
+/// `p^A_i −= F_i^ext`.
+///
 /// # Errors
 /// [`MultibodyError::NotPositiveDefinite`] when some `D_i` is not positive in some lane (a
 /// massless subtree, as the single call says).
 #[inline(always)]
-pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), MultibodyError> {
+pub(super) fn aba<const W: usize>(
+    model: &Model,
+    p: &mut Pack<W>,
+    fext: Option<&[Wrench]>,
+    mut keep: Option<&mut Keep>,
+) -> Result<(), MultibodyError> {
     let joints = model.joints();
     p.update_subspaces(model);
     for (i, j) in joints.iter().enumerate() {
@@ -38,6 +47,9 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
         let G = &model.inertias()[i];
         p.IA[i] = I6::from_inertia(G);
         p.F[i] = V.cross_star(&momentum(G, &V));
+        if let Some(f) = fext {
+            p.F[i] = p.F[i] - T6::splat_wrench(&f[i]);
+        }
         p.V[i] = V;
         p.A[i] = c;
     }
@@ -113,7 +125,12 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
             Some(par) => &p.A[par.0],
             None => &a_world,
         };
-        let mut a = kept_pose!(model, p, i, |X| X.inv_act(a_parent)) + p.A[i];
+        let mut a = kept_pose!(model, p, i, |X| {
+            if let Some(k) = keep.as_deref_mut() {
+                k.placements[i] = X.lane(0);
+            }
+            X.inv_act(a_parent)
+        }) + p.A[i];
         let n = j.nv;
         if n == 1 {
             p.out[iv] = p.Dinv[i][0] * (p.u[iv] - p.U[iv].dot(&a));
@@ -132,6 +149,61 @@ pub(super) fn aba<const W: usize>(model: &Model, p: &mut Pack<W>) -> Result<(), 
         }
         a += p.joint_twist(model, i, &p.out);
         p.A[i] = a;
+        if let Some(k) = keep.as_deref_mut() {
+            k.velocities[i] = p.V[i].lane(0);
+            k.accelerations[i] = a.lane(0);
+            for d in j.dofs() {
+                k.ddq[d] = p.out[d].0[0];
+            }
+            if n == 1 {
+                k.d_inv_1[iv] = p.Dinv[i][0].0[0];
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Where the single call keeps lane 0's results, written by the last pass while they are at
+/// hand: each joint's pose in its parent, the body twists and accelerations (gravity as the
+/// base acceleration), `q̈`, and `D⁻¹` of the one-dof joints.
+pub(super) struct Keep<'a> {
+    placements: &'a mut [Transform],
+    velocities: &'a mut [Twist],
+    accelerations: &'a mut [Twist],
+    ddq: &'a mut [f64],
+    d_inv_1: &'a mut [f64],
+}
+
+/// The single call [`aba`](crate::multibody::aba): this kernel at one lane, in `data`'s own
+/// pack, so that a single call and a batch give the same bits. Leaves `data.ddq` and what ABA
+/// fills besides it: `parent_placements`, `velocities`, `accelerations_gravity` (with gravity as
+/// the base acceleration), `S`, and each one-dof joint's `D⁻¹` (`d_inv_1`). The inputs were
+/// checked.
+///
+/// # Errors
+/// As the kernel.
+pub(crate) fn aba_one(
+    model: &Model,
+    data: &mut Data,
+    q: &[f64],
+    v: &[f64],
+    tau: &[f64],
+    fext: Option<&[Wrench]>,
+) -> Result<(), MultibodyError> {
+    let p = &mut data.one;
+    p.gather(0, 0, q, v, tau);
+    let mut keep = Keep {
+        placements: &mut data.parent_placements,
+        velocities: &mut data.velocities,
+        accelerations: &mut data.accelerations_gravity,
+        ddq: data.ddq.as_mut_slice(),
+        d_inv_1: &mut data.d_inv_1,
+    };
+    aba(model, p, fext, Some(&mut keep))?;
+    for &i in &model.plan().variable_subspace {
+        for k in model.joints()[i].dofs() {
+            data.S[k] = p.S[k].lane(0);
+        }
     }
     Ok(())
 }
@@ -271,6 +343,45 @@ impl<const W: usize> I6<W> {
                 self.b.0[r][k] += bn.0[r][k];
                 self.c.0[r][k] += c.0[r][k];
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::I6;
+    use crate::multibody::batch::lanes::{M3, V3, X};
+    use crate::spatial::{so3, Mat3, Mat6, Transform, Vec3};
+
+    /// `I6::add_congruence` adds `[Ad_{T⁻¹}]ᵀ I [Ad_{T⁻¹}]` (the dense product) to what it
+    /// holds, on a general symmetric 6x6 (an articulated inertia has no spatial-inertia
+    /// structure), for a general pose and one about a coordinate axis.
+    #[test]
+    fn add_congruence_adds_the_dense_product() {
+        let A = Mat6::from_fn(|r, c| ((r * 7 + c * 3) % 5) as f64 * 0.1 - 0.2);
+        let I = A * A.transpose() + Mat6::identity();
+        let blocks = |m: &Mat6| I6::<1> {
+            a: M3::splat(&m.fixed_view::<3, 3>(0, 0).into()),
+            b: M3::splat(&m.fixed_view::<3, 3>(0, 3).into()),
+            c: M3::splat(&m.fixed_view::<3, 3>(3, 3).into()),
+        };
+        let start = Mat6::from_fn(|r, c| (r + c) as f64 * 0.01);
+        for w in [Vec3::new(0.3, -1.1, 0.7), Vec3::new(0.0, 0.0, -2.3)] {
+            let T = Transform::new(so3::exp(&w), Vec3::new(0.4, -0.2, 0.9));
+            let X = T.inverse().adjoint();
+            let want = start + X.transpose() * I * X;
+            let mut got = blocks(&start);
+            let pose = X::<1> {
+                r: M3::splat(&T.rotation),
+                p: V3::splat(&T.translation),
+            };
+            got.add_congruence(&blocks(&I), &pose);
+            let get = |m: &M3<1>| Mat3::from_fn(|r, c| m.0[r][c].0[0]);
+            let (a, b, c) = (get(&got.a), get(&got.b), get(&got.c));
+            let tol = 1e-12 * want.amax();
+            assert!((a - want.fixed_view::<3, 3>(0, 0)).amax() < tol, "{w}: A");
+            assert!((b - want.fixed_view::<3, 3>(0, 3)).amax() < tol, "{w}: B");
+            assert!((c - want.fixed_view::<3, 3>(3, 3)).amax() < tol, "{w}: C");
         }
     }
 }

@@ -10,7 +10,7 @@
 //! (Rust never contracts `a * b + c`), so a lane computes what a single call would when the two
 //! take the same steps in the same order.
 
-use crate::spatial::{Mat3, Twist, Vec3};
+use crate::spatial::{Mat3, Transform, Twist, Vec3, Wrench};
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
 /// `W` doubles, one per state.
@@ -531,6 +531,25 @@ impl<const W: usize> T6<W> {
         }
     }
 
+    /// The constant wrench `f` in every lane (moment in `w`, force in `v`).
+    #[inline(always)]
+    pub(crate) fn splat_wrench(f: &Wrench) -> Self {
+        Self {
+            w: V3::splat(&f.m),
+            v: V3::splat(&f.f),
+        }
+    }
+
+    /// Lane `l` as a twist (a wrench's moment and force are its `w` and `v`).
+    #[inline(always)]
+    pub(crate) fn lane(&self, l: usize) -> Twist {
+        let (w, v) = (&self.w.0, &self.v.0);
+        Twist::new(
+            Vec3::new(w[0].0[l], w[1].0[l], w[2].0[l]),
+            Vec3::new(v[0].0[l], v[1].0[l], v[2].0[l]),
+        )
+    }
+
     /// Component `c` (angular first).
     #[inline(always)]
     pub(crate) fn get(&self, c: usize) -> L<W> {
@@ -638,6 +657,15 @@ impl<const W: usize> X<W> {
             self.r.0[r] = x.r.0[r];
         }
         self.p = x.p;
+    }
+
+    /// Lane `l` as a [`Transform`].
+    pub(crate) fn lane(&self, l: usize) -> Transform {
+        let r = &self.r.0;
+        Transform::new(
+            Mat3::from_fn(|i, j| r[i][j].0[l]),
+            Vec3::new(self.p.0[0].0[l], self.p.0[1].0[l], self.p.0[2].0[l]),
+        )
     }
 
     /// `[Ad_{X⁻¹}] T`: a twist of the parent frame in the child frame,

@@ -7,13 +7,11 @@
 //! [`Batch::lanes`]): the model's tree is walked once per pack of `W` states, and every scalar
 //! of the single-state algorithm becomes a `W`-wide vector (`lanes.rs`, one file per kernel:
 //! `rnea.rs`, `crba.rs`, `aba.rs`, `derivatives.rs`). The packs are spread across the cores
-//! (rayon). The kernels compute what the single calls do, mostly in their order of operations
-//! (ABA's articulated inertias in 3x3 blocks in another), so the results equal
-//! [`rnea`](super::rnea), [`aba`](super::aba), [`crba`](super::crba) and
-//! [`rnea_derivatives`](super::rnea_derivatives): RNEA, CRBA and the RNEA derivatives bit for bit
-//! (every joint type; checked on every robot of example-robot-data), ABA to round-off (1e-13
-//! relative). The ABA derivatives are single calls, spread across the
-//! cores.
+//! (rayon). The kernels compute what the single calls do in their order of operations (the
+//! single call of ABA is its kernel at one lane), so the results equal [`rnea`](super::rnea),
+//! [`aba`](super::aba), [`crba`](super::crba) and [`rnea_derivatives`](super::rnea_derivatives)
+//! bit for bit (every joint type; checked on every robot of example-robot-data). The ABA
+//! derivatives are single calls, spread across the cores.
 //!
 //! Inputs are row-major: state `k`'s configuration is `qs[k nq..(k + 1) nq]`, its velocity
 //! `vs[k nv..(k + 1) nv]`, and so on. The states are cut into a few contiguous blocks per
@@ -50,10 +48,12 @@ mod simd;
 
 use super::{check_q, check_v, Data, Model, MultibodyError};
 use crate::error::DimensionError;
+pub(crate) use aba::aba_one;
 pub use calls::{
     aba_batch, aba_derivatives_batch, crba_batch, crba_lower_batch, rnea_batch,
     rnea_derivatives_batch,
 };
+pub(crate) use pack::Pack;
 use rayon::prelude::*;
 use simd::{Algo, Lanes};
 

@@ -6,7 +6,7 @@
 use super::lanes::{L, M3, T6, V3, X};
 use super::pack::{read_lane, Pack, I6};
 use crate::multibody::{JointType, Model};
-use crate::spatial::{trig, Mat3, Vec3};
+use crate::spatial::{trig, Mat3, Transform, Vec3};
 
 /// `liMi = X_T X_J(q_i)` of joint `i` per lane (Featherstone's `jcalc`). Revolute, prismatic and
 /// free-flyer joints in lanes; the other joints one lane at a time through
@@ -76,6 +76,8 @@ pub(crate) trait Pose<const W: usize> {
     fn turn_inertia(&self, i: &I6<W>) -> I6<W>;
     /// `p`.
     fn translation(&self) -> &V3<W>;
+    /// Lane `l` as a [`Transform`] (the single call's `data.parent_placements`).
+    fn lane(&self, l: usize) -> Transform;
 }
 
 impl<const W: usize> Pose<W> for X<W> {
@@ -99,6 +101,9 @@ impl<const W: usize> Pose<W> for X<W> {
     #[inline(always)]
     fn translation(&self) -> &V3<W> {
         &self.p
+    }
+    fn lane(&self, l: usize) -> Transform {
+        X::lane(self, l)
     }
 }
 
@@ -283,6 +288,19 @@ impl<const W: usize, const K: usize> Pose<W> for Turn<W, K> {
     fn translation(&self) -> &V3<W> {
         &self.p
     }
+
+    /// `R` is the identity but for `R_jj = R_ll = c`, `R_lj = s = −R_jl`.
+    fn lane(&self, l: usize) -> Transform {
+        let (j, k) = ((K + 1) % 3, (K + 2) % 3);
+        let (s, c) = (self.s.0[l], self.c.0[l]);
+        let mut r = Mat3::identity();
+        r[(j, j)] = c;
+        r[(k, k)] = c;
+        r[(k, j)] = s;
+        r[(j, k)] = -s;
+        let p = &self.p.0;
+        Transform::new(r, Vec3::new(p[0].0[l], p[1].0[l], p[2].0[l]))
+    }
 }
 
 /// `R exp([a] q)` per lane given `s = sin q`, `c = cos q`: for `a = ±e_k` two columns of `R`
@@ -400,6 +418,9 @@ mod tests {
                 numbers(&x, &t, &i),
                 "K {K}, sign {sign}"
             );
+            for l in 0..2 {
+                assert_eq!(turn.lane(l), x.lane(l), "K {K}, sign {sign}, lane {l}");
+            }
         }
     }
 

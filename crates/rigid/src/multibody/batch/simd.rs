@@ -303,7 +303,7 @@ fn packs<const W: usize, const A: u8>(
         }
         match algo {
             Algo::Rnea => rnea(model, p),
-            Algo::Aba => aba(model, p)?,
+            Algo::Aba => aba(model, p, None, None)?,
             Algo::Crba | Algo::CrbaLower => crba(model, p),
             Algo::RneaDerivatives => rnea_derivatives(model, p),
         }
