@@ -38,9 +38,7 @@ pub(super) fn aba<const W: usize>(
             Some(par) => X.inv_act(&p.V[par.0]),
             None => T6::zero(),
         });
-        let vJ = p.joint_twist(model, i, &p.v);
-        V += vJ;
-        let mut c = V.cross(&vJ);
+        let mut c = p.joint_velocity(model, i, &mut V);
         if let Some(cJ) = p.joint_bias(model, i) {
             c += cJ;
         }
@@ -147,7 +145,7 @@ pub(super) fn aba<const W: usize>(
                 p.out[iv + a_] = x;
             }
         }
-        a += p.joint_twist(model, i, &p.out);
+        p.add_joint_twist(model, i, &p.out, &mut a);
         p.A[i] = a;
         if let Some(k) = keep.as_deref_mut() {
             k.velocities[i] = p.V[i].lane(0);

@@ -594,6 +594,35 @@ impl<const W: usize> T6<W> {
         }
     }
 
+    /// `V × (x e_c)`, [`T6::cross`] with a twist that has one component `x` (`c`, angular
+    /// first), written out: `(ω × w, v × w)` for an angular `w = x e_c`, `(0, ω × u)` for a
+    /// linear `u = x e_(c−3)` (4 products instead of 18; the same numbers, up to the sign of
+    /// zeros).
+    #[inline(always)]
+    pub(crate) fn cross_axis(&self, c: usize, x: L<W>) -> Self {
+        // a × (x e_k)
+        #[inline(always)]
+        fn cross_e<const W: usize>(a: &V3<W>, k: usize, x: L<W>) -> V3<W> {
+            let (a, z) = (&a.0, L::zero());
+            V3(match k {
+                0 => [z, a[2] * x, -(a[1] * x)],
+                1 => [-(a[2] * x), z, a[0] * x],
+                _ => [a[1] * x, -(a[0] * x), z],
+            })
+        }
+        if c < 3 {
+            Self {
+                w: cross_e(&self.w, c, x),
+                v: cross_e(&self.v, c, x),
+            }
+        } else {
+            Self {
+                w: V3::zero(),
+                v: cross_e(&self.w, c - 3, x),
+            }
+        }
+    }
+
     /// `V ×* F = -[ad_V]ᵀ F` of a twist and a wrench: `(ω × m + v × f, ω × f)`.
     #[inline(always)]
     pub(crate) fn cross_star(&self, f: &Self) -> Self {

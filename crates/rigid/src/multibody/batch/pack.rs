@@ -150,6 +150,38 @@ impl<const W: usize> Pack<W> {
         t
     }
 
+    /// `t += S_i x_i` (joint `i`'s twist for the rates `x` added): one component for a one-dof
+    /// joint whose `S` is a coordinate axis `s e_c`, else [`Pack::joint_twist`] added.
+    #[inline(always)]
+    pub(crate) fn add_joint_twist(&self, model: &Model, i: usize, x: &[L<W>], t: &mut T6<W>) {
+        let j = &model.joints()[i];
+        if j.nv == 1 {
+            if let Some((c, s)) = model.plan().dof_axis[j.idx_v] {
+                *t.get_mut(c) += x[j.idx_v] * s;
+                return;
+            }
+        }
+        *t += self.joint_twist(model, i, x);
+    }
+
+    /// The velocity step of a forward pass: `V += S_i q̇_i`, and `V × S_i q̇_i` returned
+    /// (Featherstone's `crm(v) vJ`), by [`T6::cross_axis`] for a one-dof joint whose `S` is a
+    /// coordinate axis.
+    #[inline(always)]
+    pub(crate) fn joint_velocity(&self, model: &Model, i: usize, V: &mut T6<W>) -> T6<W> {
+        let j = &model.joints()[i];
+        if j.nv == 1 {
+            if let Some((c, s)) = model.plan().dof_axis[j.idx_v] {
+                let x = self.v[j.idx_v] * s;
+                *V.get_mut(c) += x;
+                return V.cross_axis(c, x);
+            }
+        }
+        let vJ = self.joint_twist(model, i, &self.v);
+        *V += vJ;
+        V.cross(&vJ)
+    }
+
     /// `c_J = Ṡ q̇` of joint `i` per lane, or `None` when its motion subspace is constant.
     #[inline(always)]
     pub(crate) fn joint_bias(&self, model: &Model, i: usize) -> Option<T6<W>> {

@@ -50,10 +50,8 @@ fn forward<const W: usize, P: Pose<W>>(
         None => (T6::zero(), X.inv_act(a_world)),
     };
     // the single call's order of additions, for its bits: A + S q̈, then + V × S q̇
-    A += p.joint_twist(model, i, &p.x);
-    let vJ = p.joint_twist(model, i, &p.v);
-    V += vJ;
-    A += V.cross(&vJ);
+    p.add_joint_twist(model, i, &p.x, &mut A);
+    A += p.joint_velocity(model, i, &mut V);
     if let Some(cJ) = p.joint_bias(model, i) {
         A += cJ;
     }
