@@ -616,8 +616,8 @@ def rnea_batch(model: Model, Q: ArrayLike, V: ArrayLike, A: ArrayLike, *,
                threads: int | None = None, out: Matrix | None = None) -> Matrix:
     """``rnea`` for every row: Q (N, nq), V and A (N, nv) → τ (N, nv), on ``threads`` threads
     (None: every core; a pool per size, made once) with the GIL released, several states side
-    by side in SIMD lanes; each row equals the single call to round-off (1e-13; RNEA bit for
-    bit), the same bits for any ``threads``. Contiguous float64 inputs are read in place (do
+    by side in SIMD lanes; each row equals the single call bit for bit, the same bits for any
+    ``threads``. Contiguous float64 inputs are read in place (do
     not write to them from another thread during the call); read-only arrays are accepted; a
     dask array is refused (use ``rigid.dask``). ``out``: a writeable C-contiguous float64
     (N, nv) array that overlaps no input, to write τ into (and return), so that repeated calls

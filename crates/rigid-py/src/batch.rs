@@ -1,7 +1,7 @@
 //! Many states at once, on every core, with the GIL released: `rnea_batch`, `aba_batch`,
 //! `crba_batch`, `rnea_derivatives_batch` over `(N, nq)` / `(N, nv)` arrays (rigid's
 //! `multibody::batch`: several states side by side in SIMD lanes). Each state's result is that
-//! of the single call to round-off, and the same bits for any number of threads.
+//! of the single call bit for bit, for any number of threads.
 //!
 //! Contiguous float64 inputs are read in place ([`Matrix`]); results are written straight into
 //! arrays numpy allocates (numpy asks Linux for huge pages for large arrays: the first touch of
