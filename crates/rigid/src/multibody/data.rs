@@ -93,7 +93,7 @@ pub struct Data {
     /// constant columns set once here, the others rewritten by each algorithm
     /// (`update_subspaces`).
     pub(crate) S: Vec<Twist>,
-    /// Articulated inertias (`M⁻¹`, in the world frame).
+    /// Articulated inertias (`M⁻¹`, in each tree's root-body frame).
     pub(crate) ia: Vec<Mat6>,
     pub(crate) c_bias: Vec<Twist>,
     /// ABA: `D⁻¹` of each one-dof joint, per dof.

@@ -636,3 +636,48 @@ fn data_of_other_joints_of_the_same_shape_is_a_data_mismatch() {
         assert!(aba(other, &mut Data::new(other), &q, &v, &v).is_ok());
     }
 }
+
+/// What ABA leaves in `Data` besides `q̈` (the joint poses in their parents, the body twists and
+/// the body accelerations with gravity as the base acceleration) is what RNEA computes at
+/// `(q, v, q̈)`: every built-in model and a random tree of every joint type.
+#[test]
+fn aba_leaves_the_kinematics_rnea_computes() {
+    let mut rng = Rng::new(12);
+    let mut all = models();
+    all.push(every_joint_tree(5, 12));
+    for model in all {
+        let (mut d_aba, mut d_rnea) = (Data::new(&model), Data::new(&model));
+        for _ in 0..STATES {
+            let (q, v, tau) = state(&model, &mut rng);
+            let Ok(ddq) = aba(&model, &mut d_aba, &q, &v, &tau) else {
+                continue;
+            };
+            let ddq = ddq.clone();
+            rnea(&model, &mut d_rnea, &q, &v, ddq.as_slice()).unwrap();
+            for i in 0..model.njoints() {
+                let (x, y) = (&d_aba.parent_placements[i], &d_rnea.parent_placements[i]);
+                let e = (x.rotation - y.rotation).amax() + (x.translation - y.translation).amax();
+                assert!(
+                    e < 1e-14,
+                    "{}: joint {i}: liMi differs by {e:e}",
+                    model.name()
+                );
+                for (what, x, y) in [
+                    ("V", &d_aba.velocities[i], &d_rnea.velocities[i]),
+                    (
+                        "A",
+                        &d_aba.accelerations_gravity[i],
+                        &d_rnea.accelerations_gravity[i],
+                    ),
+                ] {
+                    let e = (x.to_vector() - y.to_vector()).amax() / (1.0 + y.to_vector().amax());
+                    assert!(
+                        e < 1e-9,
+                        "{}: joint {i}: {what} differs by {e:e}",
+                        model.name()
+                    );
+                }
+            }
+        }
+    }
+}

@@ -73,6 +73,9 @@ pub(super) fn aba<const W: usize>(
             positive(D)?;
             let dinv = D.map(|x| 1.0 / x);
             p.Dinv[i][0] = dinv;
+            if let Some(k) = keep.as_deref_mut() {
+                k.d_inv_1[iv] = dinv.0[0];
+            }
             if j.parent.is_some() {
                 let U = p.U[iv];
                 IA.sub_outer(&U, &U.scale(dinv));
@@ -153,17 +156,15 @@ pub(super) fn aba<const W: usize>(
             for d in j.dofs() {
                 k.ddq[d] = p.out[d].0[0];
             }
-            if n == 1 {
-                k.d_inv_1[iv] = p.Dinv[i][0].0[0];
-            }
         }
     }
     Ok(())
 }
 
-/// Where the single call keeps lane 0's results, written by the last pass while they are at
-/// hand: each joint's pose in its parent, the body twists and accelerations (gravity as the
-/// base acceleration), `q̈`, and `D⁻¹` of the one-dof joints.
+/// Where the single call keeps lane 0's results, written by the passes while they are at hand:
+/// `D⁻¹` of the one-dof joints (the backward pass, so that a joint below one where the
+/// recursion fails still has it); each joint's pose in its parent, the body twists and
+/// accelerations (gravity as the base acceleration) and `q̈` (the last pass).
 pub(super) struct Keep<'a> {
     placements: &'a mut [Transform],
     velocities: &'a mut [Twist],
