@@ -45,7 +45,6 @@
 //! ```
 
 pub mod algorithms;
-#[cfg(feature = "parallel")]
 pub mod batch;
 mod builder;
 mod builtins;

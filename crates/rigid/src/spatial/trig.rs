@@ -63,7 +63,6 @@ pub(crate) fn sin_cos(q: f64) -> (f64, f64) {
 /// batch RNEA spent a fifth of its time on TALOS (BENCHMARKS.md). Four lanes keep the portable
 /// loops, which the compiler makes AVX2 as they are: `avx2::sin_cos_4` in their place left the
 /// 4-lane RNEA 0.87–0.90 of its states per second on a Zen 5.
-#[cfg(feature = "parallel")]
 #[inline(always)]
 #[must_use]
 #[allow(clippy::manual_range_contains)] // two comparisons per lane, which vectorise
@@ -136,7 +135,6 @@ pub(crate) fn sin_cos_lanes<const W: usize>(q: [f64; W]) -> ([f64; W], [f64; W])
 }
 
 /// [`sin_cos_lanes`]' lanes with `|q| ≥ 10⁵` or NaN, by the standard library.
-#[cfg(feature = "parallel")]
 #[cold]
 #[inline(never)]
 fn library_lanes(q: &[f64], sin: &mut [f64], cos: &mut [f64]) {
@@ -381,7 +379,7 @@ mod avx2 {
     }
 }
 
-#[cfg(all(target_arch = "x86_64", feature = "parallel"))]
+#[cfg(target_arch = "x86_64")]
 mod avx512 {
     //! Eight angles in the lanes of a `zmm` register; the caller checks for AVX-512F at run time.
     use super::{C1, C2, C3, C4, C5, C6, PIO2_1, PIO2_2, PIO2_2T, S1, S2, S3, S4, S5, S6};
@@ -490,7 +488,6 @@ mod tests {
     /// intrinsics where the CPU has them, the rest in the portable loops), in every quadrant and
     /// lane, and falls back for large or non-finite angles.
     #[test]
-    #[cfg(feature = "parallel")]
     fn sin_cos_lanes_equals_sin_cos_bit_for_bit() {
         fn check<const W: usize>(qs: &[f64]) {
             for chunk in qs.chunks(W) {
@@ -536,7 +533,7 @@ mod tests {
     /// when every lane is inside `|q| < 10⁵`, up to ±99 999.9; `None` when any one lane holds
     /// NaN, ±∞ or ±10⁵, whichever lane it is.
     #[test]
-    #[cfg(all(target_arch = "x86_64", feature = "parallel"))]
+    #[cfg(target_arch = "x86_64")]
     fn sin_cos_8_is_exact_inside_its_range_and_refuses_the_rest() {
         if !std::arch::is_x86_feature_detected!("avx512f") {
             return;
