@@ -431,8 +431,8 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
                     *l = l.max(x);
                 }
                 assert_same_bits(&format!("{} (floating {floating})", file.display()), e);
-                // RNEA, CRBA and the RNEA derivatives take the single calls' steps in the same
-                // order, whatever the joint types: the same numbers, bit for bit
+                // every kernel takes the single calls' steps in the same order (ABA's single call
+                // is its kernel at one lane), whatever the joint types: the same numbers
                 assert_eq!(
                     [e[0], e[2], e[3], e[4], e[5]],
                     [0.0; 5],
@@ -443,8 +443,8 @@ fn batch_equals_single_calls_on_every_example_robot_data_robot() {
             }
         }
         eprintln!(
-            "{}: {compared} models in {width} lanes, RNEA, CRBA and the RNEA derivatives bit for \
-             bit; largest relative differences {}",
+            "{}: {compared} models in {width} lanes, RNEA, ABA, CRBA and the RNEA derivatives bit \
+             for bit; largest relative differences {}",
             dir.display(),
             sci(&largest)
         );
