@@ -636,8 +636,8 @@ sdf("gearbox_not_a_coupling", SDF_ARM + '    <link name="r"><inertial><mass>1</m
     'joint "g"', '"r" is not turned by a revolute joint from "arm"')
 sdf("mass_negative", SDF_ARM.replace("<mass>1</mass>", "<mass>-2</mass>"), "error", "line 4",
     "negative mass")
-sdf("joint_type_unknown", SDF_ARM.replace('type="revolute"', 'type="revolute2"'), "error",
-    '"revolute2" is not supported')
+sdf("joint_type_unknown", SDF_ARM.replace('type="revolute"', 'type="hinge"'), "error",
+    '"hinge" is not supported')
 sdf("screw_without_pitch", SDF_ARM.replace('type="revolute"', 'type="screw"'), "error",
     "screw_thread_pitch")
 sdf("include", SDF_ARM + '    <include><uri>model://arm</uri></include>\n', "error", "line 7",

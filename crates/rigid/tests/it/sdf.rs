@@ -109,6 +109,48 @@ fn poses_relative_to_frames_in_degrees_and_quaternions_give_the_hand_built_model
     assert!(m.constraints.is_empty() && m.warnings.is_empty());
 }
 
+/// `revolute2`: a rotation about `<axis>`, then one about `<axis2>` turned by the first (here 53°
+/// apart, not perpendicular), is two revolute joints in series through a massless frame.
+#[test]
+fn a_revolute2_joint_is_two_rotations_in_series() {
+    let m = load(&format!(
+        r#"<link name="arm"><pose>0.2 0 1 0.3 0 0</pose>{LINK}</link>
+        <joint name="hip" type="revolute2"><parent>world</parent><child>arm</child>
+          <axis><xyz>1 0 0</xyz></axis>
+          <axis2><xyz>0.6 0.8 0</xyz><limit><lower>-0.5</lower><upper>0.7</upper></limit></axis2>
+        </joint>"#
+    ));
+    let at = Transform::new(so3::from_rpy(0.3, 0.0, 0.0), Vec3::new(0.2, 0.0, 1.0));
+    let mut b = ModelBuilder::new("m");
+    let first = b
+        .add_joint(
+            None,
+            "first",
+            JointType::Revolute { axis: Vec3::x() },
+            at,
+            SpatialInertia::zero(),
+        )
+        .unwrap();
+    b.add_joint(
+        Some(first),
+        "second",
+        JointType::Revolute {
+            axis: Vec3::new(0.6, 0.8, 0.0),
+        },
+        Transform::identity(),
+        g(),
+    )
+    .unwrap();
+    let want = b.build().unwrap();
+    let got = &m.model;
+    assert_eq!((got.nq(), got.nv()), (2, 2));
+    assert!(matches!(got.joints()[0].kind, JointType::Universal { .. }));
+    let g = gap(got, &want);
+    assert!(g < 1e-12, "{g:e}");
+    assert_eq!(got.lower_limits(), &[f64::NEG_INFINITY, -0.5]);
+    assert_eq!(got.upper_limits(), &[f64::INFINITY, 0.7]);
+}
+
 #[test]
 fn a_root_no_joint_holds_floats_where_the_file_puts_it_unless_the_model_is_static() {
     let body = format!(
@@ -204,8 +246,8 @@ fn bad_files_are_refused_naming_the_element_and_line() {
             "its pose is relative to itself through",
         ),
         (
-            r#"<link name="a"/><joint name="j" type="revolute2"><parent>world</parent><child>a</child></joint>"#,
-            "joint \"j\": joint type \"revolute2\" is not supported",
+            r#"<link name="a"/><joint name="j" type="hinge"><parent>world</parent><child>a</child></joint>"#,
+            "joint \"j\": joint type \"hinge\" is not supported",
         ),
         (
             r#"<link name="a"><pose>0 0 x 0 0 0</pose></link>"#,

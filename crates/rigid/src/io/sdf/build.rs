@@ -102,7 +102,9 @@ impl<'a> Walk<'a> {
                 axis: axis(self, &j.axis, "axis")?,
             }),
             "ball" => Some(JointType::Spherical),
-            "universal" => Some(JointType::Universal {
+            // two rotations in series, `axis` then `axis2` (which turns with the first): the
+            // universal joint's kinematics, whether or not the axes are perpendicular
+            "universal" | "revolute2" => Some(JointType::Universal {
                 axis1: axis(self, &j.axis, "axis")?,
                 axis2: axis(self, &j.axis2, "axis2")?,
             }),
@@ -118,7 +120,7 @@ impl<'a> Walk<'a> {
             other => {
                 return Err(invalid(
                     j,
-                    format!("joint type \"{other}\" is not supported (revolute, continuous, prismatic, ball, universal, screw, fixed)"),
+                    format!("joint type \"{other}\" is not supported (revolute, continuous, prismatic, ball, universal, revolute2, screw, fixed)"),
                 ))
             }
         };
@@ -168,6 +170,18 @@ impl<'a> Walk<'a> {
                     .set_limits(id, &[a.lower], &[a.upper], &[a.velocity], &[a.effort])
                     .map_err(at_err)?;
             }
+        } else if matches!(kind, JointType::Universal { .. }) && axes.len() == 2 {
+            // one coordinate per axis (`universal`, `revolute2`)
+            let each = |f: fn(&Axis) -> f64| [f(axes[0]), f(axes[1])];
+            self.b
+                .set_limits(
+                    id,
+                    &each(|a| a.lower),
+                    &each(|a| a.upper),
+                    &each(|a| a.velocity),
+                    &each(|a| a.effort),
+                )
+                .map_err(at_err)?;
         }
         if !axes.is_empty() {
             let pick = |f: fn(&Axis) -> f64| -> Vec<f64> {

@@ -7,7 +7,9 @@
 //! - `<link>`: `<pose>`, `<inertial>` (`<pose>`, `<mass>`, `<inertia>` about the centre of mass
 //!   in the inertial frame), `<collision>` (box, sphere, cylinder, capsule, ellipsoid, mesh as its
 //!   convex hull; planes and height maps are skipped with a warning).
-//! - `<joint>`: `revolute`, `continuous`, `prismatic`, `ball`, `universal`, `screw`
+//! - `<joint>`: `revolute`, `continuous`, `prismatic`, `ball`, `universal` and `revolute2` (both
+//!   a rotation about `<axis>` then one about `<axis2>`, which turns with the first: rigid's
+//!   universal joint, the axes not necessarily perpendicular), `screw`
 //!   (`<screw_thread_pitch>`, m per revolution), `fixed`; `<parent>`, `<child>`, `<pose>`,
 //!   `<axis>`/`<axis2>` with `<xyz expressed_in>` (1.7+) or `<use_parent_model_frame>` (1.4–1.6),
 //!   `<limit lower upper effort velocity>` (SDFormat's ±1e16 and −1 mean none),
@@ -25,8 +27,7 @@
 //!   revolute joints that turn its links from the reference body (a mimic under `--mimic`);
 //!   another gearbox is left out with a warning saying why.
 //!
-//! Not read: `<include>` (an error naming the line), `revolute2` joints (an error), visuals,
-//! sensors and plugins.
+//! Not read: `<include>` (an error naming the line), visuals, sensors and plugins.
 //!
 //! # Semantics (as SDFormat and Drake)
 //!
