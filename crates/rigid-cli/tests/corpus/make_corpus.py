@@ -640,8 +640,8 @@ sdf("joint_type_unknown", SDF_ARM.replace('type="revolute"', 'type="hinge"'), "e
     '"hinge" is not supported')
 sdf("screw_without_pitch", SDF_ARM.replace('type="revolute"', 'type="screw"'), "error",
     "screw_thread_pitch")
-sdf("include", SDF_ARM + '    <include><uri>model://arm</uri></include>\n', "error", "line 7",
-    "includes are not read yet")
+sdf("include_missing", SDF_ARM + '    <include><uri>model://no_such_model</uri></include>\n', "error",
+    "line 7", '"model://no_such_model" not found')
 sdf("loop_prismatic", SDF_ARM + '    <link name="b"><inertial><mass>1</mass></inertial></link>\n'
     '    <joint name="j2" type="revolute"><parent>world</parent><child>b</child>'
     '<axis><xyz>1 0 0</xyz></axis></joint>\n'

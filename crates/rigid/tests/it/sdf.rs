@@ -262,8 +262,8 @@ fn bad_files_are_refused_naming_the_element_and_line() {
             "link \"a\": negative mass -1",
         ),
         (
-            r#"<include><uri>model://arm</uri></include>"#,
-            "includes are not read yet",
+            r#"<include><uri>model://no_such_model</uri></include>"#,
+            "line 1: <include>: \"model://no_such_model\" not found",
         ),
         (
             r#"<link name="a"/><joint name="j" type="screw"><parent>world</parent><child>a</child><axis><xyz>0 0 1</xyz></axis></joint>"#,
@@ -345,6 +345,84 @@ fn a_nested_model_is_its_links_and_joints_in_its_scope_placed_by_its_pose() {
     assert!(nested.model.frame_id("fore::lower").is_ok());
     let g = gap(&flat.model, &nested.model);
     assert!(g < 1e-12, "{g:e}");
+}
+
+/// `<include>`: the forearm of the nested-model test in its own folder (`model.config` naming
+/// the file of the highest version), found by `model://`, renamed and placed by the include; a
+/// model that includes itself; a missing `<uri>`.
+#[test]
+fn an_included_model_is_a_nested_model_named_and_placed_by_the_include() {
+    let root = std::env::temp_dir().join(format!("rigid-sdf-include-{}", std::process::id()));
+    let (robot, fore, looped) = (root.join("robot"), root.join("fore"), root.join("looped"));
+    for d in [&robot, &fore, &looped] {
+        std::fs::create_dir_all(d).unwrap();
+    }
+    std::fs::write(
+        fore.join("model.config"),
+        r#"<?xml version="1.0"?><model><name>fore</name>
+        <sdf version="1.6">missing.sdf</sdf><sdf version="1.10">forearm.sdf</sdf></model>"#,
+    )
+    .unwrap();
+    // its own name and pose, which the include replaces
+    std::fs::write(
+        fore.join("forearm.sdf"),
+        format!(
+            r#"<?xml version="1.0"?><sdf version="1.10"><model name="forearm">
+            <pose>9 9 9 0 0 0</pose>
+            <link name="upper"><pose>0 0 0 0 0.3 0</pose>{LINK}</link>
+            <link name="lower"><pose relative_to="__model__">0 0.2 -0.6 0.1 0.3 0</pose>{LINK}</link>
+            <joint name="elbow" type="revolute"><parent>upper</parent><child>lower</child>
+              <axis><xyz expressed_in="__model__">1 0 0</xyz></axis></joint>
+            </model></sdf>"#
+        ),
+    )
+    .unwrap();
+    let main = robot.join("model.sdf");
+    std::fs::write(
+        &main,
+        sdf(r#"<link name="base"/>
+        <joint name="weld" type="fixed"><parent>world</parent><child>base</child></joint>
+        <include><uri>model://fore</uri><name>fore</name><pose>0.5 0 1 0 0 0</pose></include>
+        <joint name="shoulder" type="revolute"><parent>base</parent><child>fore::upper</child>
+          <axis><xyz>0 1 0</xyz></axis></joint>"#),
+    )
+    .unwrap();
+    let flat = load(&format!(
+        r#"<link name="base"/>
+        <joint name="weld" type="fixed"><parent>world</parent><child>base</child></joint>
+        <link name="upper"><pose>0.5 0 1 0 0.3 0</pose>{LINK}</link>
+        <joint name="shoulder" type="revolute"><parent>base</parent><child>upper</child>
+          <axis><xyz>0 1 0</xyz></axis></joint>
+        <link name="lower"><pose>0.5 0.2 0.4 0.1 0.3 0</pose>{LINK}</link>
+        <joint name="elbow" type="revolute"><parent>upper</parent><child>lower</child>
+          <axis><xyz expressed_in="__model__">1 0 0</xyz></axis></joint>"#
+    ));
+    let got = rigid::io::sdf::load_sdf(&main).unwrap();
+    let names: Vec<&str> = got.model.joints().iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(names, ["shoulder", "fore::elbow"]);
+    assert!(got.model.frame_id("fore::lower").is_ok());
+    let g = gap(&flat.model, &got.model);
+    assert!(g < 1e-12, "{g:e}");
+    // a model that includes itself, and an include without a uri
+    std::fs::write(
+        looped.join("model.sdf"),
+        sdf(r#"<link name="a"/><include><uri>model://looped</uri></include>"#),
+    )
+    .unwrap();
+    let e = rigid::io::sdf::load_sdf(looped.join("model.sdf"))
+        .unwrap_err()
+        .to_string();
+    let file = looped.join("model.sdf").canonicalize().unwrap();
+    let file = file.display();
+    assert!(
+        e.ends_with(&format!(
+            "line 1: <include>: include loop: {file} -> {file}"
+        )),
+        "{e}"
+    );
+    let e = error(r#"<include><name>x</name></include>"#);
+    assert!(e.contains("line 1: <include>: no <uri>"), "{e}");
+    std::fs::remove_dir_all(&root).unwrap();
 }
 
 #[test]

@@ -27,7 +27,12 @@
 //!   revolute joints that turn its links from the reference body (a mimic under `--mimic`);
 //!   another gearbox is left out with a warning saying why.
 //!
-//! Not read: `<include>` (an error naming the line), visuals, sensors and plugins.
+//! - `<include>` in a model: the one model of the file its `<uri>` names (`model://NAME` in
+//!   Gazebo's resource paths, then beside this file; `file://` and paths from this file's folder;
+//!   a folder through its `model.config`), read as a nested model named by the include's `<name>`
+//!   and placed by its `<pose>` (else the model's own); loops refused.
+//!
+//! Not read: visuals, sensors and plugins; an include's `<placement_frame>` and `<merge>`.
 //!
 //! # Semantics (as SDFormat and Drake)
 //!
@@ -46,6 +51,7 @@
 //!   point constraints on its axis 0.1 m apart; any other is left out with a warning.
 
 mod build;
+mod include;
 mod parse;
 
 use crate::collision::Geometry;
@@ -145,7 +151,7 @@ pub fn load_sdf(path: impl AsRef<Path>) -> Result<SdfModel, SdfError> {
         source,
     })?;
     let dir = path.parent().unwrap_or(Path::new("."));
-    let mut m = load_sdf_str(&text, dir)?;
+    let mut m = read(&text, dir, Some(path))?;
     m.path = Some(path.to_path_buf());
     Ok(m)
 }
@@ -168,11 +174,17 @@ pub fn load_sdf(path: impl AsRef<Path>) -> Result<SdfModel, SdfError> {
 /// # Errors
 /// [`SdfError`], naming the element and line.
 pub fn load_sdf_str(text: &str, dir: &Path) -> Result<SdfModel, SdfError> {
+    read(text, dir, None)
+}
+
+/// Reads SDF text from `file` (if it is one: an include of it is a loop).
+fn read(text: &str, dir: &Path, file: Option<&Path>) -> Result<SdfModel, SdfError> {
     let doc = roxmltree::Document::parse(text)?;
     let mut reader = parse::Reader {
         doc: &doc,
         dir,
         warnings: Vec::new(),
+        chain: file.into_iter().map(include::canonical).collect(),
     };
     let raw = reader.model()?;
     let poses = parse::Poses::resolve(&raw)?;

@@ -84,13 +84,19 @@ pub(super) struct Reader<'a> {
     pub doc: &'a roxmltree::Document<'a>,
     pub dir: &'a Path,
     pub warnings: Vec<SdfWarning>,
+    /// The files being read, the outermost first (this one last; none for text): an
+    /// `<include>` of one of them is a loop.
+    pub chain: Vec<std::path::PathBuf>,
 }
 
-fn children<'a, 'i>(node: Node<'a, 'i>, tag: &'a str) -> impl Iterator<Item = Node<'a, 'i>> {
+pub(super) fn children<'a, 'i>(
+    node: Node<'a, 'i>,
+    tag: &'a str,
+) -> impl Iterator<Item = Node<'a, 'i>> {
     node.children().filter(move |c| c.has_tag_name(tag))
 }
 
-fn child<'a, 'i>(node: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
+pub(super) fn child<'a, 'i>(node: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
     node.children().find(|c| c.has_tag_name(tag))
 }
 
@@ -107,7 +113,7 @@ impl<'a> Reader<'a> {
         }
     }
 
-    fn warn(&mut self, node: Node, element: String, message: impl Into<String>) {
+    pub(super) fn warn(&mut self, node: Node, element: String, message: impl Into<String>) {
         let line = self.line(node);
         self.warnings.push(SdfWarning {
             line,
@@ -149,7 +155,7 @@ impl<'a> Reader<'a> {
 
     /// `<pose>` of `node` (identity without one): `x y z roll pitch yaw` (radians, or degrees
     /// with `degrees="true"`), or `x y z qx qy qz qw` with `rotation_format="quat_xyzw"`.
-    fn pose(&self, node: Node, what: &str) -> Result<Pose, SdfError> {
+    pub(super) fn pose(&self, node: Node, what: &str) -> Result<Pose, SdfError> {
         let Some(p) = child(node, "pose") else {
             return Ok(Pose {
                 t: Transform::identity(),
@@ -389,7 +395,7 @@ impl<'a> Reader<'a> {
     /// The links, joints and frames of model `m` and of the models nested in it, whose names
     /// (and the names they refer to) get the nested model's scope `prefix` (`inner::link`); a
     /// nested model is a frame `inner::__model__`, placed by its `<pose>` in its parent's.
-    fn collect(
+    pub(super) fn collect(
         &mut self,
         m: Node,
         prefix: &str,
@@ -464,7 +470,14 @@ impl<'a> Reader<'a> {
                 }
                 "pose" | "static" | "self_collide" | "allow_auto_disable" | "enable_wind" => {}
                 "include" => {
-                    return Err(self.error(n, "<include>".into(), "includes are not read yet"))
+                    let (name, mut pose) = self.include(n, prefix, links, joints, frames)?;
+                    scope_pose(&mut pose);
+                    frames.push(Frame {
+                        name: format!("{prefix}{name}::__model__"),
+                        line: self.line(n),
+                        attached_to: None,
+                        pose,
+                    });
                 }
                 _ => self.warn(n, format!("<{tag}>"), "not read"),
             }
@@ -472,8 +485,9 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    /// The one `<model>` of the file (directly under `<sdf>`, or in its `<world>`).
-    pub fn model(&mut self) -> Result<Raw, SdfError> {
+    /// The one `<model>` of the file (directly under `<sdf>`, or in its `<world>`), the
+    /// `<sdf version>` and the `<world>`'s `<gravity>`.
+    pub(super) fn the_model(&self) -> Result<(Node<'a, 'a>, String, Option<Vec3>), SdfError> {
         let root = self.doc.root_element();
         if !root.has_tag_name("sdf") {
             return Err(self.error(
@@ -483,10 +497,6 @@ impl<'a> Reader<'a> {
             ));
         }
         let version = root.attribute("version").unwrap_or("1.7").to_string();
-        let old = matches!(
-            version.as_str(),
-            "1.0" | "1.2" | "1.3" | "1.4" | "1.5" | "1.6"
-        );
         let mut models: Vec<Node> = children(root, "model").collect();
         let mut gravity = None;
         for w in children(root, "world") {
@@ -499,17 +509,21 @@ impl<'a> Reader<'a> {
                 )?));
             }
         }
-        let m = match models.as_slice() {
-            [m] => *m,
-            [] => return Err(self.error(root, "<sdf>".into(), "no <model>")),
-            [_, second, ..] => {
-                return Err(self.error(
-                    *second,
-                    "<model>".into(),
-                    "a file of several models: rigid reads one",
-                ))
-            }
-        };
+        match models.as_slice() {
+            [m] => Ok((*m, version, gravity)),
+            [] => Err(self.error(root, "<sdf>".into(), "no <model>")),
+            [_, second, ..] => Err(self.error(
+                *second,
+                "<model>".into(),
+                "a file of several models: rigid reads one",
+            )),
+        }
+    }
+
+    /// The one `<model>` of the file (directly under `<sdf>`, or in its `<world>`).
+    pub fn model(&mut self) -> Result<Raw, SdfError> {
+        let (m, version, gravity) = self.the_model()?;
+        let old = version_is_old(&version);
         let name = m.attribute("name").unwrap_or("model").to_string();
         let (mut links, mut joints, mut frames) = (Vec::new(), Vec::new(), Vec::new());
         self.collect(m, "", old, &mut links, &mut joints, &mut frames)?;
@@ -620,4 +634,9 @@ impl Poses {
         }
         Ok(Self { of })
     }
+}
+
+/// SDFormat 1.0–1.6: `use_parent_model_frame` and a pose's `frame`.
+pub(super) fn version_is_old(version: &str) -> bool {
+    matches!(version, "1.0" | "1.2" | "1.3" | "1.4" | "1.5" | "1.6")
 }
