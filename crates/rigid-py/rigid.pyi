@@ -780,10 +780,11 @@ def identify(model: Model, samples: Path | dict[str, ArrayLike], physical: bool 
     ``ValueError`` naming the row, column or parameter."""
 
 def doctor(path: Path, fix: Path | None = None) -> dict[str, Any]:
-    """The inertia doctor of a URDF file: the structure of ``rigid doctor --json``
+    """The inertia doctor of a URDF, MJCF (``.xml``) or SDF (``.sdf``) file: the structure of
+    ``rigid doctor --json``
     (``{"robot", "bodies": [{"name", "line", "status", "findings", "likely_cause",
     "explanation", "repair", ...}]}``). With ``fix``, writes a copy of the file in which the
-    ``<inertial>`` blocks that needed a repair are replaced."""
+    ``<inertial>`` blocks that needed a repair are replaced, in the file's own format."""
 
 # Pinocchio's names of the verbs with the same signature.
 computeJointTorqueRegressor = regressor

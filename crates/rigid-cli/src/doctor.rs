@@ -1,16 +1,16 @@
 //! `rigid doctor MODEL.urdf [--json] [--fix OUT.urdf]`: the inertial data of every link checked,
 //! the likely cause of each problem, and a repair (see `rigid::doctor`); for an MJCF file
-//! (`.xml`) every body's `<inertial>` against its geoms, `--fix` writing MJCF.
+//! (`.xml`) every body's `<inertial>` against its geoms, `--fix` writing MJCF; for an SDF file
+//! (`.sdf`) every link's against its collision shapes, `--fix` writing SDF.
 
 use clap::Args;
-use rigid::doctor::{fixed_mjcf, fixed_urdf, BodyReport, Doctor, Status};
-use rigid::io::urdf::parse_urdf_file;
+use rigid::doctor::{examine_file, BodyReport, FileReport, Status};
 use std::path::PathBuf;
 
 /// Arguments of `rigid doctor`.
 #[derive(Args)]
 pub struct DoctorArgs {
-    /// A URDF file, or an MJCF file (`.xml`).
+    /// A URDF file, an MJCF file (`.xml`) or an SDF file (`.sdf`).
     pub model: PathBuf,
     /// Print one JSON object: `{"robot", "bodies": [{"name", "line", "status", "findings":
     /// [{"code", "message"}], "likely_cause", "explanation", "repair"}]}`.
@@ -28,29 +28,15 @@ pub struct DoctorArgs {
 /// A file that cannot be read or parsed, or an output that cannot be written.
 pub fn run(args: &DoctorArgs) -> Result<(), String> {
     let path = &args.model;
-    let mjcf = crate::load::is_mjcf(&path.to_string_lossy());
-    let (robot, report) = if mjcf {
-        let m = rigid::io::mjcf::load_mjcf(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let robot = rigid::doctor::as_robot(&m);
-        let report = Doctor::new().examine(&robot);
-        (robot, report)
-    } else {
-        let robot = parse_urdf_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let report = Doctor::new().examine(&robot);
-        (robot, report)
-    };
+    let shown = path.display();
+    let examined = examine_file(path).map_err(|e| format!("{shown}: {e}"))?;
+    let FileReport { report, robot, .. } = &examined;
     if let Some(out) = &args.fix {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let fixed = if mjcf {
-            let (fixed, notes) =
-                fixed_mjcf(&text, &report).map_err(|e| format!("{}: {e}", path.display()))?;
-            for n in notes {
-                eprintln!("note: {}: {n}", path.display());
-            }
-            fixed
-        } else {
-            fixed_urdf(&text, &robot, &report)
-        };
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{shown}: {e}"))?;
+        let (fixed, notes) = examined.fixed(&text).map_err(|e| format!("{shown}: {e}"))?;
+        for n in notes {
+            eprintln!("note: {shown}: {n}");
+        }
         crate::util::write_atomic(out, fixed.as_bytes())?;
     }
     if args.json {

@@ -1,6 +1,6 @@
 //! One rigid body: `mass_properties` (a `rigid mass` spec as a TOML file or the same structure in
 //! Python), the shape helpers that make its parts, `spatial_inertia`, `simulate_body`; and the
-//! inertia doctor of a URDF file, `doctor`.
+//! inertia doctor of a URDF, MJCF or SDF file, `doctor`.
 
 use crate::convert::{array1, array2, io_error, rows_array, value_error, vec3};
 use pyo3::exceptions::PyTypeError;
@@ -365,7 +365,9 @@ pub fn simulate_body<'py>(
     Ok(d)
 }
 
-/// The inertia doctor of a URDF file: the structure of `rigid doctor --json` as dicts.
+/// The inertia doctor of a URDF, MJCF (`.xml`) or SDF (`.sdf`) file: the structure of
+/// `rigid doctor --json` as dicts; `fix` writes the file with the repaired `<inertial>`
+/// elements, in its own format.
 #[pyfunction]
 #[pyo3(signature = (path, fix = None))]
 pub fn doctor<'py>(
@@ -373,20 +375,30 @@ pub fn doctor<'py>(
     path: PathBuf,
     fix: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use rigid::doctor::{fixed_urdf, Doctor};
-    use rigid::io::urdf::{parse_urdf_file, UrdfError};
+    use rigid::doctor::{examine_file, DoctorFileError};
     let shown = path.display().to_string();
-    let robot = parse_urdf_file(&path).map_err(|e| match &e {
-        UrdfError::Io { source, .. } => io_error(source, format!("doctor: {e}")),
-        _ => value_error("doctor", format!("{shown}: {e}")),
+    let examined = examine_file(&path).map_err(|e| {
+        let io = match &e {
+            DoctorFileError::Urdf(rigid::io::urdf::UrdfError::Io { source, .. })
+            | DoctorFileError::Mjcf(rigid::io::mjcf::MjcfError::Io { source, .. })
+            | DoctorFileError::Sdf(rigid::io::sdf::SdfError::Io { source, .. })
+            | DoctorFileError::Io { source, .. } => Some(source),
+            _ => None,
+        };
+        match io {
+            Some(source) => io_error(source, format!("doctor: {e}")),
+            None => value_error("doctor", format!("{shown}: {e}")),
+        }
     })?;
-    let report = Doctor::new().examine(&robot);
     if let Some(out) = fix {
         let text = std::fs::read_to_string(&path)
             .map_err(|e| io_error(&e, format!("doctor: {shown}: {e}")))?;
-        std::fs::write(&out, fixed_urdf(&text, &robot, &report))
+        let (fixed, _notes) = examined
+            .fixed(&text)
+            .map_err(|e| value_error("doctor", format!("{shown}: {e}")))?;
+        std::fs::write(&out, fixed)
             .map_err(|e| io_error(&e, format!("doctor: cannot write {}: {e}", out.display())))?;
     }
-    let json = serde_json::to_string(&report).map_err(|e| value_error("doctor", e))?;
+    let json = serde_json::to_string(&examined.report).map_err(|e| value_error("doctor", e))?;
     py.import("json")?.call_method1("loads", (json,))
 }

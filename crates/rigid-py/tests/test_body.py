@@ -144,6 +144,22 @@ def test_doctor_returns_the_json_report_as_dicts(tmp_path):
     assert fixed_arm["status"] == "ok"
 
 
+def test_doctor_reads_sdf_and_fixes_it_in_sdf(tmp_path):
+    # a 48 kg box of 0.2 x 0.4 x 0.6 m whose izz is written ten times too large
+    box = tmp_path / "box.sdf"
+    box.write_text("""<?xml version="1.0"?><sdf version="1.9"><model name="m">
+      <link name="b"><inertial><mass>48</mass>
+        <inertia><ixx>2.08</ixx><iyy>1.6</iyy><izz>8</izz></inertia></inertial>
+        <collision name="c"><geometry><box><size>0.2 0.4 0.6</size></box></geometry></collision>
+      </link></model></sdf>""")
+    fixed = tmp_path / "fixed.sdf"
+    b = rigid.doctor(box, fix=fixed)["bodies"][0]
+    assert b["status"] == "invalid" and b["likely_cause"] == "digit_typo"
+    assert rigid.doctor(fixed)["bodies"][0]["status"] == "ok"
+    assert "<izz>0.8</izz>" in fixed.read_text()
+    assert rigid.Model.from_file(str(fixed)).nv == 6
+
+
 def test_mass_properties_and_doctor_equal_the_command_line_json():
     p, ref = rigid.mass_properties(COMPOUND), cli("mass", COMPOUND)
     assert set(ref) <= set(p)

@@ -1,5 +1,6 @@
 //! `rigid doctor`: what is wrong with a URDF's inertial data (or an MJCF model's `<inertial>`
-//! elements, [`examine_mjcf`]), the likely cause, and the nearest valid value.
+//! elements, [`examine_mjcf`], or an SDF model's, [`examine_sdf`]; any of the three by the file's
+//! extension, [`examine_file`]), the likely cause, and the nearest valid value.
 //!
 //! For every link with an `<inertial>`, [`Doctor::examine`] runs the checks of
 //! [`checks::Evaluation`]:
@@ -35,16 +36,22 @@
 
 pub mod checks;
 pub mod diagnose;
+mod file;
 mod fix;
 pub mod geometry;
 #[cfg(feature = "mjcf")]
 mod mjcf;
+#[cfg(feature = "collision")]
+mod sdf;
 
 pub use checks::{Evaluation, Finding, InertialParams};
 pub use diagnose::{Cause, Diagnosis, Hypothesis};
+pub use file::{examine_file, DoctorFileError, FileReport};
 pub use fix::{fixed_mjcf, fixed_urdf};
 #[cfg(feature = "mjcf")]
 pub use mjcf::{as_robot, examine_mjcf};
+#[cfg(feature = "collision")]
+pub use sdf::{examine_sdf, fixed_sdf, sdf_as_robot};
 
 use crate::io::urdf::UrdfRobot;
 use crate::mass::{nearest_consistent, RotationalInertia, Verdict};

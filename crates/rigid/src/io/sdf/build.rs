@@ -489,6 +489,27 @@ pub(super) fn build(
             w,
         ]);
     }
+    let links = raw
+        .links
+        .iter()
+        .map(|l| super::SdfLink {
+            name: l.name.clone(),
+            line: l.line,
+            file: l.file.clone(),
+            inertial: l.inertial.map(|(pose, mass, i)| super::SdfInertial {
+                pose,
+                mass,
+                inertia: RotationalInertia::new(i[0], i[1], i[2], i[3], i[4], i[5]),
+                line: l.inertial_text.0,
+                text: l.inertial_text.1.clone(),
+            }),
+            collisions: l
+                .collisions
+                .iter()
+                .map(|(_, t, s)| (*t, s.clone()))
+                .collect(),
+        })
+        .collect();
     Ok(SdfModel {
         model,
         constraints,
@@ -497,5 +518,6 @@ pub(super) fn build(
         version: raw.version.clone(),
         warnings,
         path,
+        links,
     })
 }

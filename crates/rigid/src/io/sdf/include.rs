@@ -82,10 +82,14 @@ impl Reader<'_> {
                 .map_err(in_file)?
         };
         let scope = format!("{prefix}{name}::");
+        let first = links.len();
         // the included file's own version decides `use_parent_model_frame` and `frame`
         inner
             .collect(m, &scope, version_is_old(&version), links, joints, frames)
             .map_err(in_file)?;
+        for l in &mut links[first..] {
+            l.file.get_or_insert_with(|| path.clone());
+        }
         if child(n, "placement_frame").is_some() {
             self.warn(
                 n,

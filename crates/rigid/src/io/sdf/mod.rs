@@ -54,9 +54,11 @@ mod build;
 mod include;
 mod parse;
 
-use crate::collision::Geometry;
+use crate::collision::{Geometry, Shape};
+use crate::mass::RotationalInertia;
 use crate::multibody::constraints::ConstraintModel;
 use crate::multibody::Model;
+use crate::spatial::Transform;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
@@ -78,6 +80,40 @@ pub struct SdfModel {
     pub warnings: Vec<SdfWarning>,
     /// The file it was read from (`None` for text).
     pub path: Option<PathBuf>,
+    /// Every link as the file writes it, for the inertia doctor.
+    pub links: Vec<SdfLink>,
+}
+
+/// A link as its file writes it: the `<inertial>` and the collision shapes in the link frame
+/// (`rigid::doctor::examine_sdf` checks one against the other).
+#[derive(Clone, Debug)]
+pub struct SdfLink {
+    /// Its name in the model's scope (`inner::link` in a nested or included model).
+    pub name: String,
+    /// Line of the `<link>`.
+    pub line: u32,
+    /// The file it is written in when it came from an `<include>` (`None`: the file read).
+    pub file: Option<PathBuf>,
+    /// Its `<inertial>`.
+    pub inertial: Option<SdfInertial>,
+    /// Each `<collision>`'s pose in the link frame and shape (a mesh as its hull's points).
+    pub collisions: Vec<(Transform, Shape)>,
+}
+
+/// An `<inertial>` as written.
+#[derive(Clone, Debug)]
+pub struct SdfInertial {
+    /// Its `<pose>` in the link frame: the centre of mass and the axes of `inertia`.
+    pub pose: Transform,
+    /// `<mass>` (kg; SDFormat's default 1).
+    pub mass: f64,
+    /// `<inertia>` about the centre of mass in the pose's axes (kg·m²; SDFormat's default the
+    /// identity).
+    pub inertia: RotationalInertia,
+    /// Line of the `<inertial>`.
+    pub line: u32,
+    /// The numbers as written: `mass`, then `ixx, iyy, izz, ixy, ixz, iyz` (empty where absent).
+    pub text: [String; 7],
 }
 
 impl SdfModel {

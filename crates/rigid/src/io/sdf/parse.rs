@@ -23,8 +23,13 @@ pub(super) struct Link {
     pub pose: Pose,
     /// `<inertial>`: its pose in the link frame, mass, and `ixx iyy izz ixy ixz iyz`.
     pub inertial: Option<(Transform, f64, [f64; 6])>,
+    /// The `<inertial>`'s line and its numbers as written (`mass`, then the six moments; empty
+    /// where absent).
+    pub inertial_text: (u32, [String; 7]),
     /// `<collision>`: name, pose in the link frame, shape (a mesh as its hull's points).
     pub collisions: Vec<(String, Transform, Shape)>,
+    /// The file the link is written in when it came from an `<include>`.
+    pub file: Option<std::path::PathBuf>,
 }
 
 /// An `<axis>` or `<axis2>`.
@@ -263,6 +268,27 @@ impl<'a> Reader<'a> {
     fn link(&mut self, l: Node) -> Result<Link, SdfError> {
         let name = l.attribute("name").unwrap_or("").to_string();
         let what = format!("link \"{name}\"");
+        let mut inertial_text = (0, Default::default());
+        if let Some(i) = child(l, "inertial") {
+            let text = |n: Option<Node>, tag: &str| -> String {
+                n.and_then(|n| child(n, tag))
+                    .and_then(|c| c.text())
+                    .map_or(String::new(), |t| t.trim().to_string())
+            };
+            let inertia = child(i, "inertia");
+            inertial_text = (
+                self.line(i),
+                [
+                    text(Some(i), "mass"),
+                    text(inertia, "ixx"),
+                    text(inertia, "iyy"),
+                    text(inertia, "izz"),
+                    text(inertia, "ixy"),
+                    text(inertia, "ixz"),
+                    text(inertia, "iyz"),
+                ],
+            );
+        }
         let inertial = match child(l, "inertial") {
             None => None,
             Some(i) => {
@@ -312,7 +338,9 @@ impl<'a> Reader<'a> {
             pose: self.pose(l, &what)?,
             name,
             inertial,
+            inertial_text,
             collisions,
+            file: None,
         })
     }
 
