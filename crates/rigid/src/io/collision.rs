@@ -17,7 +17,7 @@ use std::path::Path;
 /// A URDF shape as a collision shape; a mesh is read (path resolved as for the replay:
 /// `package://`, `file://`, relative to the URDF) and becomes the convex hull of its scaled
 /// vertices. `Err` says why a mesh could not be used.
-fn urdf_shape(shape: &UrdfShape, urdf: Option<&Path>) -> Result<Shape, String> {
+pub(crate) fn urdf_shape(shape: &UrdfShape, urdf: Option<&Path>) -> Result<Shape, String> {
     Ok(match shape {
         UrdfShape::Box { size } => Shape::Box { size: *size },
         UrdfShape::Cylinder { radius, length } => Shape::Cylinder {
@@ -93,66 +93,6 @@ pub fn urdf_geometries(robot: &UrdfRobot, model: &Model) -> (Vec<Geometry>, Vec<
         }
     }
     warnings.extend(hull_warning(&out));
-    (out, warnings)
-}
-
-/// The visual geometry of a URDF robot on its `model` (built from it): every `<visual>` of every
-/// link, on the body the link belongs to, placed at the link frame times the element's
-/// `<origin>`, named `link/visual/k`, with its colour; a mesh by the file it resolves to (as for the
-/// collisions: `package://`, `file://`, relative to the URDF). Returns the visuals and the
-/// warnings: an element whose mesh is not found or whose link is not a body, which is skipped.
-#[cfg(feature = "urdf")]
-#[must_use]
-pub fn urdf_visuals(robot: &UrdfRobot, model: &Model) -> (Vec<super::write::Visual>, Vec<String>) {
-    use super::write::{Visual, VisualShape};
-    let (mut out, mut warnings) = (Vec::new(), Vec::new());
-    for link in robot.links.iter().filter(|l| !l.visuals.is_empty()) {
-        let Some(frame) = model.frame_id_of_kind(&link.name, FrameKind::Body) else {
-            warnings.push(format!(
-                "link \"{}\" (line {}): not a body of the model: its visual geometry is skipped",
-                link.name, link.line
-            ));
-            continue;
-        };
-        let frame = &model.frames()[frame.0];
-        for (k, v) in link.visuals.iter().enumerate() {
-            let shape = match &v.shape {
-                UrdfShape::Mesh { filename, scale } => {
-                    match resolve_mesh_path(filename, robot.path.as_deref()) {
-                        Some(file) => VisualShape::Mesh {
-                            file: std::fs::canonicalize(&file).unwrap_or(file),
-                            scale: *scale,
-                        },
-                        None => {
-                            warnings.push(format!(
-                                "link \"{}\" (line {}): visual skipped: mesh {filename} not found",
-                                link.name, v.line
-                            ));
-                            continue;
-                        }
-                    }
-                }
-                other => match urdf_shape(other, None) {
-                    Ok(s) => VisualShape::Primitive(s),
-                    Err(e) => {
-                        warnings.push(format!(
-                            "link \"{}\" (line {}): visual skipped: {e}",
-                            link.name, v.line
-                        ));
-                        continue;
-                    }
-                },
-            };
-            out.push(Visual {
-                name: format!("{}/visual/{k}", link.name),
-                link: link.name.clone(),
-                body: frame.parent,
-                placement: frame.placement * v.origin,
-                shape,
-                rgba: v.rgba,
-            });
-        }
-    }
     (out, warnings)
 }
 

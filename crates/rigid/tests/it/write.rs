@@ -526,3 +526,151 @@ fn visuals_mujoco_would_refuse_are_noted_and_left_out() {
     assert!(text.contains("type=\"sphere\" size=\"0.02\""), "{text}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// An MJCF model's drawn geoms (groups 0 to 2) go through `rigid convert` to URDF as `<visual>`s,
+/// the colliding ones too (a URDF's `<collision>` elements are not drawn), and to MJCF without
+/// doubling the colliding ones: a mesh where MuJoCo draws it (its file's vertices moved by the
+/// asset's `refpos` and `refquat`, then scaled), a visual-only box with its colour, a hidden
+/// group-3 geom left out.
+#[test]
+fn an_mjcf_models_drawn_geoms_are_written_as_visuals() {
+    use rigid::io::write::save;
+    let dir = std::env::temp_dir().join(format!("rigid_mjcf_visuals_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("tet.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    let xml = dir.join("arm.xml");
+    std::fs::write(
+        &xml,
+        r#"<mujoco><asset><mesh name="tet" file="tet.obj" scale="0.1 0.1 0.1"
+    refpos="0.5 0 0" refquat="0.9238795325112867 0 0 0.3826834323650898"/></asset>
+<worldbody><body name="arm" pos="0 0 1"><joint name="hinge" axis="0 1 0"/>
+  <geom name="rod" type="capsule" size="0.02 0.2" pos="0 0 -0.2" rgba="1 0 0 1"/>
+  <geom name="label" type="box" size="0.05 0.05 0.01" pos="0.1 0 0" contype="0" conaffinity="0"
+        group="1" rgba="0 0 1 1"/>
+  <geom name="hidden" type="sphere" size="0.03" group="3"/>
+  <geom name="tip" type="mesh" mesh="tet" pos="0 0 -0.4" euler="0 0 30"/>
+</body></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let m = rigid::io::mjcf::load_mjcf(&xml).unwrap();
+    // URDF: rod, label and tip drawn
+    let out = dir.join("out.urdf");
+    save(&m.model, Some(&xml), &out).unwrap();
+    let back = rigid::io::urdf::parse_urdf_file(&out).unwrap();
+    let arm = back.links.iter().find(|l| l.name == "arm").unwrap();
+    assert_eq!(arm.visuals.len(), 3, "{:?}", arm.visuals);
+    let label = arm
+        .visuals
+        .iter()
+        .find(|v| matches!(v.shape, rigid::io::urdf::UrdfShape::Box { .. }))
+        .unwrap();
+    assert_eq!(label.rgba, Some([0.0, 0.0, 1.0, 1.0]));
+    assert!((label.origin.translation - Vec3::new(0.1, 0.0, 0.0)).norm() < 1e-15);
+    // the mesh's vertices where rigid collides the same geom (the hull of its drawn vertices)
+    // (the capsule is drawn as an OBJ of its hull, the mesh by its own file)
+    let tip = arm
+        .visuals
+        .iter()
+        .find_map(|v| match &v.shape {
+            rigid::io::urdf::UrdfShape::Mesh { filename, scale }
+                if filename.ends_with("tet.obj") =>
+            {
+                Some((v.origin, *scale))
+            }
+            _ => None,
+        })
+        .unwrap();
+    let (geometries, _) = rigid::io::collision::mjcf_geometries(&m);
+    let hull = geometries.iter().find(|g| g.name == "tip").unwrap();
+    let Shape::ConvexHull { points } = &hull.shape else {
+        unreachable!()
+    };
+    let raw = [Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::z()];
+    assert_eq!(points.len(), raw.len());
+    for v in raw {
+        let drawn = tip.0.act_point(&v.component_mul(&tip.1));
+        let nearest = (points.iter())
+            .map(|p| (hull.placement.act_point(p) - drawn).norm())
+            .fold(f64::INFINITY, f64::min);
+        assert!(nearest < 1e-12, "{drawn}: {nearest:e}");
+    }
+    // MJCF: the label is the one geom that does not collide; nothing doubled
+    let out = dir.join("out.xml");
+    save(&m.model, Some(&xml), &out).unwrap();
+    let again = rigid::io::mjcf::load_mjcf(&out).unwrap();
+    let drawn_only = again
+        .geoms
+        .iter()
+        .filter(|g| g.contype == 0 && g.conaffinity == 0)
+        .count();
+    assert_eq!((again.geoms.len(), drawn_only), (4, 1), "{:?}", again.geoms);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An SDF link's `<visual>` elements go through `rigid convert`: as `<visual>`s on the link in
+/// URDF (pose, primitive, a mesh by its file, the material's diffuse colour), as geoms that do not
+/// collide in MJCF.
+#[test]
+fn an_sdf_links_visuals_are_written() {
+    use rigid::io::write::save;
+    let dir = std::env::temp_dir().join(format!("rigid_sdf_visuals_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("tet.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    let sdf = dir.join("arm.sdf");
+    std::fs::write(
+        &sdf,
+        r#"<?xml version="1.0"?><sdf version="1.9"><model name="m">
+  <link name="arm"><pose>0 0 1 0 0 0</pose>
+    <inertial><mass>1</mass></inertial>
+    <collision name="c"><geometry><sphere><radius>0.1</radius></sphere></geometry></collision>
+    <visual name="body"><pose>0 0 -0.2 0.3 0 0</pose>
+      <geometry><box><size>0.1 0.2 0.3</size></box></geometry>
+      <material><diffuse>0 1 0 1</diffuse></material></visual>
+    <visual name="tip"><pose>0.1 0 0 0 0 0</pose>
+      <geometry><mesh><uri>tet.obj</uri><scale>0.1 0.1 0.2</scale></mesh></geometry></visual>
+  </link>
+  <joint name="hinge" type="revolute"><parent>world</parent><child>arm</child>
+    <axis><xyz>0 1 0</xyz></axis></joint>
+</model></sdf>"#,
+    )
+    .unwrap();
+    let m = rigid::io::sdf::load_sdf(&sdf).unwrap();
+    let out = dir.join("out.urdf");
+    save(&m.model, Some(&sdf), &out).unwrap();
+    let back = rigid::io::urdf::parse_urdf_file(&out).unwrap();
+    let arm = back.links.iter().find(|l| l.name == "arm").unwrap();
+    assert_eq!(arm.visuals.len(), 2, "{:?}", arm.visuals);
+    let body = &arm.visuals[0];
+    assert_eq!(body.rgba, Some([0.0, 1.0, 0.0, 1.0]));
+    assert!(matches!(
+        body.shape,
+        rigid::io::urdf::UrdfShape::Box { size } if size == Vec3::new(0.1, 0.2, 0.3)
+    ));
+    let want = Transform::new(
+        rigid::spatial::so3::from_rpy(0.3, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -0.2),
+    );
+    assert!((body.origin.to_homogeneous() - want.to_homogeneous()).amax() < 1e-15);
+    let rigid::io::urdf::UrdfShape::Mesh { filename, scale } = &arm.visuals[1].shape else {
+        unreachable!("{:?}", arm.visuals[1])
+    };
+    assert!(std::path::Path::new(filename).is_absolute() && filename.ends_with("tet.obj"));
+    assert_eq!(*scale, Vec3::new(0.1, 0.1, 0.2));
+    // MJCF: two geoms that do not collide beside the sphere that does
+    let out = dir.join("out.xml");
+    save(&m.model, Some(&sdf), &out).unwrap();
+    let again = rigid::io::mjcf::load_mjcf(&out).unwrap();
+    let drawn_only = (again.geoms.iter())
+        .filter(|g| g.contype == 0 && g.conaffinity == 0)
+        .count();
+    assert_eq!((again.geoms.len(), drawn_only), (3, 2), "{:?}", again.geoms);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -508,6 +508,7 @@ pub(super) fn build(
                 .iter()
                 .map(|(_, t, s)| (*t, s.clone()))
                 .collect(),
+            visuals: l.visuals.clone(),
         })
         .collect();
     Ok(SdfModel {

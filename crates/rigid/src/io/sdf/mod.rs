@@ -32,7 +32,9 @@
 //!   a folder through its `model.config`), read as a nested model named by the include's `<name>`
 //!   and placed by its `<pose>` (else the model's own); loops refused.
 //!
-//! Not read: visuals, sensors and plugins; an include's `<placement_frame>` and `<merge>`.
+//! - `<visual>`: pose, primitive or mesh file, colour ([`SdfLink::visuals`], for `rigid convert`).
+//!
+//! Not read: sensors and plugins; an include's `<placement_frame>` and `<merge>`.
 //!
 //! # Semantics (as SDFormat and Drake)
 //!
@@ -53,6 +55,7 @@
 mod build;
 mod include;
 mod parse;
+mod visual;
 
 use crate::collision::{Geometry, Shape};
 use crate::mass::RotationalInertia;
@@ -98,6 +101,21 @@ pub struct SdfLink {
     pub inertial: Option<SdfInertial>,
     /// Each `<collision>`'s pose in the link frame and shape (a mesh as its hull's points).
     pub collisions: Vec<(Transform, Shape)>,
+    /// Its `<visual>` elements.
+    pub visuals: Vec<SdfVisual>,
+}
+
+/// A `<visual>`: what `rigid convert` draws.
+#[derive(Clone, Debug)]
+pub struct SdfVisual {
+    /// `name` (else `link/visual/k`).
+    pub name: String,
+    /// Its pose in the link frame.
+    pub pose: Transform,
+    /// A primitive, or a mesh by its file.
+    pub shape: crate::io::write::VisualShape,
+    /// `<material><diffuse>` (else `<ambient>`), `rgba` in `[0, 1]`.
+    pub rgba: Option<[f64; 4]>,
 }
 
 /// An `<inertial>` as written.

@@ -28,6 +28,8 @@ pub(super) struct Link {
     pub inertial_text: (u32, [String; 7]),
     /// `<collision>`: name, pose in the link frame, shape (a mesh as its hull's points).
     pub collisions: Vec<(String, Transform, Shape)>,
+    /// `<visual>`s.
+    pub visuals: Vec<super::SdfVisual>,
     /// The file the link is written in when it came from an `<include>`.
     pub file: Option<std::path::PathBuf>,
 }
@@ -128,7 +130,12 @@ impl<'a> Reader<'a> {
     }
 
     /// The finite numbers of `node`'s text, exactly `n` of them when `n` is given.
-    fn numbers(&self, node: Node, what: &str, n: Option<usize>) -> Result<Vec<f64>, SdfError> {
+    pub(super) fn numbers(
+        &self,
+        node: Node,
+        what: &str,
+        n: Option<usize>,
+    ) -> Result<Vec<f64>, SdfError> {
         let text = node.text().unwrap_or("");
         let v: Result<Vec<f64>, _> = text.split_whitespace().map(str::parse::<f64>).collect();
         let v =
@@ -151,7 +158,13 @@ impl<'a> Reader<'a> {
     }
 
     /// The number in child `tag` of `node`, `default` without it.
-    fn number(&self, node: Node, tag: &str, default: f64, what: &str) -> Result<f64, SdfError> {
+    pub(super) fn number(
+        &self,
+        node: Node,
+        tag: &str,
+        default: f64,
+        what: &str,
+    ) -> Result<f64, SdfError> {
         match child(node, tag) {
             Some(c) => Ok(self.numbers(c, &format!("{what} <{tag}>"), Some(1))?[0]),
             None => Ok(default),
@@ -193,7 +206,7 @@ impl<'a> Reader<'a> {
         })
     }
 
-    fn shape(&mut self, g: Node, what: &str) -> Result<Option<Shape>, SdfError> {
+    pub(super) fn shape(&mut self, g: Node, what: &str) -> Result<Option<Shape>, SdfError> {
         let Some(s) = g.children().find(Node::is_element) else {
             return Ok(None);
         };
@@ -228,23 +241,10 @@ impl<'a> Reader<'a> {
                 }
             }
             "mesh" => {
-                let uri = child(s, "uri").and_then(|u| u.text()).unwrap_or("").trim();
-                let scale = match child(s, "scale") {
-                    Some(c) => Vec3::from_iterator(self.numbers(c, &what, Some(3))?),
-                    None => Vec3::repeat(1.0),
-                };
-                let local = uri
-                    .strip_prefix("model://")
-                    .map_or(uri.to_string(), |rest| {
-                        // a model's own resources: `model://NAME/...` beside the model's folder
-                        format!("../{rest}")
-                    });
-                let anchor = self.dir.join("model.sdf");
-                let mesh = crate::io::urdf::resolve_mesh_path(&local, Some(&anchor))
-                    .ok_or_else(|| format!("mesh {uri} not found"))
-                    .and_then(|p| {
-                        crate::io::mesh_file::read_mesh(&p).map_err(|e| format!("{uri}: {e}"))
-                    });
+                let (path, scale) = self.mesh_file(s, &what)?;
+                let mesh = path.and_then(|(uri, p)| {
+                    crate::io::mesh_file::read_mesh(&p).map_err(|e| format!("{uri}: {e}"))
+                });
                 match mesh {
                     Ok(m) => Shape::ConvexHull {
                         points: m.vertices.iter().map(|v| v.component_mul(&scale)).collect(),
@@ -263,6 +263,32 @@ impl<'a> Reader<'a> {
         };
         shape.check().map_err(|e| self.error(s, what.clone(), e))?;
         Ok(Some(shape))
+    }
+
+    /// A `<mesh>`'s file (`<uri>`: `model://NAME/...` beside the model's folder, else from the
+    /// file's folder; the URI as written with the path, or why it is not found) and `<scale>`.
+    #[allow(clippy::type_complexity)]
+    pub(super) fn mesh_file(
+        &self,
+        s: Node,
+        what: &str,
+    ) -> Result<(Result<(String, std::path::PathBuf), String>, Vec3), SdfError> {
+        let uri = child(s, "uri").and_then(|u| u.text()).unwrap_or("").trim();
+        let scale = match child(s, "scale") {
+            Some(c) => Vec3::from_iterator(self.numbers(c, what, Some(3))?),
+            None => Vec3::repeat(1.0),
+        };
+        let local = uri
+            .strip_prefix("model://")
+            .map_or(uri.to_string(), |rest| {
+                // a model's own resources: `model://NAME/...` beside the model's folder
+                format!("../{rest}")
+            });
+        let anchor = self.dir.join("model.sdf");
+        let path = crate::io::urdf::resolve_mesh_path(&local, Some(&anchor))
+            .map(|p| (uri.to_string(), p))
+            .ok_or_else(|| format!("mesh {uri} not found"));
+        Ok((path, scale))
     }
 
     fn link(&mut self, l: Node) -> Result<Link, SdfError> {
@@ -333,6 +359,7 @@ impl<'a> Reader<'a> {
                 }
             }
         }
+        let visuals = self.visuals(l, &what)?;
         Ok(Link {
             line: self.line(l),
             pose: self.pose(l, &what)?,
@@ -340,6 +367,7 @@ impl<'a> Reader<'a> {
             inertial,
             inertial_text,
             collisions,
+            visuals,
             file: None,
         })
     }

@@ -11,13 +11,14 @@
 //! ([`WriteError`]) or a note in [`Written::notes`], never dropped silently.
 //!
 //! A collision mesh is written as the convex hull rigid collides it as (inline vertices in MJCF,
-//! an OBJ file beside a URDF). The visual geometry ([`Visual`], a URDF's `<visual>` elements) is
-//! written as it is: primitives as primitives, a mesh by its file (its absolute path) in URDF and
+//! an OBJ file beside a URDF). The visual geometry ([`Visual`]: a URDF's or SDF file's `<visual>`
+//! elements, the geoms an MJCF file draws, [`visuals`]) is written as it is: primitives as primitives, a mesh by its file (its absolute path) in URDF and
 //! in MJCF when it is an OBJ file, else as inline vertices and faces; with its colour. It takes no part in the dynamics or the collisions (MJCF: `contype="0"
 //! conaffinity="0" group="1"`).
 
 pub mod mjcf;
 pub mod urdf;
+pub mod visuals;
 
 use crate::collision::Geometry;
 use crate::multibody::{FrameKind, JointId, Model};
@@ -358,12 +359,12 @@ pub enum SaveError {
 }
 
 /// Writes `model` to `out` in the format of its extension ([`Format::of_path`]) with the
-/// collision geometry of the file it was loaded from (`source`, a URDF or MJCF file:
-/// [`file_geometries`](super::collision::file_geometries); `None`: no geometry) and a URDF's
-/// visual geometry ([`urdf_visuals`](super::collision::urdf_visuals)), a URDF's collision hulls
-/// as OBJ files in the folder `OUT_meshes` beside it. Returns what was not written: the source's
-/// skipped geometry, what the source holds that is not written (an MJCF or SDF file's visual
-/// geometry), and the writer's [`Written::notes`].
+/// collision geometry of the file it was loaded from (`source`, a URDF, MJCF or SDF file:
+/// [`file_geometries`](super::collision::file_geometries); `None`: no geometry) and its visual
+/// geometry ([`visuals`]: a URDF's or SDF file's `<visual>` elements, the geoms MuJoCo draws), a
+/// URDF's collision hulls as OBJ files in the folder `OUT_meshes` beside it. Returns what was not
+/// written: the source's skipped geometry, what the source holds that is not written (an MJCF
+/// file's actuators and tendons, an SDF file's loops), and the writer's [`Written::notes`].
 ///
 /// # Errors
 /// [`SaveError`]: an unknown extension, an unreadable source, a joint the format cannot express
@@ -385,13 +386,28 @@ pub fn save(
         let ext = |x: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(x));
         if ext("xml") {
             notes.push(
-                "the source's visual geoms (contype and conaffinity 0), planes, height fields, \
-                 actuators, tendons and <equality> constraints are not written"
+                "the source's planes, height fields, actuators, tendons and <equality> \
+                 constraints are not written"
                     .into(),
             );
+            let m =
+                super::mjcf::load_mjcf(path).map_err(|e| super::collision::WorldError::File {
+                    path: path.display().to_string(),
+                    message: e.to_string(),
+                })?;
+            let (v, skipped) = visuals::mjcf_visuals(&m, format == Format::Urdf);
+            visuals = v;
+            notes.extend(skipped);
         } else if ext("sdf") {
-            notes.push("the source's <visual> elements and plugins are not written".into());
-            let loops = super::sdf::load_sdf(path).map_or(0, |m| m.constraints.len());
+            notes.push("the source's plugins and sensors are not written".into());
+            let m = super::sdf::load_sdf(path).map_err(|e| super::collision::WorldError::File {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            })?;
+            let (v, skipped) = visuals::sdf_visuals(&m);
+            visuals = v;
+            notes.extend(skipped);
+            let loops = m.constraints.len();
             if loops > 0 {
                 notes.push(format!(
                     "the source's {loops} loop-closing constraints are not written: the file \
@@ -405,7 +421,7 @@ pub fn save(
                     message: e.to_string(),
                 }
             })?;
-            let (v, skipped) = super::collision::urdf_visuals(&robot, model);
+            let (v, skipped) = visuals::urdf_visuals(&robot, model);
             visuals = v;
             notes.extend(skipped);
         }
