@@ -35,9 +35,13 @@ fn mjcf_to_urdf_and_back_keeps_the_model() {
         "{notes}"
     );
     assert!(notes.contains("armatures are not written"), "{notes}");
-    // the ant's 12 capsules as OBJ hulls beside the URDF (its sphere is a URDF sphere)
+    // the ant's 12 capsules, collided and drawn, as OBJ hulls beside the URDF (its sphere is a
+    // URDF sphere): one file per distinct hull, its legs' two lengths
     let meshes = std::fs::read_dir(dir.join("ant_meshes")).unwrap().count();
-    assert_eq!(meshes, 12);
+    assert_eq!(meshes, 2);
+    let written = std::fs::read_to_string(&urdf).unwrap();
+    assert_eq!(written.matches("<mesh filename=\"ant_meshes/").count(), 24);
+    assert_eq!(written.matches("<visual").count(), 13);
     // read back with a free-flyer root: the same sizes and mass
     let summary = |path: &str, floating: bool| {
         let mut args = vec!["model", path];
@@ -72,7 +76,12 @@ fn mjcf_to_urdf_and_back_keeps_the_model() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let written = std::fs::read_to_string(&xml).unwrap();
     assert_eq!(written.matches("type=\"free\"").count(), 1);
-    assert_eq!(written.matches("<mesh ").count(), 12);
+    // the 12 capsules' hulls as collision meshes, and as the URDF's visual meshes (OBJ files)
+    assert_eq!(written.matches("<mesh ").count(), 24);
+    assert_eq!(
+        written.matches("contype=\"0\" conaffinity=\"0\"").count(),
+        13
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

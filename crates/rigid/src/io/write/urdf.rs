@@ -462,11 +462,6 @@ impl Writer<'_> {
                         }
                     })
                     .collect();
-                let file = format!(
-                    "{}/{}.obj",
-                    self.mesh_dir,
-                    unique(&mut self.mesh_names, &stem)
-                );
                 let mut obj = String::from("# the convex hull rigid collides this shape as\n");
                 for v in &vertices {
                     let _ = writeln!(obj, "v {}", vec3(v));
@@ -474,7 +469,19 @@ impl Writer<'_> {
                 for t in &triangles {
                     let _ = writeln!(obj, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1);
                 }
-                self.files.push((file.clone(), obj));
+                // a shape both collided and drawn (an MJCF geom) is one file
+                let file = match self.files.iter().find(|(_, text)| *text == obj) {
+                    Some((file, _)) => file.clone(),
+                    None => {
+                        let file = format!(
+                            "{}/{}.obj",
+                            self.mesh_dir,
+                            unique(&mut self.mesh_names, &stem)
+                        );
+                        self.files.push((file.clone(), obj));
+                        file
+                    }
+                };
                 format!("<mesh filename=\"{}\"/>", esc(&file))
             }
         })
