@@ -381,8 +381,7 @@ pub fn doctor<'py>(
         let io = match &e {
             DoctorFileError::Urdf(rigid::io::urdf::UrdfError::Io { source, .. })
             | DoctorFileError::Mjcf(rigid::io::mjcf::MjcfError::Io { source, .. })
-            | DoctorFileError::Sdf(rigid::io::sdf::SdfError::Io { source, .. })
-            | DoctorFileError::Io { source, .. } => Some(source),
+            | DoctorFileError::Sdf(rigid::io::sdf::SdfError::Io { source, .. }) => Some(source),
             _ => None,
         };
         match io {

@@ -20,14 +20,6 @@ pub enum DoctorFileError {
     #[cfg(feature = "collision")]
     #[error(transparent)]
     Sdf(#[from] crate::io::sdf::SdfError),
-    /// The file's text, read again for `--fix`.
-    #[error("cannot read {path}: {source}")]
-    Io {
-        /// The path given.
-        path: String,
-        /// Why.
-        source: std::io::Error,
-    },
     /// A format rigid was built without (its cargo feature).
     #[error("{0}: rigid was built without this format's feature")]
     Unsupported(String),

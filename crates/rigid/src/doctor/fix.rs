@@ -88,14 +88,23 @@ pub fn fixed_mjcf(text: &str, report: &DoctorReport) -> Result<(String, Vec<Stri
         );
         edits.push((range, element));
     }
+    Ok((splice(text, edits), notes))
+}
+
+/// `text` with each range of `edits` replaced by its new text (ranges of distinct elements,
+/// which do not overlap; one that would overlap an earlier one is left out).
+pub(super) fn splice(text: &str, mut edits: Vec<(std::ops::Range<usize>, String)>) -> String {
     edits.sort_by_key(|e| e.0.start);
     let mut out = String::with_capacity(text.len());
     let mut at = 0;
     for (range, new) in edits {
+        if range.start < at {
+            continue;
+        }
         out.push_str(&text[at..range.start]);
         out.push_str(&new);
         at = range.end;
     }
     out.push_str(&text[at..]);
-    Ok((out, notes))
+    out
 }

@@ -100,26 +100,10 @@ fn urdf_geometry(g: &MjcfGeom, to_body: &Transform) -> Option<UrdfGeometry> {
             radius: *radius,
             length: 2.0 * half_length,
         },
-        MjcfShape::Mesh {
-            file,
-            inline,
-            scale,
-            refpos,
-            refrot,
-            ..
-        } => {
-            if inline.is_some() {
-                return None; // no file for a URDF to name
-            }
-            let uniform = (scale.x - scale.y).abs() < 1e-12 && (scale.x - scale.z).abs() < 1e-12;
-            let turned = (refrot - crate::spatial::Mat3::identity()).norm() > 1e-12;
-            if turned && !uniform {
-                return None;
-            }
-            // v_geom = scale ∘ (Rᵀ (v - refpos)) = Rᵀ (scale ∘ v) - Rᵀ (scale ∘ refpos) when the
-            // scale is uniform or R = 1
-            let rt = refrot.transpose();
-            origin = origin * Transform::new(rt, -(rt * refpos.component_mul(scale)));
+        MjcfShape::Mesh { file, scale, .. } => {
+            // none for a mesh given by its vertices (no file for a URDF to name), or turned and
+            // scaled unevenly
+            origin = origin * g.shape.mesh_file_frame()?;
             UrdfShape::Mesh {
                 filename: file.display().to_string(),
                 scale: *scale,

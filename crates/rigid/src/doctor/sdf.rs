@@ -1,8 +1,9 @@
 //! The doctor on an SDF model: each link's `<inertial>` checked as a URDF link's is, against the
-//! link's collision shapes (boxes, cylinders, spheres, capsules; SDF meshes are read as their
-//! convex hulls, without a file for the doctor's solid, and ellipsoids have no URDF counterpart:
-//! both are left out of the geometry). `--fix` rewrites the `<inertial>` elements of the file
-//! read; a link from an `<include>`d file is reported and left alone.
+//! link's collision shapes when they are all boxes, cylinders, spheres or capsules (SDF meshes are
+//! read as their convex hulls, without a file for the doctor's solid, and ellipsoids have no URDF
+//! counterpart: a link with one of them gets the physical checks only, not a part of its solid).
+//! `--fix` rewrites the `<inertial>` elements of the file read; a link from an `<include>`d file
+//! is reported and left alone.
 
 use super::{Doctor, DoctorReport};
 use crate::collision::Shape;
@@ -50,8 +51,10 @@ pub fn sdf_as_robot(m: &SdfModel) -> UrdfRobot {
                 span: 0..0,
             }),
             visuals: Vec::new(),
+            // all of the link's shapes or none (the physical checks only): a part of its solid
+            // would misjudge where its mass can be
             collisions: (l.collisions.iter())
-                .filter_map(|(origin, shape)| {
+                .map(|(origin, shape)| {
                     let shape = match *shape {
                         Shape::Box { size } => UrdfShape::Box { size },
                         Shape::Sphere { radius } => UrdfShape::Sphere { radius },
@@ -68,7 +71,8 @@ pub fn sdf_as_robot(m: &SdfModel) -> UrdfRobot {
                         line: l.line,
                     })
                 })
-                .collect(),
+                .collect::<Option<Vec<_>>>()
+                .unwrap_or_default(),
         })
         .collect();
     UrdfRobot {
@@ -113,14 +117,20 @@ pub fn fixed_sdf(
             ));
             continue;
         }
-        let Some(line) = link.inertial.as_ref().map(|i| i.line) else {
+        let Some(range) = link.inertial.as_ref().map(|i| i.span.clone()) else {
             continue;
         };
-        let inertial = doc
+        // the element the reader read, in the same text (not another that shares its line)
+        let found = doc
             .descendants()
-            .find(|n| n.has_tag_name("inertial") && doc.text_pos_at(n.range().start).row == line);
-        let Some(inertial) = inertial else { continue };
-        let range = inertial.range();
+            .any(|n| n.has_tag_name("inertial") && n.range() == range);
+        if !found {
+            notes.push(format!(
+                "link \"{}\": its <inertial> is not where the file read had it: not repaired",
+                b.name
+            ));
+            continue;
+        }
         let indent = indent_at(text, range.start);
         let e = r.inertia.entries();
         let moments = ["ixx", "iyy", "izz", "ixy", "ixz", "iyz"]
@@ -143,16 +153,7 @@ pub fn fixed_sdf(
         );
         edits.push((range, element));
     }
-    edits.sort_by_key(|e| e.0.start);
-    let mut out = String::with_capacity(text.len());
-    let mut at = 0;
-    for (range, new) in edits {
-        out.push_str(&text[at..range.start]);
-        out.push_str(&new);
-        at = range.end;
-    }
-    out.push_str(&text[at..]);
-    Ok((out, notes))
+    Ok((super::fix::splice(text, edits), notes))
 }
 
 #[cfg(test)]
@@ -200,5 +201,28 @@ mod tests {
         let r = examine_sdf(&again);
         assert_ne!(r.bodies[0].status, Status::Invalid, "{:?}", r.bodies[0]);
         assert!(fixed.ends_with("  </model>\n</sdf>\n"));
+    }
+
+    /// Two links written on one line, both with `izz` ten times too large: each `<inertial>`
+    /// is found by its own place in the text, not by its line.
+    #[test]
+    fn two_inertials_on_one_line_are_each_repaired() {
+        let bad = "<inertial><mass>48</mass><inertia><ixx>2.08</ixx><iyy>1.6</iyy>\
+                   <izz>8</izz></inertia></inertial>";
+        let geom = r#"<collision name="c"><geometry><box><size>0.2 0.4 0.6</size></box></geometry></collision>"#;
+        let text = format!(
+            r#"<sdf version="1.9"><model name="m"><link name="a">{bad}{geom}</link><link name="b"><pose>1 0 0 0 0 0</pose>{bad}{geom}</link></model></sdf>"#
+        );
+        let m = crate::io::sdf::load_sdf_str(&text, ".".as_ref()).unwrap();
+        let r = examine_sdf(&m);
+        assert!(r.bodies.iter().all(|b| b.status == Status::Invalid));
+        let (fixed, notes) = fixed_sdf(&text, &m, &r).unwrap();
+        assert!(notes.is_empty(), "{notes:?}");
+        assert_eq!(fixed.matches("<izz>0.8</izz>").count(), 2, "{fixed}");
+        let again = crate::io::sdf::load_sdf_str(&fixed, ".".as_ref()).unwrap();
+        assert!(examine_sdf(&again)
+            .bodies
+            .iter()
+            .all(|b| b.status == Status::Ok));
     }
 }

@@ -422,6 +422,20 @@ fn an_included_model_is_a_nested_model_named_and_placed_by_the_include() {
     );
     let e = error(r#"<include><name>x</name></include>"#);
     assert!(e.contains("line 1: <include>: no <uri>"), "{e}");
+    // an error the build finds in an included file names that file (its line is the file's)
+    std::fs::write(
+        fore.join("forearm.sdf"),
+        r#"<?xml version="1.0"?><sdf version="1.10"><model name="forearm">
+            <link name="upper"><inertial><mass>-2</mass></inertial></link></model></sdf>"#,
+    )
+    .unwrap();
+    let e = rigid::io::sdf::load_sdf(&main).unwrap_err().to_string();
+    let file = fore.join("forearm.sdf").canonicalize().unwrap();
+    assert!(
+        e.contains(&format!("link \"fore::upper\" in {}", file.display()))
+            && e.contains("negative mass"),
+        "{e}"
+    );
     std::fs::remove_dir_all(&root).unwrap();
 }
 

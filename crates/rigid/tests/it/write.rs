@@ -636,13 +636,21 @@ fn an_sdf_links_visuals_are_written() {
       <material><diffuse>0 1 0 1</diffuse></material></visual>
     <visual name="tip"><pose>0.1 0 0 0 0 0</pose>
       <geometry><mesh><uri>tet.obj</uri><scale>0.1 0.1 0.2</scale></mesh></geometry></visual>
+    <visual name="nothing"><geometry><empty/></geometry></visual>
+    <visual name="flat"><geometry><box><size>0 0.1 0.1</size></box></geometry>
+      <material><diffuse>green</diffuse></material></visual>
   </link>
   <joint name="hinge" type="revolute"><parent>world</parent><child>arm</child>
     <axis><xyz>0 1 0</xyz></axis></joint>
 </model></sdf>"#,
     )
     .unwrap();
+    // visuals that cannot be drawn are skipped with a warning each; the model loads
     let m = rigid::io::sdf::load_sdf(&sdf).unwrap();
+    let skipped = (m.warnings.iter())
+        .filter(|w| w.message.contains("the visual is skipped"))
+        .count();
+    assert_eq!(skipped, 2, "{:?}", m.warnings);
     let out = dir.join("out.urdf");
     save(&m.model, Some(&sdf), &out).unwrap();
     let back = rigid::io::urdf::parse_urdf_file(&out).unwrap();

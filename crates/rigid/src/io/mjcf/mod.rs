@@ -277,6 +277,33 @@ pub enum MjcfShape {
     },
 }
 
+impl MjcfShape {
+    /// For a mesh given by its file: the frame, in the geom frame, in which MuJoCo draws the
+    /// file's vertices scaled, `scale ∘ (Rᵀ (v − refpos)) = T (scale ∘ v)` with `T = (Rᵀ,
+    /// −Rᵀ (scale ∘ refpos))` (`R` of `refquat`). `None` for another shape, a mesh given by its
+    /// vertices, or one both turned and scaled unevenly (no rigid frame then).
+    #[must_use]
+    pub fn mesh_file_frame(&self) -> Option<Transform> {
+        let Self::Mesh {
+            inline: None,
+            scale,
+            refpos,
+            refrot,
+            ..
+        } = self
+        else {
+            return None;
+        };
+        let uniform = (scale.x - scale.y).abs() < 1e-12 && (scale.x - scale.z).abs() < 1e-12;
+        let turned = (refrot - crate::spatial::Mat3::identity()).norm() > 1e-12;
+        if turned && !uniform {
+            return None;
+        }
+        let rt = refrot.transpose();
+        Some(Transform::new(rt, -(rt * refpos.component_mul(scale))))
+    }
+}
+
 /// A geom: its shape placed in a body, and what contact and drawing need.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MjcfGeom {

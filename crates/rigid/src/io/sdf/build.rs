@@ -502,6 +502,7 @@ pub(super) fn build(
                 inertia: RotationalInertia::new(i[0], i[1], i[2], i[3], i[4], i[5]),
                 line: l.inertial_text.0,
                 text: l.inertial_text.1.clone(),
+                span: l.inertial_text.2.clone(),
             }),
             collisions: l
                 .collisions

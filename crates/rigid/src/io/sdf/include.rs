@@ -66,6 +66,7 @@ impl Reader<'_> {
             dir,
             warnings: Vec::new(),
             chain: self.chain.iter().cloned().chain([path.clone()]).collect(),
+            included: std::collections::HashMap::new(),
         };
         let in_file = |e: SdfError| self.error(n, what(), format!("in {file}: {e}"));
         let (m, version, _) = inner.the_model().map_err(in_file)?;
@@ -82,13 +83,30 @@ impl Reader<'_> {
                 .map_err(in_file)?
         };
         let scope = format!("{prefix}{name}::");
-        let first = links.len();
+        let first = (links.len(), joints.len(), frames.len());
         // the included file's own version decides `use_parent_model_frame` and `frame`
         inner
             .collect(m, &scope, version_is_old(&version), links, joints, frames)
             .map_err(in_file)?;
-        for l in &mut links[first..] {
+        for l in &mut links[first.0..] {
             l.file.get_or_insert_with(|| path.clone());
+        }
+        // the innermost file first: a nested include recorded its own
+        self.included.extend(inner.included.drain());
+        let names = (links[first.0..].iter().map(|l| &l.name))
+            .chain(joints[first.1..].iter().map(|j| &j.name))
+            .chain(frames[first.2..].iter().map(|f| &f.name));
+        for name in names {
+            self.included
+                .entry(name.clone())
+                .or_insert_with(|| path.clone());
+        }
+        if child(n, "static").is_some() {
+            self.warn(
+                n,
+                what(),
+                "an include's <static> is not read: the model is as its file says",
+            );
         }
         if child(n, "placement_frame").is_some() {
             self.warn(
@@ -120,20 +138,35 @@ impl Reader<'_> {
                     .iter()
                     .filter_map(std::env::var_os)
                     .flat_map(|v| std::env::split_paths(&v).collect::<Vec<_>>())
+                    .filter(|d| !d.as_os_str().is_empty())
                     .collect();
-                dirs.push(self.dir.to_path_buf());
-                dirs.extend(self.dir.parent().map(Path::to_path_buf));
+                // this file's folder made absolute, so that a relative one has a parent
+                let here = canonical(if self.dir.as_os_str().is_empty() {
+                    Path::new(".")
+                } else {
+                    self.dir
+                });
+                let above = here.parent().map(Path::to_path_buf);
+                dirs.push(here);
+                dirs.extend(above);
                 dirs.into_iter().map(|d| d.join(rest)).collect()
             }
             None => vec![self.dir.join(uri.strip_prefix("file://").unwrap_or(uri))],
         };
+        let mut why = None;
         for c in candidates {
             if c.is_file() {
                 return Ok(c);
             }
             if c.is_dir() {
-                return model_in_folder(&c);
+                match model_in_folder(&c) {
+                    Ok(file) => return Ok(file),
+                    Err(e) => why = why.or(Some(e)), // a folder of that name without a model
+                }
             }
+        }
+        if let Some(e) = why {
+            return Err(e);
         }
         Err(format!(
             "\"{uri}\" not found (model:// is looked up in {} and beside this file)",

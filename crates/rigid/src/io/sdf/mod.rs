@@ -132,6 +132,8 @@ pub struct SdfInertial {
     pub line: u32,
     /// The numbers as written: `mass`, then `ixx, iyy, izz, ixy, ixz, iyz` (empty where absent).
     pub text: [String; 7],
+    /// Its byte range in the file it is written in (for `rigid doctor --fix`).
+    pub span: std::ops::Range<usize>,
 }
 
 impl SdfModel {
@@ -239,8 +241,45 @@ fn read(text: &str, dir: &Path, file: Option<&Path>) -> Result<SdfModel, SdfErro
         dir,
         warnings: Vec::new(),
         chain: file.into_iter().map(include::canonical).collect(),
+        included: std::collections::HashMap::new(),
     };
     let raw = reader.model()?;
-    let poses = parse::Poses::resolve(&raw)?;
-    build::build(&raw, &poses, reader.warnings, None)
+    let poses = parse::Poses::resolve(&raw).map_err(|e| in_file(&raw, e))?;
+    let mut m = build::build(&raw, &poses, reader.warnings, None).map_err(|e| in_file(&raw, e))?;
+    for w in &mut m.warnings {
+        if let Some(file) = included_file(&raw, &w.element) {
+            w.element = format!("{} in {file}", w.element);
+        }
+    }
+    Ok(m)
+}
+
+/// An error about an element written in an `<include>`d file, its element named with the file
+/// (the line is that file's).
+fn in_file(raw: &parse::Raw, e: SdfError) -> SdfError {
+    match e {
+        SdfError::Invalid {
+            line,
+            element,
+            message,
+        } => match included_file(raw, &element) {
+            Some(file) => SdfError::Invalid {
+                line,
+                element: format!("{element} in {file}"),
+                message,
+            },
+            None => SdfError::Invalid {
+                line,
+                element,
+                message,
+            },
+        },
+        other => other,
+    }
+}
+
+/// The included file of the element `element` names (`link "fore::upper"`: the quoted name).
+fn included_file(raw: &parse::Raw, element: &str) -> Option<String> {
+    let name = element.split('"').nth(1)?;
+    raw.included.get(name).map(|p| p.display().to_string())
 }

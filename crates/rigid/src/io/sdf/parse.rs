@@ -23,9 +23,9 @@ pub(super) struct Link {
     pub pose: Pose,
     /// `<inertial>`: its pose in the link frame, mass, and `ixx iyy izz ixy ixz iyz`.
     pub inertial: Option<(Transform, f64, [f64; 6])>,
-    /// The `<inertial>`'s line and its numbers as written (`mass`, then the six moments; empty
-    /// where absent).
-    pub inertial_text: (u32, [String; 7]),
+    /// The `<inertial>`'s line, its numbers as written (`mass`, then the six moments; empty
+    /// where absent) and its byte range in the file.
+    pub inertial_text: (u32, [String; 7], std::ops::Range<usize>),
     /// `<collision>`: name, pose in the link frame, shape (a mesh as its hull's points).
     pub collisions: Vec<(String, Transform, Shape)>,
     /// `<visual>`s.
@@ -85,6 +85,9 @@ pub(super) struct Raw {
     pub links: Vec<Link>,
     pub joints: Vec<Joint>,
     pub frames: Vec<Frame>,
+    /// The links, joints and frames written in an `<include>`d file, with the file (the lines
+    /// of their errors and warnings are that file's).
+    pub included: HashMap<String, std::path::PathBuf>,
 }
 
 pub(super) struct Reader<'a> {
@@ -94,6 +97,8 @@ pub(super) struct Reader<'a> {
     /// The files being read, the outermost first (this one last; none for text): an
     /// `<include>` of one of them is a loop.
     pub chain: Vec<std::path::PathBuf>,
+    /// The links, joints and frames read from an `<include>`d file, with the file.
+    pub included: HashMap<String, std::path::PathBuf>,
 }
 
 pub(super) fn children<'a, 'i>(
@@ -294,7 +299,7 @@ impl<'a> Reader<'a> {
     fn link(&mut self, l: Node) -> Result<Link, SdfError> {
         let name = l.attribute("name").unwrap_or("").to_string();
         let what = format!("link \"{name}\"");
-        let mut inertial_text = (0, Default::default());
+        let mut inertial_text = (0, Default::default(), 0..0);
         if let Some(i) = child(l, "inertial") {
             let text = |n: Option<Node>, tag: &str| -> String {
                 n.and_then(|n| child(n, tag))
@@ -313,6 +318,7 @@ impl<'a> Reader<'a> {
                     text(inertia, "ixz"),
                     text(inertia, "iyz"),
                 ],
+                i.range(),
             );
         }
         let inertial = match child(l, "inertial") {
@@ -595,6 +601,7 @@ impl<'a> Reader<'a> {
             links,
             joints,
             frames,
+            included: std::mem::take(&mut self.included),
         })
     }
 }

@@ -7,8 +7,10 @@ use roxmltree::Node;
 
 impl Reader<'_> {
     /// The `<visual>`s of link `l`: each pose (relative to the link), shape (a primitive, or a
-    /// mesh by its file: one not found is skipped with a warning), and colour (`<material>`'s
-    /// `<diffuse>`, else `<ambient>`).
+    /// mesh by its file), and colour (`<material>`'s `<diffuse>`, else `<ambient>`). Read as
+    /// best it can: a visual that cannot be drawn (a mesh not found, an `<empty>`, plane or
+    /// height map, a shape of zero size, a malformed pose) is skipped, a colour that is not 3 or
+    /// 4 numbers left out, each with a warning; a visual never stops the model loading.
     pub(super) fn visuals(&mut self, l: Node, what: &str) -> Result<Vec<SdfVisual>, SdfError> {
         let mut out = Vec::new();
         for (k, v) in children(l, "visual").enumerate() {
@@ -17,7 +19,13 @@ impl Reader<'_> {
                 str::to_string,
             );
             let what = format!("{what} visual \"{name}\"");
-            let pose = self.pose(v, &what)?;
+            let pose = match self.pose(v, &what) {
+                Ok(p) => p,
+                Err(e) => {
+                    self.warn(v, what, format!("{e}: the visual is skipped"));
+                    continue;
+                }
+            };
             if pose.relative_to.is_some() {
                 self.warn(
                     v,
@@ -28,20 +36,44 @@ impl Reader<'_> {
             let Some(g) = child(v, "geometry") else {
                 continue;
             };
+            let kind = g
+                .children()
+                .find(Node::is_element)
+                .map(|s| s.tag_name().name());
+            if !matches!(
+                kind,
+                Some("box" | "sphere" | "cylinder" | "capsule" | "ellipsoid" | "mesh")
+            ) {
+                let kind = kind.map_or("no geometry".to_string(), |k| format!("<{k}>"));
+                self.warn(
+                    g,
+                    what,
+                    format!("{kind} is not drawn: the visual is skipped"),
+                );
+                continue;
+            }
             let shape = match child(g, "mesh") {
-                Some(mesh) => match self.mesh_file(mesh, &what)? {
-                    (Ok((_, file)), scale) => VisualShape::Mesh {
+                Some(mesh) => match self.mesh_file(mesh, &what) {
+                    Ok((Ok((_, file)), scale)) => VisualShape::Mesh {
                         file: std::fs::canonicalize(&file).unwrap_or(file),
                         scale,
                     },
-                    (Err(e), _) => {
+                    Ok((Err(e), _)) => {
+                        self.warn(mesh, what, format!("{e}: the visual is skipped"));
+                        continue;
+                    }
+                    Err(e) => {
                         self.warn(mesh, what, format!("{e}: the visual is skipped"));
                         continue;
                     }
                 },
-                None => match self.shape(g, &what)? {
-                    Some(s) => VisualShape::Primitive(s),
-                    None => continue,
+                None => match self.shape(g, &what) {
+                    Ok(Some(s)) => VisualShape::Primitive(s),
+                    Ok(None) => continue,
+                    Err(e) => {
+                        self.warn(g, what, format!("{e}: the visual is skipped"));
+                        continue;
+                    }
                 },
             };
             let colour = child(v, "material")
@@ -49,7 +81,7 @@ impl Reader<'_> {
             let rgba = match colour {
                 None => None,
                 Some(c) => {
-                    let n = self.numbers(c, &what, None)?;
+                    let n = self.numbers(c, &what, None).unwrap_or_default();
                     match n.as_slice() {
                         [r, g, b] => Some([*r, *g, *b, 1.0]),
                         [r, g, b, a] => Some([*r, *g, *b, *a]),

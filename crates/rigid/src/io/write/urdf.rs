@@ -462,7 +462,8 @@ impl Writer<'_> {
                         }
                     })
                     .collect();
-                let mut obj = String::from("# the convex hull rigid collides this shape as\n");
+                let mut obj =
+                    String::from("# the convex hull of this shape (as rigid collides it)\n");
                 for v in &vertices {
                     let _ = writeln!(obj, "v {}", vec3(v));
                 }

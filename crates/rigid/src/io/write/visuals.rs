@@ -76,7 +76,6 @@ pub fn urdf_visuals(robot: &UrdfRobot, model: &Model) -> (Vec<Visual>, Vec<Strin
 pub fn mjcf_visuals(m: &crate::io::mjcf::MjcfModel, colliding: bool) -> (Vec<Visual>, Vec<String>) {
     use crate::collision::Shape;
     use crate::io::mjcf::MjcfShape;
-    use crate::spatial::{Mat3, Transform};
     let (mut out, mut notes) = (Vec::new(), Vec::new());
     for (k, g) in m.geoms.iter().enumerate() {
         let collides = g.contype != 0 || g.conaffinity != 0;
@@ -116,16 +115,12 @@ pub fn mjcf_visuals(m: &crate::io::mjcf::MjcfModel, colliding: bool) -> (Vec<Vis
                 refrot,
                 ..
             } => {
-                let uniform =
-                    (scale.x - scale.y).abs() < 1e-12 && (scale.x - scale.z).abs() < 1e-12;
-                let turned = (refrot - Mat3::identity()).norm() > 1e-12;
-                // MuJoCo draws `(Rᵀ (v − refpos)) ∘ scale`: `T (scale ∘ v)` with `T = (Rᵀ,
-                // −Rᵀ (scale ∘ refpos))` when the scale is uniform or `R = 1`
-                if inline.is_none() && (uniform || !turned) {
-                    let rt = refrot.transpose();
-                    placement = placement * Transform::new(rt, -(rt * refpos.component_mul(scale)));
+                // by its file where MuJoCo draws it, else as its hull
+                if let Some(frame) = g.shape.mesh_file_frame() {
+                    placement = placement * frame;
                     VisualShape::Mesh {
-                        file: file.clone(),
+                        // absolute: the written file is read from elsewhere
+                        file: std::fs::canonicalize(file).unwrap_or_else(|_| file.clone()),
                         scale: *scale,
                     }
                 } else {
