@@ -784,7 +784,8 @@ def doctor(path: Path, fix: Path | None = None) -> dict[str, Any]:
     ``rigid doctor --json``
     (``{"robot", "bodies": [{"name", "line", "status", "findings", "likely_cause",
     "explanation", "repair", ...}]}``). With ``fix``, writes a copy of the file in which the
-    ``<inertial>`` blocks that needed a repair are replaced, in the file's own format."""
+    ``<inertial>`` blocks that needed a repair are replaced, in the file's own format; what it
+    cannot repair (a body in an included file, MJCF's ``inertiafromgeom``) is a ``UserWarning``."""
 
 # Pinocchio's names of the verbs with the same signature.
 computeJointTorqueRegressor = regressor

@@ -392,9 +392,14 @@ pub fn doctor<'py>(
     if let Some(out) = fix {
         let text = std::fs::read_to_string(&path)
             .map_err(|e| io_error(&e, format!("doctor: {shown}: {e}")))?;
-        let (fixed, _notes) = examined
+        let (fixed, notes) = examined
             .fixed(&text)
             .map_err(|e| value_error("doctor", format!("{shown}: {e}")))?;
+        // what was not repaired (a body in an included file, MJCF's inertiafromgeom)
+        let warnings = py.import("warnings")?;
+        for n in notes {
+            warnings.call_method1("warn", (format!("doctor: {shown}: {n}"),))?;
+        }
         std::fs::write(&out, fixed)
             .map_err(|e| io_error(&e, format!("doctor: cannot write {}: {e}", out.display())))?;
     }

@@ -160,6 +160,16 @@ def test_doctor_reads_sdf_and_fixes_it_in_sdf(tmp_path):
     assert rigid.Model.from_file(str(fixed)).nv == 6
 
 
+def test_doctor_warns_what_its_fix_cannot_do(tmp_path):
+    # MuJoCo ignores every <inertial> under inertiafromgeom="true": the fix says so
+    xml = tmp_path / "geoms.xml"
+    xml.write_text("""<mujoco><compiler inertiafromgeom="true"/><worldbody>
+      <body name="b"><joint/><inertial pos="0 0 0" mass="1" diaginertia="0.05 0.05 0.05"/>
+        <geom type="box" size="0.1 0.1 0.1"/></body></worldbody></mujoco>""")
+    with pytest.warns(UserWarning, match="inertiafromgeom"):
+        rigid.doctor(xml, fix=tmp_path / "fixed.xml")
+
+
 def test_mass_properties_and_doctor_equal_the_command_line_json():
     p, ref = rigid.mass_properties(COMPOUND), cli("mass", COMPOUND)
     assert set(ref) <= set(p)

@@ -105,7 +105,8 @@ impl Reader<'_> {
             self.warn(
                 n,
                 what(),
-                "an include's <static> is not read: the model is as its file says",
+                "an include's <static> is not read (nor a nested model's): its links move as its \
+                 joints say",
             );
         }
         if child(n, "placement_frame").is_some() {
