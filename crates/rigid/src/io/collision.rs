@@ -276,6 +276,33 @@ pub fn mjcf_geometries(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<Str
     (out, warnings)
 }
 
+/// A geom's primitive (sphere, capsule, cylinder, ellipsoid, box) as a collision shape, MuJoCo's
+/// half-lengths made lengths; `None` for a mesh, plane or height field.
+#[cfg(feature = "mjcf")]
+pub(crate) fn mjcf_primitive(shape: &super::mjcf::MjcfShape) -> Option<Shape> {
+    use super::mjcf::MjcfShape;
+    Some(match *shape {
+        MjcfShape::Sphere { radius } => Shape::Sphere { radius },
+        MjcfShape::Capsule {
+            radius,
+            half_length,
+        } => Shape::Capsule {
+            radius,
+            length: 2.0 * half_length,
+        },
+        MjcfShape::Cylinder {
+            radius,
+            half_length,
+        } => Shape::Cylinder {
+            radius,
+            length: 2.0 * half_length,
+        },
+        MjcfShape::Ellipsoid { radii } => Shape::Ellipsoid { semi_axes: radii },
+        MjcfShape::Box { half } => Shape::Box { size: 2.0 * half },
+        MjcfShape::Mesh { .. } | MjcfShape::Plane { .. } | MjcfShape::Hfield { .. } => return None,
+    })
+}
+
 /// [`mjcf_geometries`], with the index in `mjcf.geoms` of each geometry's geom.
 #[cfg(feature = "mjcf")]
 fn mjcf_geoms(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<usize>, Vec<String>) {
@@ -290,23 +317,13 @@ fn mjcf_geoms(mjcf: &super::mjcf::MjcfModel) -> (Vec<Geometry>, Vec<usize>, Vec<
         }
         let name = g.name.clone().unwrap_or_else(|| format!("geom {}", g.line));
         let shape = match &g.shape {
-            MjcfShape::Sphere { radius } => Ok(Shape::Sphere { radius: *radius }),
-            MjcfShape::Capsule {
-                radius,
-                half_length,
-            } => Ok(Shape::Capsule {
-                radius: *radius,
-                length: 2.0 * half_length,
-            }),
-            MjcfShape::Cylinder {
-                radius,
-                half_length,
-            } => Ok(Shape::Cylinder {
-                radius: *radius,
-                length: 2.0 * half_length,
-            }),
-            MjcfShape::Ellipsoid { radii } => Ok(Shape::Ellipsoid { semi_axes: *radii }),
-            MjcfShape::Box { half } => Ok(Shape::Box { size: 2.0 * half }),
+            MjcfShape::Sphere { .. }
+            | MjcfShape::Capsule { .. }
+            | MjcfShape::Cylinder { .. }
+            | MjcfShape::Ellipsoid { .. }
+            | MjcfShape::Box { .. } => {
+                mjcf_primitive(&g.shape).ok_or_else(|| "not a primitive".into())
+            }
             MjcfShape::Mesh {
                 file,
                 inline,

@@ -86,27 +86,14 @@ pub fn mjcf_visuals(m: &crate::io::mjcf::MjcfModel, colliding: bool) -> (Vec<Vis
         let name = g.name.clone().unwrap_or_else(|| format!("{link}/geom/{k}"));
         let mut placement = g.placement;
         let shape = match &g.shape {
-            MjcfShape::Sphere { radius } => {
-                VisualShape::Primitive(Shape::Sphere { radius: *radius })
-            }
-            MjcfShape::Box { half } => VisualShape::Primitive(Shape::Box { size: 2.0 * half }),
-            MjcfShape::Capsule {
-                radius,
-                half_length,
-            } => VisualShape::Primitive(Shape::Capsule {
-                radius: *radius,
-                length: 2.0 * half_length,
-            }),
-            MjcfShape::Cylinder {
-                radius,
-                half_length,
-            } => VisualShape::Primitive(Shape::Cylinder {
-                radius: *radius,
-                length: 2.0 * half_length,
-            }),
-            MjcfShape::Ellipsoid { radii } => {
-                VisualShape::Primitive(Shape::Ellipsoid { semi_axes: *radii })
-            }
+            MjcfShape::Sphere { .. }
+            | MjcfShape::Box { .. }
+            | MjcfShape::Capsule { .. }
+            | MjcfShape::Cylinder { .. }
+            | MjcfShape::Ellipsoid { .. } => match crate::io::collision::mjcf_primitive(&g.shape) {
+                Some(s) => VisualShape::Primitive(s),
+                None => continue,
+            },
             MjcfShape::Mesh {
                 file,
                 inline,
